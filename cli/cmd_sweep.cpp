@@ -1,0 +1,314 @@
+// shadecore sweep — exhaustive error sweep of a variant over n × every input code.
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include <fmt/core.h>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "output.hpp"
+#include "shadecore/configs.hpp"
+#include "shadecore/golden.hpp"
+#include "shadecore/sweep.hpp"
+
+namespace shadecore::cli {
+namespace {
+
+struct SweepArgs {
+  std::string variant = "cs16";
+  std::string cutoff = "theta_cr";
+  std::string config;  // a name from config/configs.json
+  int frac = -1, guard = -1;
+  std::string n_range = "16..1024";
+  int threads = 0;
+  std::string json_path, csv_path, plots_dir;
+  bool no_progress = false;
+  bool compare_cutoffs = false;
+};
+
+// A published claim and how it is checked.
+struct Claim {
+  const char* what;
+  double claimed;
+  double measured;
+};
+
+// "Reproduced" means the measured value, rounded to the two significant digits the paper
+// prints, equals the published value.
+bool reproduces(double claimed, double measured) {
+  return fmt::format("{:.1e}", claimed) == fmt::format("{:.1e}", measured);
+}
+
+Format resolve_format(const SweepArgs& a) {
+  std::string name = a.config.empty() ? std::string(kDefaultConfig) : a.config;
+  const NamedConfig* found = nullptr;
+  for (const auto& c : kConfigs)
+    if (c.name == name) found = &c;
+  if (!found) {
+    std::string names;
+    for (const auto& c : kConfigs) names += (names.empty() ? "" : ", ") + std::string(c.name);
+    throw std::invalid_argument("unknown config '" + name + "' (known: " + names + ")");
+  }
+  Format f = found->format;
+  if (a.frac >= 0) f.frac = a.frac;
+  if (a.guard >= 0) f.guard = a.guard;
+  validate(f);
+  return f;
+}
+
+Cutoff parse_cutoff(const std::string& s) {
+  if (s == "theta_cr") return Cutoff::ThetaCr;
+  if (s == "sign_clamp") return Cutoff::SignClamp;
+  throw std::invalid_argument("unknown cutoff '" + s + "' (known: theta_cr, sign_clamp)");
+}
+
+nlohmann::json extreme_json(const Extreme& e, const Format& f) {
+  return {{"value", e.value},
+          {"n", e.n},
+          {"code", e.code},
+          {"cos", std::ldexp(static_cast<double>(e.code), -f.frac)},
+          {"theta", std::acos(std::ldexp(static_cast<double>(e.code), -f.frac))}};
+}
+
+std::string where(const Extreme& e, const Format& f) {
+  return fmt::format("n={:<4} θ={:.6f} rad  code={}", e.n, std::acos(std::ldexp(double(e.code), -f.frac)),
+                     e.code);
+}
+
+// Progress bar on stderr while the sweep runs (only when stderr is a terminal).
+class Progress {
+ public:
+  Progress(uint64_t total, bool enabled) : total_(total), enabled_(enabled) {
+    if (enabled_) th_ = std::thread([this] { loop(); });
+  }
+  ~Progress() { stop(); }
+  void add(uint64_t k) { done_ += k; }
+  void stop() {
+    if (!th_.joinable()) return;
+    {
+      std::lock_guard<std::mutex> lk(mu_);
+      stopping_ = true;
+    }
+    cv_.notify_all();
+    th_.join();
+    std::fputs("\r\033[K", stderr);
+  }
+
+ private:
+  void loop() {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::unique_lock<std::mutex> lk(mu_);
+    while (!cv_.wait_for(lk, std::chrono::milliseconds(100), [this] { return stopping_; })) {
+      const double frac = total_ ? double(done_.load()) / double(total_) : 1.0;
+      const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const int w = 40, fill = static_cast<int>(frac * w);
+      fmt::print(stderr, "\r[{}{}] {:5.1f}%  {:.1f} s", std::string(fill, '#'), std::string(w - fill, ' '),
+                 100 * frac, el);
+      std::fflush(stderr);
+    }
+  }
+  uint64_t total_;
+  bool enabled_;
+  std::atomic<uint64_t> done_{0};
+  std::mutex mu_;
+  std::condition_variable cv_;
+  bool stopping_ = false;
+  std::thread th_;
+};
+
+std::string csv_rows(const SweepResult& r) {
+  std::ostringstream o;
+  o << "n,approx_max,approx_max_code,approx_min,approx_min_code,quant_max_ulp,quant_max_code,"
+       "quant_min_ulp,quant_min_code,total_max,total_max_code,total_min,total_min_code,nonzero_codes\n";
+  for (const auto& row : r.rows) {
+    o << fmt::format("{},{:.9e},{},{:.9e},{},{:.6f},{},{:.6f},{},{:.9e},{},{:.9e},{},{}\n", row.n,
+                     row.approx.max.value, row.approx.max.code, row.approx.min.value, row.approx.min.code,
+                     row.quant.max.value, row.quant.max.code, row.quant.min.value, row.quant.min.code,
+                     row.total.max.value, row.total.max.code, row.total.min.value, row.total.min.code,
+                     row.nonzero_codes);
+  }
+  return o.str();
+}
+
+// Data for the plots: Fig. 3 (n = 128 curves) and Fig. 4 (Δ over n and θ, 20θ in [0, 30]).
+void write_plot_data(const SweepArgs& a, const SweepResult& r, const std::string& dir) {
+  const Format f = r.options.format;
+  const Cutoff cut = r.options.cutoff;
+  {
+    std::ostringstream o;
+    o << "theta,cos_pow,golden,fixed\n";
+    const int n = 128;
+    const Cs16Material m = cs16_setup(f, n);
+    for (int i = 0; i <= 1000; ++i) {
+      const double th = (M_PI / 2) * i / 1000.0;
+      const double c = std::cos(th);
+      const int64_t code = std::llround(std::ldexp(c, f.frac));
+      const double fixed =
+          a.variant == "cs16" ? std::ldexp(double(cs16_eval(f, cut, m, code)), -f.frac) : std::nan("");
+      o << fmt::format("{:.9f},{:.12e},{:.12e},{:.12e}\n", th, golden::cos_pow(c, n),
+                       variant_golden(a.variant, cut, n, c), fixed);
+    }
+    write_file_atomic(dir + "/fig3_n128.csv", o.str());
+  }
+  {
+    std::ostringstream o;
+    o << "n,theta,delta\n";
+    const int lo = r.options.n_lo, hi = r.options.n_hi;
+    const int step = std::max(1, (hi - lo) / 255);
+    for (int n = lo; n <= hi; n += step)
+      for (int i = 0; i <= 300; ++i) {
+        const double th = 1.5 * i / 300.0;  // 20θ in [0, 30] as in the paper's Fig. 4
+        const double c = std::cos(th);
+        o << fmt::format("{},{:.6f},{:.9e}\n", n, th, golden::cos_pow(c, n) - variant_golden(a.variant, cut, n, c));
+      }
+    write_file_atomic(dir + "/fig4_grid.csv", o.str());
+  }
+  write_file_atomic(dir + "/per_n.csv", csv_rows(r));
+}
+
+void run(const SweepArgs& a) {
+  SweepOptions opt;
+  opt.variant = a.variant;
+  opt.format = resolve_format(a);
+  opt.cutoff = parse_cutoff(a.cutoff);
+  const auto [lo, hi] = parse_range(a.n_range);
+  validate_n(lo);
+  validate_n(hi);
+  opt.n_lo = lo;
+  opt.n_hi = hi;
+  opt.threads = a.threads;
+  bool known = false;
+  for (const auto& v : sweep_variants()) known |= (v == a.variant);
+  if (!known) {
+    std::string names;
+    for (const auto& v : sweep_variants()) names += (names.empty() ? "" : ", ") + v;
+    throw std::invalid_argument("unknown variant '" + a.variant + "' (known: " + names + ")");
+  }
+  if (a.threads < 0) throw std::invalid_argument("--threads must be >= 0");
+  // Fail on unwritable outputs before the run, not after it.
+  if (!a.json_path.empty()) check_writable_file(a.json_path);
+  if (!a.csv_path.empty()) check_writable_file(a.csv_path);
+  if (!a.plots_dir.empty()) ensure_dir(a.plots_dir);
+
+  const uint64_t total = uint64_t(opt.format.one() + 1) * uint64_t(hi - lo + 1);
+  Progress bar(total, !a.no_progress && ::isatty(STDERR_FILENO));
+  opt.progress = [&bar](uint64_t k) { bar.add(k); };
+  const SweepResult r = run_sweep(opt);
+  bar.stop();
+  const Format f = opt.format;
+
+  fmt::print("shadecore sweep  variant={} cutoff={} F={} G={}  n={}..{}  codes=0..{}\n", a.variant,
+             to_string(opt.cutoff), f.frac, f.guard, lo, hi, f.one());
+  fmt::print("{} evaluations in {:.3f} s on {} threads ({:.1f} M/s)\n\n", r.evaluations, r.seconds, r.threads_used,
+             r.evaluations / r.seconds / 1e6);
+  fmt::print("{:>6} | {:>11} {:>11} | {:>9} {:>9} | {:>11} {:>11} | {:>8}\n", "n", "approx max", "approx min",
+             "quant max", "quant min", "total max", "total min", "lobe");
+  fmt::print("{:>6} | {:>11} {:>11} | {:>9} {:>9} | {:>11} {:>11} | {:>8}\n", "", "(abs)", "(abs)", "(ulp)",
+             "(ulp)", "(abs)", "(abs)", "(codes)");
+  fmt::print("{}\n", std::string(96, '-'));
+  for (const auto& row : r.rows) {
+    const bool pow2 = (row.n & (row.n - 1)) == 0;
+    if (!(pow2 || row.n == lo || row.n == hi)) continue;
+    fmt::print("{:>6} | {:>11.3e} {:>11.3e} | {:>9.4f} {:>9.4f} | {:>11.3e} {:>11.3e} | {:>8}\n", row.n,
+               row.approx.max.value, row.approx.min.value, row.quant.max.value, row.quant.min.value,
+               row.total.max.value, row.total.min.value, row.nonzero_codes);
+  }
+  fmt::print("{}\n", std::string(96, '-'));
+  auto line = [&](const char* name, const ErrorStats& s, const char* unit, const char* fmtspec) {
+    fmt::print("{:<36} max {:>12} {:<4} at {}\n", name, fmt::format(fmt::runtime(fmtspec), s.max.value), unit,
+               where(s.max, f));
+    fmt::print("{:<36} min {:>12} {:<4} at {}\n", "", fmt::format(fmt::runtime(fmtspec), s.min.value), unit,
+               where(s.min, f));
+  };
+  line("approximation  cos^n − f_double", r.approx, "", "{:.4e}");
+  line("quantisation   f_fixed − f_double", r.quant, "ulp", "{:.5f}");
+  line("total          cos^n − f_fixed", r.total, "", "{:.4e}");
+
+  nlohmann::json verdicts = nlohmann::json::array();
+  if (a.variant == "cs16") {
+    fmt::print("\nPublished claims (Δ = cos^n θ − cs16(θ, n) in double, max/min over n = 16..1024 and every\n"
+               "input code's θ = acos(code/2^F) in [0, π/2]; reproduced = equal at the 2 significant digits printed):\n");
+    const bool full = (lo == kNMin && hi == kNMax);
+    const Claim claims[] = {{"max Δ", 1.7e-2, r.approx.max.value}, {"min Δ", -9.7e-3, r.approx.min.value}};
+    for (const auto& c : claims) {
+      const bool ok = full && reproduces(c.claimed, c.measured);
+      const std::string verdict = !full ? "NOT CHECKED (n range is not 16..1024)" : ok ? "REPRODUCED" : "NOT REPRODUCED";
+      fmt::print("  claim {} = {:.1e}: measured {:.4e} → {}\n", c.what, c.claimed, c.measured, verdict);
+      verdicts.push_back({{"claim", c.what}, {"published", c.claimed}, {"measured", c.measured},
+                          {"verdict", verdict},
+                          {"definition", "cos^n(theta) - cs16_double(theta, n), n=16..1024, theta=acos(code/2^F)"}});
+    }
+  }
+
+  nlohmann::json cutcmp;
+  if (a.compare_cutoffs && a.variant == "cs16") {
+    // Evidence for docs/spec.md §1: where do the two cut-off forms differ?
+    uint64_t diff_fixed = 0;
+    double max_double = 0.0;
+    for (int n = lo; n <= hi; ++n) {
+      const Cs16Material m = cs16_setup(f, n);
+      for (int64_t code = 0; code <= f.one(); ++code) {
+        diff_fixed += cs16_eval(f, Cutoff::ThetaCr, m, code) != cs16_eval(f, Cutoff::SignClamp, m, code);
+        const double c = std::ldexp(double(code), -f.frac);
+        max_double = std::max(max_double, std::fabs(golden::cs16_theta_cr(c, n) - golden::cs16_sign_clamp(c, n)));
+      }
+    }
+    fmt::print("\nCut-off forms: theta_cr vs sign_clamp differ in {} fixed-point outputs; max |difference| of the\n"
+               "double functions over the same codes = {:.3e}\n", diff_fixed, max_double);
+    cutcmp = {{"differing_fixed_outputs", diff_fixed}, {"max_abs_double_difference", max_double}};
+  }
+
+  if (!a.json_path.empty()) {
+    nlohmann::json j;
+    j["variant"] = a.variant;
+    j["cutoff"] = to_string(opt.cutoff);
+    j["format"] = {{"frac", f.frac}, {"guard", f.guard}};
+    j["n_range"] = {lo, hi};
+    j["evaluations"] = r.evaluations;
+    j["seconds"] = r.seconds;
+    j["threads"] = r.threads_used;
+    for (auto [key, s] : {std::pair{"approx", &r.approx}, {"quant_ulp", &r.quant}, {"total", &r.total}})
+      j[key] = {{"max", extreme_json(s->max, f)}, {"min", extreme_json(s->min, f)}};
+    j["verdicts"] = verdicts;
+    if (!cutcmp.is_null()) j["cutoff_comparison"] = cutcmp;
+    write_file_atomic(a.json_path, j.dump(2) + "\n");
+  }
+  if (!a.csv_path.empty()) write_file_atomic(a.csv_path, csv_rows(r));
+  if (!a.plots_dir.empty()) {
+    write_plot_data(a, r, a.plots_dir);
+    run_python_script("plot_sweep.py", fmt::format("--dir '{}' --title '{} {} F={} G={}'", a.plots_dir, a.variant,
+                                                   to_string(opt.cutoff), f.frac, f.guard));
+    fmt::print("\nplots written to {}/\n", a.plots_dir);
+  }
+}
+
+}  // namespace
+
+void add_sweep(CLI::App& app) {
+  auto args = std::make_shared<SweepArgs>();
+  auto* sub = app.add_subcommand("sweep", "Exhaustive error sweep: every n × every input code");
+  sub->add_option("--variant", args->variant, "Specular variant (cs16)");
+  sub->add_option("--cutoff", args->cutoff, "cs16 cut-off form: theta_cr | sign_clamp");
+  sub->add_option("--config", args->config, "Named width configuration from config/configs.json");
+  sub->add_option("--frac", args->frac, "Fraction bits F (8..24), overrides --config");
+  sub->add_option("--guard", args->guard, "Guard bits G (4..8, F+G <= 31), overrides --config");
+  sub->add_option("--n", args->n_range, "Exponent range LO..HI or N (within 16..1024)");
+  sub->add_option("--threads", args->threads, "Worker threads (0 = all cores)");
+  sub->add_option("--json", args->json_path, "Write the summary as JSON");
+  sub->add_option("--csv", args->csv_path, "Write one row per n as CSV");
+  sub->add_option("--plots", args->plots_dir, "Write PNG plots (and their CSV data) into this directory");
+  sub->add_flag("--no-progress", args->no_progress, "No progress bar");
+  sub->add_flag("--compare-cutoffs", args->compare_cutoffs, "Also count outputs where theta_cr and sign_clamp differ");
+  sub->callback([args] { run(*args); });
+}
+
+}  // namespace shadecore::cli

@@ -1,0 +1,11 @@
+// shadecore CLI — each subcommand registers itself on the app from its own file (cmd_*.cpp).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace shadecore::cli {
+
+void add_sweep(CLI::App& app);
+// Further subcommands (cosim, fit, ...) add a line here and in main.cpp.
+
+}  // namespace shadecore::cli

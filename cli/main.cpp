@@ -1,0 +1,21 @@
+// shadecore — command-line entry point. Errors are one line on stderr and a non-zero exit.
+#include <cstdio>
+#include <exception>
+#include <fmt/core.h>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"shadecore: fixed-point specular shading core — C model, sweeps and co-simulation"};
+  app.require_subcommand(1);
+  shadecore::cli::add_sweep(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "shadecore: error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

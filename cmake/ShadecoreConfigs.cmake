@@ -1,0 +1,38 @@
+# Reads config/configs.json — the single source of truth for the fixed-point widths — and
+#   * generates ${CMAKE_BINARY_DIR}/generated/shadecore/configs.hpp for the C++ side,
+#   * sets SHADECORE_CONFIG_NAMES and, per name, SHADECORE_CONFIG_<name>_FRAC / _GUARD for the
+#     Verilator -G parameters of the RTL builds.
+set(_cfg_file "${CMAKE_SOURCE_DIR}/config/configs.json")
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${_cfg_file}")
+file(READ "${_cfg_file}" _cfg_json)
+string(JSON SHADECORE_DEFAULT_CONFIG GET "${_cfg_json}" default)
+string(JSON _n LENGTH "${_cfg_json}" configs)
+math(EXPR _last "${_n} - 1")
+set(SHADECORE_CONFIG_NAMES "")
+set(_entries "")
+foreach(i RANGE ${_last})
+  string(JSON _name GET "${_cfg_json}" configs ${i} name)
+  string(JSON _frac GET "${_cfg_json}" configs ${i} frac)
+  string(JSON _guard GET "${_cfg_json}" configs ${i} guard)
+  list(APPEND SHADECORE_CONFIG_NAMES "${_name}")
+  set(SHADECORE_CONFIG_${_name}_FRAC "${_frac}")
+  set(SHADECORE_CONFIG_${_name}_GUARD "${_guard}")
+  string(APPEND _entries "    NamedConfig{\"${_name}\", Format{${_frac}, ${_guard}}},\n")
+endforeach()
+if(NOT SHADECORE_DEFAULT_CONFIG IN_LIST SHADECORE_CONFIG_NAMES)
+  message(FATAL_ERROR "config/configs.json: default '${SHADECORE_DEFAULT_CONFIG}' is not a listed config")
+endif()
+set(SHADECORE_GENERATED_DIR "${CMAKE_BINARY_DIR}/generated")
+file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/configs.hpp" CONTENT
+"// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
+#pragma once
+#include <array>
+#include <string_view>
+#include \"shadecore/format.hpp\"
+namespace shadecore {
+struct NamedConfig { std::string_view name; Format format; };
+inline constexpr std::array<NamedConfig, ${_n}> kConfigs{{
+${_entries}}};
+inline constexpr std::string_view kDefaultConfig = \"${SHADECORE_DEFAULT_CONFIG}\";
+}  // namespace shadecore
+" @ONLY)

@@ -1,0 +1,58 @@
+// shadecore — fixed-point formats of the specular unit (see docs/spec.md §2).
+//
+// One Format describes every width of the per-fragment datapath:
+//   cos θ input   : signed two's complement, frac+2 bits, 1.0 == 2^frac
+//   squaring chain: unsigned, W = frac+guard fraction bits (value in [0, 1])
+//   output        : unsigned, frac+1 bits, 1.0 == 2^frac
+// The named configurations (narrow/default/wide) come from config/configs.json through the
+// generated header shadecore/configs.hpp; the RTL gets the same numbers as Verilog parameters.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace shadecore {
+
+inline constexpr int kFracMin = 8;
+inline constexpr int kFracMax = 24;
+inline constexpr int kGuardMin = 4;  // base = 1 - (n/16)(1-c) has frac+4 fraction bits: exact when guard >= 4
+inline constexpr int kGuardMax = 8;
+inline constexpr int kWorkMax = 31;  // frac+guard <= 31 keeps every squaring product within 64 bits
+inline constexpr int kNMin = 16;
+inline constexpr int kNMax = 1024;
+inline constexpr int kNBits = 11;  // n in [16, 1024] as an unsigned integer; n/16 is n with 4 implied fraction bits
+
+struct Format {
+  int frac = 16;  // F: fraction bits of cos θ and of the output
+  int guard = 5;  // G: extra fraction bits carried through the four squarings
+
+  [[nodiscard]] constexpr int work() const { return frac + guard; }        // W
+  [[nodiscard]] constexpr int in_bits() const { return frac + 2; }         // signed input word
+  [[nodiscard]] constexpr int out_bits() const { return frac + 1; }        // unsigned output word
+  [[nodiscard]] constexpr int64_t one() const { return int64_t{1} << frac; }  // code of 1.0
+  [[nodiscard]] constexpr int64_t in_min() const { return -(int64_t{1} << (frac + 1)); }
+  [[nodiscard]] constexpr int64_t in_max() const { return (int64_t{1} << (frac + 1)) - 1; }
+};
+
+// Throws std::invalid_argument with a one-line message when the format is illegal.
+inline void validate(const Format& f) {
+  if (f.frac < kFracMin || f.frac > kFracMax)
+    throw std::invalid_argument("fraction width " + std::to_string(f.frac) + " out of range [" +
+                                std::to_string(kFracMin) + ", " + std::to_string(kFracMax) + "]");
+  if (f.guard < kGuardMin || f.guard > kGuardMax)
+    throw std::invalid_argument("guard width " + std::to_string(f.guard) + " out of range [" +
+                                std::to_string(kGuardMin) + ", " + std::to_string(kGuardMax) + "]");
+  if (f.work() > kWorkMax)
+    throw std::invalid_argument("frac+guard = " + std::to_string(f.work()) + " exceeds " +
+                                std::to_string(kWorkMax));
+}
+
+// Throws std::invalid_argument unless n is an integer in [16, 1024].
+inline void validate_n(long long n) {
+  if (n < kNMin || n > kNMax)
+    throw std::invalid_argument("specular exponent n = " + std::to_string(n) + " out of range [" +
+                                std::to_string(kNMin) + ", " + std::to_string(kNMax) + "]");
+}
+
+}  // namespace shadecore
