@@ -18,6 +18,7 @@
 #include "output.hpp"
 #include "shadecore/configs.hpp"
 #include "shadecore/golden.hpp"
+#include "shadecore/schlick.hpp"
 #include "shadecore/sweep.hpp"
 
 namespace shadecore::cli {
@@ -33,6 +34,7 @@ struct SweepArgs {
   std::string json_path, csv_path, plots_dir;
   bool no_progress = false;
   bool compare_cutoffs = false;
+  bool energy = false;
 };
 
 // A published claim and how it is checked.
@@ -152,8 +154,13 @@ void write_plot_data(const SweepArgs& a, const SweepResult& r, const std::string
       const double th = (M_PI / 2) * i / 1000.0;
       const double c = std::cos(th);
       const int64_t code = std::llround(std::ldexp(c, f.frac));
+      SchlickForm form = SchlickForm::Div;
+      const bool schlick = a.variant.rfind("schlick_", 0) == 0;
+      if (a.variant == "schlick_nr") form = SchlickForm::Nr;
       const double fixed =
-          a.variant == "cs16" ? std::ldexp(double(cs16_eval(f, cut, m, code)), -f.frac) : std::nan("");
+          a.variant == "cs16" ? std::ldexp(double(cs16_eval(f, cut, m, code)), -f.frac)
+          : schlick           ? std::ldexp(double(schlick_eval(form, f, schlick_setup(f, n), code)), -f.frac)
+                              : std::nan("");
       o << fmt::format("{:.9f},{:.12e},{:.12e},{:.12e}\n", th, golden::cos_pow(c, n),
                        variant_golden(a.variant, cut, n, c), fixed);
     }
@@ -173,6 +180,65 @@ void write_plot_data(const SweepArgs& a, const SweepResult& r, const std::string
     write_file_atomic(dir + "/fig4_grid.csv", o.str());
   }
   write_file_atomic(dir + "/per_n.csv", csv_rows(r));
+}
+
+// Lobe energy against cos^n (docs/schlick.md): ∫ f sin θ dθ and ∫ f cos θ sin θ dθ over [0, π/2] for
+// the double function (closed form for Schlick, Simpson on t = cos θ otherwise) and for the fixed-point
+// outputs (trapezoid over every code), each divided by the cos^n value 1/(n+1) resp. 1/(n+2).
+nlohmann::json print_energy(const SweepArgs& a, const SweepOptions& opt) {
+  const Format f = opt.format;
+  const bool schlick = a.variant.rfind("schlick_", 0) == 0;
+  const SchlickForm form = a.variant == "schlick_nr" ? SchlickForm::Nr : a.variant == "schlick_iter" ? SchlickForm::Iter
+                                                                                                    : SchlickForm::Div;
+  fmt::print("\nLobe energy relative to cos^n (E1 = ∫ f·sinθ dθ vs 1/(n+1); E2 = ∫ f·cosθ·sinθ dθ vs 1/(n+2);\n"
+             "double: {}; fixed: trapezoid over the {} output codes):\n",
+             schlick ? "closed form" : "Simpson, 2^16 intervals", f.one() + 1);
+  fmt::print("{:>6} | {:>11} {:>9} {:>9} | {:>11} {:>9} {:>9} | {:>11}\n", "n", "E1 double", "E1/cosn", "fixed/cosn",
+             "E2 double", "E2/cosn", "fixed/cosn", "coef·2π/(n+1)");
+  nlohmann::json rows = nlohmann::json::array();
+  double r1lo = 1e300, r1hi = 0, r2lo = 1e300, r2hi = 0;
+  const double h = std::ldexp(1.0, -f.frac);
+  for (int n = opt.n_lo; n <= opt.n_hi; ++n) {
+    double e1, e2;
+    if (schlick) {
+      e1 = golden::schlick_energy(n);
+      e2 = golden::schlick_energy_cos(n);
+    } else {
+      const int N = 1 << 16;
+      e1 = e2 = 0;
+      for (int i = 0; i <= N; ++i) {
+        const double t = double(i) / N, w = (i == 0 || i == N) ? 1 : (i % 2 ? 4 : 2);
+        const double g = variant_golden(a.variant, opt.cutoff, n, t);
+        e1 += w * g;
+        e2 += w * g * t;
+      }
+      e1 /= 3.0 * N;
+      e2 /= 3.0 * N;
+    }
+    double q1 = 0, q2 = 0;
+    const Cs16Material cm = cs16_setup(f, n);
+    const SchlickMaterial sm = schlick_setup(f, n);
+    for (int64_t code = 0; code <= f.one(); ++code) {
+      const double y = std::ldexp(double(schlick ? schlick_eval(form, f, sm, code) : cs16_eval(f, opt.cutoff, cm, code)),
+                                  -f.frac);
+      const double w = (code == 0 || code == f.one()) ? 0.5 : 1.0;
+      q1 += w * y * h;
+      q2 += w * y * (double(code) * h) * h;
+    }
+    const double c1 = golden::cos_pow_energy(n), c2 = golden::cos_pow_energy_cos(n);
+    r1lo = std::min(r1lo, e1 / c1); r1hi = std::max(r1hi, e1 / c1);
+    r2lo = std::min(r2lo, e2 / c2); r2hi = std::max(r2hi, e2 / c2);
+    rows.push_back({{"n", n}, {"e1", e1}, {"e1_fixed", q1}, {"e1_cos_pow", c1}, {"e2", e2}, {"e2_fixed", q2},
+                    {"e2_cos_pow", c2}, {"coef_2pi", 1.0 / e1}});
+    const bool pow2 = (n & (n - 1)) == 0;
+    if (pow2 || n == opt.n_lo || n == opt.n_hi)
+      fmt::print("{:>6} | {:>11.5e} {:>9.4f} {:>9.4f} | {:>11.5e} {:>9.4f} {:>9.4f} | {:>11.4f}\n", n, e1, e1 / c1,
+                 q1 / c1, e2, e2 / c2, q2 / c2, (1.0 / e1) / (n + 1.0));
+  }
+  fmt::print("E1/cos^n over n = {}..{}: {:.4f} .. {:.4f};  E2/cos^n: {:.4f} .. {:.4f}\n", opt.n_lo, opt.n_hi, r1lo,
+             r1hi, r2lo, r2hi);
+  fmt::print("(coef·2π = 1/E1 is the factor that makes 2π·coef·E1 = 1; the last column divides it by the cos^n value n+1)\n");
+  return {{"rows", rows}, {"e1_ratio", {r1lo, r1hi}}, {"e2_ratio", {r2lo, r2hi}}};
 }
 
 void run(const SweepArgs& a) {
@@ -249,6 +315,9 @@ void run(const SweepArgs& a) {
     }
   }
 
+  nlohmann::json energy;
+  if (a.energy) energy = print_energy(a, opt);
+
   nlohmann::json cutcmp;
   if (a.compare_cutoffs && a.variant == "cs16") {
     // Evidence for docs/spec.md §1: where do the two cut-off forms differ?
@@ -280,13 +349,15 @@ void run(const SweepArgs& a) {
       j[key] = {{"max", extreme_json(s->max, f)}, {"min", extreme_json(s->min, f)}};
     j["verdicts"] = verdicts;
     if (!cutcmp.is_null()) j["cutoff_comparison"] = cutcmp;
+    if (!energy.is_null()) j["energy"] = energy;
     write_file_atomic(a.json_path, j.dump(2) + "\n");
   }
   if (!a.csv_path.empty()) write_file_atomic(a.csv_path, csv_rows(r));
   if (!a.plots_dir.empty()) {
     write_plot_data(a, r, a.plots_dir);
-    run_python_script("plot_sweep.py", fmt::format("--dir '{}' --title '{} {} F={} G={}'", a.plots_dir, a.variant,
-                                                   to_string(opt.cutoff), f.frac, f.guard));
+    run_python_script("plot_sweep.py",
+                      fmt::format("--dir '{}' --title '{} {} F={} G={}' --command '{}'", a.plots_dir, a.variant,
+                                  to_string(opt.cutoff), f.frac, f.guard, command_line()));
     fmt::print("\nplots written to {}/\n", a.plots_dir);
   }
 }
@@ -296,7 +367,7 @@ void run(const SweepArgs& a) {
 void add_sweep(CLI::App& app) {
   auto args = std::make_shared<SweepArgs>();
   auto* sub = app.add_subcommand("sweep", "Exhaustive error sweep: every n × every input code");
-  sub->add_option("--variant", args->variant, "Specular variant (cs16)");
+  sub->add_option("--variant", args->variant, "Specular variant (cs16, schlick_div, schlick_nr, schlick_iter)");
   sub->add_option("--cutoff", args->cutoff, "cs16 cut-off form: theta_cr | sign_clamp");
   sub->add_option("--config", args->config, "Named width configuration from config/configs.json");
   sub->add_option("--frac", args->frac, "Fraction bits F (8..24), overrides --config");
@@ -307,6 +378,7 @@ void add_sweep(CLI::App& app) {
   sub->add_option("--csv", args->csv_path, "Write one row per n as CSV");
   sub->add_option("--plots", args->plots_dir, "Write PNG plots (and their CSV data) into this directory");
   sub->add_flag("--no-progress", args->no_progress, "No progress bar");
+  sub->add_flag("--energy", args->energy, "Also print the lobe energy relative to cos^n per n (docs/schlick.md)");
   sub->add_flag("--compare-cutoffs", args->compare_cutoffs, "Also count outputs where theta_cr and sign_clamp differ");
   sub->callback([args] { run(*args); });
 }

@@ -4,10 +4,12 @@
 #include <fmt/core.h>
 
 #include "commands.hpp"
+#include "output.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"shadecore: fixed-point specular shading core — C model, sweeps and co-simulation"};
   app.require_subcommand(1);
+  shadecore::cli::set_command_line(argc, argv);
   shadecore::cli::add_sweep(app);
   try {
     app.parse(argc, argv);

@@ -74,6 +74,23 @@ std::pair<int, int> parse_range(const std::string& text) {
   return {lo, hi};
 }
 
+namespace {
+std::string g_command_line = "shadecore";
+}
+
+void set_command_line(int argc, char** argv) {
+  std::string s = "shadecore";
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    for (char& c : a)
+      if (c == '\'' || c == '"') c = '_';  // the line is passed to a shell in single quotes
+    s += " " + a;
+  }
+  g_command_line = s;
+}
+
+const std::string& command_line() { return g_command_line; }
+
 void run_python_script(const std::string& script, const std::string& args) {
   const char* env_dir = std::getenv("SHADECORE_SCRIPTS");
   const std::string dir = env_dir ? env_dir : std::string(SHADECORE_SOURCE_DIR) + "/scripts";

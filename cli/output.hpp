@@ -20,6 +20,10 @@ void ensure_dir(const std::string& dir);
 // Parses "LO..HI" or "N" into an inclusive range of integers. Throws std::invalid_argument.
 std::pair<int, int> parse_range(const std::string& text);
 
+// The command line shadecore was started with (for plot footers and reports), set by main().
+void set_command_line(int argc, char** argv);
+const std::string& command_line();
+
 // Runs the python plotting script `script` (a file in scripts/) with `args`; throws on failure.
 void run_python_script(const std::string& script, const std::string& args);
 
