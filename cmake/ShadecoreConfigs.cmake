@@ -36,3 +36,42 @@ ${_entries}}};
 inline constexpr std::string_view kDefaultConfig = \"${SHADECORE_DEFAULT_CONFIG}\";
 }  // namespace shadecore
 " @ONLY)
+
+# Hardware unit variants (config/configs.json "variants": name <-> id, the VARIANT parameter of
+# rtl/sc_specular.v). Sets SHADECORE_VARIANT_NAMES and SHADECORE_VARIANT_<name>_ID, and generates
+#   ${SHADECORE_GENERATED_DIR}/shadecore/variants.hpp  (enum class VariantId, kVariants)
+#   ${SHADECORE_GENERATED_DIR}/rtl/sc_variants.vh      (localparam VARIANT_<NAME>, for sc_specular.v)
+string(JSON _nv LENGTH "${_cfg_json}" variants)
+math(EXPR _lastv "${_nv} - 1")
+set(SHADECORE_VARIANT_NAMES "")
+set(_venum "")
+set(_ventries "")
+set(_vvh "")
+foreach(i RANGE ${_lastv})
+  string(JSON _vname GET "${_cfg_json}" variants ${i} name)
+  string(JSON _vid GET "${_cfg_json}" variants ${i} id)
+  list(APPEND SHADECORE_VARIANT_NAMES "${_vname}")
+  set(SHADECORE_VARIANT_${_vname}_ID "${_vid}")
+  string(TOUPPER "${_vname}" _vupper)
+  string(APPEND _venum "  ${_vname} = ${_vid},\n")
+  string(APPEND _ventries "    NamedVariant{\"${_vname}\", VariantId::${_vname}},\n")
+  string(APPEND _vvh "localparam integer VARIANT_${_vupper} = ${_vid};\n")
+endforeach()
+file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/variants.hpp" CONTENT
+"// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
+#pragma once
+#include <array>
+#include <string_view>
+namespace shadecore {
+// The VARIANT parameter of rtl/sc_specular.v.
+enum class VariantId : int {
+${_venum}};
+struct NamedVariant { std::string_view name; VariantId id; };
+inline constexpr std::array<NamedVariant, ${_nv}> kVariants{{
+${_ventries}}};
+}  // namespace shadecore
+" @ONLY)
+file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/rtl/sc_variants.vh" CONTENT
+"// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
+// Values of the VARIANT parameter of rtl/sc_specular.v (included inside the module).
+${_vvh}" @ONLY)

@@ -1,0 +1,232 @@
+// ============================================================================================
+// Filename : rtl/sc_cs16.v
+// Purpose  : cs16 specular unit — out = ((n/16)(cos θ − 1) + 1)^16, cut to 0 past the cut-off,
+//            in fixed point exactly as docs/spec.md §3 (bit-accurate C model:
+//            cmodel/include/shadecore/cs16.hpp, cs16_eval(); same stage names as Cs16Trace).
+//
+// Parameters (illegal values stop elaboration with a message, in Verilator and in Yosys):
+//   FRAC   F, fraction bits of cos θ and of the output     8 <= F <= 24        (default 16)
+//   GUARD  G, extra fraction bits through the squarings    4 <= G <= 8, F+G <= 31 (default 5)
+//   CUTOFF 0 = theta_cr (cut when clamped code c < thr(n), thr from mat_thr_i)
+//          1 = sign_clamp (cut when the base <= 0; mat_thr_i ignored)          (default 0)
+//   TAGW   width of the opaque tag that travels with each fragment, >= 1       (default 8)
+//
+// Ports : docs/spec.md §4 (clk_i, rst_ni synchronous active-low, AXI-Stream style valid/ready).
+//
+// Latency   : LATENCY = 7 clock cycles. A fragment presented in cycle t and accepted at the
+//             rising edge that ends cycle t is presented on out_* (out_valid_o = 1) in cycle t+7,
+//             when out_ready_i is high throughout. In general the result appears after the 7th
+//             *advancing* edge counted from the accepting edge, where an edge advances the
+//             pipeline iff (!out_valid_o || out_ready_i) before it (one global enable).
+// Throughput: one fragment per clock while out_ready_i is high.
+// Handshake : in_ready_o = rst_ni && (!out_valid_o || out_ready_i). The path out_ready_i ->
+//             in_ready_o is combinational (allowed by AXI-Stream: ready may depend on ready;
+//             no valid depends on a ready). While out_ready_i is low and out_valid_o is high
+//             the whole pipeline holds; out_spec_o/out_tag_o stay stable until taken.
+// Reset     : synchronous, active-low; clears every valid bit, so fragments in flight are
+//             dropped. in_ready_o is low while rst_ni is low (nothing is accepted during reset).
+//             The material registers and the data registers are not reset (no need: valid bits
+//             qualify them); load a material with mat_we_i before the first fragment.
+// Material  : mat_we_i loads mat_n_i / mat_thr_i at a rising edge. A fragment accepted at that
+//             same edge uses the old material; n and thr travel with the fragment through S0,
+//             so fragments in flight are never affected by a material write.
+//             mat_n_i must be in [16, 1024] and mat_thr_i must be thr(n) of docs/spec.md §3.1
+//             (as cs16_setup() computes it); then |base| <= 2^(F+4) for every shaded fragment.
+//
+// Datapath (W = F+G; every box is a register stage clocked by the global enable):
+//
+//   in_cos_i[F+1:0] signed
+//      │  clamp to [0, 2^F]; d = 2^F − c
+//   ┌──▼───────────────────────────────┐
+//   │ S0  c[F:0] d[F:0] n[10:0] thr[F:0] tag │
+//   └──┬───────────────────────────────┘
+//      │  base = 2^(F+4) − n·d   (signed, F+13 bits, exact)
+//      │  cut  = CUTOFF==0 ? (c < thr) : (base <= 0)
+//      │  x0   = cut ? 0 : |base| << (G−4)          (W+1 bits, <= 2^W)
+//   ┌──▼──────────┐
+//   │ S1  x0  tag │
+//   └──┬──────────┘
+//      │  x1 = (x0·x0) >> W   (2W+2-bit product, truncate)
+//   ┌──▼──────────┐
+//   │ S2  x1  tag │   S3 x2, S4 x3, S5 x4: the same squaring, four in all (x^16)
+//   └──┬──────────┘
+//      ⋮
+//   ┌──▼──────────┐
+//   │ S5  x4  tag │
+//   └──┬──────────┘
+//      │  out = (x4 + 2^(G−1)) >> G                (round half up, F+1 bits, <= 2^F)
+//   ┌──▼───────────┐
+//   │ S6  out  tag │──► out_spec_o[F:0], out_tag_o, out_valid_o
+//   └──────────────┘
+// ============================================================================================
+`default_nettype none
+
+module sc_cs16 #(
+    parameter integer FRAC   = 16,
+    parameter integer GUARD  = 5,
+    parameter integer CUTOFF = 0,
+    parameter integer TAGW   = 8
+) (
+    input  wire              clk_i,
+    input  wire              rst_ni,
+    // material
+    input  wire              mat_we_i,
+    input  wire [10:0]       mat_n_i,
+    input  wire [FRAC:0]     mat_thr_i,
+    // fragment in
+    input  wire              in_valid_i,
+    output wire              in_ready_o,
+    input  wire [FRAC+1:0]   in_cos_i,
+    input  wire [TAGW-1:0]   in_tag_i,
+    // result out
+    output wire              out_valid_o,
+    input  wire              out_ready_i,
+    output wire [FRAC:0]     out_spec_o,
+    output wire [TAGW-1:0]   out_tag_o
+);
+
+  localparam integer F = FRAC;
+  localparam integer G = GUARD;
+  localparam integer W = FRAC + GUARD;   // working fraction width of the squaring chain
+  localparam integer BW = FRAC + 13;     // signed width of base = 2^(F+4) - n*d (|n*d| < 2^(F+11))
+
+  // ---------------------------------------------------------------------------- check configuration
+  generate
+    if (FRAC < 8 || FRAC > 24) begin : g_check_frac
+      $error("sc_cs16: illegal FRAC, legal range is 8..24");
+    end
+    if (GUARD < 4 || GUARD > 8) begin : g_check_guard
+      $error("sc_cs16: illegal GUARD, legal range is 4..8");
+    end
+    if (FRAC + GUARD > 31) begin : g_check_work
+      $error("sc_cs16: illegal FRAC+GUARD, must be <= 31");
+    end
+    if (CUTOFF != 0 && CUTOFF != 1) begin : g_check_cutoff
+      $error("sc_cs16: illegal CUTOFF, 0 = theta_cr, 1 = sign_clamp");
+    end
+    if (TAGW < 1) begin : g_check_tagw
+      $error("sc_cs16: illegal TAGW, must be >= 1");
+    end
+  endgenerate
+
+  localparam [F:0]    ONE      = {1'b1, {F{1'b0}}};           // 2^F, cos θ = 1.0
+  localparam [BW-1:0] BASE_ONE = {{(BW-F-5){1'b0}}, 1'b1, {(F+4){1'b0}}};  // 2^(F+4)
+  localparam [W+1:0]  HALF_G   = {{(W+2-G){1'b0}}, 1'b1, {(G-1){1'b0}}};   // 2^(G-1)
+
+  // ---------------------------------------------------------------------------- handshake
+  // One global enable: every stage moves when the output stage is empty or being taken.
+  reg  [6:0] v_q;                          // valid bit of S0..S6
+  wire       adv = !v_q[6] || out_ready_i;
+  assign in_ready_o  = rst_ni && adv;
+  assign out_valid_o = v_q[6];
+
+  always @(posedge clk_i) begin
+    if (!rst_ni) begin
+      v_q <= 7'd0;
+    end else if (adv) begin
+      v_q <= {v_q[5:0], in_valid_i};
+    end
+  end
+
+  // ---------------------------------------------------------------------------- material registers
+  reg [10:0] mat_n_q;
+  reg [F:0]  mat_thr_q;
+  always @(posedge clk_i) begin
+    if (mat_we_i) begin
+      mat_n_q   <= mat_n_i;
+      mat_thr_q <= mat_thr_i;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S0: clamp
+  wire        cos_neg  = in_cos_i[F+1];
+  wire        cos_over = !cos_neg && (in_cos_i[F:0] > ONE);
+  wire [F:0]  c_d      = cos_neg ? {(F+1){1'b0}} : (cos_over ? ONE : in_cos_i[F:0]);
+
+  reg [F:0]      s0_c_q, s0_d_q, s0_thr_q;
+  reg [10:0]     s0_n_q;
+  reg [TAGW-1:0] s0_tag_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s0_c_q   <= c_d;
+      s0_d_q   <= ONE - c_d;
+      s0_n_q   <= mat_n_q;
+      s0_thr_q <= mat_thr_q;
+      s0_tag_q <= in_tag_i;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S1: scale, offset, cut
+  wire [BW-1:0] nd      = {{(BW-11){1'b0}}, s0_n_q} * {{(BW-F-1){1'b0}}, s0_d_q};  // < 2^(F+11)
+  wire [BW-1:0] base    = BASE_ONE - nd;                 // two's complement, exact
+  wire          base_le0 = (nd >= BASE_ONE);             // base <= 0
+  wire [BW-1:0] mag     = base_le0 ? (nd - BASE_ONE) : base;  // |base|
+  wire          cut;
+  generate
+    if (CUTOFF == 0) begin : g_cut_theta_cr
+      assign cut = (s0_c_q < s0_thr_q);
+    end else begin : g_cut_sign_clamp
+      assign cut = base_le0;
+      wire unused_thr = &{1'b0, s0_thr_q, s0_c_q};       // thr and c are not needed by this form
+    end
+  endgenerate
+  // |base| <= 2^(F+4) for every shaded fragment (spec §3.2), so F+5 bits carry it exactly.
+  wire [W:0] x0_d = cut ? {(W+1){1'b0}} : {mag[F+4:0], {(G-4){1'b0}}};
+  wire unused_mag = &{1'b0, mag[BW-1:F+5]};
+
+  reg [W:0]      s1_x_q;
+  reg [TAGW-1:0] s1_tag_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s1_x_q   <= x0_d;
+      s1_tag_q <= s0_tag_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S2..S5: x <- floor(x^2 / 2^W)
+  wire [2*W+1:0] sq1 = s1_x_q * s1_x_q;
+  reg  [W:0]     s2_x_q;
+  reg  [TAGW-1:0] s2_tag_q;
+  wire [2*W+1:0] sq2 = s2_x_q * s2_x_q;
+  reg  [W:0]     s3_x_q;
+  reg  [TAGW-1:0] s3_tag_q;
+  wire [2*W+1:0] sq3 = s3_x_q * s3_x_q;
+  reg  [W:0]     s4_x_q;
+  reg  [TAGW-1:0] s4_tag_q;
+  wire [2*W+1:0] sq4 = s4_x_q * s4_x_q;
+  reg  [W:0]     s5_x_q;
+  reg  [TAGW-1:0] s5_tag_q;
+  // x <= 2^W, so x^2 <= 2^(2W): bit 2W+1 is always 0 and bits W-1..0 are truncated.
+  wire unused_sq = &{1'b0, sq1[2*W+1], sq1[W-1:0], sq2[2*W+1], sq2[W-1:0],
+                     sq3[2*W+1], sq3[W-1:0], sq4[2*W+1], sq4[W-1:0]};
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s2_x_q   <= sq1[2*W:W];
+      s2_tag_q <= s1_tag_q;
+      s3_x_q   <= sq2[2*W:W];
+      s3_tag_q <= s2_tag_q;
+      s4_x_q   <= sq3[2*W:W];
+      s4_tag_q <= s3_tag_q;
+      s5_x_q   <= sq4[2*W:W];
+      s5_tag_q <= s4_tag_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S6: round half up
+  wire [W+1:0] rnd = {1'b0, s5_x_q} + HALF_G;          // <= 2^W + 2^(G-1)
+  wire unused_rnd = &{1'b0, rnd[W+1], rnd[G-1:0]};     // result <= 2^F: bit W+1 is 0
+  reg  [F:0]      s6_out_q;
+  reg  [TAGW-1:0] s6_tag_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s6_out_q <= rnd[W:G];
+      s6_tag_q <= s5_tag_q;
+    end
+  end
+
+  assign out_spec_o = s6_out_q;
+  assign out_tag_o  = s6_tag_q;
+
+endmodule
+
+`default_nettype wire
