@@ -6,6 +6,7 @@
 // (docs/spec.md §3). Per-material constants are computed once by cs16_setup().
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -46,7 +47,7 @@ struct Cs16Trace {
   uint32_t d = 0;       // S0: 2^F − c (1 − cos θ), F+1 bits
   int64_t base = 0;     // S1: 2^(F+4) − n·d, signed, F+4 fraction bits (exact)
   bool cut = false;     // S1: cut-off decision
-  uint64_t x[5] = {};   // S1..S5: x0 = |base| aligned to W bits; x1..x4 the truncated squares
+  uint32_t x[5] = {};   // S1..S5: x0 = |base| aligned to W bits; x1..x4 the truncated squares
   uint32_t out = 0;     // S6: x4 rounded half-up to F bits
 };
 
@@ -62,17 +63,25 @@ inline uint32_t cs16_eval(const Format& f, Cutoff cut_mode, const Cs16Material& 
   const int64_t base = (int64_t{1} << (F + 4)) - static_cast<int64_t>(m.n) * d;
   const bool cut = (cut_mode == Cutoff::ThetaCr) ? (c < m.thr) : (base <= 0);
   const uint64_t mag = cut ? 0 : static_cast<uint64_t>(base < 0 ? -base : base);
-  uint64_t x = mag << (G - 4);  // align to W fraction bits (exact, G >= 4)
+  // Align to W fraction bits (exact, G >= 4). x <= 2^W <= 2^31 fits 32 bits; each square fits 64.
+  uint32_t x = static_cast<uint32_t>(mag << (G - 4));
   if (tr) { tr->c = c; tr->d = d; tr->base = base; tr->cut = cut; tr->x[0] = x; }
   // S2..S5 — four squarings, each truncated (floor) to W fraction bits.
   for (int k = 1; k <= 4; ++k) {
-    x = (x * x) >> W;
+    x = static_cast<uint32_t>((uint64_t{x} * x) >> W);
     if (tr) tr->x[k] = x;
   }
   // S6 — round half up to F fraction bits; x4 <= 2^W so the result is <= 2^F.
-  const uint32_t out = static_cast<uint32_t>((x + (uint64_t{1} << (G - 1))) >> G);
+  const uint32_t out = static_cast<uint32_t>((uint64_t{x} + (uint64_t{1} << (G - 1))) >> G);
   if (tr) tr->out = out;
   return out;
 }
+
+// A block of consecutive input codes [code0, code0 + count) for one material: bit-identical to
+// cs16_eval() on every code (tests check it exhaustively); the fast path for whole code ranges. The codes
+// split into runs: cut or clamped codes (constant outputs) and the live lobe with base > 0, where
+// base grows by n per code and the four squarings are 32×32→64-bit products that vectorise.
+void cs16_eval_block(const Format& f, Cutoff cut_mode, const Cs16Material& m, int64_t code0, int64_t count,
+                     uint32_t* out);
 
 }  // namespace shadecore

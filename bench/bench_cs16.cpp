@@ -1,0 +1,128 @@
+// Evaluation rate of the bit-accurate cs16 model against the double references, one core,
+// and wall time of the full default sweep (all n × all input codes, both cores).
+// Figures are recorded in docs/performance.md (command, machine, date).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "shadecore/configs.hpp"
+#include "shadecore/cs16.hpp"
+#include "shadecore/golden.hpp"
+#include "shadecore/sweep.hpp"
+
+using namespace shadecore;
+
+namespace {
+
+Format default_format() {
+  for (const auto& c : kConfigs)
+    if (c.name == kDefaultConfig) return c.format;
+  return Format{};
+}
+
+struct Inputs {
+  std::vector<int64_t> codes;
+  std::vector<double> cosines;
+  std::vector<Cs16Material> mats;
+  std::vector<int> ns;
+};
+
+const Inputs& inputs() {
+  static const Inputs in = [] {
+    Inputs v;
+    const Format f = default_format();
+    std::mt19937_64 rng(1);
+    std::uniform_int_distribution<int> nd(kNMin, kNMax);
+    for (int i = 0; i < 4096; ++i) {
+      const int n = nd(rng);
+      // Codes inside the lobe (the expensive part of the function), from thr to 1.0.
+      const Cs16Material m = cs16_setup(f, n);
+      std::uniform_int_distribution<int64_t> cd(m.thr, f.one());
+      const int64_t code = cd(rng);
+      v.codes.push_back(code);
+      v.cosines.push_back(std::ldexp(double(code), -f.frac));
+      v.mats.push_back(m);
+      v.ns.push_back(n);
+    }
+    return v;
+  }();
+  return in;
+}
+
+void BM_Cs16Fixed(benchmark::State& st) {
+  const Format f = default_format();
+  const Inputs& in = inputs();
+  size_t i = 0;
+  for (auto _ : st) {
+    benchmark::DoNotOptimize(cs16_eval(f, Cutoff::ThetaCr, in.mats[i], in.codes[i]));
+    i = (i + 1) & 4095;
+  }
+  st.SetItemsProcessed(st.iterations());
+}
+BENCHMARK(BM_Cs16Fixed);
+
+// The exhaustive-sweep form: consecutive codes for one material (vectorised integer arithmetic).
+void BM_Cs16FixedBlock(benchmark::State& st) {
+  const Format f = default_format();
+  const Cs16Material m = cs16_setup(f, 300);
+  std::vector<uint32_t> out(4096);
+  int64_t code0 = f.one() - 4096;
+  for (auto _ : st) {
+    cs16_eval_block(f, Cutoff::ThetaCr, m, code0, 4096, out.data());
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  st.SetItemsProcessed(st.iterations() * 4096);
+}
+BENCHMARK(BM_Cs16FixedBlock);
+
+void BM_PowDouble(benchmark::State& st) {
+  const Inputs& in = inputs();
+  size_t i = 0;
+  for (auto _ : st) {
+    benchmark::DoNotOptimize(golden::cos_pow(in.cosines[i], in.ns[i]));
+    i = (i + 1) & 4095;
+  }
+  st.SetItemsProcessed(st.iterations());
+}
+BENCHMARK(BM_PowDouble);
+
+void BM_SchlickDouble(benchmark::State& st) {
+  const Inputs& in = inputs();
+  size_t i = 0;
+  for (auto _ : st) {
+    benchmark::DoNotOptimize(golden::schlick(in.cosines[i], in.ns[i]));
+    i = (i + 1) & 4095;
+  }
+  st.SetItemsProcessed(st.iterations());
+}
+BENCHMARK(BM_SchlickDouble);
+
+void BM_Cs16Double(benchmark::State& st) {
+  const Inputs& in = inputs();
+  size_t i = 0;
+  for (auto _ : st) {
+    benchmark::DoNotOptimize(golden::cs16_theta_cr(in.cosines[i], in.ns[i]));
+    i = (i + 1) & 4095;
+  }
+  st.SetItemsProcessed(st.iterations());
+}
+BENCHMARK(BM_Cs16Double);
+
+// The full default sweep: every n in 16..1024 × every code in [0, 2^F], all cores.
+void BM_FullDefaultSweep(benchmark::State& st) {
+  SweepOptions opt;
+  opt.format = default_format();
+  for (auto _ : st) {
+    const SweepResult r = run_sweep(opt);
+    benchmark::DoNotOptimize(r.approx.max.value);
+    st.counters["evaluations"] = double(r.evaluations);
+  }
+}
+BENCHMARK(BM_FullDefaultSweep)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(5);
+
+}  // namespace
+
+BENCHMARK_MAIN();
