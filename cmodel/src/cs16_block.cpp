@@ -19,7 +19,7 @@ void cs16_eval_block(const Format& f, Cutoff cut_mode, const Cs16Material& m, in
   int64_t i = 0;
   // Codes below the live run: clamped negatives, cut codes, and (theta_cr) the negative-base sliver.
   for (; i < count && code0 + i < live0; ++i) out[i] = cs16_eval(f, cut_mode, m, code0 + i);
-  // Live run. In theta_cr mode codes below thr are cut even with base > 0 (n <= 20).
+  // Live run. In theta_cr mode codes below thr are cut even with base > 0 (n <= 25).
   const int64_t live_end = std::min<int64_t>(count, one + 1 - code0);  // exclusive, in block indices
   for (; i < live_end && cut_mode == Cutoff::ThetaCr && code0 + i < int64_t{m.thr}; ++i) out[i] = 0;
   if (i < live_end) {

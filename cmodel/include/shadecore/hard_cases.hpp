@@ -17,7 +17,7 @@ struct HardCase {
 };
 
 // Exponents at and next to the ends of the legal range and where θcr crosses the base zero.
-inline std::vector<int> hard_case_exponents() { return {16, 17, 20, 21, 22, 100, 128, 255, 256, 1000, 1023, 1024}; }
+inline std::vector<int> hard_case_exponents() { return {16, 17, 25, 26, 27, 100, 128, 255, 256, 1000, 1023, 1024}; }
 
 // For each exponent: the input extremes (most negative, −1, 0, 1), cos θ = 1 and one code either
 // side, the saturating maximum, the θcr threshold ±1 and the code where the base crosses 0, ±1.
