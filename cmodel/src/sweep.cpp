@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "shadecore/golden.hpp"
+#include "shadecore/schlick.hpp"
 
 namespace shadecore {
 
@@ -40,6 +41,25 @@ struct Cs16Kernel {
     return is_cut ? 0.0 : golden::pow16(b);
   }
 };
+
+// Schlick-divide forms (docs/spec.md §6): the fixed-point unit and Schlick's S(t, n) in double.
+struct SchlickKernel {
+  Format f;
+  SchlickForm form;
+  using Mat = SchlickMaterial;
+  Mat setup(int n) const { return schlick_setup(f, n); }
+  uint32_t fixed(const Mat& m, int64_t code) const { return schlick_eval(form, f, m, code); }
+  double golden(const Mat& m, double c) const { return golden::schlick(c, m.n); }
+};
+
+// Name -> form; false if the name is not a Schlick variant.
+bool schlick_form(const std::string& v, SchlickForm& form) {
+  if (v == "schlick_div") form = SchlickForm::Div;
+  else if (v == "schlick_nr") form = SchlickForm::Nr;
+  else if (v == "schlick_iter") form = SchlickForm::Iter;
+  else return false;
+  return true;
+}
 
 template <class Kernel>
 void sweep_codes(const Kernel& k, const std::vector<typename Kernel::Mat>& mats, int n_lo, int64_t code_lo,
@@ -115,7 +135,7 @@ SweepResult run_kernel(const Kernel& k, const SweepOptions& opt) {
 
 }  // namespace
 
-std::vector<std::string> sweep_variants() { return {"cs16"}; }
+std::vector<std::string> sweep_variants() { return {"cs16", "schlick_div", "schlick_nr", "schlick_iter"}; }
 
 SweepResult run_sweep(const SweepOptions& opt) {
   validate(opt.format);
@@ -124,12 +144,14 @@ SweepResult run_sweep(const SweepOptions& opt) {
   if (opt.n_lo > opt.n_hi)
     throw std::invalid_argument("empty n range " + std::to_string(opt.n_lo) + ".." + std::to_string(opt.n_hi));
   if (opt.variant == "cs16") return run_kernel(Cs16Kernel{opt.format, opt.cutoff}, opt);
+  if (SchlickForm form; schlick_form(opt.variant, form)) return run_kernel(SchlickKernel{opt.format, form}, opt);
   throw std::invalid_argument("unknown variant '" + opt.variant + "'");
 }
 
 double variant_golden(const std::string& variant, Cutoff cutoff, int n, double c) {
   if (variant == "cs16")
     return cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(c, n) : golden::cs16_sign_clamp(c, n);
+  if (SchlickForm form; schlick_form(variant, form)) return golden::schlick(c, n);
   throw std::invalid_argument("unknown variant '" + variant + "'");
 }
 
