@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   shadecore::cli::set_command_line(argc, argv);
   shadecore::cli::add_sweep(app);
+  shadecore::cli::add_fit(app);
+  shadecore::cli::add_energy(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
