@@ -19,33 +19,70 @@ double lobe_radius(const Options& o, int n) {
 namespace {
 
 // Azimuth integral G(u) = ∫ (weight)·[visible] dφ over the full circle, in closed form.
-// Phong rows: u = R·ωo; Blinn rows: u = N·h. Visible azimuths are |φ| <= φmax.
-double azimuth_integral(Model m, bool blinn_rows, double u, double si, double ci) {
+// Phong rows: u = R·ωo; Blinn rows: u = N·h. Visible azimuths are |φ| <= φmax. *cls (if given)
+// is 0 when nothing is visible, 2 when the whole ring is, 1 otherwise — G is smooth in u only
+// within one class, so cells are split where the class changes.
+double azimuth_integral(Model m, bool blinn_rows, double u, double si, double ci, int* cls = nullptr) {
+  if (cls) *cls = 0;
   if (u <= -1 || u > 1) return 0;
   const double s = std::sqrt(std::max(0.0, 1 - u * u));
   const double A = si * s;  // coefficient of cos φ
+  auto phimax = [&](double lim, bool all_if_flat) {
+    // visible ⇔ cos φ > lim (A > 0), or everywhere/nowhere when A = 0
+    double phm;
+    if (A <= 0) phm = all_if_flat ? M_PI : 0;
+    else phm = std::acos(std::clamp(lim, -1.0, 1.0));
+    if (cls) *cls = phm <= 0 ? 0 : (phm >= M_PI ? 2 : 1);
+    return phm;
+  };
   if (!blinn_rows) {
     // cos θo = A·cos φ + u·ci > 0
-    double phm;
-    if (A <= 0) phm = (u * ci > 0) ? M_PI : 0;
-    else phm = std::acos(std::clamp(-u * ci / A, -1.0, 1.0));
+    const double phm = phimax(A > 0 ? -u * ci / A : 0, u * ci > 0);
     if (m == Model::Phong) return 2 * phm;
     return 2 * A * std::sin(phm) + 2 * u * ci * phm;  // ∫ cos θo dφ
   }
   if (u <= 0) return 0;
   // ih = ωi·h = A·cos φ + B; cos θo = 2·ih·u − ci > 0  ⇔  cos φ > ci(1 − 2u²)/(2u·A)
   const double B = ci * u;
-  double phm;
-  if (A <= 0) phm = (2 * B * u - ci > 0) ? M_PI : 0;
-  else phm = std::acos(std::clamp(ci * (1 - 2 * u * u) / (2 * u * A), -1.0, 1.0));
+  const double phm = phimax(A > 0 ? ci * (1 - 2 * u * u) / (2 * u * A) : 0, 2 * B * u - ci > 0);
   const double sp = std::sin(phm), cp = std::cos(phm);
-  const double I1 = 2 * A * sp + 2 * B * phm;                               // ∫ ih dφ
+  const double I1 = 2 * A * sp + 2 * B * phm;                                    // ∫ ih dφ
   const double I2 = A * A * (phm + sp * cp) + 4 * A * B * sp + 2 * B * B * phm;  // ∫ ih² dφ
   switch (m) {
     case Model::Blinn: return 4 * I1;
     case Model::BlinnMod: return 8 * u * I2 - 4 * ci * I1;
     default: return I1 / ci;  // microfacet form D/(4 ci co)·co·4 ih
   }
+}
+
+// ∫_ua^ub lobe(u)·G(u) du with a 3-point Gauss–Legendre rule on each piece where G is smooth
+// (the cell is split at the u where the visibility class changes, found by bisection).
+template <class L>
+double cell_integral(Model m, bool blinn_rows, double ua, double ub, double si, double ci, L lobe) {
+  static const double gx[3] = {-0.7745966692414833770, 0.0, 0.7745966692414833770};
+  static const double gw[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+  auto gauss = [&](double a, double b) {
+    const double h = (b - a) / 2, c = (a + b) / 2;
+    double g = 0;
+    for (int q = 0; q < 3; ++q) {
+      const double u = c + h * gx[q];
+      const double lv = lobe(u);
+      if (lv != 0) g += gw[q] * lv * azimuth_integral(m, blinn_rows, u, si, ci);
+    }
+    return g * h;
+  };
+  int ca, cb;
+  azimuth_integral(m, blinn_rows, ua, si, ci, &ca);
+  azimuth_integral(m, blinn_rows, ub, si, ci, &cb);
+  if (ca == cb) return gauss(ua, ub);
+  double lo = ua, hi = ub;  // class(lo) = ca != class(hi)
+  for (int it = 0; it < 60 && hi - lo > 1e-15; ++it) {
+    const double mid = (lo + hi) / 2;
+    int cm;
+    azimuth_integral(m, blinn_rows, mid, si, ci, &cm);
+    (cm == ca ? lo : hi) = mid;
+  }
+  return gauss(ua, lo) + gauss(lo, ub);  // at most one class change per code cell in practice
 }
 
 double reflectance_cells(Model m, int n, double theta_i, const Options& o) {
@@ -57,29 +94,21 @@ double reflectance_cells(Model m, int n, double theta_i, const Options& o) {
   const double scale = std::ldexp(1.0, o.format.frac), ulp = 1 / scale;
   const double si = std::sin(theta_i), ci = std::cos(theta_i);
   const bool blinn_rows = mi.half_angle || m == Model::BlinnNdf || m == Model::BlinnHeightfield;
-  // 3-point Gauss–Legendre on [−1, 1].
-  static const double gx[3] = {-0.7745966692414833770, 0.0, 0.7745966692414833770};
-  static const double gw[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
   const int64_t one = int64_t{1} << o.format.frac;
   const int64_t kmin = std::max<int64_t>(0, static_cast<int64_t>(std::floor(std::cos(lobe_radius(o, n)) * scale)) - 2);
   double sum = 0;
   for (int64_t k = one; k >= kmin; --k) {
     // Code cell of k under round-to-nearest, clipped to u <= 1.
     const double ua = (k - 0.5) * ulp, ub = std::min(1.0, (k + 0.5) * ulp);
-    const double h = (ub - ua) / 2, c = (ua + ub) / 2;
     if (o.fixed_point) {
       const uint32_t spec = cs16_eval(o.format, o.cutoff, mat, k);
       if (spec == 0) continue;
       const double v = static_cast<double>(norm_eval(nf, coef_q, spec)) * ulp;
-      double g = 0;
-      for (int q = 0; q < 3; ++q) g += gw[q] * azimuth_integral(m, blinn_rows, c + h * gx[q], si, ci);
-      sum += v * g * h;
+      sum += cell_integral(m, blinn_rows, ua, ub, si, ci, [v](double) { return v; });
     } else {
-      for (int q = 0; q < 3; ++q) {
-        const double u = c + h * gx[q];
-        const double lv = o.cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(u, n) : golden::cs16_sign_clamp(u, n);
-        if (lv != 0) sum += gw[q] * coef_d * lv * azimuth_integral(m, blinn_rows, u, si, ci) * h;
-      }
+      sum += cell_integral(m, blinn_rows, ua, ub, si, ci, [&](double u) {
+        return coef_d * (o.cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(u, n) : golden::cs16_sign_clamp(u, n));
+      });
     }
   }
   return sum;
