@@ -1,0 +1,157 @@
+// ============================================================================================
+// Filename : rtl/sc_norm.v
+// Purpose  : energy-normalisation output stage — multiplies the specular unit's output by the
+//            per-material coefficient coef(n) and rounds, exactly as docs/spec.md §7
+//            (bit-accurate C model: cmodel/include/shadecore/coef.hpp, norm_eval(); stage names
+//            N1/N2 as there).
+//
+// Parameters (illegal values stop elaboration with a message):
+//   FRAC      F, fraction bits of the unit output, of the coefficient and of the result
+//             8 <= F <= 24                                                    (default 16)
+//   COEFW     coefficient width I+F (I integer bits); also the result width
+//             F+1 <= COEFW <= F+16; F+8 holds every model's coef for n = 16..1024 (max ≈ 173.4)
+//                                                                             (default FRAC+8)
+//   COEF_SRC  0 = the coefficient comes from this stage's material register (mat_we_i/mat_coef_i)
+//             1 = the coefficient arrives with each fragment on in_coef_i (used when chained
+//                 behind a unit that carries it in its tag, see rtl/sc_specular.v)  (default 0)
+//   TAGW      width of the opaque tag that travels with each fragment, >= 1   (default 8)
+//
+// Ports : docs/spec.md §4 convention (clk_i, rst_ni synchronous active-low, AXI-Stream style
+//         valid/ready, TAGW tag sideband), plus
+//           mat_we_i, mat_coef_i[COEFW-1:0]  material setup: coefficient code (coef_code())
+//           in_spec_i[F:0]                   unit output, unsigned, 1.0 = 2^F (<= 2^F)
+//           in_coef_i[COEFW-1:0]             per-fragment coefficient (COEF_SRC = 1 only)
+//           out_norm_o[COEFW-1:0]            normalised output, unsigned, 1.0 = 2^F
+//
+// Latency   : LATENCY = 2 advancing edges (one global enable, as rtl/sc_cs16.v): a fragment
+//             accepted at an edge is on out_* after the 2nd advancing edge; with out_ready_i
+//             high throughout, accepted in cycle t → out_valid_o in cycle t+2.
+// Throughput: one fragment per clock while out_ready_i is high.
+// Handshake : in_ready_o = rst_ni && (!out_valid_o || out_ready_i) (combinational from
+//             out_ready_i, as in sc_cs16); outputs hold while out_valid_o && !out_ready_i.
+// Reset     : synchronous, active-low, clears the valid bits (in-flight fragments dropped).
+// Material  : (COEF_SRC = 0) mat_we_i loads mat_coef_i at a rising edge; a fragment accepted at
+//             that same edge uses the old coefficient. The product is formed at acceptance, so
+//             fragments in flight never see a later write.
+//
+// Datapath:
+//
+//   in_spec_i[F:0] × coef[COEFW-1:0]            (exact, F+1+COEFW bits)
+//   ┌──▼─────────────────────┐
+//   │ N1  p[F+COEFW:0]  tag  │
+//   └──┬─────────────────────┘
+//      │  out = (p + 2^(F−1)) >> F              (round half up; spec <= 2^F and
+//      │                                         coef <= 2^COEFW − 1 ⇒ out < 2^COEFW)
+//   ┌──▼───────────────────────┐
+//   │ N2  out[COEFW-1:0]  tag  │──► out_norm_o, out_tag_o, out_valid_o
+//   └──────────────────────────┘
+// ============================================================================================
+`default_nettype none
+
+module sc_norm #(
+    parameter integer FRAC     = 16,
+    parameter integer COEFW    = FRAC + 8,
+    parameter integer COEF_SRC = 0,
+    parameter integer TAGW     = 8
+) (
+    input  wire              clk_i,
+    input  wire              rst_ni,
+    // material
+    input  wire              mat_we_i,
+    input  wire [COEFW-1:0]  mat_coef_i,
+    // fragment in
+    input  wire              in_valid_i,
+    output wire              in_ready_o,
+    input  wire [FRAC:0]     in_spec_i,
+    input  wire [COEFW-1:0]  in_coef_i,
+    input  wire [TAGW-1:0]   in_tag_i,
+    // result out
+    output wire              out_valid_o,
+    input  wire              out_ready_i,
+    output wire [COEFW-1:0]  out_norm_o,
+    output wire [TAGW-1:0]   out_tag_o
+);
+
+  localparam integer F  = FRAC;
+  localparam integer PW = FRAC + 1 + COEFW;  // product width
+
+  // ---------------------------------------------------------------------------- check configuration
+  generate
+    if (FRAC < 8 || FRAC > 24) begin : g_check_frac
+      $error("sc_norm: illegal FRAC, legal range is 8..24");
+    end
+    if (COEFW < FRAC + 1 || COEFW > FRAC + 16) begin : g_check_coefw
+      $error("sc_norm: illegal COEFW, legal range is FRAC+1..FRAC+16");
+    end
+    if (COEF_SRC != 0 && COEF_SRC != 1) begin : g_check_src
+      $error("sc_norm: illegal COEF_SRC, 0 = material register, 1 = in_coef_i");
+    end
+    if (TAGW < 1) begin : g_check_tagw
+      $error("sc_norm: illegal TAGW, must be >= 1");
+    end
+  endgenerate
+
+  localparam [PW-1:0] HALF = {{(PW-F){1'b0}}, 1'b1, {(F-1){1'b0}}};  // 2^(F-1)
+
+  // ---------------------------------------------------------------------------- handshake
+  reg  [1:0] v_q;  // valid bits of N1, N2
+  wire       adv = !v_q[1] || out_ready_i;
+  assign in_ready_o  = rst_ni && adv;
+  assign out_valid_o = v_q[1];
+
+  always @(posedge clk_i) begin
+    if (!rst_ni) begin
+      v_q <= 2'b00;
+    end else if (adv) begin
+      v_q <= {v_q[0], in_valid_i};
+    end
+  end
+
+  // ---------------------------------------------------------------------------- coefficient source
+  wire [COEFW-1:0] coef;
+  generate
+    if (COEF_SRC == 0) begin : g_coef_material
+      reg [COEFW-1:0] mat_coef_q;
+      always @(posedge clk_i) begin
+        if (mat_we_i) mat_coef_q <= mat_coef_i;
+      end
+      assign coef = mat_coef_q;
+      wire unused_in_coef = &{1'b0, in_coef_i};
+    end else begin : g_coef_fragment
+      assign coef = in_coef_i;
+      wire unused_mat = &{1'b0, mat_we_i, mat_coef_i};
+    end
+  endgenerate
+
+  // ---------------------------------------------------------------------------- N1: exact product
+  wire [PW-1:0] p_d = {{COEFW{1'b0}}, in_spec_i} * {{(F+1){1'b0}}, coef};
+
+  reg [PW-1:0]   n1_p_q;
+  reg [TAGW-1:0] n1_tag_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      n1_p_q   <= p_d;
+      n1_tag_q <= in_tag_i;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- N2: round half up
+  wire [PW-1:0] r_d = n1_p_q + HALF;  // < 2^(F+COEFW): no carry out of PW bits
+  // r_d >> F fits COEFW bits; bit PW-1 is always 0 and bits F-1..0 are rounded away.
+  wire unused_r = &{1'b0, r_d[PW-1], r_d[F-1:0]};
+
+  reg [COEFW-1:0] n2_out_q;
+  reg [TAGW-1:0]  n2_tag_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      n2_out_q <= r_d[F+COEFW-1:F];
+      n2_tag_q <= n1_tag_q;
+    end
+  end
+
+  assign out_norm_o = n2_out_q;
+  assign out_tag_o  = n2_tag_q;
+
+endmodule
+
+`default_nettype wire
