@@ -184,6 +184,7 @@ TEST(SchlickNr, ConvergenceEveryNormalisedDenominator) {
       ASSERT_LE(std::fabs(1.0 - md * std::ldexp(double(y1), -R)), e1b) << "F=" << F << " mt=" << mt;
       const double e2 = 1.0 - md * std::ldexp(double(y2), -R);
       ASSERT_LE(std::fabs(e2), e2b) << "F=" << F << " mt=" << mt;
+      ASSERT_LT(y1, uint64_t{1} << (R + 1));  // the RTL keeps y1, y2 in R+1 bits
       ASSERT_LT(y2, uint64_t{1} << (R + 1));
       worst = std::max(worst, std::fabs(e2));
     }

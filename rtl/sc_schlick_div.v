@@ -1,0 +1,212 @@
+// ============================================================================================
+// Filename : rtl/sc_schlick_div.v
+// Purpose  : Schlick-divide specular unit, pipelined restoring divider —
+//              out = 2^F · c / Dc  rounded half up,   Dc = n·(2^F − c) + c  (exact),
+//            i.e. Schlick's S(t, n) = t / (n − (n−1)·t) with t = c/2^F, correctly rounded to F
+//            fraction bits (docs/spec.md §6; bit-accurate C model: schlick_div_eval() in
+//            cmodel/include/shadecore/schlick.hpp, same stage names as SchlickTrace).
+//
+// Parameters (illegal values stop elaboration with a message, in Verilator and in Yosys):
+//   FRAC   F, fraction bits of cos θ and of the output     8 <= F <= 24   (default 16)
+//   TAGW   width of the opaque tag that travels with each fragment, >= 1  (default 8)
+//   (no GUARD: the divider is exact up to its final rounding; mat_thr_i is not used)
+//
+// Ports : docs/spec.md §4 (clk_i, rst_ni synchronous active-low, AXI-Stream style valid/ready).
+//
+// Latency   : LATENCY = F + 4 clock cycles (20 at F = 16): S0, S1 and the F+2 quotient stages
+//             Q0..Q(F+1). A fragment accepted at a rising edge is on out_* (out_valid_o = 1)
+//             after the (F+4)th advancing edge from it; an edge advances the pipeline iff
+//             (!out_valid_o || out_ready_i) before it (one global enable, as rtl/sc_cs16.v).
+// Throughput: one fragment per clock while out_ready_i is high.
+// Handshake : in_ready_o = rst_ni && (!out_valid_o || out_ready_i) (ready -> ready path is
+//             combinational, no valid depends on a ready). While stalled, out_* hold.
+// Reset     : synchronous, active-low; clears every valid bit (fragments in flight dropped);
+//             in_ready_o is low during reset. Data and material registers are not reset.
+// Material  : mat_we_i loads mat_n_i at a rising edge; a fragment accepted at that same edge uses
+//             the old n. n travels with the fragment to S1 (where Dc is formed); Dc travels on.
+//             mat_n_i must be in [16, 1024]; mat_thr_i is ignored.
+//
+// Datapath (DB = F+11 = width of Dc; every box is a register stage on the global enable):
+//
+//   in_cos_i[F+1:0] signed
+//      │  clamp to [0, 2^F]; d = 2^F − c
+//   ┌──▼───────────────────────┐
+//   │ S0  c[F:0] d[F:0] n[10:0] │
+//   └──┬───────────────────────┘
+//      │  Dc = n·d + c                      (DB bits, exact; 2^F <= Dc <= n·2^F, Dc >= c)
+//   ┌──▼──────────────┐
+//   │ S1  Dc  c        │
+//   └──┬──────────────┘
+//      │  q0 = (c >= Dc)  (only c = Dc = 2^F);  r = c − q0·Dc
+//   ┌──▼──────────────┐
+//   │ Q0  r  Dc  q     │
+//   └──┬──────────────┘
+//      │  r2 = 2r;  b = (r2 >= Dc);  r = b ? r2 − Dc : r2;  q = {q, b}     (DB+1-bit subtract)
+//   ┌──▼──────────────┐
+//   │ Qk  r  Dc  q     │   k = 1 .. F, one quotient bit per stage
+//   └──┬──────────────┘
+//      │  the same step for bit F+1, then out = (q + 1) >> 1   (q = ⌊c·2^(F+1)/Dc⌋, F+2 bits)
+//   ┌──▼──────────────┐
+//   │ Q(F+1)  out      │──► out_spec_o[F:0] (<= 2^F), out_tag_o, out_valid_o
+//   └─────────────────┘
+// ============================================================================================
+`default_nettype none
+
+module sc_schlick_div #(
+    parameter integer FRAC = 16,
+    parameter integer TAGW = 8
+) (
+    input  wire              clk_i,
+    input  wire              rst_ni,
+    // material
+    input  wire              mat_we_i,
+    input  wire [10:0]       mat_n_i,
+    input  wire [FRAC:0]     mat_thr_i,
+    // fragment in
+    input  wire              in_valid_i,
+    output wire              in_ready_o,
+    input  wire [FRAC+1:0]   in_cos_i,
+    input  wire [TAGW-1:0]   in_tag_i,
+    // result out
+    output wire              out_valid_o,
+    input  wire              out_ready_i,
+    output wire [FRAC:0]     out_spec_o,
+    output wire [TAGW-1:0]   out_tag_o
+);
+
+  localparam integer F  = FRAC;
+  localparam integer DB = FRAC + 11;   // Dc <= n*2^F <= 2^(F+10)
+  localparam integer NQ = FRAC + 2;    // quotient bits = division stages Q0..Q(F+1)
+  localparam integer NS = FRAC + 4;    // register stages S0, S1, Q0..Q(F+1) = latency
+
+  // ---------------------------------------------------------------------------- check configuration
+  generate
+    if (FRAC < 8 || FRAC > 24) begin : g_check_frac
+      $error("sc_schlick_div: illegal FRAC, legal range is 8..24");
+    end
+    if (TAGW < 1) begin : g_check_tagw
+      $error("sc_schlick_div: illegal TAGW, must be >= 1");
+    end
+  endgenerate
+
+  localparam [F:0] ONE = {1'b1, {F{1'b0}}};   // 2^F, cos θ = 1.0
+
+  wire unused_thr = &{1'b0, mat_thr_i};       // the Schlick forms have no per-material threshold
+
+  // ---------------------------------------------------------------------------- handshake
+  reg  [NS-1:0] v_q;                          // valid bit of S0, S1, Q0..Q(F+1)
+  wire          adv = !v_q[NS-1] || out_ready_i;
+  assign in_ready_o  = rst_ni && adv;
+  assign out_valid_o = v_q[NS-1];
+
+  always @(posedge clk_i) begin
+    if (!rst_ni) begin
+      v_q <= {NS{1'b0}};
+    end else if (adv) begin
+      v_q <= {v_q[NS-2:0], in_valid_i};
+    end
+  end
+
+  // ---------------------------------------------------------------------------- material register
+  reg [10:0] mat_n_q;
+  always @(posedge clk_i) begin
+    if (mat_we_i) begin
+      mat_n_q <= mat_n_i;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S0: clamp
+  wire        cos_neg  = in_cos_i[F+1];
+  wire        cos_over = !cos_neg && (in_cos_i[F:0] > ONE);
+  wire [F:0]  c_d      = cos_neg ? {(F+1){1'b0}} : (cos_over ? ONE : in_cos_i[F:0]);
+
+  reg [F:0]      s0_c_q, s0_d_q;
+  reg [10:0]     s0_n_q;
+  reg [TAGW-1:0] s0_tag_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s0_c_q   <= c_d;
+      s0_d_q   <= ONE - c_d;
+      s0_n_q   <= mat_n_q;
+      s0_tag_q <= in_tag_i;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S1: denominator
+  wire [DB-1:0] den_d = ({{(DB-11){1'b0}}, s0_n_q} * {{(DB-F-1){1'b0}}, s0_d_q})
+                      + {{(DB-F-1){1'b0}}, s0_c_q};
+
+  reg [DB-1:0]   s1_den_q;
+  reg [F:0]      s1_c_q;
+  reg [TAGW-1:0] s1_tag_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s1_den_q <= den_d;
+      s1_c_q   <= s0_c_q;
+      s1_tag_q <= s0_tag_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- Q0: integer bit
+  // Stage k of Q0..Q(F) keeps its remainder, divisor, quotient and tag in slice k of these vectors.
+  reg [DB*(NQ-1)-1:0]   r_q;
+  reg [DB*(NQ-1)-1:0]   den_q;
+  reg [NQ*(NQ-1)-1:0]   quo_q;
+  reg [TAGW*(NQ-1)-1:0] tag_q;
+
+  wire [DB-1:0] c_ext  = {{(DB-F-1){1'b0}}, s1_c_q};
+  wire          q0_b   = (c_ext >= s1_den_q);
+  always @(posedge clk_i) begin
+    if (adv) begin
+      r_q[0 +: DB]     <= q0_b ? (c_ext - s1_den_q) : c_ext;
+      den_q[0 +: DB]   <= s1_den_q;
+      quo_q[0 +: NQ]   <= {{(NQ-1){1'b0}}, q0_b};
+      tag_q[0 +: TAGW] <= s1_tag_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- Q1..Q(F+1): one bit each
+  reg [F:0]      out_q;
+  reg [TAGW-1:0] out_tag_q;
+
+  genvar k;
+  generate
+    for (k = 1; k < NQ; k = k + 1) begin : g_q
+      wire [DB-1:0] r_in   = r_q[(k-1)*DB +: DB];
+      wire [DB-1:0] den_in = den_q[(k-1)*DB +: DB];
+      wire [NQ-1:0] quo_in = quo_q[(k-1)*NQ +: NQ];
+      wire [DB:0]   r2     = {r_in, 1'b0};                       // 2r < 2·Dc
+      wire [DB+1:0] diff   = {1'b0, r2} - {2'b0, den_in};        // sign bit = borrow
+      wire          b      = !diff[DB+1];                        // r2 >= Dc
+      wire [DB:0]   r_nx   = b ? diff[DB:0] : r2;                // < Dc: top bit is 0
+      wire [NQ-1:0] quo_nx = {quo_in[NQ-2:0], b};
+      wire unused_step = &{1'b0, r_nx[DB], quo_in[NQ-1]};
+      if (k < NQ - 1) begin : g_mid
+        always @(posedge clk_i) begin
+          if (adv) begin
+            r_q[k*DB +: DB]       <= r_nx[DB-1:0];
+            den_q[k*DB +: DB]     <= den_in;
+            quo_q[k*NQ +: NQ]     <= quo_nx;
+            tag_q[k*TAGW +: TAGW] <= tag_q[(k-1)*TAGW +: TAGW];
+          end
+        end
+      end else begin : g_last
+        // q = ⌊c·2^(F+1)/Dc⌋ <= 2^(F+1); out = (q + 1) >> 1 <= 2^F (round half up)
+        wire [NQ:0] rnd = {1'b0, quo_nx} + {{NQ{1'b0}}, 1'b1};
+        wire unused_rnd = &{1'b0, rnd[NQ], rnd[0]};
+        always @(posedge clk_i) begin
+          if (adv) begin
+            out_q     <= rnd[NQ-1:1];
+            out_tag_q <= tag_q[(k-1)*TAGW +: TAGW];
+          end
+        end
+      end
+    end
+  endgenerate
+
+  assign out_spec_o = out_q;
+  assign out_tag_o  = out_tag_q;
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,180 @@
+// ============================================================================================
+// Filename : rtl/sc_schlick_iter.v
+// Purpose  : Schlick-divide specular unit, iterative (small) form — the same restoring division
+//            as rtl/sc_schlick_div.v, one quotient bit per clock in ONE subtract/compare stage:
+//              out = 2^F · c / Dc  rounded half up,   Dc = n·(2^F − c) + c  (exact).
+//            Bit-identical to sc_schlick_div (C model: schlick_iter_eval() == schlick_div_eval()
+//            in cmodel/include/shadecore/schlick.hpp).
+//
+// Parameters (illegal values stop elaboration with a message, in Verilator and in Yosys):
+//   FRAC   F, fraction bits of cos θ and of the output     8 <= F <= 24   (default 16)
+//   TAGW   width of the opaque tag that travels with each fragment, >= 1  (default 8)
+//
+// Ports : docs/spec.md §4 (clk_i, rst_ni synchronous active-low, AXI-Stream style valid/ready).
+//
+// Latency   : LATENCY = F + 4 clock cycles (20 at F = 16) from the accepting edge to the edge at
+//             which the result can first be taken: 1 (clamp) + 1 (Dc) + F+2 quotient bits, the
+//             last of which also rounds into the output register.
+// Throughput: one fragment every F + 4 clocks (initiation interval F + 4 with out_ready_i high):
+//             a new fragment is accepted at the same edge at which the previous result is taken.
+// Handshake : in_ready_o = rst_ni && !busy && (!out_valid_o || out_ready_i): LOW while a division
+//             is in progress (busy) and while an untaken result waits in the output register.
+//             out_* hold until taken.
+// Reset     : synchronous, active-low; clears busy and out_valid_o (a fragment in progress is
+//             dropped); in_ready_o low during reset. Data and material registers are not reset.
+// Material  : mat_we_i loads mat_n_i at a rising edge; a fragment accepted at that same edge uses
+//             the old n (it is copied into the working register at acceptance). mat_thr_i unused.
+//
+// Datapath (DB = F+11):
+//
+//   accept:  c, d = 2^F − c, n, tag ──► working registers          busy = 1, phase = DEN
+//   DEN   :  Dc = n·d + c; r = c; q = 0                              phase = DIV, k = 0
+//   DIV k :  r2 = (k == 0) ? r : 2r;  b = (r2 >= Dc);  r = b ? r2 − Dc : r2;  q = {q, b}
+//            k = 0 .. F+1 (one bit per clock); at k = F+1: out = (q + 1) >> 1, out_valid = 1,
+//            busy = 0
+// ============================================================================================
+`default_nettype none
+
+module sc_schlick_iter #(
+    parameter integer FRAC = 16,
+    parameter integer TAGW = 8
+) (
+    input  wire              clk_i,
+    input  wire              rst_ni,
+    // material
+    input  wire              mat_we_i,
+    input  wire [10:0]       mat_n_i,
+    input  wire [FRAC:0]     mat_thr_i,
+    // fragment in
+    input  wire              in_valid_i,
+    output wire              in_ready_o,
+    input  wire [FRAC+1:0]   in_cos_i,
+    input  wire [TAGW-1:0]   in_tag_i,
+    // result out
+    output wire              out_valid_o,
+    input  wire              out_ready_i,
+    output wire [FRAC:0]     out_spec_o,
+    output wire [TAGW-1:0]   out_tag_o
+);
+
+  localparam integer F  = FRAC;
+  localparam integer DB = FRAC + 11;   // width of Dc
+  localparam integer NQ = FRAC + 2;    // quotient bits
+
+  // ---------------------------------------------------------------------------- check configuration
+  generate
+    if (FRAC < 8 || FRAC > 24) begin : g_check_frac
+      $error("sc_schlick_iter: illegal FRAC, legal range is 8..24");
+    end
+    if (TAGW < 1) begin : g_check_tagw
+      $error("sc_schlick_iter: illegal TAGW, must be >= 1");
+    end
+  endgenerate
+
+  localparam [F:0] ONE     = {1'b1, {F{1'b0}}};
+  localparam integer LASTK = NQ - 1;   // F+1 <= 25
+  localparam [4:0]   LAST_K = LASTK[4:0];
+
+  wire unused_thr = &{1'b0, mat_thr_i};
+
+  // ---------------------------------------------------------------------------- control
+  reg        busy_q;       // a fragment is in DEN or DIV
+  reg        div_q;        // phase: 0 = DEN, 1 = DIV (meaningful while busy_q)
+  reg  [4:0] k_q;          // quotient bit being produced
+  reg        out_valid_q;
+
+  wire take   = out_valid_q && out_ready_i;
+  wire accept = in_valid_i && in_ready_o;
+  wire last   = busy_q && div_q && (k_q == LAST_K);
+
+  assign in_ready_o  = rst_ni && !busy_q && (!out_valid_q || out_ready_i);
+  assign out_valid_o = out_valid_q;
+
+  always @(posedge clk_i) begin
+    if (!rst_ni) begin
+      busy_q      <= 1'b0;
+      div_q       <= 1'b0;
+      k_q         <= 5'd0;
+      out_valid_q <= 1'b0;
+    end else begin
+      if (accept) begin
+        busy_q <= 1'b1;
+        div_q  <= 1'b0;
+      end else if (busy_q && !div_q) begin
+        div_q <= 1'b1;
+        k_q   <= 5'd0;
+      end else if (last) begin
+        busy_q <= 1'b0;
+      end else if (busy_q) begin
+        k_q <= k_q + 5'd1;
+      end
+      // last never coincides with take of an older result: in_ready (hence a new fragment) needs
+      // an empty or departing output register, and a result is only produced by the fragment
+      // accepted then.
+      if (last) begin
+        out_valid_q <= 1'b1;
+      end else if (take) begin
+        out_valid_q <= 1'b0;
+      end
+    end
+  end
+
+  // ---------------------------------------------------------------------------- material register
+  reg [10:0] mat_n_q;
+  always @(posedge clk_i) begin
+    if (mat_we_i) begin
+      mat_n_q <= mat_n_i;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- datapath
+  wire        cos_neg  = in_cos_i[F+1];
+  wire        cos_over = !cos_neg && (in_cos_i[F:0] > ONE);
+  wire [F:0]  c_d      = cos_neg ? {(F+1){1'b0}} : (cos_over ? ONE : in_cos_i[F:0]);
+
+  reg [F:0]      c_q, d_q;
+  reg [10:0]     n_q;
+  reg [TAGW-1:0] tag_q;
+  reg [DB-1:0]   den_q, r_q;
+  reg [NQ-1:0]   quo_q;
+  reg [F:0]      out_q;
+  reg [TAGW-1:0] out_tag_q;
+
+  wire [DB-1:0] den_d = ({{(DB-11){1'b0}}, n_q} * {{(DB-F-1){1'b0}}, d_q})
+                      + {{(DB-F-1){1'b0}}, c_q};
+
+  wire [DB:0]   r2     = (k_q == 5'd0) ? {1'b0, r_q} : {r_q, 1'b0};   // 2r < 2·Dc
+  wire [DB+1:0] diff   = {1'b0, r2} - {2'b0, den_q};
+  wire          b      = !diff[DB+1];                                  // r2 >= Dc
+  wire [DB:0]   r_nx   = b ? diff[DB:0] : r2;                          // < Dc
+  wire [NQ-1:0] quo_nx = {quo_q[NQ-2:0], b};
+  wire [NQ:0]   rnd    = {1'b0, quo_nx} + {{NQ{1'b0}}, 1'b1};          // (q + 1) >> 1 <= 2^F
+  wire unused_dp = &{1'b0, r_nx[DB], quo_q[NQ-1], rnd[NQ], rnd[0]};
+
+  always @(posedge clk_i) begin
+    if (accept) begin
+      c_q   <= c_d;
+      d_q   <= ONE - c_d;
+      n_q   <= mat_n_q;
+      tag_q <= in_tag_i;
+    end
+    if (busy_q && !div_q) begin
+      den_q <= den_d;
+      r_q   <= {{(DB-F-1){1'b0}}, c_q};
+      quo_q <= {NQ{1'b0}};
+    end else if (busy_q) begin
+      r_q   <= r_nx[DB-1:0];
+      quo_q <= quo_nx;
+    end
+    if (last) begin
+      out_q     <= rnd[NQ-1:1];
+      out_tag_q <= tag_q;
+    end
+  end
+
+  assign out_spec_o = out_q;
+  assign out_tag_o  = out_tag_q;
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,356 @@
+// ============================================================================================
+// Filename : rtl/sc_schlick_nr.v
+// Purpose  : Schlick-divide specular unit, reciprocal form —
+//              out ≈ 2^F · c / Dc,   Dc = n·(2^F − c) + c  (exact),
+//            via a leading-zero normalisation of Dc, a 64-entry reciprocal table, two
+//            Newton–Raphson iterations, one multiply and a rounding shift. Faithful: the output
+//            is within 1 ulp of the exact quotient (bound 0.5 + 2^F·(ε1² + 3·2^−R) ulp,
+//            0.547 at F = 16; docs/spec.md §6.4). Bit-accurate C model: schlick_nr_eval() in
+//            cmodel/include/shadecore/schlick.hpp (same stage names as SchlickTrace).
+//
+// Parameters (illegal values stop elaboration with a message, in Verilator and in Yosys):
+//   FRAC   F, fraction bits of cos θ and of the output     8 <= F <= 24   (default 16)
+//   TAGW   width of the opaque tag that travels with each fragment, >= 1  (default 8)
+//   (no GUARD: the reciprocal carries R = F + 6 fraction bits; mat_thr_i is not used)
+//
+// Ports : docs/spec.md §4 (clk_i, rst_ni synchronous active-low, AXI-Stream style valid/ready).
+//
+// Latency   : LATENCY = 10 clock cycles for every F (stages S0..S9), counted in advancing edges
+//             as in rtl/sc_cs16.v (an edge advances iff !out_valid_o || out_ready_i before it).
+// Throughput: one fragment per clock while out_ready_i is high.
+// Handshake : in_ready_o = rst_ni && (!out_valid_o || out_ready_i); out_* hold while stalled.
+// Reset     : synchronous, active-low; clears every valid bit; in_ready_o low during reset.
+// Material  : mat_we_i loads mat_n_i at a rising edge; a fragment accepted at that same edge uses
+//             the old n; n travels with the fragment to S1. mat_thr_i is ignored.
+//
+// Datapath (DB = F+11, R = F+6, P = 6 index bits, T = 10 table fraction bits):
+//
+//   in_cos_i ─ clamp ─► S0  c[F:0] d = 2^F − c  n
+//                       │  Dc = n·d + c                                   DB bits, exact
+//                       S1  Dc  c
+//                       │  s = lzc(Dc) in 0..10 (Dc >= 2^F); mn = Dc << s  (leading one at DB−1)
+//                       │  mt = mn[DB−1 : DB−1−R]                          R+1 bits, [1, 2), truncated
+//                       S2  mt  s  c
+//                       │  y0 = TABLE[mt[R−1 : R−6]]                       10 bits, T fraction bits
+//                       S3  y0  mt  s  c
+//                       │  e = ⌊mt·y0 / 2^T⌋;  g = 2^(R+1) − e             R+2 bits
+//                       S4  g  y0  mt  s  c
+//                       │  y1 = ⌊y0·g / 2^T⌋                               R+1 bits (<= 2^R + 1)
+//                       S5  y1  mt  s  c
+//                       │  e = ⌊mt·y1 / 2^R⌋;  g = 2^(R+1) − e             R+2 bits
+//                       S6  g  y1  s  c
+//                       │  y2 = ⌊y1·g / 2^R⌋                               R+1 bits
+//                       S7  y2  s  c
+//                       │  p = c·y2                                        2F+8 bits
+//                       S8  p  s
+//                       │  out = ((p >> (R+9−s)) + 1) >> 1   = round half up of p / 2^(R+10−s)
+//                       S9  out ──► out_spec_o[F:0] (<= 2^F), out_tag_o, out_valid_o
+//
+// TABLE[i] = round(2^17 / (2^7 + 2i + 1)) (the reciprocal of the interval midpoint, T = 10
+// fraction bits), 1016 .. 514; the same rule is schlick_nr_table() in the C model.
+// ============================================================================================
+`default_nettype none
+
+module sc_schlick_nr #(
+    parameter integer FRAC = 16,
+    parameter integer TAGW = 8
+) (
+    input  wire              clk_i,
+    input  wire              rst_ni,
+    // material
+    input  wire              mat_we_i,
+    input  wire [10:0]       mat_n_i,
+    input  wire [FRAC:0]     mat_thr_i,
+    // fragment in
+    input  wire              in_valid_i,
+    output wire              in_ready_o,
+    input  wire [FRAC+1:0]   in_cos_i,
+    input  wire [TAGW-1:0]   in_tag_i,
+    // result out
+    output wire              out_valid_o,
+    input  wire              out_ready_i,
+    output wire [FRAC:0]     out_spec_o,
+    output wire [TAGW-1:0]   out_tag_o
+);
+
+  localparam integer F  = FRAC;
+  localparam integer DB = FRAC + 11;   // width of Dc
+  localparam integer R  = FRAC + 6;    // fraction bits of the reciprocal
+  localparam integer T  = 10;          // fraction bits of the table entries
+  localparam integer PW = 2 * FRAC + 8;  // width of p = c * y2
+  localparam integer NS = 10;          // register stages S0..S9 = latency
+
+  // ---------------------------------------------------------------------------- check configuration
+  generate
+    if (FRAC < 8 || FRAC > 24) begin : g_check_frac
+      $error("sc_schlick_nr: illegal FRAC, legal range is 8..24");
+    end
+    if (TAGW < 1) begin : g_check_tagw
+      $error("sc_schlick_nr: illegal TAGW, must be >= 1");
+    end
+  endgenerate
+
+  localparam [F:0]   ONE   = {1'b1, {F{1'b0}}};          // 2^F, cos θ = 1.0
+  localparam [R+1:0] TWO_R = {1'b1, {(R+1){1'b0}}};      // 2^(R+1) = 2.0 with R fraction bits
+
+  wire unused_thr = &{1'b0, mat_thr_i};       // the Schlick forms have no per-material threshold
+
+  // ---------------------------------------------------------------------------- handshake
+  reg  [NS-1:0] v_q;
+  wire          adv = !v_q[NS-1] || out_ready_i;
+  assign in_ready_o  = rst_ni && adv;
+  assign out_valid_o = v_q[NS-1];
+
+  always @(posedge clk_i) begin
+    if (!rst_ni) begin
+      v_q <= {NS{1'b0}};
+    end else if (adv) begin
+      v_q <= {v_q[NS-2:0], in_valid_i};
+    end
+  end
+
+  // The tag and c travel along the pipeline.
+  reg [TAGW*NS-1:0] tag_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      tag_q <= {tag_q[TAGW*(NS-1)-1:0], in_tag_i};
+    end
+  end
+
+  // ---------------------------------------------------------------------------- material register
+  reg [10:0] mat_n_q;
+  always @(posedge clk_i) begin
+    if (mat_we_i) begin
+      mat_n_q <= mat_n_i;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S0: clamp
+  wire        cos_neg  = in_cos_i[F+1];
+  wire        cos_over = !cos_neg && (in_cos_i[F:0] > ONE);
+  wire [F:0]  c_d      = cos_neg ? {(F+1){1'b0}} : (cos_over ? ONE : in_cos_i[F:0]);
+
+  reg [F:0]  s0_c_q, s0_d_q;
+  reg [10:0] s0_n_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s0_c_q <= c_d;
+      s0_d_q <= ONE - c_d;
+      s0_n_q <= mat_n_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S1: denominator
+  wire [DB-1:0] den_d = ({{(DB-11){1'b0}}, s0_n_q} * {{(DB-F-1){1'b0}}, s0_d_q})
+                      + {{(DB-F-1){1'b0}}, s0_c_q};
+  reg [DB-1:0] s1_den_q;
+  reg [F:0]    s1_c_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s1_den_q <= den_d;
+      s1_c_q   <= s0_c_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S2: normalise
+  // Dc >= 2^F, so its leading one is in bits F..F+10 and s = 10 - (its position - F).
+  reg [3:0] lzc_d;
+  integer   i;
+  always @* begin
+    lzc_d = 4'd10;
+    for (i = 0; i <= 10; i = i + 1) begin
+      if (s1_den_q[F+i]) lzc_d = 4'd10 - i[3:0];
+    end
+  end
+  wire [DB-1:0] mn_d = s1_den_q << lzc_d;
+  wire unused_mn = &{1'b0, mn_d[DB-R-2:0], s1_den_q[F-1:0]};  // truncated to R fraction bits
+
+  reg [R:0]  s2_mt_q;
+  reg [3:0]  s2_s_q;
+  reg [F:0]  s2_c_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s2_mt_q <= mn_d[DB-1:DB-1-R];
+      s2_s_q  <= lzc_d;
+      s2_c_q  <= s1_c_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S3: table
+  reg [T-1:0] y0_d;
+  always @* begin
+    case (s2_mt_q[R-1:R-6])
+      6'd0 : y0_d = 10'd1016;
+      6'd1 : y0_d = 10'd1001;
+      6'd2 : y0_d = 10'd986;
+      6'd3 : y0_d = 10'd971;
+      6'd4 : y0_d = 10'd957;
+      6'd5 : y0_d = 10'd943;
+      6'd6 : y0_d = 10'd930;
+      6'd7 : y0_d = 10'd917;
+      6'd8 : y0_d = 10'd904;
+      6'd9 : y0_d = 10'd892;
+      6'd10: y0_d = 10'd880;
+      6'd11: y0_d = 10'd868;
+      6'd12: y0_d = 10'd857;
+      6'd13: y0_d = 10'd846;
+      6'd14: y0_d = 10'd835;
+      6'd15: y0_d = 10'd824;
+      6'd16: y0_d = 10'd814;
+      6'd17: y0_d = 10'd804;
+      6'd18: y0_d = 10'd794;
+      6'd19: y0_d = 10'd785;
+      6'd20: y0_d = 10'd776;
+      6'd21: y0_d = 10'd767;
+      6'd22: y0_d = 10'd758;
+      6'd23: y0_d = 10'd749;
+      6'd24: y0_d = 10'd741;
+      6'd25: y0_d = 10'd732;
+      6'd26: y0_d = 10'd724;
+      6'd27: y0_d = 10'd716;
+      6'd28: y0_d = 10'd708;
+      6'd29: y0_d = 10'd701;
+      6'd30: y0_d = 10'd694;
+      6'd31: y0_d = 10'd686;
+      6'd32: y0_d = 10'd679;
+      6'd33: y0_d = 10'd672;
+      6'd34: y0_d = 10'd665;
+      6'd35: y0_d = 10'd659;
+      6'd36: y0_d = 10'd652;
+      6'd37: y0_d = 10'd646;
+      6'd38: y0_d = 10'd639;
+      6'd39: y0_d = 10'd633;
+      6'd40: y0_d = 10'd627;
+      6'd41: y0_d = 10'd621;
+      6'd42: y0_d = 10'd615;
+      6'd43: y0_d = 10'd610;
+      6'd44: y0_d = 10'd604;
+      6'd45: y0_d = 10'd599;
+      6'd46: y0_d = 10'd593;
+      6'd47: y0_d = 10'd588;
+      6'd48: y0_d = 10'd583;
+      6'd49: y0_d = 10'd577;
+      6'd50: y0_d = 10'd572;
+      6'd51: y0_d = 10'd567;
+      6'd52: y0_d = 10'd563;
+      6'd53: y0_d = 10'd558;
+      6'd54: y0_d = 10'd553;
+      6'd55: y0_d = 10'd548;
+      6'd56: y0_d = 10'd544;
+      6'd57: y0_d = 10'd539;
+      6'd58: y0_d = 10'd535;
+      6'd59: y0_d = 10'd531;
+      6'd60: y0_d = 10'd526;
+      6'd61: y0_d = 10'd522;
+      6'd62: y0_d = 10'd518;
+      6'd63: y0_d = 10'd514;
+      default: y0_d = 10'd0;
+    endcase
+  end
+  reg [T-1:0] s3_y0_q;
+  reg [R:0]   s3_mt_q;
+  reg [3:0]   s3_s_q;
+  reg [F:0]   s3_c_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s3_y0_q <= y0_d;
+      s3_mt_q <= s2_mt_q;
+      s3_s_q  <= s2_s_q;
+      s3_c_q  <= s2_c_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S4/S5: first iteration
+  wire [R+T:0]   e0_p = s3_mt_q * s3_y0_q;               // < 2^(R+1+T)
+  wire [R+1:0]   g0_d = TWO_R - {1'b0, e0_p[R+T:T]};     // 2 − e, e < 2
+  wire unused_e0 = &{1'b0, e0_p[T-1:0]};
+  reg  [R+1:0]   s4_g_q;
+  reg  [T-1:0]   s4_y0_q;
+  reg  [R:0]     s4_mt_q;
+  reg  [3:0]     s4_s_q;
+  reg  [F:0]     s4_c_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s4_g_q  <= g0_d;
+      s4_y0_q <= s3_y0_q;
+      s4_mt_q <= s3_mt_q;
+      s4_s_q  <= s3_s_q;
+      s4_c_q  <= s3_c_q;
+    end
+  end
+
+  wire [R+T+1:0] y1_p = s4_y0_q * s4_g_q;                // y1 = ⌊y0·g / 2^T⌋ <= 2^R + 1
+  wire unused_y1 = &{1'b0, y1_p[R+T+1], y1_p[T-1:0]};
+  reg  [R:0]     s5_y1_q;
+  reg  [R:0]     s5_mt_q;
+  reg  [3:0]     s5_s_q;
+  reg  [F:0]     s5_c_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s5_y1_q <= y1_p[R+T:T];
+      s5_mt_q <= s4_mt_q;
+      s5_s_q  <= s4_s_q;
+      s5_c_q  <= s4_c_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S6/S7: second iteration
+  wire [2*R+1:0] e1_p = s5_mt_q * s5_y1_q;               // < 2^(2R+2)
+  wire [R+1:0]   g1_d = TWO_R - e1_p[2*R+1:R];
+  wire unused_e1 = &{1'b0, e1_p[R-1:0]};
+  reg  [R+1:0]   s6_g_q;
+  reg  [R:0]     s6_y1_q;
+  reg  [3:0]     s6_s_q;
+  reg  [F:0]     s6_c_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s6_g_q  <= g1_d;
+      s6_y1_q <= s5_y1_q;
+      s6_s_q  <= s5_s_q;
+      s6_c_q  <= s5_c_q;
+    end
+  end
+
+  wire [2*R+2:0] y2_p = s6_y1_q * s6_g_q;                // y2 = ⌊y1·g / 2^R⌋ <= 2^R + 1
+  wire unused_y2 = &{1'b0, y2_p[2*R+2:2*R+1], y2_p[R-1:0]};
+  reg  [R:0]     s7_y2_q;
+  reg  [3:0]     s7_s_q;
+  reg  [F:0]     s7_c_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s7_y2_q <= y2_p[2*R:R];
+      s7_s_q  <= s6_s_q;
+      s7_c_q  <= s6_c_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S8: multiply
+  reg [PW-1:0] s8_p_q;
+  reg [3:0]    s8_s_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s8_p_q <= s7_c_q * s7_y2_q;
+      s8_s_q <= s7_s_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S9: round half up
+  // p / 2^(R+10−s): keep one bit more (shift by R+9−s = (R−1) + (10−s)), add 1, drop it.
+  wire [PW-R:0]  p_hi  = s8_p_q[PW-1:R-1];
+  wire [3:0]     rsh   = 4'd10 - s8_s_q;                 // 0..10
+  wire [PW-R:0]  p_sh  = p_hi >> rsh;
+  wire [PW-R+1:0] rnd  = {1'b0, p_sh} + {{(PW-R+1){1'b0}}, 1'b1};
+  wire unused_rnd = &{1'b0, s8_p_q[R-2:0], rnd[PW-R+1:F+2], rnd[0]};  // result <= 2^F
+  reg  [F:0]     s9_out_q;
+  always @(posedge clk_i) begin
+    if (adv) begin
+      s9_out_q <= rnd[F+1:1];
+    end
+  end
+
+  assign out_spec_o = s9_out_q;
+  assign out_tag_o  = tag_q[TAGW*NS-1:TAGW*(NS-1)];
+
+endmodule
+
+`default_nettype wire
