@@ -1,0 +1,123 @@
+// shadecore sim — monitor: passive; one SC_METHOD per rising edge samples the pre-edge values of
+// every port and turns handshakes into transactions for the scoreboard, in this order per edge:
+//   output taken (out_valid & out_ready) -> input taken (in_valid & in_ready) -> material write.
+// It also checks the port protocol: a valid output held back by out_ready low must stay valid
+// with the same data and tag at the next edge; in_ready_o must be low while rst_ni is low.
+// Latency is counted in advancing edges (edges where !out_valid || out_ready, not in reset), the
+// pipeline's global enable, and in raw cycles for the report.
+// It stops the simulation when the driver is done and nothing is in flight, or on a watchdog.
+#pragma once
+
+#include <systemc.h>
+
+#include <cstdint>
+#include <string>
+
+#include "tb_driver.hpp"
+#include "tb_pins.hpp"
+#include "tb_scoreboard.hpp"
+
+namespace shadecore::sim {
+
+class Monitor : public sc_core::sc_module {
+ public:
+  SC_HAS_PROCESS(Monitor);
+  Monitor(sc_core::sc_module_name name, Pins& pins, Scoreboard& sb, const Driver& drv,
+          const std::string& inject = "", uint64_t inject_at = 0)
+      : sc_module(name),
+        pins_(pins),
+        sb_(sb),
+        drv_(drv),
+        inject_(inject == "value" ? 1 : inject == "drop" ? 2 : inject == "dup" ? 3 : 0),
+        inject_at_(inject_at) {
+    SC_METHOD(on_clk);
+    sensitive << pins_.clk.posedge_event();
+    dont_initialize();
+  }
+
+  [[nodiscard]] uint64_t cycles() const { return cycle_; }
+  [[nodiscard]] bool watchdog_fired() const { return watchdog_; }
+
+  static constexpr uint64_t kIdleLimit = 200000;  // cycles without any transfer = stuck
+
+ private:
+  void on_clk() {
+    ++cycle_;
+    const bool rst_n = pins_.rst_n.read();
+    const bool ov = pins_.out_valid.read();
+    const bool ordy = pins_.out_ready.read();
+    const bool iv = pins_.in_valid.read();
+    const bool irdy = pins_.in_ready.read();
+    const uint32_t otag = pins_.out_tag.read();
+    const uint32_t ospec = pins_.out_spec.read();
+
+    if (held_ && (!ov || otag != held_tag_ || ospec != held_spec_))
+      sb_.error("output changed while held back by out_ready_i low (valid " + std::to_string(ov) +
+                    ", tag " + std::to_string(held_tag_) + " -> " + std::to_string(otag) + ")",
+                cycle_);
+    bool moved = false;
+    if (!rst_n) {
+      if (irdy) sb_.error("in_ready_o high while rst_ni is low", cycle_);
+      if (ov && ordy) {
+        output(otag, ospec, adv_ + 1);  // taken at the reset edge
+        moved = true;
+      }
+      sb_.on_reset();
+      held_ = false;
+    } else {
+      if (!ov || ordy) ++adv_;
+      if (ov && ordy) {
+        output(otag, ospec, adv_);
+        moved = true;
+      }
+      if (iv && irdy) {
+        sb_.on_input(pins_.in_tag.read(), sign_extend(pins_.in_cos.read()), cycle_, adv_);
+        moved = true;
+      }
+      held_ = ov && !ordy;
+      held_tag_ = otag;
+      held_spec_ = ospec;
+    }
+    if (pins_.mat_we.read()) sb_.on_material(static_cast<int>(pins_.mat_n.read()), pins_.mat_thr.read());
+
+    idle_ = moved ? 0 : idle_ + 1;
+    if (drv_.done() && sb_.in_flight() == 0) {
+      sc_core::sc_stop();
+    } else if (idle_ > kIdleLimit) {
+      watchdog_ = true;
+      sb_.error("watchdog: no transfer for " + std::to_string(kIdleLimit) + " cycles", cycle_);
+      sc_core::sc_stop();
+    }
+  }
+
+ public:
+  void set_in_bits(int bits) { in_bits_ = bits; }
+
+ private:
+  void output(uint32_t tag, uint32_t spec, uint64_t adv) {
+    if (inject_ != 0 && ++outputs_seen_ == inject_at_) {  // self-test of the checks only
+      if (inject_ == 1) spec ^= 1u;
+      if (inject_ == 2) return;
+      if (inject_ == 3) sb_.on_output(tag, spec, cycle_, adv);
+    }
+    sb_.on_output(tag, spec, cycle_, adv);
+  }
+
+  int64_t sign_extend(uint32_t v) const {
+    const int sh = 64 - in_bits_;
+    return static_cast<int64_t>(static_cast<uint64_t>(v) << sh) >> sh;
+  }
+
+  Pins& pins_;
+  Scoreboard& sb_;
+  const Driver& drv_;
+  const int inject_;
+  const uint64_t inject_at_;
+  uint64_t outputs_seen_ = 0;
+  int in_bits_ = 18;
+  uint64_t cycle_ = 0, adv_ = 0, idle_ = 0;
+  bool held_ = false, watchdog_ = false;
+  uint32_t held_tag_ = 0, held_spec_ = 0;
+};
+
+}  // namespace shadecore::sim

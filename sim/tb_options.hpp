@@ -1,0 +1,37 @@
+// shadecore sim — options of one co-simulation run (the simulator executable's command line).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace shadecore::sim {
+
+enum class Mode { Exhaustive, Random, Directed };
+
+struct Options {
+  std::string variant = "cs16";
+  std::string cutoff = "theta_cr";
+  Mode mode = Mode::Directed;
+  int n_lo = 16, n_hi = 1024;   // exponent range (exhaustive, random)
+  uint64_t count = 100000;      // random: transactions; directed: at least this many (list repeated)
+  uint64_t seed = 1;
+  double in_stall = 0.0;        // probability per cycle that the driver withholds in_valid_i
+  double out_stall = 0.0;       // probability per cycle that out_ready_i is low
+  double mat_rate = 0.01;       // random mode: probability per cycle of a material write
+  int64_t reset_at = -2;        // accepted-transaction count at which rst_ni pulses low; -1 none, -2 auto
+  int reset_cycles = 3;
+  std::string trace;            // FST file ("" = no trace)
+  int show = 10;                // mismatches printed in full
+  // Self-test of the checks (must make the run FAIL): corrupt what the monitor reports for the
+  // inject_at-th output transfer: "value" flips bit 0 of out_spec, "drop" hides the transfer,
+  // "dup" reports it twice. "" = off.
+  std::string inject;
+  uint64_t inject_at = 100;
+  bool quiet = false;
+};
+
+inline const char* to_string(Mode m) {
+  return m == Mode::Exhaustive ? "exhaustive" : (m == Mode::Random ? "random" : "directed");
+}
+
+}  // namespace shadecore::sim

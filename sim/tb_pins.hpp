@@ -1,0 +1,45 @@
+// shadecore sim — the signals between the testbench and the unit (docs/spec.md §4 port table).
+// Every port of sc_specular is at most 32 bits wide in every configuration, so the Verilated
+// --sc model uses bool / uint32_t ports (no slow sc_bv).
+#pragma once
+
+#include <systemc.h>
+
+#include <cstdint>
+
+namespace shadecore::sim {
+
+struct Pins {
+  sc_core::sc_clock clk{"clk", 10, sc_core::SC_NS};
+  sc_core::sc_signal<bool> rst_n{"rst_n", false};
+  sc_core::sc_signal<bool> mat_we{"mat_we", false};
+  sc_core::sc_signal<uint32_t> mat_n{"mat_n", 16};
+  sc_core::sc_signal<uint32_t> mat_thr{"mat_thr", 0};
+  sc_core::sc_signal<bool> in_valid{"in_valid", false};
+  sc_core::sc_signal<bool> in_ready{"in_ready", false};
+  sc_core::sc_signal<uint32_t> in_cos{"in_cos", 0};
+  sc_core::sc_signal<uint32_t> in_tag{"in_tag", 0};
+  sc_core::sc_signal<bool> out_valid{"out_valid", false};
+  sc_core::sc_signal<bool> out_ready{"out_ready", false};
+  sc_core::sc_signal<uint32_t> out_spec{"out_spec", 0};
+  sc_core::sc_signal<uint32_t> out_tag{"out_tag", 0};
+
+  template <class M>
+  void bind(M& dut) {
+    dut.clk_i(clk);
+    dut.rst_ni(rst_n);
+    dut.mat_we_i(mat_we);
+    dut.mat_n_i(mat_n);
+    dut.mat_thr_i(mat_thr);
+    dut.in_valid_i(in_valid);
+    dut.in_ready_o(in_ready);
+    dut.in_cos_i(in_cos);
+    dut.in_tag_i(in_tag);
+    dut.out_valid_o(out_valid);
+    dut.out_ready_i(out_ready);
+    dut.out_spec_o(out_spec);
+    dut.out_tag_o(out_tag);
+  }
+};
+
+}  // namespace shadecore::sim

@@ -1,0 +1,127 @@
+// shadecore sim — what the driver feeds the unit, by mode:
+//   exhaustive: for every n in [n_lo, n_hi]: every code in [0, 2^F], then the out-of-range codes
+//               in_min, -1, 2^F+1, in_max (the clamp must saturate, never wrap);
+//   random:     `count` codes: 70 % uniform in [0, 2^F], 10 % uniform over the whole signed input
+//               word, 20 % within ±4 of a special point (0, 2^F, thr(n'), base zero of n'); the
+//               material changes at random cycles (the driver), so no n is attached here;
+//   directed:   shadecore::hard_cases() — the list the C model tests use — repeated until `count`
+//               items (at least once).
+// No allocation per item; the directed list is built once.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "shadecore/hard_cases.hpp"
+#include "shadecore/unit.hpp"
+#include "tb_options.hpp"
+#include "tb_rng.hpp"
+
+namespace shadecore::sim {
+
+struct Item {
+  int n = -1;        // material this item must be shaded with; -1 = whatever is loaded (random mode)
+  int64_t code = 0;  // signed input word
+};
+
+class Stimulus {
+ public:
+  Stimulus(const Options& o, const Unit& unit)
+      : o_(o), unit_(unit), f_(unit.format()), rng_(o.seed ^ 0x5eed5eed5eedull), n_(o.n_lo) {
+    const int64_t one = f_.one();
+    extras_[0] = f_.in_min();
+    extras_[1] = -1;
+    extras_[2] = one + 1;
+    extras_[3] = f_.in_max();
+    if (o_.mode == Mode::Directed) {
+      directed_ = hard_cases(f_);
+      const uint64_t len = directed_.size();
+      repeats_ = o_.count > len ? (o_.count + len - 1) / len : 1;
+    }
+  }
+
+  // Number of items this stimulus produces in total.
+  uint64_t planned() const {
+    switch (o_.mode) {
+      case Mode::Exhaustive:
+        return static_cast<uint64_t>(o_.n_hi - o_.n_lo + 1) * static_cast<uint64_t>(f_.one() + 1 + kExtras);
+      case Mode::Random: return o_.count;
+      case Mode::Directed: return directed_.size() * repeats_;
+    }
+    return 0;
+  }
+
+  bool next(Item& it) {
+    switch (o_.mode) {
+      case Mode::Exhaustive: return next_exhaustive(it);
+      case Mode::Random: return next_random(it);
+      case Mode::Directed: return next_directed(it);
+    }
+    return false;
+  }
+
+ private:
+  static constexpr int kExtras = 4;
+
+  bool next_exhaustive(Item& it) {
+    if (n_ > o_.n_hi) return false;
+    const int64_t in_range = f_.one() + 1;
+    it.n = n_;
+    it.code = idx_ < in_range ? idx_ : extras_[idx_ - in_range];
+    if (++idx_ == in_range + kExtras) {
+      idx_ = 0;
+      ++n_;
+    }
+    return true;
+  }
+
+  bool next_random(Item& it) {
+    if (done_ == o_.count) return false;
+    ++done_;
+    it.n = -1;
+    const uint64_t r = rng_.next() % 100;
+    const int64_t one = f_.one();
+    if (r < 70) {
+      it.code = rng_.uniform(0, one);
+    } else if (r < 80) {
+      it.code = rng_.uniform(f_.in_min(), f_.in_max());
+    } else {
+      const int n = static_cast<int>(rng_.uniform(o_.n_lo, o_.n_hi));
+      int64_t centre = 0;
+      switch (rng_.next() % 4) {
+        case 0: centre = 0; break;
+        case 1: centre = one; break;
+        case 2: centre = unit_.setup(n).thr; break;
+        default: centre = one - ((int64_t{1} << (f_.frac + 4)) / n); break;  // last code with base <= 0
+      }
+      it.code = centre + rng_.uniform(-4, 4);
+      if (it.code < f_.in_min()) it.code = f_.in_min();
+      if (it.code > f_.in_max()) it.code = f_.in_max();
+    }
+    return true;
+  }
+
+  bool next_directed(Item& it) {
+    if (rep_ == repeats_) return false;
+    it.n = directed_[idx_].n;
+    it.code = directed_[idx_].code;
+    if (++idx_ == static_cast<int64_t>(directed_.size())) {
+      idx_ = 0;
+      ++rep_;
+    }
+    return true;
+  }
+
+  const Options& o_;
+  const Unit& unit_;
+  Format f_;
+  Rng rng_;
+  int n_;
+  int64_t idx_ = 0;
+  int64_t extras_[kExtras] = {};
+  uint64_t done_ = 0;
+  std::vector<HardCase> directed_;
+  uint64_t repeats_ = 1, rep_ = 0;
+};
+
+}  // namespace shadecore::sim
