@@ -5,9 +5,9 @@
 
 namespace shadecore {
 
-// Built twice (AVX2 and baseline x86-64) and picked at run time; both are the same integer arithmetic.
+// Built three times (AVX-512, AVX2, baseline x86-64) and picked at run time; both are the same integer arithmetic.
 #if defined(__x86_64__) && defined(__GNUC__)
-__attribute__((target_clones("avx2", "default")))
+__attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
 void cs16_eval_block(const Format& f, Cutoff cut_mode, const Cs16Material& m, int64_t code0,
                             int64_t count, uint32_t* out) {
