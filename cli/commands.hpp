@@ -8,6 +8,7 @@ namespace shadecore::cli {
 void add_sweep(CLI::App& app);
 void add_fit(CLI::App& app);
 void add_energy(CLI::App& app);
+void add_cosim(CLI::App& app);
 // Further subcommands (cosim, fit, ...) add a line here and in main.cpp.
 
 }  // namespace shadecore::cli

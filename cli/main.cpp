@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   shadecore::cli::add_sweep(app);
   shadecore::cli::add_fit(app);
   shadecore::cli::add_energy(app);
+  shadecore::cli::add_cosim(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
