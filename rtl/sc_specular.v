@@ -8,6 +8,10 @@
 //   VARIANT  which unit; the ids come from config/configs.json "variants" through the generated
 //            include sc_variants.vh (build/generated/rtl/, put it on the include path: -I).
 //              VARIANT_CS16 (0): rtl/sc_cs16.v, latency 7, one fragment per clock
+//              VARIANT_SCHLICK_DIV (1): rtl/sc_schlick_div.v, latency FRAC+4, one per clock
+//              VARIANT_SCHLICK_NR (2): rtl/sc_schlick_nr.v, latency 10, one per clock
+//              VARIANT_SCHLICK_ITER (3): rtl/sc_schlick_iter.v, latency FRAC+4, one per FRAC+4 clocks
+//            (the Schlick units take FRAC and TAGW only; GUARD and CUTOFF do not apply to them)
 //   FRAC, GUARD, CUTOFF, TAGW: passed to the unit; legal ranges in the unit's header
 //            (cs16: 8 <= FRAC <= 24, 4 <= GUARD <= 8, FRAC+GUARD <= 31, CUTOFF 0/1, TAGW >= 1).
 // Latency / throughput: those of the selected unit (cs16: 7 cycles, 1 per clock).
@@ -48,6 +52,63 @@ module sc_specular #(
           .GUARD (GUARD),
           .CUTOFF(CUTOFF),
           .TAGW  (TAGW)
+      ) u_unit (
+          .clk_i      (clk_i),
+          .rst_ni     (rst_ni),
+          .mat_we_i   (mat_we_i),
+          .mat_n_i    (mat_n_i),
+          .mat_thr_i  (mat_thr_i),
+          .in_valid_i (in_valid_i),
+          .in_ready_o (in_ready_o),
+          .in_cos_i   (in_cos_i),
+          .in_tag_i   (in_tag_i),
+          .out_valid_o(out_valid_o),
+          .out_ready_i(out_ready_i),
+          .out_spec_o (out_spec_o),
+          .out_tag_o  (out_tag_o)
+      );
+    end else if (VARIANT == VARIANT_SCHLICK_DIV) begin : g_schlick_div
+      sc_schlick_div #(
+          .FRAC(FRAC),
+          .TAGW(TAGW)
+      ) u_unit (
+          .clk_i      (clk_i),
+          .rst_ni     (rst_ni),
+          .mat_we_i   (mat_we_i),
+          .mat_n_i    (mat_n_i),
+          .mat_thr_i  (mat_thr_i),
+          .in_valid_i (in_valid_i),
+          .in_ready_o (in_ready_o),
+          .in_cos_i   (in_cos_i),
+          .in_tag_i   (in_tag_i),
+          .out_valid_o(out_valid_o),
+          .out_ready_i(out_ready_i),
+          .out_spec_o (out_spec_o),
+          .out_tag_o  (out_tag_o)
+      );
+    end else if (VARIANT == VARIANT_SCHLICK_NR) begin : g_schlick_nr
+      sc_schlick_nr #(
+          .FRAC(FRAC),
+          .TAGW(TAGW)
+      ) u_unit (
+          .clk_i      (clk_i),
+          .rst_ni     (rst_ni),
+          .mat_we_i   (mat_we_i),
+          .mat_n_i    (mat_n_i),
+          .mat_thr_i  (mat_thr_i),
+          .in_valid_i (in_valid_i),
+          .in_ready_o (in_ready_o),
+          .in_cos_i   (in_cos_i),
+          .in_tag_i   (in_tag_i),
+          .out_valid_o(out_valid_o),
+          .out_ready_i(out_ready_i),
+          .out_spec_o (out_spec_o),
+          .out_tag_o  (out_tag_o)
+      );
+    end else if (VARIANT == VARIANT_SCHLICK_ITER) begin : g_schlick_iter
+      sc_schlick_iter #(
+          .FRAC(FRAC),
+          .TAGW(TAGW)
       ) u_unit (
           .clk_i      (clk_i),
           .rst_ni     (rst_ni),

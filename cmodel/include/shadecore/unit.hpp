@@ -14,6 +14,7 @@
 
 #include "shadecore/cs16.hpp"
 #include "shadecore/format.hpp"
+#include "shadecore/schlick.hpp"
 #include "shadecore/variants.hpp"
 
 namespace shadecore {
@@ -51,7 +52,10 @@ class Unit {
       : variant_(variant), format_(format), cutoff_(cutoff) {
     validate(format_);
     switch (variant_) {
-      case VariantId::cs16: return;
+      case VariantId::cs16:
+      case VariantId::schlick_div:
+      case VariantId::schlick_nr:
+      case VariantId::schlick_iter: return;
     }
     throw std::invalid_argument("variant id " + std::to_string(static_cast<int>(variant)) +
                                 " has no model in shadecore/unit.hpp");
@@ -65,6 +69,10 @@ class Unit {
   [[nodiscard]] int latency() const {
     switch (variant_) {
       case VariantId::cs16: return 7;  // rtl/sc_cs16.v: S0..S6
+      // Schlick units (docs/spec.md §6.5): div/iter S0, S1, Q0..Q(F+1); nr S0..S9.
+      case VariantId::schlick_div: return schlick_div_latency(format_.frac);
+      case VariantId::schlick_nr: return kSchlickNrLatency;
+      case VariantId::schlick_iter: return schlick_iter_latency(format_.frac);
     }
     return -1;
   }
@@ -76,6 +84,10 @@ class Unit {
         const Cs16Material m = cs16_setup(format_, n);
         return UnitMaterial{m.n, m.thr};
       }
+      case VariantId::schlick_div:
+      case VariantId::schlick_nr:
+      case VariantId::schlick_iter:  // no threshold: mat_thr_i unused (0)
+        return UnitMaterial{schlick_setup(format_, n).n, 0};
     }
     return {};
   }
@@ -84,6 +96,9 @@ class Unit {
   [[nodiscard]] uint32_t eval(const UnitMaterial& m, int64_t code) const {
     switch (variant_) {
       case VariantId::cs16: return cs16_eval(format_, cutoff_, Cs16Material{m.n, m.thr}, code);
+      case VariantId::schlick_div: return schlick_div_eval(format_, SchlickMaterial{m.n}, code);
+      case VariantId::schlick_nr: return schlick_nr_eval(format_, SchlickMaterial{m.n}, code);
+      case VariantId::schlick_iter: return schlick_iter_eval(format_, SchlickMaterial{m.n}, code);
     }
     return 0;
   }
