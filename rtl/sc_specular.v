@@ -14,7 +14,15 @@
 //            (the Schlick units take FRAC and TAGW only; GUARD and CUTOFF do not apply to them)
 //   FRAC, GUARD, CUTOFF, TAGW: passed to the unit; legal ranges in the unit's header
 //            (cs16: 8 <= FRAC <= 24, 4 <= GUARD <= 8, FRAC+GUARD <= 31, CUTOFF 0/1, TAGW >= 1).
-// Latency / throughput: those of the selected unit (cs16: 7 cycles, 1 per clock).
+//   NORM     0 (default): out_spec_o is the unit's output, F+1 bits.
+//            1: the energy-normalisation stage rtl/sc_norm.v (docs/spec.md §7) follows the unit:
+//            out_spec_o = round(unit output × mat_coef), COEFW bits, 1.0 = 2^F. The coefficient is
+//            registered from mat_coef_i at mat_we_i (same rule as mat_n_i) and travels with the
+//            fragment through the unit in the upper tag bits, so a material write never affects a
+//            fragment in flight.
+//   COEFW    coefficient (and, with NORM = 1, output) width I+F, FRAC+1..FRAC+16 (default FRAC+8,
+//            enough for every model's coef over n = 16..1024). mat_coef_i is ignored when NORM = 0.
+// Latency / throughput: those of the selected unit (cs16: 7 cycles, 1 per clock), + 2 with NORM = 1.
 //
 // Adding a unit: add {"name", "id"} to config/configs.json "variants", then one labelled
 // generate branch below with the same port list.
@@ -26,24 +34,35 @@ module sc_specular #(
     parameter integer FRAC    = 16,
     parameter integer GUARD   = 5,
     parameter integer CUTOFF  = 0,
-    parameter integer TAGW    = 8
+    parameter integer TAGW    = 8,
+    parameter integer NORM    = 0,
+    parameter integer COEFW   = FRAC + 8
 ) (
     input  wire              clk_i,
     input  wire              rst_ni,
     input  wire              mat_we_i,
     input  wire [10:0]       mat_n_i,
     input  wire [FRAC:0]     mat_thr_i,
+    input  wire [COEFW-1:0]  mat_coef_i,
     input  wire              in_valid_i,
     output wire              in_ready_o,
     input  wire [FRAC+1:0]   in_cos_i,
     input  wire [TAGW-1:0]   in_tag_i,
     output wire              out_valid_o,
     input  wire              out_ready_i,
-    output wire [FRAC:0]     out_spec_o,
+    output wire [((NORM != 0) ? COEFW : FRAC + 1)-1:0] out_spec_o,
     output wire [TAGW-1:0]   out_tag_o
 );
 
 `include "sc_variants.vh"
+
+  // The unit's result side: straight to the ports (NORM = 0) or into sc_norm (NORM = 1), whose
+  // coefficient rides in the unit's tag above the caller's tag bits.
+  localparam integer CW    = (NORM != 0) ? COEFW : 0;
+  localparam integer UTAGW = TAGW + CW;
+  wire             u_out_valid, u_out_ready;
+  wire [FRAC:0]    u_out_spec;
+  wire [UTAGW-1:0] u_in_tag, u_out_tag;
 
   generate
     if (VARIANT == VARIANT_CS16) begin : g_cs16
@@ -51,7 +70,7 @@ module sc_specular #(
           .FRAC  (FRAC),
           .GUARD (GUARD),
           .CUTOFF(CUTOFF),
-          .TAGW  (TAGW)
+          .TAGW  (UTAGW)
       ) u_unit (
           .clk_i      (clk_i),
           .rst_ni     (rst_ni),
@@ -61,16 +80,16 @@ module sc_specular #(
           .in_valid_i (in_valid_i),
           .in_ready_o (in_ready_o),
           .in_cos_i   (in_cos_i),
-          .in_tag_i   (in_tag_i),
-          .out_valid_o(out_valid_o),
-          .out_ready_i(out_ready_i),
-          .out_spec_o (out_spec_o),
-          .out_tag_o  (out_tag_o)
+          .in_tag_i   (u_in_tag),
+          .out_valid_o(u_out_valid),
+          .out_ready_i(u_out_ready),
+          .out_spec_o (u_out_spec),
+          .out_tag_o  (u_out_tag)
       );
     end else if (VARIANT == VARIANT_SCHLICK_DIV) begin : g_schlick_div
       sc_schlick_div #(
           .FRAC(FRAC),
-          .TAGW(TAGW)
+          .TAGW(UTAGW)
       ) u_unit (
           .clk_i      (clk_i),
           .rst_ni     (rst_ni),
@@ -80,16 +99,16 @@ module sc_specular #(
           .in_valid_i (in_valid_i),
           .in_ready_o (in_ready_o),
           .in_cos_i   (in_cos_i),
-          .in_tag_i   (in_tag_i),
-          .out_valid_o(out_valid_o),
-          .out_ready_i(out_ready_i),
-          .out_spec_o (out_spec_o),
-          .out_tag_o  (out_tag_o)
+          .in_tag_i   (u_in_tag),
+          .out_valid_o(u_out_valid),
+          .out_ready_i(u_out_ready),
+          .out_spec_o (u_out_spec),
+          .out_tag_o  (u_out_tag)
       );
     end else if (VARIANT == VARIANT_SCHLICK_NR) begin : g_schlick_nr
       sc_schlick_nr #(
           .FRAC(FRAC),
-          .TAGW(TAGW)
+          .TAGW(UTAGW)
       ) u_unit (
           .clk_i      (clk_i),
           .rst_ni     (rst_ni),
@@ -99,16 +118,16 @@ module sc_specular #(
           .in_valid_i (in_valid_i),
           .in_ready_o (in_ready_o),
           .in_cos_i   (in_cos_i),
-          .in_tag_i   (in_tag_i),
-          .out_valid_o(out_valid_o),
-          .out_ready_i(out_ready_i),
-          .out_spec_o (out_spec_o),
-          .out_tag_o  (out_tag_o)
+          .in_tag_i   (u_in_tag),
+          .out_valid_o(u_out_valid),
+          .out_ready_i(u_out_ready),
+          .out_spec_o (u_out_spec),
+          .out_tag_o  (u_out_tag)
       );
     end else if (VARIANT == VARIANT_SCHLICK_ITER) begin : g_schlick_iter
       sc_schlick_iter #(
           .FRAC(FRAC),
-          .TAGW(TAGW)
+          .TAGW(UTAGW)
       ) u_unit (
           .clk_i      (clk_i),
           .rst_ni     (rst_ni),
@@ -118,14 +137,53 @@ module sc_specular #(
           .in_valid_i (in_valid_i),
           .in_ready_o (in_ready_o),
           .in_cos_i   (in_cos_i),
-          .in_tag_i   (in_tag_i),
-          .out_valid_o(out_valid_o),
-          .out_ready_i(out_ready_i),
-          .out_spec_o (out_spec_o),
-          .out_tag_o  (out_tag_o)
+          .in_tag_i   (u_in_tag),
+          .out_valid_o(u_out_valid),
+          .out_ready_i(u_out_ready),
+          .out_spec_o (u_out_spec),
+          .out_tag_o  (u_out_tag)
       );
     end else begin : g_check_variant
       $error("sc_specular: unknown VARIANT (see config/configs.json \"variants\")");
+    end
+  endgenerate
+
+  generate
+    if (NORM == 0) begin : g_no_norm
+      assign u_in_tag    = in_tag_i;
+      assign out_valid_o = u_out_valid;
+      assign u_out_ready = out_ready_i;
+      assign out_spec_o  = u_out_spec;
+      assign out_tag_o   = u_out_tag;
+      wire unused_coef = &{1'b0, mat_coef_i};
+    end else if (NORM == 1) begin : g_norm
+      reg [COEFW-1:0] mat_coef_q;
+      always @(posedge clk_i) begin
+        if (mat_we_i) mat_coef_q <= mat_coef_i;
+      end
+      assign u_in_tag = {mat_coef_q, in_tag_i};
+      sc_norm #(
+          .FRAC    (FRAC),
+          .COEFW   (COEFW),
+          .COEF_SRC(1),
+          .TAGW    (TAGW)
+      ) u_norm (
+          .clk_i      (clk_i),
+          .rst_ni     (rst_ni),
+          .mat_we_i   (1'b0),
+          .mat_coef_i ({COEFW{1'b0}}),
+          .in_valid_i (u_out_valid),
+          .in_ready_o (u_out_ready),
+          .in_spec_i  (u_out_spec),
+          .in_coef_i  (u_out_tag[UTAGW-1:TAGW]),
+          .in_tag_i   (u_out_tag[TAGW-1:0]),
+          .out_valid_o(out_valid_o),
+          .out_ready_i(out_ready_i),
+          .out_norm_o (out_spec_o),
+          .out_tag_o  (out_tag_o)
+      );
+    end else begin : g_check_norm
+      $error("sc_specular: illegal NORM, 0 = off, 1 = sc_norm after the unit");
     end
   endgenerate
 

@@ -113,6 +113,7 @@ int run(const Options& o, const Unit& unit, const std::string& repro) {
       {"guard", f.guard},
       {"variant", o.variant},
       {"cutoff", o.cutoff},
+      {"norm", unit.norm()},
       {"mode", to_string(o.mode)},
       {"n_lo", o.n_lo},
       {"n_hi", o.n_hi},
@@ -163,6 +164,8 @@ int main_impl(int argc, char** argv) {
 
   Options o;
   std::string mode = "directed", n_range = "16..1024";
+  bool norm = false;
+  std::string coef_model = "all", coef_kind = "fitted";
   CLI::App app{std::string("co-simulation of rtl/sc_specular.v (config '") + kSimConfig +
                "') against the C model"};
   app.add_option("--variant", o.variant, "unit variant (config/configs.json variants)");
@@ -185,6 +188,11 @@ int main_impl(int argc, char** argv) {
       ->check(CLI::IsMember({"value", "drop", "dup"}));
   app.add_option("--inject-at", o.inject_at, "self-test: which output transfer (1-based)")->check(CLI::PositiveNumber);
   app.add_flag("--quiet", o.quiet, "print only the COSIM-RESULT line when the run passes");
+  app.add_flag("--norm", norm, "sc_specular with NORM = 1: rtl/sc_norm.v after the unit (cs16, theta_cr)");
+  app.add_option("--coef-model", coef_model,
+                 "--norm: all (model and kind picked per material from n) | phong | phong_mod | blinn | "
+                 "blinn_mod | blinn_ndf | blinn_hf");
+  app.add_option("--coef", coef_kind, "--norm with one model: fitted | classical");
   try {
     app.parse(static_cast<int>(args.size()), args.data());
   } catch (const CLI::ParseError& e) {
@@ -211,7 +219,10 @@ int main_impl(int argc, char** argv) {
     for (const auto& c : kConfigs)
       if (c.name == kSimConfig) fmt = &c.format;
     if (!fmt) throw std::invalid_argument(std::string("config ") + kSimConfig + " not in configs.hpp");
-    const Unit unit(parse_variant(o.variant), *fmt, parse_cutoff_name(o.cutoff));
+    Unit unit(parse_variant(o.variant), *fmt, parse_cutoff_name(o.cutoff));
+    if (norm)
+      unit.set_norm(true, coef_model == "all" ? -1 : static_cast<int>(parse_model(coef_model)),
+                    parse_coef_kind(coef_kind));
     if (o.reset_at == -1 && mode != "exhaustive") {
       bool explicit_reset = app.count("--reset-at") > 0;
       if (!explicit_reset) {
@@ -227,9 +238,11 @@ int main_impl(int argc, char** argv) {
                   (long long)o.reset_at, o.trace.empty() ? "" : " trace ", o.trace.c_str());
     int rc = -1;
     const bool found = with_model(static_cast<int>(unit.variant()), static_cast<int>(unit.cutoff()),
-                                  [&](auto tag) { rc = run<typename decltype(tag)::type>(o, unit, repro); });
+                                  [&](auto tag) { rc = run<typename decltype(tag)::type>(o, unit, repro); },
+                                  norm ? 1 : 0);
     if (!found)
-      throw std::invalid_argument("no Verilated model for variant " + o.variant + " cutoff " + o.cutoff);
+      throw std::invalid_argument("no Verilated model for variant " + o.variant + " cutoff " + o.cutoff +
+                                  (norm ? " with --norm" : ""));
     return rc;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cosim: error: %s\n", e.what());

@@ -103,6 +103,7 @@ class Driver : public sc_core::sc_module {
     if (we) {
       pins_.mat_n.write(static_cast<uint32_t>(m.n));
       pins_.mat_thr.write(m.thr);
+      pins_.mat_coef.write(m.coef);
     }
     pins_.in_valid.write(valid);
     if (valid) {

@@ -78,7 +78,8 @@ class Monitor : public sc_core::sc_module {
       held_tag_ = otag;
       held_spec_ = ospec;
     }
-    if (pins_.mat_we.read()) sb_.on_material(static_cast<int>(pins_.mat_n.read()), pins_.mat_thr.read());
+    if (pins_.mat_we.read())
+      sb_.on_material(static_cast<int>(pins_.mat_n.read()), pins_.mat_thr.read(), pins_.mat_coef.read());
 
     idle_ = moved ? 0 : idle_ + 1;
     if (drv_.done() && sb_.in_flight() == 0) {

@@ -15,6 +15,7 @@ struct Pins {
   sc_core::sc_signal<bool> mat_we{"mat_we", false};
   sc_core::sc_signal<uint32_t> mat_n{"mat_n", 16};
   sc_core::sc_signal<uint32_t> mat_thr{"mat_thr", 0};
+  sc_core::sc_signal<uint32_t> mat_coef{"mat_coef", 0};  // NORM = 1 only (ignored otherwise)
   sc_core::sc_signal<bool> in_valid{"in_valid", false};
   sc_core::sc_signal<bool> in_ready{"in_ready", false};
   sc_core::sc_signal<uint32_t> in_cos{"in_cos", 0};
@@ -31,6 +32,7 @@ struct Pins {
     dut.mat_we_i(mat_we);
     dut.mat_n_i(mat_n);
     dut.mat_thr_i(mat_thr);
+    dut.mat_coef_i(mat_coef);
     dut.in_valid_i(in_valid);
     dut.in_ready_o(in_ready);
     dut.in_cos_i(in_cos);

@@ -3,6 +3,9 @@
 //   setup(n)        -> the values the material ports of rtl/sc_specular.v get (mat_n_i, mat_thr_i)
 //   eval(mat, code) -> out_spec_o for the signed input word `code` shaded with material `mat`
 //   latency()       -> the unit's fixed pipeline latency in cycles (its RTL header documents it)
+// Optionally (set_norm) the energy-normalisation stage rtl/sc_norm.v chained after the unit inside
+// sc_specular (parameter NORM = 1): setup() also gives mat_coef_i, eval() the normalised output,
+// latency() + 2 (docs/spec.md §7).
 // A new unit (a Schlick divider, an energy-normalised output) adds one `case` per function below
 // and a row in config/configs.json "variants"; the testbench does not change.
 #pragma once
@@ -12,6 +15,7 @@
 #include <string>
 #include <string_view>
 
+#include "shadecore/coef.hpp"
 #include "shadecore/cs16.hpp"
 #include "shadecore/format.hpp"
 #include "shadecore/schlick.hpp"
@@ -23,6 +27,7 @@ namespace shadecore {
 struct UnitMaterial {
   int n = kNMin;     // mat_n_i, 16..1024
   uint32_t thr = 0;  // mat_thr_i
+  uint32_t coef = 0; // mat_coef_i (NORM = 1 only: coef_code of the material's model, spec §7)
 };
 
 inline VariantId parse_variant(std::string_view name) {
@@ -65,29 +70,47 @@ class Unit {
   [[nodiscard]] const Format& format() const { return format_; }
   [[nodiscard]] Cutoff cutoff() const { return cutoff_; }
 
+  // Chain the energy-normalisation stage (I = kCoefIntBits, F = format().frac). model < 0 picks the
+  // model per material from n (kModels[n % 6], classical coefficient when (n / 6) is odd), so a
+  // random run covers every model and kind; model >= 0 fixes it (index into kModels).
+  void set_norm(bool on, int model = -1, CoefKind kind = CoefKind::Fitted) {
+    if (model >= kNumModels) throw std::invalid_argument("norm model index out of range");
+    norm_ = on;
+    norm_model_ = model;
+    norm_kind_ = kind;
+  }
+  [[nodiscard]] bool norm() const { return norm_; }
+
   // Pipeline latency in cycles: accepted at the rising edge ending cycle t -> out_valid_o in t+latency.
   [[nodiscard]] int latency() const {
     switch (variant_) {
-      case VariantId::cs16: return 7;  // rtl/sc_cs16.v: S0..S6
+      case VariantId::cs16: return 7 + (norm_ ? 2 : 0);  // rtl/sc_cs16.v: S0..S6 (+ sc_norm N1, N2)
       // Schlick units (docs/spec.md §6.5): div/iter S0, S1, Q0..Q(F+1); nr S0..S9.
-      case VariantId::schlick_div: return schlick_div_latency(format_.frac);
-      case VariantId::schlick_nr: return kSchlickNrLatency;
-      case VariantId::schlick_iter: return schlick_iter_latency(format_.frac);
+      case VariantId::schlick_div: return schlick_div_latency(format_.frac) + (norm_ ? 2 : 0);
+      case VariantId::schlick_nr: return kSchlickNrLatency + (norm_ ? 2 : 0);
+      case VariantId::schlick_iter: return schlick_iter_latency(format_.frac) + (norm_ ? 2 : 0);
     }
     return -1;
   }
+
+  // Fewest advancing edges (!out_valid_o || out_ready_i) from acceptance to output. Equal to
+  // latency() for a single unit (one global enable). With NORM = 1 the unit and sc_norm are two
+  // pipelines: while sc_norm's output is held, the unit still advances into its empty output stage,
+  // so under backpressure a fragment can close up on the one ahead; at least the edges into N1 and
+  // N2 and the taking edge remain (3). With out_ready_i high throughout it is exactly latency().
+  [[nodiscard]] int latency_min() const { return norm_ ? 3 : latency(); }
 
   // Material setup (docs/spec.md §3.1); throws std::invalid_argument for n outside [16, 1024].
   [[nodiscard]] UnitMaterial setup(long long n) const {
     switch (variant_) {
       case VariantId::cs16: {
         const Cs16Material m = cs16_setup(format_, n);
-        return UnitMaterial{m.n, m.thr};
+        return with_coef(UnitMaterial{m.n, m.thr}, n);
       }
       case VariantId::schlick_div:
       case VariantId::schlick_nr:
       case VariantId::schlick_iter:  // no threshold: mat_thr_i unused (0)
-        return UnitMaterial{schlick_setup(format_, n).n, 0};
+        return with_coef(UnitMaterial{schlick_setup(format_, n).n, 0}, n);
     }
     return {};
   }
@@ -95,18 +118,34 @@ class Unit {
   // The per-fragment datapath, for the material values actually on the material ports.
   [[nodiscard]] uint32_t eval(const UnitMaterial& m, int64_t code) const {
     switch (variant_) {
-      case VariantId::cs16: return cs16_eval(format_, cutoff_, Cs16Material{m.n, m.thr}, code);
-      case VariantId::schlick_div: return schlick_div_eval(format_, SchlickMaterial{m.n}, code);
-      case VariantId::schlick_nr: return schlick_nr_eval(format_, SchlickMaterial{m.n}, code);
-      case VariantId::schlick_iter: return schlick_iter_eval(format_, SchlickMaterial{m.n}, code);
+      case VariantId::cs16: return normalise(m, cs16_eval(format_, cutoff_, Cs16Material{m.n, m.thr}, code));
+      case VariantId::schlick_div: return normalise(m, schlick_div_eval(format_, SchlickMaterial{m.n}, code));
+      case VariantId::schlick_nr: return normalise(m, schlick_nr_eval(format_, SchlickMaterial{m.n}, code));
+      case VariantId::schlick_iter: return normalise(m, schlick_iter_eval(format_, SchlickMaterial{m.n}, code));
     }
     return 0;
   }
 
  private:
+  [[nodiscard]] NormFormat norm_format() const { return NormFormat{format_.frac, kCoefIntBits}; }
+  [[nodiscard]] UnitMaterial with_coef(UnitMaterial m, long long n) const {
+    if (!norm_) return m;
+    const Model model = norm_model_ >= 0 ? static_cast<Model>(norm_model_) : static_cast<Model>(n % kNumModels);
+    const CoefKind kind = norm_model_ >= 0 ? norm_kind_ : ((n / kNumModels) % 2 ? CoefKind::Classical : CoefKind::Fitted);
+    m.coef = norm_setup(norm_format(), model, kind, n);
+    return m;
+  }
+  // sc_norm N1/N2 after the unit (out < 2^(I+F) <= 2^32).
+  [[nodiscard]] uint32_t normalise(const UnitMaterial& m, uint32_t spec) const {
+    return norm_ ? static_cast<uint32_t>(norm_eval(norm_format(), m.coef, spec)) : spec;
+  }
+
   VariantId variant_;
   Format format_;
   Cutoff cutoff_;
+  bool norm_ = false;
+  int norm_model_ = -1;
+  CoefKind norm_kind_ = CoefKind::Fitted;
 };
 
 }  // namespace shadecore
