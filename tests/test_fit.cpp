@@ -52,6 +52,17 @@ TEST(IntClosedForm, MatchesQuadrature) {
                std::invalid_argument);
 }
 
+// The Schlick lobe (quadrature only in the tool): for the Phong row Int = ∫_0^1 t/(n − (n−1)t) dt
+// = n·ln(n)/(n−1)² − 1/(n−1), integrated over the whole hemisphere.
+TEST(IntQuadrature, SchlickPhongRowMatchesHandDerivedValue) {
+  const fit::Lobe l{fit::LobeKind::Schlick, Cutoff::ThetaCr};
+  for (int n : {16, 100, 1024}) {
+    const double c = n - 1.0;
+    const double expect = n * std::log(static_cast<double>(n)) / (c * c) - 1 / c;
+    EXPECT_NEAR(fit::int_quadrature(Model::Phong, l, fit::Reading::Paper, n).value / expect, 1.0, 1e-12) << n;
+  }
+}
+
 // Hand-derived values: with the exact-zero cut-off the base runs from 0 to 1, so the Phong
 // integral is ∫ w^16 du = 16/(17n) and the modified Phong one (16/n)[(1−16/n)/17 + 16/(18n)].
 TEST(IntClosedForm, HandDerivedPhongValues) {
