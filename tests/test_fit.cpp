@@ -172,3 +172,15 @@ TEST(CliFit, WritesJsonWithVerdicts) {
   EXPECT_NE(r.out.find("REPRODUCED"), std::string::npos);
   fs::remove(j);
 }
+
+TEST(CliFit, EnergyWritesJsonAndReportsWhereEnergyIsCreated) {
+  const fs::path j = fs::temp_directory_path() / ("shadecore_energy_" + std::to_string(::getpid()) + ".json");
+  const CliRun r = run_cli("energy --model blinn_hf --n 16..18 --angles 0,85 --json " + j.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("where R > 1"), std::string::npos);
+  std::ifstream in(j);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  EXPECT_NE(ss.str().find("\"R_gt_1\""), std::string::npos);
+  fs::remove(j);
+}
