@@ -5,7 +5,8 @@
 // with the same data and tag at the next edge; in_ready_o must be low while rst_ni is low.
 // Latency is counted in advancing edges (edges where !out_valid || out_ready, not in reset), the
 // pipeline's global enable, and in raw cycles for the report.
-// It stops the simulation when the driver is done and nothing is in flight, or on a watchdog.
+// It stops the simulation kTail cycles after the driver is done and nothing is in flight (so a
+// spurious extra output would still be seen), or on a watchdog.
 #pragma once
 
 #include <systemc.h>
@@ -39,6 +40,7 @@ class Monitor : public sc_core::sc_module {
   [[nodiscard]] bool watchdog_fired() const { return watchdog_; }
 
   static constexpr uint64_t kIdleLimit = 200000;  // cycles without any transfer = stuck
+  static constexpr uint64_t kTail = 32;            // cycles watched after the last expected output
 
  private:
   void on_clk() {
@@ -82,8 +84,10 @@ class Monitor : public sc_core::sc_module {
       sb_.on_material(static_cast<int>(pins_.mat_n.read()), pins_.mat_thr.read(), pins_.mat_coef.read());
 
     idle_ = moved ? 0 : idle_ + 1;
+    // Done: keep watching kTail more cycles, so a spurious extra output after the last expected one
+    // is still caught (the scoreboard reports it as duplicated/spurious).
     if (drv_.done() && sb_.in_flight() == 0) {
-      sc_core::sc_stop();
+      if (++tail_ > kTail) sc_core::sc_stop();
     } else if (idle_ > kIdleLimit) {
       watchdog_ = true;
       sb_.error("watchdog: no transfer for " + std::to_string(kIdleLimit) + " cycles", cycle_);
@@ -116,7 +120,7 @@ class Monitor : public sc_core::sc_module {
   const uint64_t inject_at_;
   uint64_t outputs_seen_ = 0;
   int in_bits_ = 18;
-  uint64_t cycle_ = 0, adv_ = 0, idle_ = 0;
+  uint64_t cycle_ = 0, adv_ = 0, idle_ = 0, tail_ = 0;
   bool held_ = false, watchdog_ = false;
   uint32_t held_tag_ = 0, held_spec_ = 0;
 };
