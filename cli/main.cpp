@@ -16,8 +16,14 @@ int main(int argc, char** argv) {
   shadecore::cli::add_cosim(app);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // One line, like every other error (CLI11's own exit() adds a "Run with --help" line).
+    fmt::print(stderr, "shadecore: error: {} (see shadecore --help)\n", e.what());
+    return e.get_exit_code() != 0 ? e.get_exit_code() : 2;
   } catch (const std::exception& e) {
     fmt::print(stderr, "shadecore: error: {}\n", e.what());
     return 1;

@@ -171,6 +171,8 @@ def main():
     ap.add_argument("--variants", default="", help="comma-separated variant names (default: all)")
     ap.add_argument("--configs", default="", help="comma-separated config names (default: all)")
     ap.add_argument("--n", default="16..1024", help="sweep n range")
+    ap.add_argument("--n-for", action="append", default=[], metavar="CONFIG=RANGE",
+                    help="sweep n range for one config (e.g. wide=16..64: the wide sweep is 17 G evaluations)")
     ap.add_argument("--cosim-count", type=int, default=200000, help="random co-simulation transactions")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     ap.add_argument("--out", default=os.path.join(ROOT, "docs"), help="directory for tradeoffs.md/.png/.json")
@@ -187,9 +189,16 @@ def main():
     configs = [c for c in cfgs["configs"] if not a.configs or c["name"] in a.configs.split(",")]
     if not variants or not configs:
         sys.exit("cost_report: error: no variant/config selected")
+    n_for = {}
+    for item in a.n_for:
+        name, sep, rng = item.partition("=")
+        if not sep or not re.fullmatch(r"\d+(\.\.\d+)?", rng):
+            sys.exit(f"cost_report: error: malformed --n-for '{item}' (expected CONFIG=LO..HI)")
+        n_for[name] = rng
     jobs = [(v, c) for v in variants for c in configs]
     with cf.ThreadPoolExecutor(max_workers=a.jobs) as ex:
-        rows = list(ex.map(lambda vc: evaluate(a.cli, vc[0], vc[1], a.n, a.cosim_count), jobs))
+        rows = list(ex.map(lambda vc: evaluate(a.cli, vc[0], vc[1], n_for.get(vc[1]["name"], a.n), a.cosim_count),
+                           jobs))
 
     cmd = "scripts/cost_report.py " + " ".join(sys.argv[1:])
     footer = f"{cmd} | {machine()} | {datetime.date.today().isoformat()}"
@@ -201,7 +210,7 @@ def main():
         f"Machine: {machine()}; date: {datetime.date.today().isoformat()}; "
         f"Yosys 0.23, nextpnr-ice40 0.4, icetime, Verilator 5.006 + SystemC 2.3.4.",
         "",
-        "Errors are exhaustive over every input code for n in " + a.n + " (`shadecore sweep`); *quant* is the "
+        "Errors are exhaustive over every input code for the n range in the *sweep n* column (`shadecore sweep`); *quant* is the "
         "fixed-point output against the double version of the same variant (output ulps), *total* is "
         "cos^n θ − output. Latency is the unit's documented pipeline latency, checked by the co-simulation; "
         "sim speed is one SystemC co-simulation process (random stimulus, scoreboard on every transaction). "
@@ -209,12 +218,12 @@ def main():
         "`synth_ice40` LUT4/DFF counts; Fmax from icetime after nextpnr place and route on an HX8K (ct256), "
         "only where the design fits (the HX8K has no DSP blocks, so multipliers are LUT logic).",
         "",
-        "| variant | F | G | quant max/min (ulp) | total max | total min | latency | sim vectors/s | generic cells | FFs | depth | iCE40 LUT4 | iCE40 DFF | Fmax HX8K (MHz) |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "| variant | F | G | sweep n | quant max/min (ulp) | total max | total min | latency | sim vectors/s | generic cells | FFs | depth | iCE40 LUT4 | iCE40 DFF | Fmax HX8K (MHz) |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
         lines.append(
-            f"| {r['variant']} | {r['frac']} | {r['guard']} | "
+            f"| {r['variant']} | {r['frac']} | {r['guard']} | {r.get('sweep_n', '—')} | "
             f"{fmt(r.get('quant_max'), '+.3f')} / {fmt(r.get('quant_min'), '+.3f')} | "
             f"{fmt(r.get('total_max'), '.3e')} | {fmt(r.get('total_min'), '.3e')} | {fmt(r.get('latency'), 'd')} | "
             f"{fmt(r.get('vectors_per_s'), ',.0f')} | {fmt(r.get('cells'), 'd')} | {fmt(r.get('ffs'), 'd')} | "

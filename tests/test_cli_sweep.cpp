@@ -96,3 +96,12 @@ TEST(CliSweep, WritesCompleteJsonAndCsv) {
     EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << "temporary file left behind";
   fs::remove_all(dir);
 }
+
+TEST(CliSweep, ParseErrorsAreOneLine) {
+  expect_one_line_error("sweep --no-such-option", "no-such-option");
+  expect_one_line_error("sweep --threads many --no-progress", "threads");
+  expect_one_line_error("", "subcommand");
+  const CliRun help = run_cli("sweep --help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.out.find("--variant"), std::string::npos);
+}
