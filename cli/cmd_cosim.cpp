@@ -46,6 +46,8 @@ struct CosimArgs {
   int shards = 0;
   std::string trace, json_path;
   int show = 5;
+  bool norm = false;              // sc_specular NORM = 1 (energy-normalised output, docs/spec.md §7)
+  std::string coef_model, coef_kind;
 };
 
 std::map<std::string, std::string> simulators() {
@@ -111,7 +113,8 @@ void run_cosim(const CosimArgs& a) {
     for (const auto& c : kConfigs) names += (names.empty() ? "" : ", ") + std::string(c.name);
     throw std::invalid_argument("unknown config '" + cfg + "' (known: " + names + ")");
   }
-  const Unit unit(parse_variant(a.variant), found->format, parse_cutoff_name(a.cutoff));
+  Unit unit(parse_variant(a.variant), found->format, parse_cutoff_name(a.cutoff));
+  unit.set_norm(a.norm);  // for the latency the summary reports; the simulator checks the model itself
   const auto [n_lo, n_hi] = parse_range(a.n_range);
   validate_n(n_lo);
   validate_n(n_hi);
@@ -161,6 +164,9 @@ void run_cosim(const CosimArgs& a) {
     }
     if (a.reset_at != -2) v.insert(v.end(), {"--reset-at", std::to_string(a.reset_at)});
     if (!a.trace.empty()) v.insert(v.end(), {"--trace", a.trace});
+    if (a.norm) v.push_back("--norm");
+    if (!a.coef_model.empty()) v.insert(v.end(), {"--coef-model", a.coef_model});
+    if (!a.coef_kind.empty()) v.insert(v.end(), {"--coef", a.coef_kind});
   }
   fmt::print("cosim: {} {} ({}, F={} G={}) cutoff {} mode {} n {}..{}{} seed {} in-stall {} out-stall {}, {} shard(s)\n",
              a.variant, cfg, sim, found->format.frac, found->format.guard, a.cutoff, a.mode, n_lo, n_hi,
@@ -236,6 +242,7 @@ void run_cosim(const CosimArgs& a) {
                         {"guard", found->format.guard},
                         {"cutoff", a.cutoff},
                         {"mode", a.mode},
+                        {"norm", a.norm},
                         {"n_lo", n_lo},
                         {"n_hi", n_hi},
                         {"seed", seed},
@@ -285,6 +292,10 @@ void add_cosim(CLI::App& app) {
       ->check(CLI::Range(1, 1024));
   sub->add_option("--trace", args->trace, "FST waveform file (forces one shard)");
   sub->add_option("--json", args->json_path, "write the merged result as JSON (atomically)");
+  sub->add_flag("--norm", args->norm, "energy-normalised output: sc_specular NORM = 1 (cs16, theta_cr)");
+  sub->add_option("--coef-model", args->coef_model,
+                  "with --norm: all | phong | phong_mod | blinn | blinn_mod | blinn_ndf | blinn_hf");
+  sub->add_option("--coef", args->coef_kind, "with --norm and one model: fitted | classical");
   sub->add_option("--show", args->show, "mismatches printed in full")->check(CLI::Range(0, 1000));
   sub->callback([args] { run_cosim(*args); });
 }
