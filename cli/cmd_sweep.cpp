@@ -272,9 +272,12 @@ void run(const SweepArgs& a) {
   const SweepResult r = run_sweep(opt);
   bar.stop();
   const Format f = opt.format;
+  // The cut-off form and the guard bits are cs16 parameters; the Schlick forms use F only.
+  const std::string label = a.variant == "cs16"
+                                ? fmt::format("{} cutoff={} F={} G={}", a.variant, to_string(opt.cutoff), f.frac, f.guard)
+                                : fmt::format("{} F={}", a.variant, f.frac);
 
-  fmt::print("shadecore sweep  variant={} cutoff={} F={} G={}  n={}..{}  codes=0..{}\n", a.variant,
-             to_string(opt.cutoff), f.frac, f.guard, lo, hi, f.one());
+  fmt::print("shadecore sweep  variant={}  n={}..{}  codes=0..{}\n", label, lo, hi, f.one());
   fmt::print("{} evaluations in {:.3f} s on {} threads ({:.1f} M/s)\n\n", r.evaluations, r.seconds, r.threads_used,
              r.evaluations / r.seconds / 1e6);
   fmt::print("{:>6} | {:>11} {:>11} | {:>9} {:>9} | {:>11} {:>11} | {:>8}\n", "n", "approx max", "approx min",
@@ -362,8 +365,7 @@ void run(const SweepArgs& a) {
   if (!a.plots_dir.empty()) {
     write_plot_data(a, r, a.plots_dir);
     run_python_script("plot_sweep.py",
-                      fmt::format("--dir '{}' --title '{} {} F={} G={}' --command '{}'", a.plots_dir, a.variant,
-                                  to_string(opt.cutoff), f.frac, f.guard, command_line()));
+                      fmt::format("--dir '{}' --title '{}' --command '{}'", a.plots_dir, label, command_line()));
     fmt::print("\nplots written to {}/\n", a.plots_dir);
   }
 }
