@@ -11,9 +11,9 @@ import argparse
 import csv
 import datetime
 import os
-import platform
 from collections import defaultdict
 
+import figures  # scripts/figures.py: footer and atomic save
 import matplotlib
 
 matplotlib.use("Agg")
@@ -31,26 +31,8 @@ TITLES = {
 CLAIMS = {"phong": 4.7e-4, "phong_mod": 1.3e-3, "blinn": 1.5e-3, "blinn_mod": 9.5e-3}
 
 
-def machine():
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return f"{line.split(':', 1)[1].strip()}, {os.cpu_count()} cores"
-    except OSError:
-        pass
-    return platform.machine()
-
-
-def save(fig, path, footer):
-    for ax in fig.axes:
-        ax.title.set_fontsize(9)
-    fig.tight_layout(rect=(0, 0.04, 1, 1))
-    fig.text(0.01, 0.005, footer, fontsize=6, color="0.35", ha="left", va="bottom")
-    tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=130)
-    plt.close(fig)
-    os.replace(tmp, path)
+machine = figures.machine
+save = figures.save
 
 
 def read_csv(path):

@@ -5,10 +5,9 @@ writes fig3_n128.png (cos^n θ and the variant at n = 128, the paper's Fig. 3), 
 error in output ulps over n) and approx_over_n.png (max/min approximation error per n).
 Each figure carries the command, machine and date in a footer. Files are written atomically."""
 import argparse
-import datetime
 import os
-import platform
 
+import figures  # scripts/figures.py: footer and atomic save
 import matplotlib
 
 matplotlib.use("Agg")
@@ -16,26 +15,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 
-def machine():
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return f"{line.split(':', 1)[1].strip()}, {os.cpu_count()} cores"
-    except OSError:
-        pass
-    return platform.machine()
-
-
-def save(fig, path, footer):
-    for ax in fig.axes:
-        ax.title.set_fontsize(9)
-    fig.tight_layout(rect=(0, 0.04, 1, 1))
-    fig.text(0.01, 0.005, footer, fontsize=6, color="0.35", ha="left", va="bottom")
-    tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=130)
-    plt.close(fig)
-    os.replace(tmp, path)
+machine = figures.machine
+save = figures.save
 
 
 def load(path):
@@ -48,7 +29,7 @@ def main():
     ap.add_argument("--title", default="cs16", help="variant/format label for titles")
     ap.add_argument("--command", default="shadecore sweep --plots DIR", help="command for the footer")
     a = ap.parse_args()
-    footer = f"{a.command} | {machine()} | {datetime.date.today().isoformat()}"
+    footer = figures.footer(a.command)
 
     f3 = load(os.path.join(a.dir, "fig3_n128.csv"))
     fig, ax = plt.subplots(figsize=(7, 4.2))
