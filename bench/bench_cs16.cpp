@@ -16,12 +16,6 @@ using namespace shadecore;
 
 namespace {
 
-Format default_format() {
-  for (const auto& c : kConfigs)
-    if (c.name == kDefaultConfig) return c.format;
-  return Format{};
-}
-
 struct Inputs {
   std::vector<int64_t> codes;
   std::vector<double> cosines;

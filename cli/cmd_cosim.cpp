@@ -104,15 +104,8 @@ void run_capture(Shard& s) {
 
 void run_cosim(const CosimArgs& a) {
   // ---- validate everything before starting anything
-  const std::string cfg = a.config.empty() ? std::string(kDefaultConfig) : a.config;
-  const NamedConfig* found = nullptr;
-  for (const auto& c : kConfigs)
-    if (c.name == cfg) found = &c;
-  if (!found) {
-    std::string names;
-    for (const auto& c : kConfigs) names += (names.empty() ? "" : ", ") + std::string(c.name);
-    throw std::invalid_argument("unknown config '" + cfg + "' (known: " + names + ")");
-  }
+  const NamedConfig* found = &config_named(a.config);
+  const std::string cfg(found->name);
   Unit unit(parse_variant(a.variant), found->format, parse_cutoff_name(a.cutoff));
   unit.set_norm(a.norm);  // for the latency the summary reports; the simulator checks the model itself
   const auto [n_lo, n_hi] = parse_range(a.n_range);

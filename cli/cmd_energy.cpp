@@ -67,16 +67,8 @@ std::string utc_now() {
 
 void run(const EnergyArgs& a) {
   energy::Options o;
-  {
-    const std::string name = a.config.empty() ? std::string(kDefaultConfig) : a.config;
-    bool found = false;
-    for (const auto& c : kConfigs)
-      if (c.name == name) { o.format = c.format; found = true; }
-    if (!found) throw std::invalid_argument("unknown config '" + name + "'");
-  }
-  if (a.cutoff == "theta_cr") o.cutoff = Cutoff::ThetaCr;
-  else if (a.cutoff == "sign_clamp") o.cutoff = Cutoff::SignClamp;
-  else throw std::invalid_argument("unknown cutoff '" + a.cutoff + "' (known: theta_cr, sign_clamp)");
+  o.format = config_named(a.config).format;
+  o.cutoff = parse_cutoff_name(a.cutoff);
   o.coef = parse_coef_kind(a.coef);
   o.fixed_point = !a.double_model;
   if (a.radial < 8 || a.radial > 100000 || a.azimuth < 8 || a.azimuth > 100000)

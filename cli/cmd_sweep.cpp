@@ -52,27 +52,13 @@ bool reproduces(double claimed, double measured) {
 }
 
 Format resolve_format(const SweepArgs& a) {
-  std::string name = a.config.empty() ? std::string(kDefaultConfig) : a.config;
-  const NamedConfig* found = nullptr;
-  for (const auto& c : kConfigs)
-    if (c.name == name) found = &c;
-  if (!found) {
-    std::string names;
-    for (const auto& c : kConfigs) names += (names.empty() ? "" : ", ") + std::string(c.name);
-    throw std::invalid_argument("unknown config '" + name + "' (known: " + names + ")");
-  }
-  Format f = found->format;
+  Format f = config_named(a.config).format;
   if (a.frac >= 0) f.frac = a.frac;
   if (a.guard >= 0) f.guard = a.guard;
   validate(f);
   return f;
 }
 
-Cutoff parse_cutoff(const std::string& s) {
-  if (s == "theta_cr") return Cutoff::ThetaCr;
-  if (s == "sign_clamp") return Cutoff::SignClamp;
-  throw std::invalid_argument("unknown cutoff '" + s + "' (known: theta_cr, sign_clamp)");
-}
 
 nlohmann::json extreme_json(const Extreme& e, const Format& f) {
   return {{"value", e.value},
@@ -246,7 +232,7 @@ void run(const SweepArgs& a) {
   SweepOptions opt;
   opt.variant = a.variant;
   opt.format = resolve_format(a);
-  opt.cutoff = parse_cutoff(a.cutoff);
+  opt.cutoff = parse_cutoff_name(a.cutoff);
   const auto [lo, hi] = parse_range(a.n_range);
   validate_n(lo);
   validate_n(hi);

@@ -27,6 +27,8 @@ file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/configs.hpp" CONTENT
 "// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
 #pragma once
 #include <array>
+#include <stdexcept>
+#include <string>
 #include <string_view>
 #include \"shadecore/format.hpp\"
 namespace shadecore {
@@ -34,6 +36,17 @@ struct NamedConfig { std::string_view name; Format format; };
 inline constexpr std::array<NamedConfig, ${_n}> kConfigs{{
 ${_entries}}};
 inline constexpr std::string_view kDefaultConfig = \"${SHADECORE_DEFAULT_CONFIG}\";
+// The named configuration; an empty name means the default. Throws std::invalid_argument
+// (one line, listing the known names) for an unknown name.
+inline const NamedConfig& config_named(std::string_view name) {
+  if (name.empty()) name = kDefaultConfig;
+  for (const auto& c : kConfigs)
+    if (c.name == name) return c;
+  std::string known;
+  for (const auto& c : kConfigs) known += (known.empty() ? \"\" : \", \") + std::string(c.name);
+  throw std::invalid_argument(\"unknown config '\" + std::string(name) + \"' (known: \" + known + \")\");
+}
+inline Format default_format() { return config_named(kDefaultConfig).format; }
 }  // namespace shadecore
 " @ONLY)
 

@@ -15,11 +15,7 @@ using namespace shadecore;
 
 namespace {
 
-const Format kDefault = [] {
-  for (const auto& c : kConfigs)
-    if (c.name == kDefaultConfig) return c.format;
-  return Format{};
-}();
+const Format kDefault = default_format();
 
 // Spec §3.3: −(½ + 15·2^−G) < out − y·2^F ≤ +½, y the double cs16 of the same code (same cut).
 struct Bound {

@@ -16,11 +16,7 @@ using namespace shadecore;
 
 namespace {
 
-const Format kDefault = [] {
-  for (const auto& c : kConfigs)
-    if (c.name == kDefaultConfig) return c.format;
-  return Format{};
-}();
+const Format kDefault = default_format();
 
 const SchlickForm kForms[] = {SchlickForm::Div, SchlickForm::Nr, SchlickForm::Iter};
 const char* name(SchlickForm f) { return f == SchlickForm::Div ? "div" : f == SchlickForm::Nr ? "nr" : "iter"; }

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
+#include <string_view>
 
 #include "shadecore/format.hpp"
 
@@ -22,6 +24,13 @@ enum class Cutoff : int {
 };
 
 inline const char* to_string(Cutoff c) { return c == Cutoff::ThetaCr ? "theta_cr" : "sign_clamp"; }
+
+// The inverse of to_string(); throws std::invalid_argument (one line) for any other name.
+inline Cutoff parse_cutoff_name(std::string_view s) {
+  if (s == "theta_cr") return Cutoff::ThetaCr;
+  if (s == "sign_clamp") return Cutoff::SignClamp;
+  throw std::invalid_argument("unknown cutoff '" + std::string(s) + "' (known: theta_cr, sign_clamp)");
+}
 
 // Per-material constants, computed once at material setup (docs/spec.md §3.1).
 struct Cs16Material {

@@ -44,12 +44,6 @@ inline std::string_view variant_name(VariantId id) {
   return "?";
 }
 
-inline Cutoff parse_cutoff_name(std::string_view s) {
-  if (s == "theta_cr") return Cutoff::ThetaCr;
-  if (s == "sign_clamp") return Cutoff::SignClamp;
-  throw std::invalid_argument("unknown cutoff '" + std::string(s) + "' (known: theta_cr, sign_clamp)");
-}
-
 class Unit {
  public:
   // Throws std::invalid_argument for an illegal format or an unknown variant.
