@@ -53,7 +53,7 @@ inline Format default_format() { return config_named(kDefaultConfig).format; }
 # Hardware unit variants (config/configs.json "variants": name <-> id, the VARIANT parameter of
 # rtl/sc_specular.v). Sets SHADECORE_VARIANT_NAMES and SHADECORE_VARIANT_<name>_ID, and generates
 #   ${SHADECORE_GENERATED_DIR}/shadecore/variants.hpp  (enum class VariantId, kVariants)
-#   ${SHADECORE_GENERATED_DIR}/rtl/sc_variants.vh      (localparam VARIANT_<NAME>, for sc_specular.v)
+#   ${CMAKE_SOURCE_DIR}/rtl/sc_variants.vh             (localparam VARIANT_<NAME>, for sc_specular.v; committed)
 string(JSON _nv LENGTH "${_cfg_json}" variants)
 math(EXPR _lastv "${_nv} - 1")
 set(SHADECORE_VARIANT_NAMES "")
@@ -84,7 +84,10 @@ inline constexpr std::array<NamedVariant, ${_nv}> kVariants{{
 ${_ventries}}};
 }  // namespace shadecore
 " @ONLY)
-file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/rtl/sc_variants.vh" CONTENT
+# The Verilog include is written into rtl/ (and committed) so that the RTL is self-contained for a
+# hand-off and plain `-Irtl` tools; configure rewrites it only when configs.json changes it.
+set(SHADECORE_RTL_INCDIR "${CMAKE_SOURCE_DIR}/rtl")
+file(CONFIGURE OUTPUT "${SHADECORE_RTL_INCDIR}/sc_variants.vh" CONTENT
 "// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
 // Values of the VARIANT parameter of rtl/sc_specular.v (included inside the module).
 ${_vvh}" @ONLY)

@@ -6,7 +6,7 @@
 //
 // Parameters:
 //   VARIANT  which unit; the ids come from config/configs.json "variants" through the generated
-//            include sc_variants.vh (build/generated/rtl/, put it on the include path: -I).
+//            include sc_variants.vh (rtl/, generated from config/configs.json by CMake; -Irtl).
 //              VARIANT_CS16 (0): rtl/sc_cs16.v, latency 7, one fragment per clock
 //              VARIANT_SCHLICK_DIV (1): rtl/sc_schlick_div.v, latency FRAC+4, one per clock
 //              VARIANT_SCHLICK_NR (2): rtl/sc_schlick_nr.v, latency 10, one per clock

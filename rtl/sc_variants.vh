@@ -1,0 +1,6 @@
+// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
+// Values of the VARIANT parameter of rtl/sc_specular.v (included inside the module).
+localparam integer VARIANT_CS16 = 0;
+localparam integer VARIANT_SCHLICK_DIV = 1;
+localparam integer VARIANT_SCHLICK_NR = 2;
+localparam integer VARIANT_SCHLICK_ITER = 3;
