@@ -34,6 +34,7 @@ struct SweepArgs {
   std::string json_path, csv_path, plots_dir;
   bool no_progress = false;
   bool compare_cutoffs = false;
+  bool cutoff_given = false, guard_given = false;  // cs16-only options given explicitly
   bool energy = false;
 };
 
@@ -247,6 +248,8 @@ void run(const SweepArgs& a) {
     throw std::invalid_argument("unknown variant '" + a.variant + "' (known: " + names + ")");
   }
   if (a.threads < 0) throw std::invalid_argument("--threads must be >= 0");
+  if (a.variant != "cs16" && (a.cutoff_given || a.guard_given || a.compare_cutoffs))
+    throw std::invalid_argument("--cutoff, --guard and --compare-cutoffs apply to the cs16 variant only");
   // Fail on unwritable outputs before the run, not after it.
   if (!a.json_path.empty()) check_writable_file(a.json_path);
   if (!a.csv_path.empty()) check_writable_file(a.csv_path);
@@ -362,10 +365,10 @@ void add_sweep(CLI::App& app) {
   auto args = std::make_shared<SweepArgs>();
   auto* sub = app.add_subcommand("sweep", "Exhaustive error sweep: every n × every input code");
   sub->add_option("--variant", args->variant, "Specular variant (cs16, schlick_div, schlick_nr, schlick_iter)");
-  sub->add_option("--cutoff", args->cutoff, "cs16 cut-off form: theta_cr | sign_clamp");
+  auto* cutoff_opt = sub->add_option("--cutoff", args->cutoff, "cs16 cut-off form: theta_cr | sign_clamp");
   sub->add_option("--config", args->config, "Named width configuration from config/configs.json");
   sub->add_option("--frac", args->frac, "Fraction bits F (8..24), overrides --config");
-  sub->add_option("--guard", args->guard, "Guard bits G (4..8, F+G <= 31), overrides --config");
+  auto* guard_opt = sub->add_option("--guard", args->guard, "Guard bits G (4..8, F+G <= 31), overrides --config");
   sub->add_option("--n", args->n_range, "Exponent range LO..HI or N (within 16..1024)");
   sub->add_option("--threads", args->threads, "Worker threads (0 = all cores)");
   sub->add_option("--json", args->json_path, "Write the summary as JSON");
@@ -374,7 +377,11 @@ void add_sweep(CLI::App& app) {
   sub->add_flag("--no-progress", args->no_progress, "No progress bar");
   sub->add_flag("--energy", args->energy, "Also print the lobe energy relative to cos^n per n (docs/schlick.md)");
   sub->add_flag("--compare-cutoffs", args->compare_cutoffs, "Also count outputs where theta_cr and sign_clamp differ");
-  sub->callback([args] { run(*args); });
+  sub->callback([args, cutoff_opt, guard_opt] {
+    args->cutoff_given = cutoff_opt->count() > 0;
+    args->guard_given = guard_opt->count() > 0;
+    run(*args);
+  });
 }
 
 }  // namespace shadecore::cli

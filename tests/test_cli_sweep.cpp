@@ -105,3 +105,8 @@ TEST(CliSweep, ParseErrorsAreOneLine) {
   EXPECT_EQ(help.status, 0);
   EXPECT_NE(help.out.find("--variant"), std::string::npos);
 }
+
+TEST(CliSweep, Cs16OnlyOptionsRejectedForSchlick) {
+  expect_one_line_error("sweep --variant schlick_div --cutoff sign_clamp --n 16 --no-progress", "cs16 variant only");
+  expect_one_line_error("sweep --variant schlick_nr --guard 6 --n 16 --no-progress", "cs16 variant only");
+}
