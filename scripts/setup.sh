@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # Installs the Debian packages shadecore needs, if any are missing. Idempotent and quiet when
 # everything is present. Needs root (or sudo) only when something must be installed.
+# Extra package names given as arguments are installed too (scripts/cost_report.py asks for the
+# iCE40 place-and-route tools this way, so the default setup stays lean).
 set -euo pipefail
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev
   verilator libsystemc-dev yosys iverilog
-  python3 python3-numpy python3-matplotlib
+  python3 python3-numpy python3-matplotlib zlib1g-dev
+  "$@"
 )
 
 missing=()
