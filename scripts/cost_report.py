@@ -233,7 +233,10 @@ def main():
         write_report(rows, m.group(1) if m else "scripts/cost_report.py", a.out)
         return
     # The iCE40 flow is not part of the default setup; install it the same way (idempotent, quiet).
-    run([os.path.join(ROOT, "scripts", "setup.sh"), "nextpnr-ice40", "fpga-icestorm", "yosys"])
+    try:
+        run([os.path.join(ROOT, "scripts", "setup.sh"), "nextpnr-ice40", "fpga-icestorm", "yosys"])
+    except RuntimeError as e:
+        sys.exit(f"cost_report: error: {e}")
     if not os.access(a.cli, os.X_OK):
         sys.exit(f"cost_report: error: {a.cli} is not an executable (build first: scripts/build.sh)")
     cfgs = json.load(open(os.path.join(ROOT, "config", "configs.json")))
