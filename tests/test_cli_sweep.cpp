@@ -8,48 +8,12 @@
 #include <sstream>
 #include <string>
 
-#ifndef SHADECORE_CLI
-#error "SHADECORE_CLI must point at the shadecore executable"
-#endif
+#include "cli_run.hpp"
 
 namespace fs = std::filesystem;
-
-namespace {
-
-struct CliRun {
-  int status;
-  std::string out, err;
-};
-
-CliRun run_cli(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path() / ("shadecore_cli_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string o = (dir / "stdout").string(), e = (dir / "stderr").string();
-  const std::string cmd = std::string(SHADECORE_CLI) + " " + args + " >" + o + " 2>" + e;
-  const int rc = std::system(cmd.c_str());
-  auto slurp = [](const std::string& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  };
-  return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, slurp(o), slurp(e)};
-}
-
-size_t lines(const std::string& s) {
-  size_t k = 0;
-  for (char c : s) k += (c == '\n');
-  return k;
-}
-
-void expect_one_line_error(const std::string& args, const std::string& needle) {
-  const CliRun r = run_cli(args);
-  EXPECT_NE(r.status, 0) << args;
-  EXPECT_EQ(lines(r.err), 1u) << args << "\n" << r.err;
-  EXPECT_NE(r.err.find(needle), std::string::npos) << args << "\n" << r.err;
-}
-
-}  // namespace
+using shadecore::testing::CliRun;
+using shadecore::testing::expect_one_line_error;
+using shadecore::testing::run_cli;
 
 TEST(CliSweep, BadArgumentsGiveOneLineErrors) {
   expect_one_line_error("sweep --variant nosuch --no-progress", "unknown variant");

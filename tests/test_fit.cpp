@@ -13,9 +13,7 @@
 #include "shadecore/fit.hpp"
 #include "shadecore/quadrature.hpp"
 
-#ifndef SHADECORE_CLI
-#error "SHADECORE_CLI must point at the shadecore executable"
-#endif
+#include "cli_run.hpp"
 
 using namespace shadecore;
 namespace fs = std::filesystem;
@@ -121,26 +119,9 @@ TEST(Fit, MinimaxIsLocallyOptimal) {
     for (double db : {-1e-3, 0.0, 1e-3}) EXPECT_GE(fit::max_abs_residual(s, {mm.a + da, mm.b + db}), best - 1e-15);
 }
 
-namespace {
-struct CliRun {
-  int status;
-  std::string out, err;
-};
-CliRun run_cli(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path() / ("shadecore_fit_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string o = (dir / "stdout").string(), e = (dir / "stderr").string();
-  const int rc = std::system((std::string(SHADECORE_CLI) + " " + args + " >" + o + " 2>" + e).c_str());
-  auto slurp = [](const std::string& p) { std::ifstream in(p); std::stringstream ss; ss << in.rdbuf(); return ss.str(); };
-  return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, slurp(o), slurp(e)};
-}
-void expect_one_line_error(const std::string& args, const std::string& needle) {
-  const CliRun r = run_cli(args);
-  EXPECT_NE(r.status, 0) << args;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
-  EXPECT_NE(r.err.find(needle), std::string::npos) << args << "\n" << r.err;
-}
-}  // namespace
+using shadecore::testing::CliRun;
+using shadecore::testing::expect_one_line_error;
+using shadecore::testing::run_cli;
 
 TEST(CliFit, BadArgumentsGiveOneLineErrors) {
   expect_one_line_error("fit --lobe gauss", "unknown lobe");
