@@ -91,3 +91,78 @@ file(CONFIGURE OUTPUT "${SHADECORE_RTL_INCDIR}/sc_variants.vh" CONTENT
 "// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
 // Values of the VARIANT parameter of rtl/sc_specular.v (included inside the module).
 ${_vvh}" @ONLY)
+
+# Lighting core (config/configs.json "light", docs/lighting.md): the register map and the light kinds,
+# generated for both sides:
+#   ${SHADECORE_GENERATED_DIR}/shadecore/light_regs.hpp   (constexpr addresses, kinds)
+#   ${CMAKE_SOURCE_DIR}/rtl/sc_light_regs.vh               (localparams, included by rtl/sc_light.v; committed)
+# and the whole configs.json as a string (shadecore/configs_json.hpp), so that the named feature sets
+# are parsed by the same code as a user's feature-set file.
+string(JSON _lmax GET "${_cfg_json}" light max_lights)
+string(JSON _lstride GET "${_cfg_json}" light light_stride)
+string(JSON _nk LENGTH "${_cfg_json}" light light_kinds)
+math(EXPR _lastk "${_nk} - 1")
+set(_kenum "")
+set(_kvh "")
+foreach(i RANGE ${_lastk})
+  string(JSON _kname GET "${_cfg_json}" light light_kinds ${i} name)
+  string(JSON _kid GET "${_cfg_json}" light light_kinds ${i} id)
+  string(TOUPPER "${_kname}" _kup)
+  string(APPEND _kenum "    NamedLightKind{\"${_kname}\", ${_kid}},\n")
+  string(APPEND _kvh "localparam integer KIND_${_kup} = ${_kid};\n")
+endforeach()
+string(JSON _nr LENGTH "${_cfg_json}" light registers)
+math(EXPR _lastr "${_nr} - 1")
+set(_rhpp "")
+set(_rvh "")
+set(_rtab "")
+foreach(i RANGE ${_lastr})
+  string(JSON _rname GET "${_cfg_json}" light registers ${i} name)
+  string(JSON _raddr GET "${_cfg_json}" light registers ${i} addr)
+  string(JSON _rcount GET "${_cfg_json}" light registers ${i} count)
+  string(JSON _rfmt GET "${_cfg_json}" light registers ${i} format)
+  string(JSON _rper ERROR_VARIABLE _noper GET "${_cfg_json}" light registers ${i} per_light)
+  if(_noper)
+    set(_rper OFF)
+  endif()
+  if(_rper)
+    set(_rperc true)
+  else()
+    set(_rperc false)
+  endif()
+  string(TOUPPER "${_rname}" _rup)
+  string(APPEND _rhpp "inline constexpr uint32_t kReg_${_rname} = ${_raddr};\n")
+  string(APPEND _rvh "localparam [7:0] REG_${_rup} = 8'd${_raddr};\n")
+  string(APPEND _rtab "    RegInfo{\"${_rname}\", ${_raddr}, ${_rcount}, \"${_rfmt}\", ${_rperc}},\n")
+endforeach()
+file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/light_regs.hpp" CONTENT
+"// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
+// Register map of the lighting core rtl/sc_light.v (docs/lighting.md §4).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string_view>
+namespace shadecore {
+inline constexpr int kMaxLights = ${_lmax};
+inline constexpr uint32_t kLightStride = ${_lstride};  // address of light j's register = addr + stride·j
+${_rhpp}struct RegInfo { std::string_view name; uint32_t addr; int count; std::string_view format; bool per_light; };
+inline constexpr std::array<RegInfo, ${_nr}> kRegisters{{
+${_rtab}}};
+struct NamedLightKind { std::string_view name; int id; };
+inline constexpr std::array<NamedLightKind, ${_nk}> kLightKinds{{
+${_kenum}}};
+}  // namespace shadecore
+" @ONLY)
+file(CONFIGURE OUTPUT "${SHADECORE_RTL_INCDIR}/sc_light_regs.vh" CONTENT
+"// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
+// Register map and light kinds of rtl/sc_light.v (included inside the module; docs/lighting.md §4).
+localparam integer MAX_LIGHTS = ${_lmax};
+localparam integer LIGHT_STRIDE = ${_lstride};
+${_kvh}${_rvh}" @ONLY)
+file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/configs_json.hpp" CONTENT
+"// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
+#pragma once
+namespace shadecore {
+inline constexpr const char* kConfigsJson = R\"shadecore_json(${_cfg_json})shadecore_json\";
+}  // namespace shadecore
+" @ONLY)

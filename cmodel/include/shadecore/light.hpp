@@ -1,0 +1,421 @@
+// shadecore — bit-accurate model of the lighting core rtl/sc_light.v (docs/lighting.md).
+//
+// Per fragment (normal N, eye-space position P) and colour channel c, OpenGL 1.x fixed-function
+// lighting (glLight/glMaterial semantics), division-free:
+//
+//   colour_c = e_c + a_c·A_c + Σ_j att_j·( a_c·Ia_jc + max(N̂·L_j, 0)·d_c·Id_jc + f_j·s_c·Is_jc·spec(x_j, n) )
+//
+// clamped to [0, 1]. Which terms and units exist is the FeatureSet (shadecore/features.hpp); a term
+// that is off is 0 here and absent in the RTL. The arithmetic of every stage is spelled out below
+// with its widths; every ⌊·⌋ is a truncation the RTL also makes (arithmetic shift for signed values).
+//
+// Formats (F = the feature set's config frac, <= 16; "code/2^F" unless said otherwise):
+//   normal N           signed F+2 bits (any length: interpolated normals are not unit)
+//   position P, P_j    signed F+8 bits: [−128, 128) eye-space units
+//   direction (w = 0)  the light_position register holds the unit direction to the light as a code
+//   colours            unsigned F+1 bits: [0, 2)
+//   kc, kl, kq         unsigned F+8 bits: [0, 256)
+//   n, thr, coef       as the specular unit (docs/spec.md §3.1, §7): 11 bits, F+1 bits, F+8 bits
+//   output colour      unsigned F+1 bits, saturated to [0, 2^F]
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "shadecore/coef.hpp"
+#include "shadecore/features.hpp"
+#include "shadecore/golden.hpp"
+#include "shadecore/light_ops.hpp"
+#include "shadecore/light_regs.hpp"
+#include "shadecore/unit.hpp"
+
+namespace shadecore {
+
+inline constexpr int kPosIntBits = 7;  // positions in [−128, 128)
+inline constexpr int light_normal_bits(int F) { return F + 2; }
+inline constexpr int light_pos_bits(int F) { return F + 1 + kPosIntBits; }
+inline constexpr int light_colour_bits(int F) { return F + 1; }
+inline constexpr int light_attc_bits(int F) { return F + kAttIntBits; }
+inline constexpr int light_coef_bits(int F) { return F + kCoefIntBits; }  // = sc_specular's default COEFW
+
+inline int64_t sign_extend(uint64_t v, int bits) {
+  const int sh = 64 - bits;
+  return static_cast<int64_t>(v << sh) >> sh;
+}
+inline uint64_t mask_bits(int bits) { return bits >= 64 ? ~uint64_t{0} : (uint64_t{1} << bits) - 1; }
+
+// The register file of sc_light, as the codes the hardware holds (register map: light_regs.hpp).
+struct LightRegs {
+  uint32_t global_ambient[3] = {};
+  uint32_t mat_n = kNMin, mat_thr = 0, mat_coef = 0;
+  uint32_t emission[3] = {}, ambient[3] = {}, diffuse[3] = {}, specular[3] = {};
+  struct Light {
+    int64_t pos[3] = {};
+    uint32_t ambient[3] = {}, diffuse[3] = {}, specular[3] = {};
+    uint32_t kc = 0, kl = 0, kq = 0;
+  };
+  std::array<Light, kMaxLights> light{};
+
+  // What a write of `data` to `addr` does: the register takes the low bits of its width (signed
+  // formats sign-extended); an address that is no register is ignored. Returns false for those.
+  bool write(int F, uint32_t addr, uint32_t data) {
+    const uint32_t col = static_cast<uint32_t>(data & mask_bits(light_colour_bits(F)));
+    const uint32_t attc = static_cast<uint32_t>(data & mask_bits(light_attc_bits(F)));
+    for (int c = 0; c < 3; ++c) {
+      if (addr == kReg_global_ambient + c) return global_ambient[c] = col, true;
+      if (addr == kReg_mat_emission + c) return emission[c] = col, true;
+      if (addr == kReg_mat_ambient + c) return ambient[c] = col, true;
+      if (addr == kReg_mat_diffuse + c) return diffuse[c] = col, true;
+      if (addr == kReg_mat_specular + c) return specular[c] = col, true;
+    }
+    if (addr == kReg_mat_n) return mat_n = data & 0x7FF, true;
+    if (addr == kReg_mat_thr) return mat_thr = static_cast<uint32_t>(data & mask_bits(F + 1)), true;
+    if (addr == kReg_mat_coef) return mat_coef = static_cast<uint32_t>(data & mask_bits(light_coef_bits(F))), true;
+    if (addr < kReg_light_position) return false;
+    const uint32_t j = (addr - kReg_light_position) / kLightStride;
+    const uint32_t off = addr - j * kLightStride;
+    if (j >= static_cast<uint32_t>(kMaxLights)) return false;
+    Light& L = light[j];
+    for (int c = 0; c < 3; ++c) {
+      if (off == kReg_light_position + c) return L.pos[c] = sign_extend(data, light_pos_bits(F)), true;
+      if (off == kReg_light_ambient + c) return L.ambient[c] = col, true;
+      if (off == kReg_light_diffuse + c) return L.diffuse[c] = col, true;
+      if (off == kReg_light_specular + c) return L.specular[c] = col, true;
+    }
+    if (off == kReg_light_kc) return L.kc = attc, true;
+    if (off == kReg_light_kl) return L.kl = attc, true;
+    if (off == kReg_light_kq) return L.kq = attc, true;
+    return false;
+  }
+};
+
+struct RegWrite {
+  uint32_t addr, data;
+};
+
+struct Fragment {
+  int64_t n[3] = {0, 0, 0};  // signed F+2-bit codes
+  int64_t p[3] = {0, 0, 0};  // signed F+8-bit codes
+};
+
+struct Colour {
+  uint32_t c[3] = {0, 0, 0};
+  bool operator==(const Colour& o) const { return c[0] == o.c[0] && c[1] == o.c[1] && c[2] == o.c[2]; }
+  bool operator!=(const Colour& o) const { return !(*this == o); }
+};
+
+// Per-light intermediates (names of rtl/sc_light.v's signals).
+struct LightTrace {
+  int64_t l[3] = {};   // unit direction to the light (F fraction bits)
+  uint64_t d = 0;      // distance, F fraction bits (point_att)
+  uint64_t q = 0;      // kc + kl·d + kq·d² (point_att)
+  uint64_t att = 0;    // 1/q, F fraction bits, saturated (point_att); 2^F otherwise
+  int64_t ndl = 0;     // ⌊N̂·L / 2^F⌋, signed
+  uint32_t diff = 0;   // clamp(ndl, 0, 2^F)
+  bool f = false;      // ndl > 0
+  int64_t x = 0;       // the specular unit's input code (clamped to its signed F+2-bit word)
+  uint32_t spec = 0;   // the unit's output (F+1 bits, or F+8 bits with norm)
+  uint64_t term[3] = {};  // the light's contribution per channel (after attenuation)
+};
+struct LightCoreTrace {
+  int64_t nn[3] = {};  // N̂ (or N unchanged without normalize)
+  int64_t v[3] = {};   // V̂
+  uint64_t scene[3] = {};
+  std::array<LightTrace, kMaxLights> light{};
+  uint64_t total[3] = {};
+};
+
+class LightCore {
+ public:
+  explicit LightCore(FeatureSet fs)
+      : fs_(std::move(fs)), f_(fs_.format()), unit_(fs_.variant, f_, fs_.cutoff) {
+    if (fs_.norm) unit_.set_norm(true, 0);  // the coefficient comes from mat_coef; the model index is unused
+  }
+
+  [[nodiscard]] const FeatureSet& features() const { return fs_; }
+  [[nodiscard]] const Format& format() const { return f_; }
+  [[nodiscard]] const Unit& unit() const { return unit_; }
+
+  // The RTL's fixed latency (accepting edge → out_valid_o, out_ready_i high throughout) and the
+  // fewest advancing edges under backpressure (docs/lighting.md §5).
+  [[nodiscard]] int latency() const;
+  [[nodiscard]] int latency_min() const;
+
+  // The per-fragment datapath, for the register values the core holds.
+  [[nodiscard]] Colour eval(const LightRegs& r, const Fragment& fr, LightCoreTrace* tr = nullptr) const {
+    const int F = f_.frac;
+    const int64_t one = int64_t{1} << F;
+    LightCoreTrace t;
+    // N̂ (GL_NORMALIZE) — rtl/sc_normalize.v
+    if (fs_.normalize) normalize3(F, fr.n, t.nn);
+    else std::copy(fr.n, fr.n + 3, t.nn);
+    // V̂: local viewer normalise(−P), else (0, 0, 1)
+    if (fs_.specular && fs_.local_viewer) {
+      const int64_t mp[3] = {-fr.p[0], -fr.p[1], -fr.p[2]};
+      normalize3(F, mp, t.v);
+    } else {
+      t.v[0] = t.v[1] = 0;
+      t.v[2] = one;
+    }
+    const UnitMaterial mat{static_cast<int>(r.mat_n), r.mat_thr, r.mat_coef};
+    const int ch = fs_.channels;
+    for (int c = 0; c < ch; ++c)
+      t.scene[c] = fs_.ambient ? r.emission[c] + ((uint64_t{r.ambient[c]} * r.global_ambient[c]) >> F) : 0;
+    for (int j = 0; j < fs_.num_lights(); ++j) {
+      const LightKind kind = fs_.lights[j];
+      const LightRegs::Light& L = r.light[j];
+      LightTrace& lt = t.light[j];
+      lt.att = static_cast<uint64_t>(one);
+      if (kind == LightKind::Directional) {
+        std::copy(L.pos, L.pos + 3, lt.l);
+      } else {
+        const int64_t dv[3] = {L.pos[0] - fr.p[0], L.pos[1] - fr.p[1], L.pos[2] - fr.p[2]};  // F+9 bits
+        normalize3(F, dv, lt.l);
+        if (kind == LightKind::PointAtt) {
+          const int64_t dl = dot3(dv, lt.l) >> F;                 // |D| = D·L̂
+          lt.d = dl < 0 ? 0 : static_cast<uint64_t>(dl);
+          const uint64_t dd = (lt.d * lt.d) >> F;
+          lt.q = uint64_t{L.kc} + ((uint64_t{L.kl} * lt.d) >> F) + ((uint64_t{L.kq} * dd) >> F);
+          lt.att = recip_att(F, lt.q);
+        }
+      }
+      lt.ndl = dot3(t.nn, lt.l) >> F;
+      lt.diff = static_cast<uint32_t>(std::clamp<int64_t>(lt.ndl, 0, one));
+      lt.f = lt.ndl > 0;
+      if (fs_.specular) {
+        int64_t x;
+        if (fs_.blinn) {
+          const int64_t h[3] = {lt.l[0] + t.v[0], lt.l[1] + t.v[1], lt.l[2] + t.v[2]};
+          int64_t hn[3];
+          normalize3(F, h, hn);
+          x = dot3(t.nn, hn) >> F;
+        } else {
+          int64_t rv[3];
+          for (int i = 0; i < 3; ++i) rv[i] = ((lt.ndl * t.nn[i]) >> (F - 1)) - lt.l[i];  // 2(N̂·L)N̂ − L
+          x = dot3(rv, t.v) >> F;
+        }
+        lt.x = std::clamp<int64_t>(x, f_.in_min(), f_.in_max());  // the unit's signed F+2-bit word, saturated
+        lt.spec = unit_.eval(mat, lt.x);
+      }
+      for (int c = 0; c < ch; ++c) {
+        uint64_t sum = 0;
+        if (fs_.ambient) sum += (uint64_t{r.ambient[c]} * L.ambient[c]) >> F;
+        if (fs_.diffuse) sum += (((uint64_t{lt.diff} * r.diffuse[c]) >> F) * L.diffuse[c]) >> F;
+        if (fs_.specular && lt.f) sum += (((uint64_t{lt.spec} * r.specular[c]) >> F) * L.specular[c]) >> F;
+        lt.term[c] = kind == LightKind::PointAtt ? (lt.att * sum) >> F : sum;
+      }
+    }
+    Colour out;
+    for (int c = 0; c < ch; ++c) {
+      uint64_t tot = t.scene[c];
+      for (int j = 0; j < fs_.num_lights(); ++j) tot += t.light[j].term[c];
+      t.total[c] = tot;
+      out.c[c] = static_cast<uint32_t>(std::min<uint64_t>(tot, static_cast<uint64_t>(one)));
+    }
+    if (tr) *tr = t;
+    return out;
+  }
+
+  // Double-precision reference of the same equation for the same register values and fragment
+  // (every code read as code/2^F): exact normalisation, exact 1/q, and spec = cos^n (exact) or the
+  // variant's own double formula, times coef (the register value) with norm. Channel values in [0, 1].
+  enum class SpecRef { Exact, Variant };
+  [[nodiscard]] std::array<double, 3> eval_double(const LightRegs& r, const Fragment& fr, SpecRef ref) const;
+
+  static int64_t dot3(const int64_t a[3], const int64_t b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+ private:
+  FeatureSet fs_;
+  Format f_;
+  Unit unit_;
+};
+
+inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fragment& fr, SpecRef ref) const {
+  const int F = f_.frac;
+  auto v = [F](int64_t code) { return std::ldexp(static_cast<double>(code), -F); };
+  auto norm3 = [](double a[3]) {
+    const double l = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    for (int i = 0; i < 3; ++i) a[i] = l > 0 ? a[i] / l : 0.0;
+  };
+  double nn[3] = {v(fr.n[0]), v(fr.n[1]), v(fr.n[2])}, p[3] = {v(fr.p[0]), v(fr.p[1]), v(fr.p[2])};
+  if (fs_.normalize) norm3(nn);
+  double vv[3] = {0, 0, 1};
+  if (fs_.specular && fs_.local_viewer) {
+    vv[0] = -p[0], vv[1] = -p[1], vv[2] = -p[2];
+    norm3(vv);
+  }
+  const int n = static_cast<int>(r.mat_n);
+  std::array<double, 3> out{0, 0, 0};
+  for (int c = 0; c < fs_.channels; ++c)
+    if (fs_.ambient) out[c] = v(r.emission[c]) + v(r.ambient[c]) * v(r.global_ambient[c]);
+  for (int j = 0; j < fs_.num_lights(); ++j) {
+    const LightKind kind = fs_.lights[j];
+    const LightRegs::Light& L = r.light[j];
+    double l[3], att = 1.0;
+    if (kind == LightKind::Directional) {
+      for (int i = 0; i < 3; ++i) l[i] = v(L.pos[i]);
+    } else {
+      for (int i = 0; i < 3; ++i) l[i] = v(L.pos[i]) - p[i];
+      const double d = std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+      norm3(l);
+      if (kind == LightKind::PointAtt) {
+        const double q = v(L.kc) + v(L.kl) * d + v(L.kq) * d * d;
+        att = q > 0 ? std::min(1.0 / q, std::ldexp(static_cast<double>(att_max(F)), -F)) : std::ldexp(static_cast<double>(att_max(F)), -F);
+      }
+    }
+    const double ndl = nn[0] * l[0] + nn[1] * l[1] + nn[2] * l[2];
+    double spec = 0.0;
+    if (fs_.specular && ndl > 0) {
+      double x;
+      if (fs_.blinn) {
+        double h[3] = {l[0] + vv[0], l[1] + vv[1], l[2] + vv[2]};
+        norm3(h);
+        x = nn[0] * h[0] + nn[1] * h[1] + nn[2] * h[2];
+      } else {
+        double rv[3];
+        for (int i = 0; i < 3; ++i) rv[i] = 2 * ndl * nn[i] - l[i];
+        x = rv[0] * vv[0] + rv[1] * vv[1] + rv[2] * vv[2];
+      }
+      x = std::clamp(x, 0.0, 1.0);
+      if (ref == SpecRef::Exact) spec = golden::cos_pow(x, n);
+      else if (fs_.variant == VariantId::cs16)
+        spec = fs_.cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(x, n) : golden::cs16_sign_clamp(x, n);
+      else spec = golden::schlick(x, n);
+      if (fs_.norm) spec *= v(r.mat_coef);
+    }
+    const double diff = std::clamp(ndl, 0.0, 1.0);
+    for (int c = 0; c < fs_.channels; ++c) {
+      double s = 0;
+      if (fs_.ambient) s += v(r.ambient[c]) * v(L.ambient[c]);
+      if (fs_.diffuse) s += diff * v(r.diffuse[c]) * v(L.diffuse[c]);
+      if (fs_.specular) s += spec * v(r.specular[c]) * v(L.specular[c]);
+      out[c] += att * s;
+    }
+  }
+  for (auto& o : out) o = std::clamp(o, 0.0, 1.0);
+  return out;
+}
+
+// ---- host-side setup: physical parameters → register writes ---------------------------------
+// (OpenGL state → codes; done once per light/material change by the driver, in double, like thr(n).)
+
+struct LightParams {
+  double position[4] = {0, 0, 1, 0};  // GL_POSITION in eye space; w = 0 directional
+  double ambient[3] = {0, 0, 0}, diffuse[3] = {1, 1, 1}, specular[3] = {1, 1, 1};
+  double kc = 1, kl = 0, kq = 0;       // GL_CONSTANT/LINEAR/QUADRATIC_ATTENUATION
+};
+struct MaterialParams {
+  double emission[3] = {0, 0, 0}, ambient[3] = {0.2, 0.2, 0.2}, diffuse[3] = {0.8, 0.8, 0.8},
+         specular[3] = {0, 0, 0};
+  int shininess = 64;       // n, 16..1024
+  int norm_model = 0;       // index into kModels (feature norm only)
+  CoefKind norm_kind = CoefKind::Fitted;
+};
+
+namespace detail {
+inline uint32_t colour_code(int F, double x, const char* what) {
+  if (!(x >= 0.0) || x >= 2.0)
+    throw std::invalid_argument(std::string(what) + " = " + std::to_string(x) + " out of range [0, 2)");
+  return static_cast<uint32_t>(std::min(std::llround(std::ldexp(x, F)), (1ll << (F + 1)) - 1));
+}
+inline uint32_t attc_code(int F, double x, const char* what) {
+  if (!(x >= 0.0) || x >= 256.0)
+    throw std::invalid_argument(std::string(what) + " = " + std::to_string(x) + " out of range [0, 256)");
+  return static_cast<uint32_t>(std::min(std::llround(std::ldexp(x, F)), (1ll << (F + kAttIntBits)) - 1));
+}
+inline int64_t pos_code(int F, double x, const char* what) {
+  if (!(x >= -128.0) || !(x < 128.0))
+    throw std::invalid_argument(std::string(what) + " = " + std::to_string(x) + " out of range [-128, 128)");
+  return std::clamp<int64_t>(std::llround(std::ldexp(x, F)), -(int64_t{1} << (F + kPosIntBits)),
+                             (int64_t{1} << (F + kPosIntBits)) - 1);
+}
+}  // namespace detail
+
+// Material registers (n, thr, coef and the four colours).
+inline std::vector<RegWrite> material_writes(const LightCore& core, const MaterialParams& m) {
+  const int F = core.format().frac;
+  std::vector<RegWrite> w;
+  validate_n(m.shininess);
+  Unit u(core.unit().variant(), core.format(), core.unit().cutoff());
+  if (core.features().norm) u.set_norm(true, m.norm_model, m.norm_kind);
+  const UnitMaterial um = u.setup(m.shininess);
+  w.push_back({kReg_mat_n, static_cast<uint32_t>(um.n)});
+  w.push_back({kReg_mat_thr, um.thr});
+  w.push_back({kReg_mat_coef, um.coef});
+  for (uint32_t c = 0; c < 3; ++c) {
+    w.push_back({kReg_mat_emission + c, detail::colour_code(F, m.emission[c], "material emission")});
+    w.push_back({kReg_mat_ambient + c, detail::colour_code(F, m.ambient[c], "material ambient")});
+    w.push_back({kReg_mat_diffuse + c, detail::colour_code(F, m.diffuse[c], "material diffuse")});
+    w.push_back({kReg_mat_specular + c, detail::colour_code(F, m.specular[c], "material specular")});
+  }
+  return w;
+}
+
+// Light j's registers. A directional light (w = 0) gets its unit direction; a point light its position
+// (w must be 1 after the host's divide by w). Rejects kc = kl = kq = 0 for an attenuated light.
+inline std::vector<RegWrite> light_writes(const LightCore& core, int j, const LightParams& lp) {
+  const FeatureSet& fs = core.features();
+  const int F = core.format().frac;
+  if (j < 0 || j >= fs.num_lights())
+    throw std::invalid_argument("light " + std::to_string(j) + " not in the feature set (" +
+                                std::to_string(fs.num_lights()) + " lights)");
+  const LightKind kind = fs.lights[j];
+  const uint32_t base = static_cast<uint32_t>(j) * kLightStride;
+  std::vector<RegWrite> w;
+  const uint32_t pmask = static_cast<uint32_t>(mask_bits(light_pos_bits(F)));
+  if (kind == LightKind::Directional) {
+    if (lp.position[3] != 0.0) throw std::invalid_argument("light " + std::to_string(j) + " is directional (w = 0 expected)");
+    const double l = std::sqrt(lp.position[0] * lp.position[0] + lp.position[1] * lp.position[1] +
+                               lp.position[2] * lp.position[2]);
+    if (!(l > 0)) throw std::invalid_argument("light " + std::to_string(j) + ": zero direction");
+    for (uint32_t c = 0; c < 3; ++c)
+      w.push_back({base + kReg_light_position + c,
+                   static_cast<uint32_t>(std::llround(std::ldexp(lp.position[c] / l, F))) & pmask});
+  } else {
+    if (lp.position[3] == 0.0) throw std::invalid_argument("light " + std::to_string(j) + " is a point light (w != 0 expected)");
+    for (uint32_t c = 0; c < 3; ++c)
+      w.push_back({base + kReg_light_position + c,
+                   static_cast<uint32_t>(detail::pos_code(F, lp.position[c] / lp.position[3], "light position")) & pmask});
+  }
+  for (uint32_t c = 0; c < 3; ++c) {
+    w.push_back({base + kReg_light_ambient + c, detail::colour_code(F, lp.ambient[c], "light ambient")});
+    w.push_back({base + kReg_light_diffuse + c, detail::colour_code(F, lp.diffuse[c], "light diffuse")});
+    w.push_back({base + kReg_light_specular + c, detail::colour_code(F, lp.specular[c], "light specular")});
+  }
+  if (kind == LightKind::PointAtt) {
+    const uint32_t kc = detail::attc_code(F, lp.kc, "constant attenuation");
+    const uint32_t kl = detail::attc_code(F, lp.kl, "linear attenuation");
+    const uint32_t kq = detail::attc_code(F, lp.kq, "quadratic attenuation");
+    if (kc == 0 && kl == 0 && kq == 0)
+      throw std::invalid_argument("light " + std::to_string(j) + ": constant, linear and quadratic attenuation all 0");
+    w.push_back({base + kReg_light_kc, kc});
+    w.push_back({base + kReg_light_kl, kl});
+    w.push_back({base + kReg_light_kq, kq});
+  }
+  return w;
+}
+
+inline std::vector<RegWrite> global_writes(const LightCore& core, const double ambient[3]) {
+  std::vector<RegWrite> w;
+  for (uint32_t c = 0; c < 3; ++c)
+    w.push_back({kReg_global_ambient + c, detail::colour_code(core.format().frac, ambient[c], "global ambient")});
+  return w;
+}
+
+// Fragment codes from eye-space doubles (normal any length; position in [−128, 128)).
+inline Fragment make_fragment(int F, const double n[3], const double p[3]) {
+  Fragment fr;
+  const int64_t nlim = int64_t{1} << (F + 1);
+  for (int i = 0; i < 3; ++i) {
+    fr.n[i] = std::clamp<int64_t>(std::llround(std::ldexp(n[i], F)), -nlim, nlim - 1);
+    fr.p[i] = detail::pos_code(F, p[i], "fragment position");
+  }
+  return fr;
+}
+
+}  // namespace shadecore
