@@ -1,6 +1,10 @@
 // shadecore sim — monitor: passive; one SC_METHOD per rising edge samples the pre-edge values of
 // every port and turns handshakes into transactions for the scoreboard, in this order per edge:
-//   output taken (out_valid & out_ready) -> input taken (in_valid & in_ready) -> material write.
+//   output taken (out_valid & out_ready) -> input taken (in_valid & in_ready) -> state write
+//   (material write of the unit, register write of the lighting core).
+// MonitorT<PinsT, SbT, DrvT> serves every testbench: the pins adapter supplies the payloads
+// (in_payload(), out_payload()) and reports state writes (observe_state(sb)); the handshake,
+// reset, latency and protocol logic is the same for the specular unit and the lighting core.
 // It also checks the port protocol: a valid output held back by out_ready low must stay valid
 // with the same data and tag at the next edge; in_ready_o must be low while rst_ni is low.
 // Latency is counted in advancing edges (edges where !out_valid || out_ready, not in reset), the
@@ -14,17 +18,16 @@
 #include <cstdint>
 #include <string>
 
-#include "tb_driver.hpp"
-#include "tb_pins.hpp"
 #include "tb_scoreboard.hpp"
 
 namespace shadecore::sim {
 
-class Monitor : public sc_core::sc_module {
+template <class PinsT, class SbT, class DrvT>
+class MonitorT : public sc_core::sc_module {
  public:
-  SC_HAS_PROCESS(Monitor);
-  Monitor(sc_core::sc_module_name name, Pins& pins, Scoreboard& sb, const Driver& drv,
-          const std::string& inject = "", uint64_t inject_at = 0)
+  SC_HAS_PROCESS(MonitorT);
+  MonitorT(sc_core::sc_module_name name, PinsT& pins, SbT& sb, const DrvT& drv,
+           const std::string& inject = "", uint64_t inject_at = 0)
       : sc_module(name),
         pins_(pins),
         sb_(sb),
@@ -42,7 +45,12 @@ class Monitor : public sc_core::sc_module {
   static constexpr uint64_t kIdleLimit = 200000;  // cycles without any transfer = stuck
   static constexpr uint64_t kTail = 32;            // cycles watched after the last expected output
 
+  // The unit's input word width (sign extension of in_cos); kept for the unit testbench.
+  void set_in_bits(int bits) { pins_.in_bits = bits; }
+
  private:
+  using Out = typename SbT::Out;
+
   void on_clk() {
     ++cycle_;
     const bool rst_n = pins_.rst_n.read();
@@ -51,9 +59,9 @@ class Monitor : public sc_core::sc_module {
     const bool iv = pins_.in_valid.read();
     const bool irdy = pins_.in_ready.read();
     const uint32_t otag = pins_.out_tag.read();
-    const uint32_t ospec = pins_.out_spec.read();
+    const Out opay = pins_.out_payload();
 
-    if (held_ && (!ov || otag != held_tag_ || ospec != held_spec_))
+    if (held_ && (!ov || otag != held_tag_ || opay != held_pay_))
       sb_.error("output changed while held back by out_ready_i low (valid " + std::to_string(ov) +
                     ", tag " + std::to_string(held_tag_) + " -> " + std::to_string(otag) + ")",
                 cycle_);
@@ -61,7 +69,7 @@ class Monitor : public sc_core::sc_module {
     if (!rst_n) {
       if (irdy) sb_.error("in_ready_o high while rst_ni is low", cycle_);
       if (ov && ordy) {
-        output(otag, ospec, adv_ + 1);  // taken at the reset edge
+        output(otag, opay, adv_ + 1);  // taken at the reset edge
         moved = true;
       }
       sb_.on_reset();
@@ -69,19 +77,18 @@ class Monitor : public sc_core::sc_module {
     } else {
       if (!ov || ordy) ++adv_;
       if (ov && ordy) {
-        output(otag, ospec, adv_);
+        output(otag, opay, adv_);
         moved = true;
       }
       if (iv && irdy) {
-        sb_.on_input(pins_.in_tag.read(), sign_extend(pins_.in_cos.read()), cycle_, adv_);
+        sb_.on_input(pins_.in_tag.read(), pins_.in_payload(), cycle_, adv_);
         moved = true;
       }
       held_ = ov && !ordy;
       held_tag_ = otag;
-      held_spec_ = ospec;
+      held_pay_ = opay;
     }
-    if (pins_.mat_we.read())
-      sb_.on_material(static_cast<int>(pins_.mat_n.read()), pins_.mat_thr.read(), pins_.mat_coef.read());
+    if (pins_.observe_state(sb_, cycle_)) moved = true;
 
     idle_ = moved ? 0 : idle_ + 1;
     // Done: keep watching kTail more cycles, so a spurious extra output after the last expected one
@@ -95,34 +102,32 @@ class Monitor : public sc_core::sc_module {
     }
   }
 
- public:
-  void set_in_bits(int bits) { in_bits_ = bits; }
-
- private:
-  void output(uint32_t tag, uint32_t spec, uint64_t adv) {
+  void output(uint32_t tag, Out pay, uint64_t adv) {
     if (inject_ != 0 && ++outputs_seen_ == inject_at_) {  // self-test of the checks only
-      if (inject_ == 1) spec ^= 1u;
+      if (inject_ == 1) pay = PinsT::corrupt(pay);
       if (inject_ == 2) return;
-      if (inject_ == 3) sb_.on_output(tag, spec, cycle_, adv);
+      if (inject_ == 3) sb_.on_output(tag, pay, cycle_, adv);
     }
-    sb_.on_output(tag, spec, cycle_, adv);
+    sb_.on_output(tag, pay, cycle_, adv);
   }
 
-  int64_t sign_extend(uint32_t v) const {
-    const int sh = 64 - in_bits_;
-    return static_cast<int64_t>(static_cast<uint64_t>(v) << sh) >> sh;
-  }
-
-  Pins& pins_;
-  Scoreboard& sb_;
-  const Driver& drv_;
+  PinsT& pins_;
+  SbT& sb_;
+  const DrvT& drv_;
   const int inject_;
   const uint64_t inject_at_;
   uint64_t outputs_seen_ = 0;
-  int in_bits_ = 18;
   uint64_t cycle_ = 0, adv_ = 0, idle_ = 0, tail_ = 0;
   bool held_ = false, watchdog_ = false;
-  uint32_t held_tag_ = 0, held_spec_ = 0;
+  uint32_t held_tag_ = 0;
+  Out held_pay_{};
 };
 
+}  // namespace shadecore::sim
+
+// The specular unit's monitor (rtl/sc_specular.v): tb_pins.hpp's Pins, the unit Scoreboard, Driver.
+#include "tb_driver.hpp"
+#include "tb_pins.hpp"
+namespace shadecore::sim {
+using Monitor = MonitorT<Pins, Scoreboard, Driver>;
 }  // namespace shadecore::sim

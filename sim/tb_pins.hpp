@@ -25,6 +25,22 @@ struct Pins {
   sc_core::sc_signal<uint32_t> out_spec{"out_spec", 0};
   sc_core::sc_signal<uint32_t> out_tag{"out_tag", 0};
 
+  // Adapter for MonitorT (tb_monitor.hpp): payloads as the scoreboard sees them.
+  int in_bits = 18;  // signed input word width (F+2)
+  [[nodiscard]] int64_t in_payload() const {
+    const int sh = 64 - in_bits;
+    return static_cast<int64_t>(static_cast<uint64_t>(in_cos.read()) << sh) >> sh;
+  }
+  [[nodiscard]] uint32_t out_payload() const { return out_spec.read(); }
+  static uint32_t corrupt(uint32_t v) { return v ^ 1u; }  // self-test: flip bit 0
+  // A material write at this edge (after the input of the same edge: it uses the old material).
+  template <class Sb>
+  bool observe_state(Sb& sb, uint64_t /*cycle*/) {
+    if (!mat_we.read()) return false;
+    sb.on_material(static_cast<int>(mat_n.read()), mat_thr.read(), mat_coef.read());
+    return false;  // a material write is not a data transfer (the watchdog counts transfers)
+  }
+
   template <class M>
   void bind(M& dut) {
     dut.clk_i(clk);

@@ -1,16 +1,21 @@
 // shadecore sim — scoreboard: the reference side of the co-simulation. No SystemC in here.
 //
-// The monitor reports, edge by edge, what crossed the unit's ports:
-//   on_input()    a fragment accepted (in_valid_i & in_ready_o): the expected result is computed
-//                 right here by the C model (shadecore::Unit) with the material registered BEFORE
-//                 this edge (spec §4), and queued with its tag, cycle and advance count;
-//   on_material() mat_we_i at this edge: the shadow material registers take the port values
-//                 (called after on_input of the same edge: a fragment accepted at that edge uses
-//                 the old material);
-//   on_output()   a result taken (out_valid_o & out_ready_i): checked at once against the head of
-//                 the queue — tag (lost / duplicated / reordered), value (bit-exact), latency;
+// ScoreboardT<Model> is the transaction checker every testbench of this project uses (the specular
+// unit, the lighting core); the Model says what a transaction carries and what the RTL must answer:
+//   Model::In / Model::Out      the input payload and the output payload (Out has operator!=)
+//   Model::expected(in)         the C model's answer for `in` with the state registered BEFORE this edge
+//   Model::ready()              whether an input may be accepted yet (state loaded)
+//   Model::latency(), latency_min()
+// The monitor reports, edge by edge, what crossed the ports:
+//   on_input()    a transaction accepted: the expected result is computed right here and queued with
+//                 its tag, cycle and advance count;
+//   state writes  (material / register writes) go to the Model after on_input of the same edge, so an
+//                 input accepted at that edge uses the old state;
+//   on_output()   a result taken: checked at once against the head of the queue — tag (lost /
+//                 duplicated / reordered), value (bit-exact), latency in advancing edges;
 //   on_reset()    rst_ni low at this edge: what is still in flight is dropped, as the spec says.
-// The queue is a fixed ring (no allocation per transaction).
+// The queue is a fixed ring (no allocation per transaction). Optionally every output is recorded in
+// acceptance order (record()), for a caller that wants the RTL's answers (the scene renderer).
 #pragma once
 
 #include <cstdint>
@@ -22,45 +27,49 @@
 
 namespace shadecore::sim {
 
-struct Mismatch {
-  int n;
-  int64_t code;
-  uint32_t expected, got, tag;
+template <class Model>
+struct MismatchT : Model::In {
+  typename Model::Out expected, got;
+  uint32_t tag;
   uint64_t cycle;
 };
 
-class Scoreboard {
+template <class Model>
+class ScoreboardT {
  public:
-  Scoreboard(const Unit& unit, int show)
-      : unit_(unit), latency_(unit.latency()), latency_min_(unit.latency_min()), show_(show), ring_(kCap) {}
+  using In = typename Model::In;
+  using Out = typename Model::Out;
 
-  void on_material(int n, uint32_t thr, uint32_t coef = 0) {
-    mat_ = UnitMaterial{n, thr, coef};
-    mat_valid_ = true;
-    ++material_writes_;
-  }
+  ScoreboardT(Model model, int show)
+      : model_(std::move(model)), latency_(model_.latency()), latency_min_(model_.latency_min()), show_(show),
+        ring_(kCap) {}
 
-  void on_input(uint32_t tag, int64_t code, uint64_t cycle, uint64_t adv) {
-    if (!mat_valid_) {
-      error("input accepted before any material was written", cycle);
+  Model& model() { return model_; }
+  const Model& model() const { return model_; }
+
+  // Keep every checked output (in order) in `out` — nullptr to stop.
+  void record(std::vector<Out>* out) { record_ = out; }
+
+  void on_input(uint32_t tag, const In& in, uint64_t cycle, uint64_t adv) {
+    if (!model_.ready()) {
+      error(Model::kNotReadyMessage, cycle);
       return;
     }
     if (size_ == kCap) {
-      error("more than " + std::to_string(kCap) + " fragments in flight (outputs missing)", cycle);
+      error("more than " + std::to_string(kCap) + " transactions in flight (outputs missing)", cycle);
       return;
     }
     Entry& e = ring_[(head_ + size_) & (kCap - 1)];
     e.tag = tag;
-    e.n = mat_.n;
-    e.code = code;
-    e.expected = unit_.eval(mat_, code);
+    e.in = in;
+    e.expected = model_.expected(in);
     e.cycle = cycle;
     e.adv = adv;
     ++size_;
     ++accepted_;
   }
 
-  void on_output(uint32_t tag, uint32_t got, uint64_t cycle, uint64_t adv) {
+  void on_output(uint32_t tag, const Out& got, uint64_t cycle, uint64_t adv) {
     ++outputs_;
     if (size_ == 0) {
       ++unexpected_;
@@ -87,18 +96,28 @@ class Scoreboard {
     }
     const Entry& e = ring_[head_];
     ++checked_;
+    if (record_) record_->push_back(got);
     if (got != e.expected) {
       ++mismatches_;
-      if (first_.size() < static_cast<size_t>(show_)) first_.push_back({e.n, e.code, e.expected, got, e.tag, cycle});
+      if (first_.size() < static_cast<size_t>(show_)) {
+        MismatchT<Model> m;
+        static_cast<In&>(m) = e.in;
+        m.expected = e.expected;
+        m.got = got;
+        m.tag = e.tag;
+        m.cycle = cycle;
+        first_.push_back(m);
+      }
     }
     const uint64_t lat_adv = adv - e.adv, lat_cyc = cycle - e.cycle;
-    // Exactly `latency` advancing edges; a chained NORM stage may catch up through bubbles in front
-    // of it under backpressure, so there the contract is the range latency_min..latency.
+    // Exactly `latency` advancing edges for one global-enable pipeline; where elastic segments are
+    // chained (NORM stage, the lighting core) a transaction may close up on the one ahead through
+    // bubbles under backpressure, so the contract is the range latency_min..latency.
     if (lat_adv > static_cast<uint64_t>(latency_) || lat_adv < static_cast<uint64_t>(latency_min_)) {
       ++latency_errors_;
       if (latency_errors_ <= static_cast<uint64_t>(show_))
-        std::printf("ERROR cycle %llu: tag %u latency %llu advancing cycles (%llu cycles), spec says %d\n",
-                    ull(cycle), tag, ull(lat_adv), ull(lat_cyc), latency_);
+        std::printf("ERROR cycle %llu: tag %u latency %llu advancing cycles (%llu cycles), spec says %d..%d\n",
+                    ull(cycle), tag, ull(lat_adv), ull(lat_cyc), latency_min_, latency_);
     }
     if (lat_cyc < lat_min_) lat_min_ = lat_cyc;
     if (lat_cyc > lat_max_) lat_max_ = lat_cyc;
@@ -115,7 +134,7 @@ class Scoreboard {
     if (protocol_errors_ <= static_cast<uint64_t>(show_)) std::printf("ERROR cycle %llu: %s\n", ull(cycle), what.c_str());
   }
 
-  // Fragments accepted but not yet out; at the end of a run they count as lost.
+  // Transactions accepted but not yet out; at the end of a run they count as lost.
   [[nodiscard]] uint64_t in_flight() const { return size_; }
   void finish() {
     if (size_ != 0) {
@@ -132,15 +151,17 @@ class Scoreboard {
   uint64_t accepted_ = 0, outputs_ = 0, checked_ = 0, mismatches_ = 0, lost_ = 0, unexpected_ = 0,
            latency_errors_ = 0, protocol_errors_ = 0, dropped_by_reset_ = 0, material_writes_ = 0;
   uint64_t lat_min_ = ~uint64_t{0}, lat_max_ = 0;
-  std::vector<Mismatch> first_;
+  std::vector<MismatchT<Model>> first_;
+
+ protected:
+  Model model_;
 
  private:
-  static constexpr uint32_t kCap = 256;  // power of two; the pipeline holds at most `latency` fragments
+  static constexpr uint32_t kCap = 256;  // power of two; more than any pipeline here holds
   struct Entry {
     uint32_t tag;
-    int n;
-    int64_t code;
-    uint32_t expected;
+    In in;
+    Out expected;
     uint64_t cycle, adv;
   };
   static unsigned long long ull(uint64_t v) { return static_cast<unsigned long long>(v); }
@@ -149,13 +170,47 @@ class Scoreboard {
     size_ -= k;
   }
 
-  const Unit& unit_;
   int latency_, latency_min_;
   int show_;
-  UnitMaterial mat_;
-  bool mat_valid_ = false;
+  std::vector<Out>* record_ = nullptr;
   std::vector<Entry> ring_;
   uint32_t head_ = 0, size_ = 0;
+};
+
+// ---- the specular unit (rtl/sc_specular.v) -----------------------------------------------------
+struct UnitIn {
+  int n;         // material the fragment was shaded with
+  int64_t code;  // signed input word
+};
+
+struct UnitModel {
+  using In = UnitIn;
+  using Out = uint32_t;
+  static constexpr const char* kNotReadyMessage = "input accepted before any material was written";
+  const Unit* unit;
+  UnitMaterial mat;
+  bool mat_valid = false;
+  [[nodiscard]] bool ready() const { return mat_valid; }
+  [[nodiscard]] int latency() const { return unit->latency(); }
+  [[nodiscard]] int latency_min() const { return unit->latency_min(); }
+  [[nodiscard]] Out expected(const In& in) const { return unit->eval(mat, in.code); }
+  [[nodiscard]] In input(int64_t code) const { return In{mat.n, code}; }
+};
+
+using Mismatch = MismatchT<UnitModel>;
+
+class Scoreboard : public ScoreboardT<UnitModel> {
+ public:
+  Scoreboard(const Unit& unit, int show) : ScoreboardT<UnitModel>(UnitModel{&unit, {}, false}, show) {}
+
+  void on_material(int n, uint32_t thr, uint32_t coef = 0) {
+    model_.mat = UnitMaterial{n, thr, coef};
+    model_.mat_valid = true;
+    ++material_writes_;
+  }
+  void on_input(uint32_t tag, int64_t code, uint64_t cycle, uint64_t adv) {
+    ScoreboardT<UnitModel>::on_input(tag, model_.input(code), cycle, adv);
+  }
 };
 
 }  // namespace shadecore::sim

@@ -1,0 +1,48 @@
+// shadecore CLI — the lighting core in RTL, built on demand for one feature set and cached by its key
+// (docs/lighting.md §6). Like Mesa's program cache keyed on the fixed-function state: the first use of a
+// feature set Verilates rtl/sc_light.v with exactly that set's parameters together with the SystemC
+// testbench (sim/light_main.cpp) into <cache>/<name>_<key>/; every later use reuses the executable.
+//
+// The cache directory: $SHADECORE_CORE_CACHE if set, else <build dir>/cores.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "../sim/light_stream.hpp"
+#include "shadecore/features.hpp"
+
+namespace shadecore::cli {
+
+struct CoreBuild {
+  std::string exe;         // the simulator executable for this feature set
+  std::string dir;         // its cache directory
+  bool built_now = false;  // false: reused from the cache
+  double build_seconds = 0.0;
+};
+
+// Build (or find) the simulator of `fs`. Progress on stderr when building (it takes ~30–90 s).
+// Throws std::runtime_error with one line (and the log path) if Verilator or the compiler fails.
+CoreBuild ensure_core(const FeatureSet& fs, bool quiet = false);
+
+struct RtlRunOptions {
+  double in_stall = 0.0, out_stall = 0.0;
+  uint64_t seed = 1;
+  bool quiet = false;
+};
+
+struct RtlRunResult {
+  std::vector<Colour> colours;  // one per fragment command, in order
+  uint64_t mismatches = 0;      // outputs that differ from LightCore::eval (checked inside the simulator)
+  uint64_t cycles = 0;
+  double sim_seconds = 0.0;     // wall time of the simulation itself (not the build)
+  CoreBuild build;
+  bool ok = false;              // every output matched, nothing lost, latency and protocol held
+  std::string summary;          // the simulator's one-line summary
+};
+
+// Run the command stream (register writes and fragments) through the Verilated core of `fs`.
+RtlRunResult run_core_rtl(const FeatureSet& fs, const std::vector<sim::CoreCommand>& cmds, const RtlRunOptions& o);
+
+}  // namespace shadecore::cli
