@@ -4,7 +4,8 @@
 //                                    and the largest directional albedo (and where); a summary per model
 //   brdf_tool render DIR [SIZE]      one sphere per model, double-precision BRDF, software path
 //                                    (orthographic camera, one directional light): DIR/spheres.f32
-//                                    (float32, models × SIZE × SIZE, row-major, radiance) and
+//                                    (float32, models × SIZE × SIZE, row-major, radiance; −1 off
+//                                    the sphere) and
 //                                    DIR/spheres.txt (one "name|parameters" line per sphere); the
 //                                    contact sheet is drawn by scripts/brdf_sheet.py
 #include <fmt/core.h>
@@ -76,21 +77,23 @@ std::vector<float> sphere(const Fn& f, int size, const Vec3& light) {
   const Vec3 wo{0, 0, 1};
   for (int j = 0; j < size; ++j)
     for (int i = 0; i < size; ++i) {
-      // 2×2 supersampling against jagged rims.
+      // 2×2 supersampling against jagged rims; pixels entirely off the sphere are marked −1.
       double sum = 0;
+      int hits = 0;
       for (int sj = 0; sj < 2; ++sj)
         for (int si = 0; si < 2; ++si) {
           const double x = (2.0 * (i + 0.25 + 0.5 * si) / size - 1) * 1.05;
           const double y = (1 - 2.0 * (j + 0.25 + 0.5 * sj) / size) * 1.05;
           const double r2 = x * x + y * y;
           if (r2 >= 1) continue;
+          ++hits;
           const Vec3 n{x, y, std::sqrt(1 - r2)};
           const Vec3 t = normalize(cross(Vec3{0, 1, 0}, n));
           const double ci = dot(n, light);
           if (ci <= 0) continue;
           sum += f(light, wo, n, t) * kPi * ci;
         }
-      img[static_cast<size_t>(j) * size + i] = static_cast<float>(sum / 4);
+      img[static_cast<size_t>(j) * size + i] = hits ? static_cast<float>(sum / 4) : -1.0f;
     }
   return img;
 }

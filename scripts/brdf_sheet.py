@@ -43,15 +43,19 @@ def main():
 
     cols = 4
     rows = (len(labels) + cols - 1) // cols
-    fig, axes = plt.subplots(rows, cols, figsize=(cols * 2.3, rows * 2.55))
+    fig, axes = plt.subplots(rows, cols, figsize=(cols * 2.6, rows * 2.7))
     for k, ax in enumerate(axes.flat):
         ax.axis("off")
         if k >= len(labels):
             continue
         name, params = labels[k]
+        off = imgs[k] < 0
         img = np.clip(imgs[k], 0, 1) ** (1 / 2.2)
-        ax.imshow(img, cmap="gray", vmin=0, vmax=1, interpolation="nearest")
-        ax.set_title(f"{name}\n{params}", fontsize=6.5)
+        rgb = np.repeat(img[:, :, None], 3, axis=2)
+        rgb[off] = (0.16, 0.18, 0.22)  # background: shows the unlit side's silhouette
+        ax.imshow(rgb, interpolation="nearest")
+        eq = params.rsplit(" (", 1)
+        ax.set_title(f"{name} ({eq[1]}\n{eq[0]}" if len(eq) == 2 else f"{name}\n{params}", fontsize=6.5)
         peak = float(imgs[k].max())
         ax.text(0.02, 0.02, f"peak L = {peak:.3g}", transform=ax.transAxes, fontsize=5.5, color="0.6")
     fig.suptitle("Seed 000 lighting models, double-precision BRDF references (one light, upper left)", fontsize=9)
