@@ -70,9 +70,34 @@ const std::vector<Set>& sets() {
   return v;
 }
 
+// The same kind of sets restricted to ωo inside Phong's lobe (Θr·Θs > 0): there the highlight's pow is
+// always evaluated, whereas for uniform directions Phong's cos α <= 0 (lobe skipped) about half the time.
+const std::vector<Set>& lobe_sets() {
+  static const std::vector<Set> v = [] {
+    std::vector<Set> s;
+    std::mt19937_64 rng(1975);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const auto sphere = [&]() {
+      const double z = 2 * u(rng) - 1, ph = 2 * kPi * u(rng), r = std::sqrt(std::max(0.0, 1 - z * z));
+      return Vec3{r * std::cos(ph), r * std::sin(ph), z};
+    };
+    while (s.size() < kSets) {
+      Set e;
+      e.n = sphere();
+      e.t = sphere();
+      e.wi = sphere();
+      e.wo = sphere();
+      if (dot(e.wi, e.n) < 1e-3 || dot(e.wo, e.n) < 1e-3 || dot(e.wo, mirror(e.wi, e.n)) <= 0) continue;
+      s.push_back(e);
+    }
+    return s;
+  }();
+  return v;
+}
+
 template <class M>
-void run_model(benchmark::State& st, std::array<M, 4> mats) {
-  const std::vector<Set>& in = sets();
+void run_model(benchmark::State& st, std::array<M, 4> mats, bool in_lobe = false) {
+  const std::vector<Set>& in = in_lobe ? lobe_sets() : sets();
   benchmark::DoNotOptimize(mats);  // the parameters are run-time data
   size_t i = 0;
   for (auto _ : st) {
@@ -129,6 +154,13 @@ void BM_Lafortune(benchmark::State& st) {
   run_model(st, std::array<Lafortune, 4>{{one(0.4, 0.2, 3), one(0.4, 0.4, 10), one(0.4, 0.6, 50), one(0.2, 0.8, 200)}});
 }
 
+void BM_PhongBrdf_InLobe(benchmark::State& st) {
+  run_model(st, std::array<PhongBrdf, 4>{{{0.4, 0.2, 3}, {0.4, 0.4, 10}, {0.4, 0.6, 50}, {0.2, 0.8, 200}}}, true);
+}
+void BM_BlinnPhong_InLobe(benchmark::State& st) {
+  run_model(st, std::array<BlinnPhong, 4>{{{0.4, 0.2, 3}, {0.4, 0.4, 10}, {0.4, 0.6, 50}, {0.2, 0.8, 200}}}, true);
+}
+
 BENCHMARK(BM_Lambert);
 BENCHMARK(BM_PhongClassic);
 BENCHMARK(BM_PhongBrdf);
@@ -141,6 +173,8 @@ BENCHMARK(BM_AshikhminShirley);
 BENCHMARK(BM_Ward);
 BENCHMARK(BM_Schlick);
 BENCHMARK(BM_Lafortune);
+BENCHMARK(BM_PhongBrdf_InLobe);
+BENCHMARK(BM_BlinnPhong_InLobe);
 
 // --- the project's units: the highlight alone ---------------------------------------------------
 
