@@ -1,0 +1,347 @@
+// ============================================================================================
+// Filename : rtl/sc_normalize.v
+// Purpose  : vector normaliser u = v / |v| of the lighting core, division-free: a reciprocal
+//            square root by leading-one normalisation of s = v·v to an even power of two, a
+//            96-entry seed table and two Newton–Raphson steps y <- y·(3 − m·y²)/2, then one
+//            multiply and a rounding shift per component. Bit-accurate C model: normalize3() in
+//            cmodel/include/shadecore/light_ops.hpp (same names as NormTrace).
+//            A pipeline stage with an enable and no handshake of its own: it is embedded in the
+//            global-enable pipeline of rtl/sc_light.v (en_i = that pipeline's enable).
+//
+// Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
+//   FRAC  F, fraction bits of the result (1.0 = 2^F)                 8 <= F <= 16 (default 16)
+//   VW    width of each signed input component (any common fraction: the result does not
+//         depend on it)                                              2 <= VW <= 41 (default 18)
+//
+// Ports : clk_i             clock, all flops on the rising edge
+//         en_i              enable (the embedding pipeline's global enable)
+//         v_i[3*VW-1:0]     {vz, vy, vx}, signed two's complement components
+//         u_o[3*(F+2)-1:0]  {uz, uy, ux}, signed F+2 bits, u_i = round_half_up(v_i·2^F/|v|)
+//                           (|u_i| <= 2^F); v = 0 gives u = 0
+//         v_o[3*VW-1:0]     v_i delayed by the latency (aligned with u_o, for a caller that needs
+//                           the vector with its normalised form; unused bits cost nothing)
+//
+// Latency : LATENCY = 10 enabled edges (stages S1..S10): u_o (and v_o) show the result for the
+//           v_i presented before the enabled edge that was 10 enabled edges ago.
+//
+// Datapath (R = F+6 fraction bits of y, MB = F+6+(F mod 2) even mantissa fraction bits, T = 10
+// seed fraction bits, SWF = max(2·VW, MB+2) even, HW = SWF/2):
+//
+//   v_i ─► S1   s = vx² + vy² + vz²                          exact, 2·VW bits (in an SWF-bit frame)
+//          S2   k = leading zero bit *pairs* of s (0..HW−1; HW−1 for s = 0)
+//               m = (s << 2k)[SWF−1 : SWF−MB−2]              MB+2 bits, m/2^MB in [1, 4), truncated
+//                                                            (= s·2^e2, e2 = MB − p + (p&1), p = msb(s))
+//          S3   idx = m[MB+1 : MB−5];  y0 = SEED[idx] (T bits), a0 = A0[idx] = ⌊(y0·2^(R−T))² / 2^R⌋
+//               (both tables elaborated from the integer rule of rsqrt_seed() by constant functions)
+//          S4   c0 = 3·2^R − ⌊m·a0 / 2^MB⌋                   R+2 bits
+//          S5   y1 = ⌊y0·2^(R−T)·c0 / 2^(R+1)⌋ = ⌊y0·c0 / 2^(T+1)⌋     R+1 bits
+//          S6   a1 = ⌊y1² / 2^R⌋                              R+2 bits
+//          S7   c1 = 3·2^R − ⌊m·a1 / 2^MB⌋                   R+2 bits
+//          S8   y2 = ⌊y1·c1 / 2^(R+1)⌋                        R+1 bits (< 2^R for every m, F = 8..16)
+//          S9   p_i = v_i·y2                                 kept modulo 2^(HW+F+7) (two's complement:
+//                                                            only those low bits reach the result)
+//          S10  u_i = ⌊(v_i·y2 + 2^(sh−1)) / 2^sh⌋, sh = HW + 5 − k (= R + MB/2 − F − e2/2 of the
+//               C model), computed as ⌊(p_i·2^k + 2^(HW+4)) / 2^(HW+5)⌋: a left barrel shift by k,
+//               a constant rounding add and a constant slice (arithmetic shift, ties toward +inf)
+//
+// Both data-dependent shifts (S2 by 2k, S10 by k) are log2-stage barrel shifters. For s = 0 the
+// table index is 0 and y2 is meaningless, but every p_i = 0, so u = 0 as the C model's early return.
+// ============================================================================================
+`default_nettype none
+
+module sc_normalize #(
+    parameter integer FRAC = 16,
+    parameter integer VW   = 18
+) (
+    input  wire                  clk_i,
+    input  wire                  en_i,
+    input  wire [3*VW-1:0]       v_i,
+    output wire [3*(FRAC+2)-1:0] u_o,
+    output wire [3*VW-1:0]       v_o
+);
+
+  localparam integer R   = FRAC + 6;                 // fraction bits of y (rsqrt_frac)
+  localparam integer T   = 10;                       // seed fraction bits (kRsqrtTableFrac)
+  localparam integer IB  = 7;                        // table index bits (kRsqrtIndexBits)
+  localparam integer MB  = FRAC + 6 + (FRAC % 2);    // mantissa fraction bits, even (rsqrt_mant_frac)
+  localparam integer MW  = MB + 2;                   // m in [2^MB, 2^(MB+2))
+  localparam integer AW  = R + 1;                    // width of the a0 table entries
+  localparam integer SWF = (2 * VW > MW) ? 2 * VW : MW;  // frame of s (even)
+  localparam integer HW  = SWF / 2;                  // bit pairs in the frame
+  localparam integer KW  = clog2(HW);                // width of k (k <= HW-1)
+  localparam integer OW  = FRAC + 2;                 // output component width
+  localparam integer PW  = HW + FRAC + 7;            // low bits of v_i·y2 that reach u_i
+  localparam integer NS  = 10;                       // stages = latency
+
+  // ---------------------------------------------------------------------------- check configuration
+  // Portable Verilog-2005 elaboration error: a failing check instantiates a module that does not
+  // exist, named after the message; every tool stops with "unknown module <message>".
+  generate
+    if (FRAC < 8 || FRAC > 16) begin : g_check_frac
+      sc_normalize_error_illegal_FRAC_legal_range_is_8_to_16 u_error ();
+    end
+    if (VW < 2 || VW > 41) begin : g_check_vw
+      sc_normalize_error_illegal_VW_legal_range_is_2_to_41 u_error ();
+    end
+  endgenerate
+
+  // ---------------------------------------------------------------------------- constant functions
+  function integer clog2(input integer x);
+    integer v;
+    begin
+      clog2 = 0;
+      v = 1;
+      while (v < x) begin
+        v = v * 2;
+        clog2 = clog2 + 1;
+      end
+      if (clog2 == 0) clog2 = 1;
+    end
+  endfunction
+
+  // rsqrt_seed(i) of the C model: the largest y in [0, 2^T] with (2y−1)²·(2i+1) <= 2^(2T+8),
+  // i.e. 1/√(midpoint of [i/32, (i+1)/32)) with T fraction bits, rounded to nearest. Bisection in
+  // 32-bit integers: (2·1024 − 1)²·255 < 2^31. 12 halvings of [0, 1024] always converge.
+  function integer rsqrt_seed(input integer i);
+    integer lo, hi, mid, t, it;
+    begin
+      lo = 0;
+      hi = 1 << T;
+      for (it = 0; it < 12; it = it + 1) begin
+        if (lo < hi) begin
+          mid = (lo + hi + 1) / 2;
+          t   = 2 * mid - 1;
+          if (t * t * (2 * i + 1) <= (1 << (2 * T + 8))) lo = mid;
+          else hi = mid - 1;
+        end
+      end
+      rsqrt_seed = lo;
+    end
+  endfunction
+
+  // a0 = ⌊(seed·2^(R−T))² / 2^R⌋ = seed²·2^(R−2T) (exact for R >= 2T, truncated otherwise).
+  function integer rsqrt_a0(input integer i);
+    integer y;
+    begin
+      y = rsqrt_seed(i);
+      if (R >= 2 * T) rsqrt_a0 = (y * y) << (R - 2 * T);
+      else rsqrt_a0 = (y * y) >> (2 * T - R);
+    end
+  endfunction
+
+  localparam [R+1:0]      THREE_R  = {2'b11, {R{1'b0}}};                 // 3·2^R
+  localparam [PW-1:0]     HALF_SH  = {{(PW-HW-5){1'b0}}, 1'b1, {(HW+4){1'b0}}};  // 2^(HW+4)
+  localparam integer      HWM1     = HW - 1;
+  localparam [KW-1:0]     K_MAX    = HWM1[KW-1:0];
+
+  // ---------------------------------------------------------------------------- input pass-through
+  // v travels with the fragment to S10 (S9 needs it; v_o is its S10 copy).
+  reg [3*VW*NS-1:0] v_q;   // stage k (1..10) at bits [(k-1)*3*VW +: 3*VW]
+  always @(posedge clk_i) begin
+    if (en_i) v_q <= {v_q[3*VW*(NS-1)-1:0], v_i};
+  end
+  wire [3*VW-1:0] v8 = v_q[3*VW*8-1:3*VW*7];   // the S8 copy, multiplied in S9
+  assign v_o = v_q[3*VW*NS-1:3*VW*(NS-1)];
+
+  // ---------------------------------------------------------------------------- S1: s = v·v
+  wire signed [VW-1:0]   vx = v_i[VW-1:0];
+  wire signed [VW-1:0]   vy = v_i[2*VW-1:VW];
+  wire signed [VW-1:0]   vz = v_i[3*VW-1:2*VW];
+  wire signed [2*VW-1:0] sqx = vx * vx;   // <= 2^(2VW-2): non-negative in 2VW bits
+  wire signed [2*VW-1:0] sqy = vy * vy;
+  wire signed [2*VW-1:0] sqz = vz * vz;
+  wire [2*VW-1:0] s_raw = sqx + sqy + sqz;        // < 3·2^(2VW-2) < 2^(2VW): no carry lost
+  wire [SWF-1:0]  s_d;
+  generate
+    if (SWF > 2 * VW) begin : g_frame_pad
+      assign s_d = {{(SWF-2*VW){1'b0}}, s_raw};
+    end else begin : g_frame
+      assign s_d = s_raw;
+    end
+  endgenerate
+
+  reg [SWF-1:0] s1_s_q;
+  always @(posedge clk_i) begin
+    if (en_i) s1_s_q <= s_d;
+  end
+
+  // ---------------------------------------------------------------------------- S2: even normalisation
+  reg [KW-1:0] k_d;
+  integer      i;
+  always @* begin
+    k_d = K_MAX;
+    for (i = 0; i < HW; i = i + 1) begin
+      if (s1_s_q[2*i +: 2] != 2'b00) k_d = K_MAX - i[KW-1:0];
+    end
+  end
+  // barrel shifter: stage b shifts left by 2·2^b when k bit b is set (2k <= SWF-2, nothing lost)
+  reg [SWF-1:0] mn_d;
+  integer       sb;
+  always @* begin
+    mn_d = s1_s_q;
+    for (sb = 0; sb < KW; sb = sb + 1) begin
+      if (k_d[sb]) mn_d = mn_d << (2 << sb);
+    end
+  end
+  generate
+    if (SWF > MW) begin : g_trunc_m
+      wire unused_mn = &{1'b0, mn_d[SWF-MW-1:0]};   // truncated (e2 < 0)
+    end
+  endgenerate
+
+  reg [MW-1:0] s2_m_q;
+  reg [KW-1:0] s2_k_q;
+  always @(posedge clk_i) begin
+    if (en_i) begin
+      s2_m_q <= mn_d[SWF-1:SWF-MW];
+      s2_k_q <= k_d;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S3: seed table
+  // Both tables are elaborated per index from the integer rule (localparams, not a copied list):
+  // entry i at bits [i*T +: T] (seed) and [i*AW +: AW] (a0), for every 7-bit index (the C model
+  // reads 32..127; index 0 only occurs for s = 0, whose result is 0 whatever the entry).
+  genvar b, c;
+  wire [128*T-1:0]  seed_tab;
+  wire [128*AW-1:0] a0_tab;
+  generate
+    for (b = 0; b < 128; b = b + 1) begin : g_table
+      localparam integer SEED = rsqrt_seed(b);
+      localparam integer A0   = rsqrt_a0(b);
+      assign seed_tab[b*T +: T]  = SEED[T-1:0];
+      assign a0_tab[b*AW +: AW]  = A0[AW-1:0];
+    end
+  endgenerate
+  wire [IB-1:0] idx = s2_m_q[MW-1:MW-IB];
+  reg  [T-1:0]  s3_y0_q;
+  reg  [AW-1:0] s3_a0_q;
+  reg  [MW-1:0] s3_m_q;
+  reg  [KW-1:0] s3_k_q;
+  always @(posedge clk_i) begin
+    if (en_i) begin
+      s3_y0_q <= seed_tab[idx*T +: T];
+      s3_a0_q <= a0_tab[idx*AW +: AW];
+      s3_m_q  <= s2_m_q;
+      s3_k_q  <= s2_k_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S4: c0 = 3 − m·a0
+  wire [MW+AW-1:0] ma0 = {{AW{1'b0}}, s3_m_q} * {{MW{1'b0}}, s3_a0_q};
+  wire [R+1:0]     c0_d = THREE_R - ma0[MB+R+1:MB];   // b < 2^(R+1) for every m in range
+  wire unused_ma0 = &{1'b0, ma0[MW+AW-1:MB+R+2], ma0[MB-1:0]};
+  reg  [R+1:0]  s4_c_q;
+  reg  [T-1:0]  s4_y0_q;
+  reg  [MW-1:0] s4_m_q;
+  reg  [KW-1:0] s4_k_q;
+  always @(posedge clk_i) begin
+    if (en_i) begin
+      s4_c_q  <= c0_d;
+      s4_y0_q <= s3_y0_q;
+      s4_m_q  <= s3_m_q;
+      s4_k_q  <= s3_k_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S5: y1
+  wire [T+R+1:0] yc0 = {{(R+2){1'b0}}, s4_y0_q} * {{T{1'b0}}, s4_c_q};
+  wire unused_yc0 = &{1'b0, yc0[T:0]};
+  reg  [R:0]    s5_y_q;
+  reg  [MW-1:0] s5_m_q;
+  reg  [KW-1:0] s5_k_q;
+  always @(posedge clk_i) begin
+    if (en_i) begin
+      s5_y_q <= yc0[T+R+1:T+1];
+      s5_m_q <= s4_m_q;
+      s5_k_q <= s4_k_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S6: a1 = y1²
+  wire [2*R+1:0] yy1 = {{(R+1){1'b0}}, s5_y_q} * {{(R+1){1'b0}}, s5_y_q};
+  wire unused_yy1 = &{1'b0, yy1[R-1:0]};
+  reg  [R+1:0]  s6_a_q;
+  reg  [R:0]    s6_y_q;
+  reg  [MW-1:0] s6_m_q;
+  reg  [KW-1:0] s6_k_q;
+  always @(posedge clk_i) begin
+    if (en_i) begin
+      s6_a_q <= yy1[2*R+1:R];
+      s6_y_q <= s5_y_q;
+      s6_m_q <= s5_m_q;
+      s6_k_q <= s5_k_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S7: c1 = 3 − m·a1
+  wire [MW+R+1:0] ma1 = {{(R+2){1'b0}}, s6_m_q} * {{MW{1'b0}}, s6_a_q};
+  wire [R+1:0]    c1_d = THREE_R - ma1[MB+R+1:MB];
+  wire unused_ma1 = &{1'b0, ma1[MW+R+1:MB+R+2], ma1[MB-1:0]};
+  reg  [R+1:0]  s7_c_q;
+  reg  [R:0]    s7_y_q;
+  reg  [KW-1:0] s7_k_q;
+  always @(posedge clk_i) begin
+    if (en_i) begin
+      s7_c_q <= c1_d;
+      s7_y_q <= s6_y_q;
+      s7_k_q <= s6_k_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S8: y2
+  wire [2*R+2:0] yc1 = {{(R+2){1'b0}}, s7_y_q} * {{(R+1){1'b0}}, s7_c_q};
+  wire unused_yc1 = &{1'b0, yc1[2*R+2], yc1[R:0]};   // y2 < 2^R: bit 2R+2 is 0
+  reg  [R:0]    s8_y_q;
+  reg  [KW-1:0] s8_k_q;
+  always @(posedge clk_i) begin
+    if (en_i) begin
+      s8_y_q <= yc1[2*R+1:R+1];
+      s8_k_q <= s7_k_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S9: p_i = v_i·y2
+  reg [3*PW-1:0] s9_p_q;
+  reg [KW-1:0]   s9_k_q;
+  generate
+    for (c = 0; c < 3; c = c + 1) begin : g_mul
+      wire [VW-1:0] vc = v8[c*VW +: VW];
+      // two's complement product modulo 2^PW: sign-extend v, zero-extend y2 (PW > VW, PW > R+1)
+      wire [PW-1:0] vext = {{(PW-VW){vc[VW-1]}}, vc};
+      wire [PW-1:0] yext = {{(PW-R-1){1'b0}}, s8_y_q};
+      wire [PW-1:0] p_d = vext * yext;
+      always @(posedge clk_i) begin
+        if (en_i) s9_p_q[c*PW +: PW] <= p_d;
+      end
+    end
+  endgenerate
+  always @(posedge clk_i) begin
+    if (en_i) s9_k_q <= s8_k_q;
+  end
+
+  // ---------------------------------------------------------------------------- S10: rounding shift
+  reg [3*OW-1:0] s10_u_q;
+  generate
+    for (c = 0; c < 3; c = c + 1) begin : g_rnd
+      // barrel shifter: p·2^k modulo 2^PW (stage b shifts left by 2^b when k bit b is set)
+      reg [PW-1:0] psh;
+      integer      pb;
+      always @* begin
+        psh = s9_p_q[c*PW +: PW];
+        for (pb = 0; pb < KW; pb = pb + 1) begin
+          if (s9_k_q[pb]) psh = psh << (1 << pb);
+        end
+      end
+      wire [PW-1:0] r_d = psh + HALF_SH;
+      wire unused_r = &{1'b0, r_d[HW+4:0]};
+      always @(posedge clk_i) begin
+        if (en_i) s10_u_q[c*OW +: OW] <= r_d[PW-1:HW+5];
+      end
+    end
+  endgenerate
+  assign u_o = s10_u_q;
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,264 @@
+// ============================================================================================
+// Filename : rtl/sc_recip.v
+// Purpose  : attenuation reciprocal att = 1/q of the lighting core, division-free: leading-one
+//            normalisation of q, the 64-entry table and the Newton–Raphson step of the Schlick NR
+//            unit (same integer rule as schlick_nr_table() / schlick_nr_step(), computed here by
+//            a constant function; rtl/sc_schlick_nr.v is not touched), a rounding shift and
+//            saturation. Bit-accurate C model: recip_att() in cmodel/include/shadecore/light_ops.hpp
+//            (same names as RecipTrace).
+//            A pipeline stage with an enable and no handshake of its own: it is embedded in the
+//            global-enable pipeline of rtl/sc_light.v (en_i = that pipeline's enable).
+//
+// Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
+//   FRAC  F, fraction bits of q and of att (1.0 = 2^F)               8 <= F <= 16 (default 16)
+//   QW    width of the unsigned input q                              1 <= QW <= 64 (default 43)
+//
+// Ports : clk_i             clock, all flops on the rising edge
+//         en_i              enable (the embedding pipeline's global enable)
+//         q_i[QW-1:0]       q, unsigned, F fraction bits
+//         att_o[F+7:0]      att = round_half_up(2^F / (q/2^F)), F fraction bits, saturated to
+//                           ATT_MAX = 2^(F+8) − 1 (q = 0 and every q < 2^(F−8) give ATT_MAX)
+//
+// Latency : LATENCY = 7 enabled edges (stages S1..S7).
+//
+// Datapath (R = F+8 fraction bits of the reciprocal, P = 6 index bits, T = 10 table fraction bits,
+// QWF = max(QW, R+1)):
+//
+//   q_i ─► S1  lz = leading zeros of q in QWF bits; p = QWF−1−lz (msb index)
+//              mt = (q << lz)[QWF−1 : QWF−1−R]       R+1 bits, q/2^p in [1, 2), truncated
+//              sat = q < 2^(F−8) (includes q = 0);  sh = R + p − 2F = QWF+7−F−lz  (>= 0 unless sat)
+//          S2  y0 = TABLE[mt[R−1 : R−6]]             T bits; TABLE[i] = round(2^17 / (2^7 + 2i + 1))
+//          S3  e = ⌊mt·y0 / 2^T⌋;  g = 2^(R+1) − e     R+2 bits
+//          S4  y1 = ⌊y0·g / 2^T⌋                      R+1 bits (< 2^R for every mt, F = 8..16)
+//          S5  e = ⌊mt·y1 / 2^R⌋;  g = 2^(R+1) − e     R+2 bits
+//          S6  y2 = ⌊y1·g / 2^R⌋                      R+1 bits (< 2^R)
+//          S7  a = ⌊(y2 + 2^(sh−1)) / 2^sh⌋ (sh > 0) or y2 (sh = 0), as ((({y2,0} >> sh) + 1) >> 1);
+//              att = sat ? ATT_MAX : min(a, ATT_MAX)
+//
+// Both data-dependent shifts (S1 by lz, S7 by sh) are log2-stage barrel shifters.
+// ============================================================================================
+`default_nettype none
+
+module sc_recip #(
+    parameter integer FRAC = 16,
+    parameter integer QW   = 43
+) (
+    input  wire              clk_i,
+    input  wire              en_i,
+    input  wire [QW-1:0]     q_i,
+    output wire [FRAC+7:0]   att_o
+);
+
+  localparam integer F   = FRAC;
+  localparam integer R   = FRAC + 8;                  // recip_frac
+  localparam integer T   = 10;                        // kSchlickNrTableFrac
+  localparam integer P   = 6;                         // kSchlickNrIndexBits
+  localparam integer QWF = (QW > R + 1) ? QW : R + 1; // normalisation frame
+  localparam integer LZW = clog2(QWF);                // width of lz (0..QWF-1)
+  localparam integer SHC = QWF + 7 - FRAC;            // sh = SHC - lz
+  localparam integer SHW = clog2(SHC + 1);            // width of sh (0..SHC)
+
+  // ---------------------------------------------------------------------------- check configuration
+  // Portable Verilog-2005 elaboration error: a failing check instantiates a module that does not
+  // exist, named after the message; every tool stops with "unknown module <message>".
+  generate
+    if (FRAC < 8 || FRAC > 16) begin : g_check_frac
+      sc_recip_error_illegal_FRAC_legal_range_is_8_to_16 u_error ();
+    end
+    if (QW < 1 || QW > 64) begin : g_check_qw
+      sc_recip_error_illegal_QW_legal_range_is_1_to_64 u_error ();
+    end
+  endgenerate
+
+  // ---------------------------------------------------------------------------- constant functions
+  function integer clog2(input integer x);
+    integer v;
+    begin
+      clog2 = 0;
+      v = 1;
+      while (v < x) begin
+        v = v * 2;
+        clog2 = clog2 + 1;
+      end
+      if (clog2 == 0) clog2 = 1;
+    end
+  endfunction
+
+  // schlick_nr_table(i) of the C model: round-half-up(2^(T+P+1) / (2^(P+1) + 2i + 1)), the
+  // reciprocal of the midpoint of [1 + i/64, 1 + (i+1)/64) with T fraction bits (1016 .. 514).
+  function integer nr_table(input integer i);
+    integer num, den;
+    begin
+      den = (1 << (P + 1)) + 2 * i + 1;
+      num = 1 << (T + P + 1);
+      nr_table = (2 * num + den) / (2 * den);
+    end
+  endfunction
+
+  localparam [R+1:0]  TWO_R   = {1'b1, {(R+1){1'b0}}};       // 2^(R+1)
+  localparam [R:0]    ATT_MAX = {1'b0, {R{1'b1}}};           // 2^(F+8) − 1 = 2^R − 1
+  localparam integer  LZM1    = QWF - 1;
+  localparam [LZW-1:0] LZ_MAX = LZM1[LZW-1:0];
+  localparam [LZW+SHW:0] SH_C = SHC[LZW+SHW:0];
+
+  // ---------------------------------------------------------------------------- S1: normalise
+  wire [QWF-1:0] qf;
+  generate
+    if (QWF > QW) begin : g_frame_pad
+      assign qf = {{(QWF-QW){1'b0}}, q_i};
+    end else begin : g_frame
+      assign qf = q_i;
+    end
+  endgenerate
+
+  reg [LZW-1:0] lz_d;
+  integer       i;
+  always @* begin
+    lz_d = LZ_MAX;
+    for (i = 0; i < QWF; i = i + 1) begin
+      if (qf[i]) lz_d = LZ_MAX - i[LZW-1:0];
+    end
+  end
+  // barrel shifter: stage b shifts left by 2^b when lz bit b is set (lz <= QWF-1, nothing lost)
+  reg [QWF-1:0] qn_d;
+  integer       sb;
+  always @* begin
+    qn_d = qf;
+    for (sb = 0; sb < LZW; sb = sb + 1) begin
+      if (lz_d[sb]) qn_d = qn_d << (1 << sb);
+    end
+  end
+  generate
+    if (QWF > R + 1) begin : g_trunc_mt
+      wire unused_qn = &{1'b0, qn_d[QWF-R-2:0]};     // truncated (p > R)
+    end
+  endgenerate
+  wire            sat_d = (qf[QWF-1:F-8] == {(QWF-F+8){1'b0}});   // q < 2^(F−8)
+  wire [LZW+SHW:0] sh_x  = SH_C - {{(SHW+1){1'b0}}, lz_d};        // >= 0 unless sat
+  wire unused_shx = &{1'b0, sh_x[LZW+SHW:SHW]};                   // sh <= SHC < 2^SHW
+
+  reg [R:0]     s1_mt_q;
+  reg [SHW-1:0] s1_sh_q;
+  reg           s1_sat_q;
+  always @(posedge clk_i) begin
+    if (en_i) begin
+      s1_mt_q  <= qn_d[QWF-1:QWF-1-R];
+      s1_sh_q  <= sh_x[SHW-1:0];
+      s1_sat_q <= sat_d;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S2: table
+  // The table is elaborated per index from the integer rule (localparams, not a copied list).
+  genvar b;
+  wire [64*T-1:0] tab;
+  generate
+    for (b = 0; b < 64; b = b + 1) begin : g_table
+      localparam integer Y0 = nr_table(b);
+      assign tab[b*T +: T] = Y0[T-1:0];
+    end
+  endgenerate
+  wire [P-1:0] idx = s1_mt_q[R-1:R-P];
+
+  reg [T-1:0]   s2_y0_q;
+  reg [R:0]     s2_mt_q;
+  reg [SHW-1:0] s2_sh_q;
+  reg           s2_sat_q;
+  always @(posedge clk_i) begin
+    if (en_i) begin
+      s2_y0_q  <= tab[idx*T +: T];
+      s2_mt_q  <= s1_mt_q;
+      s2_sh_q  <= s1_sh_q;
+      s2_sat_q <= s1_sat_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S3/S4: first step
+  wire [R+T:0] e0_p = {{T{1'b0}}, s2_mt_q} * {{(R+1){1'b0}}, s2_y0_q};   // < 2^(R+1+T)
+  wire [R+1:0] g0_d = TWO_R - {1'b0, e0_p[R+T:T]};                     // 2 − e, e < 2
+  wire unused_e0 = &{1'b0, e0_p[T-1:0]};
+  reg  [R+1:0]   s3_g_q;
+  reg  [T-1:0]   s3_y0_q;
+  reg  [R:0]     s3_mt_q;
+  reg  [SHW-1:0] s3_sh_q;
+  reg            s3_sat_q;
+  always @(posedge clk_i) begin
+    if (en_i) begin
+      s3_g_q   <= g0_d;
+      s3_y0_q  <= s2_y0_q;
+      s3_mt_q  <= s2_mt_q;
+      s3_sh_q  <= s2_sh_q;
+      s3_sat_q <= s2_sat_q;
+    end
+  end
+
+  wire [R+T+1:0] y1_p = {{(R+2){1'b0}}, s3_y0_q} * {{T{1'b0}}, s3_g_q};
+  wire unused_y1 = &{1'b0, y1_p[R+T+1], y1_p[T-1:0]};   // y1 < 2^R: bit R+T+1 is 0
+  reg  [R:0]     s4_y1_q;
+  reg  [R:0]     s4_mt_q;
+  reg  [SHW-1:0] s4_sh_q;
+  reg            s4_sat_q;
+  always @(posedge clk_i) begin
+    if (en_i) begin
+      s4_y1_q  <= y1_p[R+T:T];
+      s4_mt_q  <= s3_mt_q;
+      s4_sh_q  <= s3_sh_q;
+      s4_sat_q <= s3_sat_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S5/S6: second step
+  wire [2*R+1:0] e1_p = {{(R+1){1'b0}}, s4_mt_q} * {{(R+1){1'b0}}, s4_y1_q};
+  wire [R+1:0]   g1_d = TWO_R - e1_p[2*R+1:R];
+  wire unused_e1 = &{1'b0, e1_p[R-1:0]};
+  reg  [R+1:0]   s5_g_q;
+  reg  [R:0]     s5_y1_q;
+  reg  [SHW-1:0] s5_sh_q;
+  reg            s5_sat_q;
+  always @(posedge clk_i) begin
+    if (en_i) begin
+      s5_g_q   <= g1_d;
+      s5_y1_q  <= s4_y1_q;
+      s5_sh_q  <= s4_sh_q;
+      s5_sat_q <= s4_sat_q;
+    end
+  end
+
+  wire [2*R+2:0] y2_p = {{(R+2){1'b0}}, s5_y1_q} * {{(R+1){1'b0}}, s5_g_q};
+  wire unused_y2 = &{1'b0, y2_p[2*R+2:2*R+1], y2_p[R-1:0]};   // y2 < 2^R
+  reg  [R:0]     s6_y2_q;
+  reg  [SHW-1:0] s6_sh_q;
+  reg            s6_sat_q;
+  always @(posedge clk_i) begin
+    if (en_i) begin
+      s6_y2_q  <= y2_p[2*R:R];
+      s6_sh_q  <= s5_sh_q;
+      s6_sat_q <= s5_sat_q;
+    end
+  end
+
+  // ---------------------------------------------------------------------------- S7: round, saturate
+  // barrel shifter: {y2, 0} >> sh (stage b shifts right by 2^b when sh bit b is set)
+  reg [R+1:0] z_d;
+  integer     rb;
+  always @* begin
+    z_d = {s6_y2_q, 1'b0};
+    for (rb = 0; rb < SHW; rb = rb + 1) begin
+      if (s6_sh_q[rb]) z_d = z_d >> (1 << rb);
+    end
+  end
+  wire [R+1:0] a_p = z_d + {{(R+1){1'b0}}, 1'b1};          // no carry out: z <= 2^(R+2) − 2
+  wire [R:0]   a_d = a_p[R+1:1];
+  wire unused_a = &{1'b0, a_p[0]};
+  wire [R:0]   att_d = (s6_sat_q || a_d > ATT_MAX) ? ATT_MAX : a_d;
+  wire unused_att = &{1'b0, att_d[R]};                     // <= ATT_MAX < 2^R
+
+  reg [F+7:0] s7_att_q;
+  always @(posedge clk_i) begin
+    if (en_i) s7_att_q <= att_d[R-1:0];
+  end
+  assign att_o = s7_att_q;
+
+endmodule
+
+`default_nettype wire
