@@ -4,7 +4,7 @@
 //            in fixed point exactly as docs/spec.md §3 (bit-accurate C model:
 //            cmodel/include/shadecore/cs16.hpp, cs16_eval(); same stage names as Cs16Trace).
 //
-// Parameters (illegal values stop elaboration with a message, in Verilator and in Yosys):
+// Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
 //   FRAC   F, fraction bits of cos θ and of the output     8 <= F <= 24        (default 16)
 //   GUARD  G, extra fraction bits through the squarings    4 <= G <= 8, F+G <= 31 (default 5)
 //   CUTOFF 0 = theta_cr (cut when clamped code c < thr(n), thr from mat_thr_i)
@@ -91,21 +91,23 @@ module sc_cs16 #(
   localparam integer BW = FRAC + 13;     // signed width of base = 2^(F+4) - n*d (|n*d| < 2^(F+11))
 
   // ---------------------------------------------------------------------------- check configuration
+  // Portable Verilog-2005 elaboration error: a failing check instantiates a module that does not
+  // exist, named after the message; every tool stops with "unknown module <message>".
   generate
     if (FRAC < 8 || FRAC > 24) begin : g_check_frac
-      $error("sc_cs16: illegal FRAC, legal range is 8..24");
+      sc_cs16_error_illegal_FRAC_legal_range_is_8_to_24 u_error ();
     end
     if (GUARD < 4 || GUARD > 8) begin : g_check_guard
-      $error("sc_cs16: illegal GUARD, legal range is 4..8");
+      sc_cs16_error_illegal_GUARD_legal_range_is_4_to_8 u_error ();
     end
     if (FRAC + GUARD > 31) begin : g_check_work
-      $error("sc_cs16: illegal FRAC+GUARD, must be <= 31");
+      sc_cs16_error_illegal_FRAC_plus_GUARD_must_be_at_most_31 u_error ();
     end
     if (CUTOFF != 0 && CUTOFF != 1) begin : g_check_cutoff
-      $error("sc_cs16: illegal CUTOFF, 0 = theta_cr, 1 = sign_clamp");
+      sc_cs16_error_illegal_CUTOFF_0_is_theta_cr_1_is_sign_clamp u_error ();
     end
     if (TAGW < 1) begin : g_check_tagw
-      $error("sc_cs16: illegal TAGW, must be >= 1");
+      sc_cs16_error_illegal_TAGW_must_be_at_least_1 u_error ();
     end
   endgenerate
 

@@ -5,7 +5,7 @@
 //            (bit-accurate C model: cmodel/include/shadecore/coef.hpp, norm_eval(); stage names
 //            N1/N2 as there).
 //
-// Parameters (illegal values stop elaboration with a message):
+// Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
 //   FRAC      F, fraction bits of the unit output, of the coefficient and of the result
 //             8 <= F <= 24                                                    (default 16)
 //   COEFW     coefficient width I+F (I integer bits); also the result width
@@ -76,18 +76,20 @@ module sc_norm #(
   localparam integer PW = FRAC + 1 + COEFW;  // product width
 
   // ---------------------------------------------------------------------------- check configuration
+  // Portable Verilog-2005 elaboration error: a failing check instantiates a module that does not
+  // exist, named after the message; every tool stops with "unknown module <message>".
   generate
     if (FRAC < 8 || FRAC > 24) begin : g_check_frac
-      $error("sc_norm: illegal FRAC, legal range is 8..24");
+      sc_norm_error_illegal_FRAC_legal_range_is_8_to_24 u_error ();
     end
     if (COEFW < FRAC + 1 || COEFW > FRAC + 16) begin : g_check_coefw
-      $error("sc_norm: illegal COEFW, legal range is FRAC+1..FRAC+16");
+      sc_norm_error_illegal_COEFW_legal_range_is_FRAC_plus_1_to_FRAC_plus_16 u_error ();
     end
     if (COEF_SRC != 0 && COEF_SRC != 1) begin : g_check_src
-      $error("sc_norm: illegal COEF_SRC, 0 = material register, 1 = in_coef_i");
+      sc_norm_error_illegal_COEF_SRC_0_is_material_register_1_is_in_coef_i u_error ();
     end
     if (TAGW < 1) begin : g_check_tagw
-      $error("sc_norm: illegal TAGW, must be >= 1");
+      sc_norm_error_illegal_TAGW_must_be_at_least_1 u_error ();
     end
   endgenerate
 

@@ -6,7 +6,7 @@
 //            fraction bits (docs/spec.md §6; bit-accurate C model: schlick_div_eval() in
 //            cmodel/include/shadecore/schlick.hpp, same stage names as SchlickTrace).
 //
-// Parameters (illegal values stop elaboration with a message, in Verilator and in Yosys):
+// Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
 //   FRAC   F, fraction bits of cos θ and of the output     8 <= F <= 24   (default 16)
 //   TAGW   width of the opaque tag that travels with each fragment, >= 1  (default 8)
 //   (no GUARD: the divider is exact up to its final rounding; mat_thr_i is not used)
@@ -80,12 +80,14 @@ module sc_schlick_div #(
   localparam integer NS = FRAC + 4;    // register stages S0, S1, Q0..Q(F+1) = latency
 
   // ---------------------------------------------------------------------------- check configuration
+  // Portable Verilog-2005 elaboration error: a failing check instantiates a module that does not
+  // exist, named after the message; every tool stops with "unknown module <message>".
   generate
     if (FRAC < 8 || FRAC > 24) begin : g_check_frac
-      $error("sc_schlick_div: illegal FRAC, legal range is 8..24");
+      sc_schlick_div_error_illegal_FRAC_legal_range_is_8_to_24 u_error ();
     end
     if (TAGW < 1) begin : g_check_tagw
-      $error("sc_schlick_div: illegal TAGW, must be >= 1");
+      sc_schlick_div_error_illegal_TAGW_must_be_at_least_1 u_error ();
     end
   endgenerate
 

@@ -8,7 +8,7 @@
 //            0.547 at F = 16; docs/spec.md §6.4). Bit-accurate C model: schlick_nr_eval() in
 //            cmodel/include/shadecore/schlick.hpp (same stage names as SchlickTrace).
 //
-// Parameters (illegal values stop elaboration with a message, in Verilator and in Yosys):
+// Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
 //   FRAC   F, fraction bits of cos θ and of the output     8 <= F <= 24   (default 16)
 //   TAGW   width of the opaque tag that travels with each fragment, >= 1  (default 8)
 //   (no GUARD: the reciprocal carries R = F + 6 fraction bits; mat_thr_i is not used)
@@ -81,12 +81,14 @@ module sc_schlick_nr #(
   localparam integer NS = 10;          // register stages S0..S9 = latency
 
   // ---------------------------------------------------------------------------- check configuration
+  // Portable Verilog-2005 elaboration error: a failing check instantiates a module that does not
+  // exist, named after the message; every tool stops with "unknown module <message>".
   generate
     if (FRAC < 8 || FRAC > 24) begin : g_check_frac
-      $error("sc_schlick_nr: illegal FRAC, legal range is 8..24");
+      sc_schlick_nr_error_illegal_FRAC_legal_range_is_8_to_24 u_error ();
     end
     if (TAGW < 1) begin : g_check_tagw
-      $error("sc_schlick_nr: illegal TAGW, must be >= 1");
+      sc_schlick_nr_error_illegal_TAGW_must_be_at_least_1 u_error ();
     end
   endgenerate
 

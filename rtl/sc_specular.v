@@ -144,7 +144,9 @@ module sc_specular #(
           .out_tag_o  (u_out_tag)
       );
     end else begin : g_check_variant
-      $error("sc_specular: unknown VARIANT (see config/configs.json \"variants\")");
+      // Portable Verilog-2005 elaboration error (Icarus, Verilator, Yosys): an undefined module
+      // named after the message.
+      sc_specular_error_unknown_VARIANT_see_config_configs_json_variants u_error ();
     end
   endgenerate
 
@@ -183,7 +185,8 @@ module sc_specular #(
           .out_tag_o  (out_tag_o)
       );
     end else begin : g_check_norm
-      $error("sc_specular: illegal NORM, 0 = off, 1 = sc_norm after the unit");
+      // Portable elaboration error, as g_check_variant above.
+      sc_specular_error_illegal_NORM_0_is_off_1_is_sc_norm_after_the_unit u_error ();
     end
   endgenerate
 
