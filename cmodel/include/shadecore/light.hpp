@@ -235,6 +235,53 @@ class LightCore {
   Unit unit_;
 };
 
+// ---- latency of rtl/sc_light.v (the same formula as the localparams in its header) -----------
+namespace detail {
+struct LightPipe {
+  int front;  // T_F: stages of the front pipeline (x_j and the sideband registered for the units)
+  int back;   // NB: stages of the back pipeline (colour products, attenuation, sum and clamp)
+};
+inline LightPipe light_pipe(const FeatureSet& fs) {
+  constexpr int NL = 10;  // rtl/sc_normalize.v
+  constexpr int RL = 7;   // rtl/sc_recip.v
+  bool any_att = false, any_point = false;
+  for (auto k : fs.lights) {
+    any_att = any_att || k == LightKind::PointAtt;
+    any_point = any_point || k == LightKind::Point;
+  }
+  const bool need_n = fs.diffuse || fs.specular;                    // N̂·L is computed
+  const bool lv = fs.specular && fs.local_viewer;                    // V̂ = normalise(−P)
+  const bool any_pl = any_att || (need_n && any_point);              // some L̂ = normalise(P_j − P)
+  const int t_nn = (need_n && fs.normalize) ? NL : 0;                // N̂
+  const int t_v = lv ? NL : 0;                                        // V̂
+  const int t_l = any_pl ? NL : 0;                                    // L̂ of point lights
+  const int t_a = std::max(t_nn, t_l);                                // N̂·L operands
+  const int t_h = std::max(t_l, t_v);                                 // H = L + V
+  const int t_rv = std::max(t_a + 2, t_v);                            // R·V operands
+  const int t_x = fs.blinn ? t_h + NL + 1 : (lv ? t_rv + 1 : t_a + 2);  // the unit input x_j
+  const int t_att = NL + 3 + RL;                                      // att (distance, q, 1/q)
+  int t_f = 1;
+  if (need_n) t_f = std::max(t_f, t_a + 1);
+  if (fs.specular) t_f = std::max(t_f, t_x);
+  if (any_att) t_f = std::max(t_f, t_att);
+  return {t_f, any_att ? 4 : 3};
+}
+}  // namespace detail
+
+// Front, the specular unit (with sc_norm when norm) and back, counted in advancing edges.
+inline int LightCore::latency() const {
+  const detail::LightPipe p = detail::light_pipe(fs_);
+  return p.front + (fs_.specular ? unit_.latency() : 0) + p.back;
+}
+
+// With a specular unit the front, the unit and the back are separate elastic segments: while the
+// output is held, a fragment can move through the front and the unit into the unit's output stage,
+// so at least the edges into the back's stages and the taking edge remain (back + 1). Without one,
+// front and back are one global-enable pipeline: exactly latency().
+inline int LightCore::latency_min() const {
+  return fs_.specular ? detail::light_pipe(fs_).back + 1 : latency();
+}
+
 inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fragment& fr, SpecRef ref) const {
   const int F = f_.frac;
   auto v = [F](int64_t code) { return std::ldexp(static_cast<double>(code), -F); };
