@@ -70,7 +70,7 @@ double albedo(const Fn& f, double theta_deg, double phi_deg = 30) {
 
 // (3.9) against Fresnel's equations written independently: Snell's law with a complex index,
 // r_s = (cos i − n cos t)/(cos i + n cos t), r_p = (n cos i − cos t)/(n cos i + cos t).
-TEST(BrdfBlocks, FresnelMatchesComplexSnell) {
+TEST(brdfBlocks, FresnelMatchesComplexSnell) {
   using C = std::complex<double>;
   for (double eta : {0.2, 1.0, 1.5, 2.4})
     for (double kappa : {0.0, 2.39, 3.0})
@@ -91,7 +91,7 @@ TEST(BrdfBlocks, FresnelMatchesComplexSnell) {
 
 // (3.6) and (3.7): peak 1/m² and ∫ D cos δ dω = π (so D/π is a unit-area distribution — the basis of
 // the 1/(4π) normalisation the tests compare with (3.17)'s 1/π).
-TEST(BrdfBlocks, RoughnessFunctionsIntegrateToPi) {
+TEST(brdfBlocks, RoughnessFunctionsIntegrateToPi) {
   for (double m : {0.05, 0.15, 0.3, 0.6}) {
     EXPECT_NEAR(d_beckmann(1.0, m), 1 / (m * m), 1e-9 / (m * m));
     EXPECT_NEAR(d_schlick(1.0, m), 1 / (m * m), 1e-9 / (m * m));
@@ -108,7 +108,7 @@ TEST(BrdfBlocks, RoughnessFunctionsIntegrateToPi) {
 
 // Schlick's Z(t) with t = cos δ is a unit-area distribution after 1/π: the reading of (4.20) chosen here
 // (Z of δ, not of β) is the normalised one. A(w) (4.21) averages to 1 over the azimuth only at p = 1.
-TEST(BrdfBlocks, SchlickZandAAreNormalised) {
+TEST(brdfBlocks, SchlickZandAAreNormalised) {
   for (double r : {1.0, 0.4, 0.1, 0.01}) {
     const auto z = integrate<double>(
         [&](double d) {
@@ -134,7 +134,7 @@ TEST(BrdfBlocks, SchlickZandAAreNormalised) {
   }
 }
 
-TEST(BrdfBlocks, ZeroBelowTheSurfaceAndLafortunePhongLobe) {
+TEST(brdfBlocks, ZeroBelowTheSurfaceAndLafortunePhongLobe) {
   const Vec3 up = normalize(Vec3{0.3, 0.1, 0.9}), down{0.2, 0.1, -0.5};
   for (const Instance& inst : parameter_grid()) {
     EXPECT_EQ(inst.f(down, up, kN, kT), 0.0) << inst.model << " " << inst.params;
@@ -154,23 +154,23 @@ TEST(BrdfBlocks, ZeroBelowTheSurfaceAndLafortunePhongLobe) {
 
 // The quadrature against closed forms: Lambert's albedo is kd; the Phong BRDF's at normal incidence is
 // kd + ks ((n+2)/2π · 2π/(n+2) = 1).
-TEST(BrdfBlocks, AlbedoQuadratureMatchesClosedForms) {
+TEST(brdfBlocks, AlbedoQuadratureMatchesClosedForms) {
   EXPECT_NEAR(albedo(Fn(Lambert{0.7}), 40), 0.7, 1e-9);
   for (double n : {1.0, 10.0, 200.0, 1000.0}) EXPECT_NEAR(albedo(Fn(PhongBrdf{0.25, 0.75, n}), 0), 1.0, 1e-6) << n;
 }
 
 // ---- table 5.1: models that measure physically correct ------------------------------------------
 
-TEST(BrdfTable51, LambertIsPhysicallyCorrect) { expect_physically_correct("Lambert"); }
-TEST(BrdfTable51, PhongBrdfIsPhysicallyCorrect) { expect_physically_correct("Phong BRDF"); }
-TEST(BrdfTable51, AshikhminShirleyIsPhysicallyCorrect) { expect_physically_correct("Ashikhmin-Shirley"); }
-TEST(BrdfTable51, LafortuneNormalisedLobesArePhysicallyCorrect) { expect_physically_correct("Lafortune"); }
+TEST(brdfTable51, LambertIsPhysicallyCorrect) { expect_physically_correct("Lambert"); }
+TEST(brdfTable51, PhongBrdfIsPhysicallyCorrect) { expect_physically_correct("Phong BRDF"); }
+TEST(brdfTable51, AshikhminShirleyIsPhysicallyCorrect) { expect_physically_correct("Ashikhmin-Shirley"); }
+TEST(brdfTable51, LafortuneNormalisedLobesArePhysicallyCorrect) { expect_physically_correct("Lafortune"); }
 // Cook-Torrance and Schlick-Cook-Torrance with the specular term over 4π (unit-area D/π, the half-vector
 // Jacobian 1/4) instead of (3.17)'s π.
-TEST(BrdfTable51, CookTorranceUnitNormalisationIsPhysicallyCorrect) {
+TEST(brdfTable51, CookTorranceUnitNormalisationIsPhysicallyCorrect) {
   expect_physically_correct("Cook-Torrance (1/4π)");
 }
-TEST(BrdfTable51, SchlickCookTorranceUnitNormalisationIsPhysicallyCorrect) {
+TEST(brdfTable51, SchlickCookTorranceUnitNormalisationIsPhysicallyCorrect) {
   expect_physically_correct("Schlick-Cook-Torrance (1/4π)");
 }
 
@@ -178,7 +178,7 @@ TEST(BrdfTable51, SchlickCookTorranceUnitNormalisationIsPhysicallyCorrect) {
 
 // Thesis: not physically correct (after Lewis). Measured: not reciprocal for any parameter set, and the
 // albedo grows without bound as θi → 90° (the 1/cos θi of the BSF).
-TEST(BrdfTable51, PhongClassicCounterExamples) {
+TEST(brdfTable51, PhongClassicCounterExamples) {
   for (const Instance& inst : parameter_grid("Phong classic")) EXPECT_GT(reciprocity(inst.f).max_rel, 0.5) << inst.params;
   const Fn f = PhongClassic{0.4, 0.6, 10};
   const double a85 = albedo(f, 85), a89 = albedo(f, 89.9);
@@ -188,7 +188,7 @@ TEST(BrdfTable51, PhongClassicCounterExamples) {
 
 // Thesis: not physically correct. Measured: not reciprocal (b, cs depend on θi alone; 1/cos θi), and
 // the albedo exceeds 1 near grazing incidence for every parameter set of the grid.
-TEST(BrdfTable51, StraussCounterExamples) {
+TEST(brdfTable51, StraussCounterExamples) {
   for (const Instance& inst : parameter_grid("Strauss")) {
     EXPECT_GT(reciprocity(inst.f).max_rel, 0.5) << inst.params;
     EXPECT_GT(energy(inst).max_albedo, 1.0) << inst.params;
@@ -198,7 +198,7 @@ TEST(BrdfTable51, StraussCounterExamples) {
 // Blinn-Phong (2.10) keeps Phong's (n+2)/(2π) with a lobe in cos δ: reciprocal, but at normal incidence
 // the albedo is 4(n+2)[2(1 − 2^−(n+4)/2)/(n+4) − (1 − 2^−(n+2)/2)/(n+2)]·ks (u = cos(θ/2) substitution),
 // → 4 ks: the quadrature must reproduce that closed form, and it exceeds 1.
-TEST(BrdfTable51, BlinnPhongReciprocalButNotEnergyConserving) {
+TEST(brdfTable51, BlinnPhongReciprocalButNotEnergyConserving) {
   for (const Instance& inst : parameter_grid("Blinn-Phong")) EXPECT_LE(reciprocity(inst.f).max_rel, kRecipTol);
   for (double n : {1.0, 10.0, 50.0, 1000.0}) {
     const double closed = 4 * (n + 2) *
@@ -208,7 +208,7 @@ TEST(BrdfTable51, BlinnPhongReciprocalButNotEnergyConserving) {
   EXPECT_GT(albedo(Fn(BlinnPhong{0.4, 0.6, 50}), 0), 2.0);
 }
 
-TEST(BrdfTable51, SchlickPhongReciprocalButNotEnergyConserving) {
+TEST(brdfTable51, SchlickPhongReciprocalButNotEnergyConserving) {
   for (const Instance& inst : parameter_grid("Schlick-Phong")) EXPECT_LE(reciprocity(inst.f).max_rel, kRecipTol);
   // Schlick's t/(n − n t + t) ≥ t^n (1/(1+x) ≥ e^−x): its lobe holds more energy than cos^n δ's.
   for (double n : {10.0, 200.0}) {
@@ -220,7 +220,7 @@ TEST(BrdfTable51, SchlickPhongReciprocalButNotEnergyConserving) {
 
 // Cook-Torrance as printed, (3.17) with 1/π: reciprocal; the specular term is exactly 4× the unit-
 // normalised one, and with the thesis's own copper sphere (fig. 3.7) the albedo exceeds 1.
-TEST(BrdfTable51, CookTorranceAsPrintedIsFourTimesTooBright) {
+TEST(brdfTable51, CookTorranceAsPrintedIsFourTimesTooBright) {
   for (const Instance& inst : parameter_grid("Cook-Torrance")) EXPECT_LE(reciprocity(inst.f).max_rel, kRecipTol);
   const CookTorrance thesis{0, 1, 0.25, 1.0, 2.39, Microfacet::Thesis}, unit{0, 1, 0.25, 1.0, 2.39, Microfacet::Unit};
   const Vec3 a = spherical(0.4, 0.2), b = spherical(0.7, 3.0);
@@ -230,7 +230,7 @@ TEST(BrdfTable51, CookTorranceAsPrintedIsFourTimesTooBright) {
   EXPECT_GT(worst_albedo("Cook-Torrance").albedo, 1.0);
 }
 
-TEST(BrdfTable51, SchlickCookTorranceAsPrintedExceedsOneForMetals) {
+TEST(brdfTable51, SchlickCookTorranceAsPrintedExceedsOneForMetals) {
   for (const Instance& inst : parameter_grid("Schlick-Cook-Torrance")) EXPECT_LE(reciprocity(inst.f).max_rel, kRecipTol);
   const double copper = albedo(Fn(SchlickCookTorrance{0, 0.8, 0.25, fresnel_f0(1.0, 2.39)}), 0);
   EXPECT_GT(copper, 1.0);
@@ -238,7 +238,7 @@ TEST(BrdfTable51, SchlickCookTorranceAsPrintedExceedsOneForMetals) {
 
 // Ward: reciprocal, but 1/sqrt(cos θi cos θr) makes the albedo grow like 1/sqrt(cos θi) at grazing
 // incidence (×√10 per decade of cos θi) and pass 1 for every m — even ρd = ρs = 0.4 of fig. 4.3.
-TEST(BrdfTable51, WardReciprocalButAlbedoUnboundedAtGrazing) {
+TEST(brdfTable51, WardReciprocalButAlbedoUnboundedAtGrazing) {
   for (const Instance& inst : parameter_grid("Ward")) EXPECT_LE(reciprocity(inst.f).max_rel, kRecipTol);
   const Fn f = Ward{0, 1, 0.1, 0.1};
   const double a1 = albedo(f, 89.99), a2 = albedo(f, 89.999), a3 = albedo(f, 89.9999);
@@ -253,7 +253,7 @@ TEST(BrdfTable51, WardReciprocalButAlbedoUnboundedAtGrazing) {
 // albedo is 1.25 − (2/3) cos θi exactly ((1 − G G')/π reemits, G G' Z A/(4π v v') = 1/(4π)), so it
 // exceeds 1 for cos θi < 3/8; smoother surfaces exceed it more (G = v/(r − r v + v) lets grazing
 // light through).
-TEST(BrdfTable51, SchlickReciprocalButAlbedoAboveOneAtGrazing) {
+TEST(brdfTable51, SchlickReciprocalButAlbedoAboveOneAtGrazing) {
   for (const Instance& inst : parameter_grid("Schlick")) EXPECT_LE(reciprocity(inst.f).max_rel, kRecipTol) << inst.params;
   Schlick literal{{0.05, 0.1, 1.0}, true, {0.9, 1.0, 1.0}};
   literal.literal_theta_i = true;
