@@ -46,3 +46,20 @@ struct RtlRunResult {
 RtlRunResult run_core_rtl(const FeatureSet& fs, const std::vector<sim::CoreCommand>& cmds, const RtlRunOptions& o);
 
 }  // namespace shadecore::cli
+
+namespace shadecore::cli {
+
+// `shadecore cosim --core lighting`: build (or reuse) the core of `features` and co-simulate it in the
+// simulator's random or directed mode. Returns the exit status (0 pass, 2 FAIL); throws for errors.
+struct LightCosimArgs {
+  std::string features = "full";  // a named set of config/configs.json or a JSON file
+  std::string mode = "random";     // random | directed
+  uint64_t count = 100000;
+  uint64_t seed = 0;               // 0 = pick one (printed)
+  double in_stall = 0.0, out_stall = 0.0;
+  std::string json_path;
+  bool quiet = false;
+};
+int lighting_cosim(const LightCosimArgs& a);
+
+}  // namespace shadecore::cli

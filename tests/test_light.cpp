@@ -1,0 +1,299 @@
+// Lighting core C model (docs/lighting.md): the division-free operators against their stated bounds
+// (exhaustive where the input space allows), the hard cases of issue 8 with their documented outputs,
+// the feature-set parser and the host-side setup checks.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "shadecore/features.hpp"
+#include "shadecore/light.hpp"
+#include "shadecore/light_ops.hpp"
+
+using namespace shadecore;
+
+namespace {
+
+// |u_i − 2^F·v_i/|v|| for every component.
+double normalize_err(int F, const int64_t v[3]) {
+  int64_t u[3];
+  normalize3(F, v, u);
+  const double l = std::sqrt(double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2]);
+  double e = 0;
+  for (int i = 0; i < 3; ++i) e = std::max(e, std::fabs(double(u[i]) - std::ldexp(double(v[i]) / l, F)));
+  return e;
+}
+
+}  // namespace
+
+// The seed table follows its integer rule: round-to-nearest of 2^T·8/√(2i+1), 1016 .. 513.
+TEST(LightOps, RsqrtSeedTable) {
+  for (uint32_t i = 32; i < 128; ++i) {
+    const double exact = 1024.0 * 8.0 / std::sqrt(2.0 * i + 1.0);
+    EXPECT_LE(std::fabs(rsqrt_seed(i) - exact), 0.5) << "i = " << i;
+  }
+  EXPECT_EQ(rsqrt_seed(32), 1016u);
+  EXPECT_EQ(rsqrt_seed(127), 513u);
+}
+
+// Bound (docs/lighting.md §3.1): every component within 0.55 output ulps of the exact v_i/|v|.
+// Exhaustive over every mantissa of s at F = 8 and 16 (v = (a, 0, 0) and (a, a, 0), a < 2^20 covers
+// each even/odd exponent with all its mantissas), plus dense random 3-vectors of every magnitude.
+TEST(LightOps, NormalizeBoundExhaustiveAndDense) {
+  for (int F : {8, 16}) {
+    double worst = 0;
+    for (int64_t a = 1; a < (int64_t{1} << 20); ++a) {
+      const int64_t v1[3] = {a, 0, 0}, v2[3] = {a, a, 0}, v3[3] = {-a, a, a};
+      worst = std::max({worst, normalize_err(F, v1), normalize_err(F, v2), normalize_err(F, v3)});
+    }
+    std::mt19937_64 rng(F);
+    for (int i = 0; i < 1000000; ++i) {
+      int64_t v[3];
+      const int bits = 1 + static_cast<int>(rng() % 26);
+      for (auto& x : v) x = static_cast<int64_t>(rng() % (uint64_t{1} << bits)) - (int64_t{1} << (bits - 1));
+      if (v[0] == 0 && v[1] == 0 && v[2] == 0) continue;
+      worst = std::max(worst, normalize_err(F, v));
+    }
+    EXPECT_LE(worst, 0.55) << "F = " << F;
+    EXPECT_GT(worst, 0.5) << "the bound should be nearly tight (round to nearest)";
+  }
+}
+
+TEST(LightOps, NormalizeZeroIsZero) {
+  const int64_t v[3] = {0, 0, 0};
+  int64_t u[3] = {1, 1, 1};
+  normalize3(16, v, u);
+  EXPECT_EQ(u[0], 0);
+  EXPECT_EQ(u[1], 0);
+  EXPECT_EQ(u[2], 0);
+}
+
+// Bound (docs/lighting.md §3.2): |att − 2^(2F)/q| <= 1 output ulp where not saturated; saturated
+// (att_max) exactly where 2^(2F)/q >= att_max. Exhaustive over every q < 2^24 at F = 8 (every
+// mantissa of every exponent up to 2^24) and every mantissa of three exponents at F = 16.
+TEST(LightOps, RecipBoundExhaustive) {
+  auto check = [](int F, uint64_t q, double& worst) {
+    const uint64_t a = recip_att(F, q);
+    const double ex = std::ldexp(1.0, 2 * F) / double(q);
+    if (ex >= double(att_max(F)) + 1) {
+      ASSERT_EQ(a, att_max(F)) << "q = " << q;
+      return;
+    }
+    worst = std::max(worst, std::fabs(double(a) - std::min(ex, double(att_max(F)))));
+  };
+  double worst = 0;
+  for (uint64_t q = 1; q < (uint64_t{1} << 24); ++q) check(8, q, worst);
+  EXPECT_LE(worst, 1.0);
+  worst = 0;
+  for (int p : {8, 16, 30})
+    for (uint64_t m = 0; m < (uint64_t{1} << 24); m += (p == 16 ? 1 : 7)) check(16, (uint64_t{1} << p) + (m >> (24 - std::min(p, 24))) * (p >= 24 ? (uint64_t{1} << (p - 24)) : 1), worst);
+  EXPECT_LE(worst, 1.0);
+  EXPECT_EQ(recip_att(16, 0), att_max(16));
+}
+
+namespace {
+FeatureSet named(const std::string& n) { return feature_set_named_or_file(n); }
+
+struct Rig {
+  LightCore core;
+  LightRegs regs;
+  int F;
+  explicit Rig(const FeatureSet& fs) : core(fs), F(core.format().frac) {
+    double ga[3] = {0.1, 0.1, 0.1};
+    apply(global_writes(core, ga));
+    MaterialParams m;
+    m.specular[0] = m.specular[1] = m.specular[2] = 1.0;
+    m.shininess = 64;
+    apply(material_writes(core, m));
+  }
+  void apply(const std::vector<RegWrite>& ws) {
+    for (const auto& w : ws) regs.write(F, w.addr, w.data);
+  }
+};
+}  // namespace
+
+// N = 0: no diffuse, no specular (f = 0): only emission + a·A + Σ att·a·Ia remains.
+TEST(LightHardCases, ZeroNormalGivesAmbientOnly) {
+  Rig r(named("gl_default"));
+  LightParams lp;
+  lp.ambient[0] = lp.ambient[1] = lp.ambient[2] = 0.25;
+  r.apply(light_writes(r.core, 0, lp));
+  LightCoreTrace t;
+  const Colour c = r.core.eval(r.regs, Fragment{}, &t);
+  EXPECT_EQ(t.light[0].ndl, 0);
+  EXPECT_FALSE(t.light[0].f);
+  const uint64_t expect = t.scene[0] + ((uint64_t{r.regs.ambient[0]} * r.regs.light[0].ambient[0]) >> r.F);
+  EXPECT_EQ(c.c[0], expect);
+}
+
+// N·L exactly 0 and one code either side, with L = (0, 0, 1) exactly.
+TEST(LightHardCases, NdotLAroundZero) {
+  Rig r(named("gl_default"));
+  r.apply(light_writes(r.core, 0, LightParams{}));  // directional (0, 0, 1)
+  const int64_t one = int64_t{1} << r.F;
+  for (int64_t d : {-1, 0, 1}) {
+    Fragment fr;
+    fr.n[0] = one;
+    fr.n[2] = d * 65;  // after GL_NORMALIZE the z component stays of the order of a code
+    LightCoreTrace t;
+    r.core.eval(r.regs, fr, &t);
+    EXPECT_EQ(t.light[0].f, d > 0) << d;
+    EXPECT_EQ(t.light[0].diff, d > 0 ? static_cast<uint32_t>(t.light[0].ndl) : 0u) << d;
+    if (d <= 0) EXPECT_EQ(t.light[0].term[0], uint64_t{0} + ((uint64_t{r.regs.ambient[0]} * r.regs.light[0].ambient[0]) >> r.F));
+  }
+}
+
+// Light at the surface point: D = 0 → L = 0, d = 0, att = 1/kc; with kc = 0 the reciprocal saturates.
+TEST(LightHardCases, LightAtSurfacePoint) {
+  FeatureSet fs = named("full");
+  Rig r(fs);
+  LightParams lp;
+  lp.position[0] = 1, lp.position[1] = 2, lp.position[2] = -3, lp.position[3] = 1;
+  lp.kc = 0.5, lp.kl = 1, lp.kq = 0;
+  r.apply(light_writes(r.core, 0, lp));
+  const double n[3] = {0, 0, 1}, p[3] = {1, 2, -3};
+  LightCoreTrace t;
+  r.core.eval(r.regs, make_fragment(r.F, n, p), &t);
+  EXPECT_EQ(t.light[0].l[0], 0);
+  EXPECT_EQ(t.light[0].d, 0u);
+  EXPECT_EQ(t.light[0].att, uint64_t{2} << r.F);  // 1/0.5
+  r.regs.light[0].kc = 0;                          // raw q = 0 (setup would reject all-zero coefficients)
+  r.regs.light[0].kl = 1 << r.F;
+  r.core.eval(r.regs, make_fragment(r.F, n, p), &t);
+  EXPECT_EQ(t.light[0].att, att_max(r.F));
+}
+
+// Huge distance: the farthest corner of the position range; att stays > 0 and the sum does not wrap.
+TEST(LightHardCases, HugeDistance) {
+  Rig r(named("full"));
+  LightParams lp;
+  lp.position[0] = lp.position[1] = lp.position[2] = 127.99, lp.position[3] = 1;
+  lp.kc = 0, lp.kl = 0, lp.kq = 0.001;
+  r.apply(light_writes(r.core, 0, lp));
+  const double n[3] = {1, 1, 1}, p[3] = {-128, -128, -128};
+  LightCoreTrace t;
+  const Colour c = r.core.eval(r.regs, make_fragment(r.F, n, p), &t);
+  EXPECT_NEAR(std::ldexp(double(t.light[0].d), -r.F), 256 * std::sqrt(3.0), 0.01);
+  EXPECT_GT(t.light[0].att, 0u);
+  EXPECT_LE(c.c[0], 1u << r.F);
+}
+
+// Back-facing: N·L < 0 → no diffuse, no specular.
+TEST(LightHardCases, BackFacing) {
+  Rig r(named("gl_default"));
+  r.apply(light_writes(r.core, 0, LightParams{}));
+  Fragment fr;
+  fr.n[2] = -(int64_t{1} << r.F);
+  LightCoreTrace t;
+  r.core.eval(r.regs, fr, &t);
+  EXPECT_LT(t.light[0].ndl, 0);
+  EXPECT_EQ(t.light[0].diff, 0u);
+  EXPECT_FALSE(t.light[0].f);
+}
+
+// H = 0 (L = −V): the half vector normalises to 0, so x = 0 and the unit's output is 0.
+TEST(LightHardCases, HalfVectorZero) {
+  Rig r(named("gl_default"));
+  LightParams lp;
+  lp.position[2] = -1;  // L = (0, 0, −1) = −V for the infinite viewer
+  r.apply(light_writes(r.core, 0, lp));
+  Fragment fr;
+  fr.n[2] = int64_t{1} << r.F;
+  LightCoreTrace t;
+  r.core.eval(r.regs, fr, &t);
+  EXPECT_EQ(t.light[0].x, 0);
+  EXPECT_EQ(t.light[0].spec, 0u);
+}
+
+// Colour sums far above 1 saturate to exactly 2^F, never wrap; mono leaves channels 1 and 2 at 0.
+TEST(LightHardCases, SaturatesNeverWraps) {
+  for (const char* name : {"full", "mono_spec"}) {
+    Rig r(named(name));
+    const uint32_t cmax = (1u << (r.F + 1)) - 1;
+    for (auto& reg : kRegisters) {
+      if (reg.format != "colour") continue;
+      for (int j = 0; j < (reg.per_light ? kMaxLights : 1); ++j)
+        for (int c = 0; c < reg.count; ++c) r.regs.write(r.F, reg.addr + c + (reg.per_light ? j * kLightStride : 0), cmax);
+    }
+    for (int j = 0; j < r.core.features().num_lights(); ++j) r.regs.light[j].kc = 1;  // att saturates
+    const double n[3] = {0, 0, 1}, p[3] = {0, 0, -1};
+    const Colour c = r.core.eval(r.regs, make_fragment(r.F, n, p));
+    EXPECT_EQ(c.c[0], 1u << r.F) << name;
+    if (r.core.features().channels == 1) {
+      EXPECT_EQ(c.c[1], 0u);
+      EXPECT_EQ(c.c[2], 0u);
+    }
+  }
+}
+
+// Every light off (light colours 0): colour = emission + a·A exactly.
+TEST(LightHardCases, EveryLightOff) {
+  Rig r(named("full"));
+  for (int j = 0; j < kMaxLights; ++j) {
+    LightParams lp;
+    lp.position[3] = 1;
+    lp.diffuse[0] = lp.diffuse[1] = lp.diffuse[2] = 0;
+    lp.specular[0] = lp.specular[1] = lp.specular[2] = 0;
+    r.apply(light_writes(r.core, j, lp));
+  }
+  const double n[3] = {0.2, 0.3, 0.9}, p[3] = {1, 1, -5};
+  LightCoreTrace t;
+  const Colour c = r.core.eval(r.regs, make_fragment(r.F, n, p), &t);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(c.c[ch], t.scene[ch]);
+}
+
+TEST(LightSetup, RejectsAllZeroAttenuationAndBadValues) {
+  LightCore core(named("full"));
+  LightParams lp;
+  lp.position[3] = 1;
+  lp.kc = lp.kl = lp.kq = 0;
+  EXPECT_THROW(light_writes(core, 0, lp), std::invalid_argument);
+  lp.kc = 1;
+  lp.diffuse[0] = -0.1;
+  EXPECT_THROW(light_writes(core, 0, lp), std::invalid_argument);
+  lp.diffuse[0] = 0.5;
+  lp.position[0] = 200;
+  EXPECT_THROW(light_writes(core, 0, lp), std::invalid_argument);
+  EXPECT_THROW(light_writes(core, 8, LightParams{}), std::invalid_argument);
+  MaterialParams m;
+  m.shininess = 15;
+  EXPECT_THROW(material_writes(core, m), std::invalid_argument);
+}
+
+TEST(FeatureSets, NamedSetsParseAndDiffer) {
+  const auto sets = named_feature_sets();
+  ASSERT_GE(sets.size(), 2u);
+  std::set<std::string> keys;
+  for (const auto& s : sets) keys.insert(s.key());
+  EXPECT_EQ(keys.size(), sets.size());
+  const FeatureSet full = named("full");
+  EXPECT_EQ(full.num_lights(), kMaxLights);
+  EXPECT_EQ(full.channels, 3);
+  const FeatureSet diff = named("diffuse");
+  EXPECT_FALSE(diff.specular);
+  EXPECT_EQ(diff.num_lights(), 1);
+}
+
+TEST(FeatureSets, StrictParsing) {
+  using nlohmann::json;
+  auto bad = [](const std::string& text, const std::string& needle) {
+    try {
+      feature_set_from_json(json::parse(text), "t");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    }
+  };
+  bad(R"({"lightz": []})", "unknown key 'lightz'");
+  bad(R"({"lights": []})", "1..8");
+  bad(R"({"lights": ["spot"]})", "unknown light kind 'spot'");
+  bad(R"({"lights": ["point","point","point","point","point","point","point","point","point"]})", "1..8");
+  bad(R"({"channels": 2})", "1 or 3");
+  bad(R"({"ambient": 1})", "true or false");
+  bad(R"({"config": "wide"})", "frac <= 16");
+  bad(R"({"specular": "none", "norm": true})", "'norm' needs a specular unit");
+  bad(R"({"specular": "schlick_div", "cutoff": "sign_clamp"})", "cs16 only");
+  bad(R"({"specular": "phong"})", "unknown variant 'phong'");
+  EXPECT_THROW(feature_set_named_or_file("no_such_set_or_file"), std::invalid_argument);
+}
