@@ -9,6 +9,7 @@ void add_sweep(CLI::App& app);
 void add_fit(CLI::App& app);
 void add_energy(CLI::App& app);
 void add_cosim(CLI::App& app);
+void add_render(CLI::App& app);    // cmd_render.cpp: a scene through the lighting core (docs/scenes.md)
 // Further subcommands (cosim, fit, ...) add a line here and in main.cpp.
 
 }  // namespace shadecore::cli

@@ -1,0 +1,510 @@
+// shadecore render — a scene through the lighting core (docs/scenes.md).
+//
+//   shadecore render SCENE --out DIR [--rtl] [--full-core] [--json FILE] [--size WxH]
+//
+// Derives the smallest feature set(s) that render the scene exactly (one core per specular unit in use),
+// prints them, rasterises on the host (shadecore/raster.hpp: host software, not RTL), and writes into DIR:
+//   cmodel.png       the image through the bit-accurate C model
+//   exact.png        the same fragments through the double reference with exact cos^n
+//   diff_exact.png   cmodel − exact, signed, log scale (red brighter, blue darker; render::diff_rgb8)
+//   rtl.png          (--rtl) the image through the Verilated core, checked pixel by pixel against cmodel.png
+//   diff_rtl.png     (--rtl) white where the RTL pixel differs from the C model's
+//   contact_sheet.png  where the scene asks for one: shading modes × exact / unit / difference
+// Every output is computed first and written at the end, each through a temporary file and a rename; a
+// failure before leaves nothing behind. An RTL image that differs from the C model's is written and the
+// exit status is non-zero.
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "output.hpp"
+#include "png.hpp"
+#include "shadecore/mesh.hpp"
+#include "shadecore/render.hpp"
+#include "shadecore/scene.hpp"
+
+#if defined(SHADECORE_LIGHT_RTL)
+#include "light_rtl.hpp"
+#endif
+
+namespace shadecore::cli {
+namespace {
+
+namespace fsys = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using json = nlohmann::ordered_json;
+
+struct RenderArgs {
+  std::string scene, out, json_path, size;
+  bool rtl = false, full_core = false;
+};
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Progress for a step that may take more than a second: nothing if it ends sooner; otherwise a line on
+// stderr (updated in place on a terminal) and its time at the end.
+class Step {
+ public:
+  explicit Step(std::string label) : label_(std::move(label)), t0_(Clock::now()), tty_(::isatty(STDERR_FILENO)) {
+    th_ = std::thread([this] { loop(); });
+  }
+  Step(const Step&) = delete;
+  Step& operator=(const Step&) = delete;
+  ~Step() { finish(); }
+  void finish() {
+    if (!th_.joinable()) return;
+    {
+      std::lock_guard<std::mutex> lk(mu_);
+      done_ = true;
+    }
+    cv_.notify_all();
+    th_.join();
+    if (shown_) {
+      if (tty_) std::fputs("\r\033[K", stderr);
+      std::fprintf(stderr, "render: %s: %.1f s\n", label_.c_str(), seconds_since(t0_));
+      std::fflush(stderr);
+    }
+  }
+
+ private:
+  void loop() {
+    std::unique_lock<std::mutex> lk(mu_);
+    if (cv_.wait_for(lk, std::chrono::seconds(1), [this] { return done_; })) return;
+    shown_ = true;
+    if (!tty_) {
+      std::fprintf(stderr, "render: %s ...\n", label_.c_str());
+      std::fflush(stderr);
+      return;
+    }
+    do {
+      std::fprintf(stderr, "\rrender: %s ... %.0f s\033[K", label_.c_str(), seconds_since(t0_));
+      std::fflush(stderr);
+    } while (!cv_.wait_for(lk, std::chrono::milliseconds(500), [this] { return done_; }));
+  }
+  std::string label_;
+  Clock::time_point t0_;
+  bool tty_;
+  std::mutex mu_;
+  std::condition_variable cv_;
+  bool done_ = false, shown_ = false;
+  std::thread th_;
+};
+
+json stats_json(const render::ErrorStats& s) {
+  json j;
+  j["max_lsb"] = s.max_lsb;
+  j["mean_lsb"] = s.mean_lsb;
+  j["rms"] = s.rms;
+  j["psnr_db"] = std::isfinite(s.psnr_db) ? json(s.psnr_db) : json(nullptr);
+  j["identical"] = s.samples > 0 && s.max_lsb == 0;
+  j["samples"] = s.samples;
+  if (s.max_x >= 0) j["max_at"] = {s.max_x, s.max_y};
+  return j;
+}
+
+std::string stats_text(const render::ErrorStats& s) {
+  if (s.samples == 0) return "no covered pixels";
+  return fmt::format("max {:.1f} LSB, mean {:.2f} LSB, PSNR {}", s.max_lsb, s.mean_lsb,
+                     std::isfinite(s.psnr_db) ? fmt::format("{:.1f} dB", s.psnr_db) : std::string("inf (identical)"));
+}
+
+// The outputs of one run, written together at the end (see the file comment).
+class Outputs {
+ public:
+  Outputs(std::string dir, std::string json_path) : dir_(std::move(dir)), json_(std::move(json_path)) {}
+
+  // Up front: DIR is (or can be created as) a writable directory, the names in it are not directories,
+  // and --json can be written.
+  void check(const std::vector<std::string>& names) const {
+    if (dir_.empty()) throw std::invalid_argument("--out: empty directory name");
+    std::error_code ec;
+    if (fsys::exists(dir_, ec)) {
+      if (!fsys::is_directory(dir_, ec)) throw std::runtime_error("cannot write to directory " + dir_ + ": not a directory");
+      if (::access(dir_.c_str(), W_OK) != 0) throw std::runtime_error("cannot write to directory " + dir_ + ": permission denied");
+      for (const auto& n : names)
+        if (fsys::is_directory(fsys::path(dir_) / n, ec))
+          throw std::runtime_error("cannot write " + (fsys::path(dir_) / n).string() + ": is a directory");
+    } else {
+      fsys::path anc = fsys::path(dir_).lexically_normal();
+      while (!anc.empty() && !fsys::exists(anc, ec)) anc = anc.has_parent_path() && anc.parent_path() != anc ? anc.parent_path() : fsys::path();
+      if (anc.empty()) anc = ".";
+      if (!fsys::is_directory(anc, ec)) throw std::runtime_error("cannot create directory " + dir_ + ": " + anc.string() + " is not a directory");
+      if (::access(anc.c_str(), W_OK) != 0) throw std::runtime_error("cannot create directory " + dir_ + ": permission denied");
+    }
+    if (!json_.empty()) check_writable_file_in(json_);
+  }
+
+  void add(const std::string& name, std::string content) { files_.emplace_back(name, std::move(content)); }
+  void set_json(std::string content) { json_content_ = std::move(content); }
+
+  void commit() {
+    std::vector<std::string> created_dirs, created_files;
+    try {
+      std::error_code ec;
+      if (!fsys::exists(dir_, ec)) {
+        std::vector<fsys::path> missing;
+        for (fsys::path p = fsys::path(dir_).lexically_normal(); !p.empty() && !fsys::exists(p, ec);
+             p = p.has_parent_path() && p.parent_path() != p ? p.parent_path() : fsys::path())
+          missing.push_back(p);
+        for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+          if (!fsys::create_directory(*it, ec) && ec) throw std::runtime_error("cannot create directory " + it->string() + ": " + ec.message());
+          created_dirs.push_back(it->string());
+        }
+      }
+      for (const auto& [name, content] : files_) {
+        const std::string path = (fsys::path(dir_) / name).string();
+        const bool existed = fsys::exists(fsys::symlink_status(path, ec));
+        write_file_atomic(path, content);
+        if (!existed) created_files.push_back(path);
+      }
+      if (!json_.empty()) {
+        const bool existed = fsys::exists(fsys::symlink_status(json_, ec));
+        write_file_atomic(json_, json_content_);
+        if (!existed) created_files.push_back(json_);
+      }
+    } catch (...) {
+      std::error_code ec;
+      for (const auto& f : created_files) fsys::remove(f, ec);
+      for (auto it = created_dirs.rbegin(); it != created_dirs.rend(); ++it) fsys::remove(*it, ec);
+      throw;
+    }
+  }
+
+ private:
+  static void check_writable_file_in(const std::string& p) { check_writable_file(p); }
+  std::string dir_, json_;
+  std::vector<std::pair<std::string, std::string>> files_;
+  std::string json_content_;
+};
+
+
+std::pair<int, int> parse_size(const std::string& s) {
+  static const std::regex re(R"(^\s*(\d{1,5})\s*[xX]\s*(\d{1,5})\s*$)");
+  std::smatch m;
+  if (!std::regex_match(s, m, re)) throw std::invalid_argument("--size: malformed '" + s + "' (expected WxH, e.g. 64x64)");
+  const int w = std::stoi(m[1].str()), h = std::stoi(m[2].str());
+  if (w < 1 || h < 1 || w > 4096 || h > 4096) throw std::invalid_argument("--size: " + s + " out of range 1..4096");
+  return {w, h};
+}
+
+std::string set_line(const FeatureSet& fs) { return fs.summary() + "  [key " + fs.key() + "]"; }
+
+struct RtlTotals {
+  double sim_seconds = 0, build_seconds = 0;
+  uint64_t cycles = 0, core_mismatches = 0;
+  bool ok = true;
+  json cores = json::array();
+};
+
+// Every fragment of every core through the Verilated RTL.
+std::vector<std::vector<Colour>> run_rtl(const render::Frame& fr, RtlTotals& tot) {
+  std::vector<std::vector<Colour>> out;
+#if defined(SHADECORE_LIGHT_RTL)
+  for (size_t g = 0; g < fr.groups.size(); ++g) {
+    const auto& grp = fr.groups[g];
+    std::vector<sim::CoreCommand> cmds;
+    cmds.reserve(grp.cmds.size());
+    for (const auto& c : grp.cmds) {
+      sim::CoreCommand k;
+      k.is_write = c.is_write;
+      k.w = c.w;
+      k.f = c.f;
+      cmds.push_back(k);
+    }
+    RtlRunOptions o;
+    o.quiet = false;
+    RtlRunResult r;
+    {
+      Step step(fmt::format("RTL core {}/{} ({}): {} fragments", g + 1, fr.groups.size(), grp.fs.key(), grp.dests.size()));
+      r = run_core_rtl(grp.fs, cmds, o);
+    }
+    if (r.colours.size() != grp.dests.size())
+      throw std::runtime_error(fmt::format("RTL core {} returned {} colours for {} fragments ({})", grp.fs.key(),
+                                           r.colours.size(), grp.dests.size(), r.summary));
+    tot.sim_seconds += r.sim_seconds;
+    tot.build_seconds += r.build.build_seconds;
+    tot.cycles += r.cycles;
+    tot.core_mismatches += r.mismatches;
+    tot.ok = tot.ok && r.ok;
+    tot.cores.push_back({{"key", grp.fs.key()},
+                         {"fragments", grp.dests.size()},
+                         {"register_writes", grp.writes},
+                         {"cycles", r.cycles},
+                         {"sim_seconds", r.sim_seconds},
+                         {"core_mismatches", r.mismatches},
+                         {"ok", r.ok},
+                         {"built_now", r.build.built_now},
+                         {"build_seconds", r.build.build_seconds},
+                         {"simulator", r.build.exe},
+                         {"summary", r.summary}});
+    out.push_back(std::move(r.colours));
+  }
+#else
+  (void)fr;
+  (void)tot;
+  throw std::runtime_error("--rtl: this shadecore was built without the lighting-core RTL (SHADECORE_WITH_RTL=OFF)");
+#endif
+  return out;
+}
+
+struct Rendered {
+  render::Frame frame;
+  render::Image image;
+  render::RefImage exact, unit_double;
+  double seconds = 0;
+};
+
+Rendered render_cmodel(const scene::Scene& sc, const std::vector<scene::Mesh>& meshes, const render::Settings& st,
+                       const std::string& what) {
+  Rendered r;
+  const auto t0 = Clock::now();
+  r.frame = render::prepare(sc, meshes, st);
+  size_t frags = 0;
+  for (const auto& g : r.frame.groups) frags += g.dests.size();
+  Step step(fmt::format("C model and references, {}: {} fragments", what, frags));
+  std::vector<std::vector<Colour>> cols;
+  std::vector<std::vector<std::array<double, 3>>> ex, ud;
+  for (const auto& g : r.frame.groups) {
+    cols.push_back(render::run_cmodel(g));
+    ex.push_back(render::run_reference(g, LightCore::SpecRef::Exact));
+    ud.push_back(render::run_reference(g, LightCore::SpecRef::Variant));
+  }
+  r.image = render::resolve(r.frame, cols);
+  r.exact = render::resolve_reference(r.frame, ex);
+  r.unit_double = render::resolve_reference(r.frame, ud);
+  r.seconds = seconds_since(t0);
+  return r;
+}
+
+std::string unit_name(VariantId v) { return std::string(variant_name(v)); }
+
+void run_render(const RenderArgs& a) {
+  const auto t_start = Clock::now();
+  scene::Scene sc;
+  try {
+    sc = scene::load_scene(a.scene);
+  } catch (const scene::SceneError& e) {
+    throw std::runtime_error(e.what());
+  }
+  render::Settings st;
+  st.full_core = a.full_core;
+  if (!a.size.empty()) std::tie(st.width, st.height) = parse_size(a.size);
+  const bool sheet = sc.contact_sheet.has_value();
+  std::vector<std::string> names = {"cmodel.png", "exact.png", "diff_exact.png"};
+  if (a.rtl) names.insert(names.end(), {"rtl.png", "diff_rtl.png"});
+  if (sheet) names.push_back("contact_sheet.png");
+  Outputs outs(a.out, a.json_path);
+  outs.check(names);
+#if !defined(SHADECORE_LIGHT_RTL)
+  if (a.rtl) throw std::runtime_error("--rtl: this shadecore was built without the lighting-core RTL (SHADECORE_WITH_RTL=OFF)");
+#endif
+
+  std::vector<scene::Mesh> meshes;
+  Rendered main;
+  try {
+    for (const auto& o : sc.objects) meshes.push_back(scene::build_mesh(o));
+    main = render_cmodel(sc, meshes, st, "image");
+  } catch (const scene::SceneError& e) {
+    throw std::runtime_error(e.what());
+  }
+  const render::Frame& fr = main.frame;
+
+  // What the scene needs, and the core(s) it is rendered with.
+  fmt::print("scene {}: {}x{}, {} objects, {} lights, {} materials\n", a.scene, fr.width, fr.height, sc.objects.size(),
+             sc.lights.size(), sc.materials.size());
+  json features = json::array();
+  uint64_t total_frags = 0;
+  for (size_t g = 0; g < fr.groups.size(); ++g) {
+    const auto& grp = fr.groups[g];
+    std::string mats;
+    json mj = json::array();
+    for (int m : grp.materials) {
+      mats += (mats.empty() ? "" : ", ") + sc.materials[m].name;
+      mj.push_back(sc.materials[m].name);
+    }
+    fmt::print("core {}/{} (unit {}; materials {}):\n", g + 1, fr.groups.size(), grp.unit_label, mats);
+    fmt::print("  feature set: {}\n", set_line(grp.specialised));
+    if (a.full_core) {
+      std::string subs;
+      for (const auto& s : grp.full_substitutions) subs += (subs.empty() ? "" : ", ") + s;
+      fmt::print("  rendered on the full core: {}{}\n", set_line(grp.fs),
+                 subs.empty() ? std::string() : " — from the scene: " + subs);
+    }
+    fmt::print("  fragments: {} ({} per pixel, {} per vertex, {} per face), {} register writes\n", grp.dests.size(),
+               grp.pixels, grp.vertices, grp.faces, grp.writes);
+    total_frags += grp.dests.size();
+    json fj;
+    fj["core"] = g;
+    fj["unit"] = grp.unit_label;
+    fj["materials"] = mj;
+    fj["name"] = grp.fs.name;
+    fj["key"] = grp.fs.key();
+    fj["summary"] = grp.fs.summary();
+    fj["set"] = grp.fs.canonical();
+    fj["verilog_params"] = grp.fs.verilog_params(32);
+    fj["specialised"] = {{"key", grp.specialised.key()}, {"summary", grp.specialised.summary()}, {"set", grp.specialised.canonical()}};
+    fj["full_substitutions"] = grp.full_substitutions;
+    fj["fragments"] = {{"total", grp.dests.size()}, {"per_pixel", grp.pixels}, {"per_vertex", grp.vertices}, {"per_face", grp.faces}};
+    fj["register_writes"] = grp.writes;
+    fj["error_vs_exact"] = stats_json(render::error_vs(main.image, main.exact, static_cast<int>(g)));
+    fj["error_vs_unit_double"] = stats_json(render::error_vs(main.image, main.unit_double, static_cast<int>(g)));
+    features.push_back(fj);
+  }
+  const auto err_exact = render::error_vs(main.image, main.exact);
+  const auto err_unit = render::error_vs(main.image, main.unit_double);
+  fmt::print("C model: {:.2f} s; vs exact cos^n: {}; vs the unit's own double formula: {}\n", main.seconds,
+             stats_text(err_exact), stats_text(err_unit));
+  json images = json::array();
+  images.push_back({{"name", "cmodel"}, {"file", "cmodel.png"}, {"error_vs_exact", stats_json(err_exact)},
+                    {"error_vs_unit_double", stats_json(err_unit)}});
+  outs.add("cmodel.png", encode_png(fr.width, fr.height, render::to_rgb8(main.image)));
+  outs.add("exact.png", encode_png(fr.width, fr.height, render::to_rgb8(main.exact)));
+  outs.add("diff_exact.png", encode_png(fr.width, fr.height, render::diff_rgb8(main.image, main.exact)));
+
+  // RTL.
+  json rtl_json = nullptr;
+  uint64_t bad_pixels = 0;
+  bool rtl_ok = true;
+  if (a.rtl) {
+    RtlTotals tot;
+    const auto cols = run_rtl(fr, tot);
+    const render::Image rimg = render::resolve(fr, cols);
+    bad_pixels = render::mismatching_pixels(main.image, rimg);
+    rtl_ok = bad_pixels == 0 && tot.ok && tot.core_mismatches == 0;
+    const auto err_rtl = render::error_vs(rimg, main.exact);
+    fmt::print("RTL: {} fragments, {} cycles, {:.2f} s simulated{}; {} mismatching pixels vs the C model{}\n",
+               total_frags, tot.cycles, tot.sim_seconds,
+               tot.build_seconds > 0 ? fmt::format(" (+{:.1f} s core build)", tot.build_seconds) : std::string(),
+               bad_pixels, tot.core_mismatches ? fmt::format(", {} core outputs differ from LightCore::eval", tot.core_mismatches) : std::string());
+    rtl_json = {{"mismatching_pixels", bad_pixels},
+                {"sim_seconds", tot.sim_seconds},
+                {"cycles", tot.cycles},
+                {"fragments", total_frags},
+                {"core_mismatches", tot.core_mismatches},
+                {"build_seconds", tot.build_seconds},
+                {"ok", rtl_ok},
+                {"cores", tot.cores}};
+    images.push_back({{"name", "rtl"}, {"file", "rtl.png"}, {"error_vs_exact", stats_json(err_rtl)},
+                      {"mismatching_pixels_vs_cmodel", bad_pixels}});
+    outs.add("rtl.png", encode_png(fr.width, fr.height, render::to_rgb8(rimg)));
+    outs.add("diff_rtl.png", encode_png(fr.width, fr.height, render::mismatch_rgb8(main.image, rimg)));
+  }
+
+  // Contact sheet: rows = shading modes, columns = exact cos^n, then per unit its image and |unit − exact|.
+  json sheet_json = nullptr;
+  if (sheet) {
+    const auto& cs = *sc.contact_sheet;
+    render::Settings cst;
+    cst.width = cs.cell_width;
+    cst.height = cs.cell_height;
+    cst.camera = cs.camera;
+    cst.objects = cs.objects;
+    const int pad = 6, label_h = 12, row_label_w = 64;
+    const int ncols = 1 + 2 * static_cast<int>(cs.units.size());
+    const int nrows = static_cast<int>(cs.modes.size());
+    Canvas cv(row_label_w + ncols * (cs.cell_width + pad) + pad, label_h + pad + nrows * (cs.cell_height + pad) + pad, 24);
+    std::vector<std::string> col_names = {"exact cos^n"};
+    for (auto u : cs.units) {
+      col_names.push_back(unit_name(u));
+      col_names.push_back(fmt::format("{} - exact (log)", unit_name(u)));
+    }
+    for (int c = 0; c < ncols; ++c) cv.text(row_label_w + c * (cs.cell_width + pad), pad, col_names[c], 230, 230, 230);
+    json rows = json::array();
+    for (int r = 0; r < nrows; ++r) {
+      cst.mode = cs.modes[r];
+      const std::string mode_name = cs.modes[r] ? scene::to_string(*cs.modes[r]) : "scene";
+      const int y = label_h + pad + r * (cs.cell_height + pad);
+      cv.text(pad, y + cs.cell_height / 2 - 3, mode_name, 230, 230, 230);
+      json row;
+      row["mode"] = mode_name;
+      json cells = json::array();
+      for (size_t u = 0; u < cs.units.size(); ++u) {
+        cst.unit = cs.units[u];
+        Rendered cell;
+        try {
+          cell = render_cmodel(sc, meshes, cst, "contact sheet " + mode_name + "/" + unit_name(cs.units[u]));
+        } catch (const scene::SceneError& e) {
+          throw std::runtime_error(e.what());
+        }
+        if (u == 0) cv.blit(row_label_w, y, cs.cell_width, cs.cell_height, render::to_rgb8(cell.exact));
+        const int x = row_label_w + (1 + 2 * static_cast<int>(u)) * (cs.cell_width + pad);
+        cv.blit(x, y, cs.cell_width, cs.cell_height, render::to_rgb8(cell.image));
+        cv.blit(x + cs.cell_width + pad, y, cs.cell_width, cs.cell_height,
+                render::diff_rgb8(cell.image, cell.exact));
+        const auto e = render::error_vs(cell.image, cell.exact);
+        std::string units;
+        for (const auto& g : cell.frame.groups) units += (units.empty() ? "" : "+") + g.unit_label;
+        cells.push_back({{"unit", unit_name(cs.units[u])}, {"cores", units}, {"error_vs_exact", stats_json(e)}});
+        images.push_back({{"name", "contact_sheet/" + mode_name + "/" + unit_name(cs.units[u])},
+                          {"file", "contact_sheet.png"},
+                          {"error_vs_exact", stats_json(e)}});
+        fmt::print("contact sheet {:>8} / {:<12}: vs exact cos^n: {}\n", mode_name, unit_name(cs.units[u]), stats_text(e));
+      }
+      row["cells"] = cells;
+      rows.push_back(row);
+    }
+    outs.add("contact_sheet.png", encode_png(cv.width, cv.height, cv.rgb));
+    sheet_json = {{"file", "contact_sheet.png"}, {"columns", col_names}, {"rows", rows}, {"cell", {cs.cell_width, cs.cell_height}}, {"path", "C model"}};
+  }
+
+  if (!a.json_path.empty()) {
+    json j;
+    j["scene"] = a.scene;
+    j["command"] = command_line();
+    j["width"] = fr.width;
+    j["height"] = fr.height;
+    j["full_core"] = a.full_core;
+    j["features"] = features;
+    j["fragments"] = total_frags;
+    j["error_vs_exact"] = stats_json(err_exact);
+    j["error_vs_unit_double"] = stats_json(err_unit);
+    j["images"] = images;
+    j["cmodel"] = {{"seconds", main.seconds}};
+    j["rtl"] = rtl_json;
+    j["contact_sheet"] = sheet_json;
+    j["seconds"] = seconds_since(t_start);
+    outs.set_json(j.dump(2) + "\n");
+  }
+  outs.commit();
+  fmt::print("wrote {}/{{{}}}{}\n", a.out, [&] {
+    std::string s;
+    for (const auto& n : names) s += (s.empty() ? "" : ",") + n;
+    return s;
+  }(), a.json_path.empty() ? std::string() : " and " + a.json_path);
+  if (!rtl_ok)
+    throw std::runtime_error(fmt::format("RTL render FAILED: {} pixels differ from the C model (images written to {})",
+                                         bad_pixels, a.out));
+}
+
+}  // namespace
+
+void add_render(CLI::App& app) {
+  auto args = std::make_shared<RenderArgs>();
+  auto* sub = app.add_subcommand("render",
+                                 "render a scene through the lighting core: C model, exact reference, and with --rtl the "
+                                 "Verilated core specialised to the scene (docs/scenes.md)");
+  sub->add_option("scene", args->scene, "scene file (JSON, docs/scenes.md)")->required();
+  sub->add_option("--out", args->out, "output directory (created if needed)")->required();
+  sub->add_flag("--rtl", args->rtl, "also render through the Verilated core and check it pixel by pixel");
+  sub->add_flag("--full-core", args->full_core, "use the 'full' feature set instead of the derived one");
+  sub->add_option("--json", args->json_path, "write a JSON report (atomically)");
+  sub->add_option("--size", args->size, "render at WxH instead of the scene's image size (e.g. 64x64)");
+  sub->callback([args] { run_render(*args); });
+}
+
+}  // namespace shadecore::cli

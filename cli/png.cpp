@@ -1,0 +1,144 @@
+// shadecore CLI — PNG encoding through libpng and the contact sheet's canvas.
+#include "png.hpp"
+
+#include <png.h>
+
+#include <cctype>
+#include <cstring>
+#include <stdexcept>
+
+namespace shadecore::cli {
+
+namespace {
+void on_write(png_structp p, png_bytep data, png_size_t n) {
+  auto* out = static_cast<std::string*>(png_get_io_ptr(p));
+  out->append(reinterpret_cast<const char*>(data), n);
+}
+void on_flush(png_structp) {}
+void on_error(png_structp, png_const_charp msg) { throw std::runtime_error(std::string("PNG encoding failed: ") + msg); }
+void on_warning(png_structp, png_const_charp) {}
+}  // namespace
+
+std::string encode_png(int width, int height, const std::vector<uint8_t>& rgb) {
+  if (width <= 0 || height <= 0 || rgb.size() != static_cast<size_t>(width) * height * 3)
+    throw std::invalid_argument("encode_png: bad image size");
+  std::string out;
+  png_structp p = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, on_error, on_warning);
+  if (!p) throw std::runtime_error("PNG encoding failed: out of memory");
+  png_infop info = png_create_info_struct(p);
+  if (!info) {
+    png_destroy_write_struct(&p, nullptr);
+    throw std::runtime_error("PNG encoding failed: out of memory");
+  }
+  try {
+    png_set_write_fn(p, &out, on_write, on_flush);
+    png_set_IHDR(p, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8, PNG_COLOR_TYPE_RGB,
+                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(p, info);
+    for (int y = 0; y < height; ++y)
+      png_write_row(p, const_cast<png_bytep>(rgb.data() + static_cast<size_t>(y) * width * 3));
+    png_write_end(p, nullptr);
+  } catch (...) {
+    png_destroy_write_struct(&p, &info);
+    throw;
+  }
+  png_destroy_write_struct(&p, &info);
+  return out;
+}
+
+Canvas::Canvas(int w, int h, uint8_t grey) : width(w), height(h), rgb(static_cast<size_t>(w) * h * 3, grey) {}
+
+void Canvas::blit(int x, int y, int w, int h, const std::vector<uint8_t>& src) {
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const int X = x + i, Y = y + j;
+      if (X < 0 || Y < 0 || X >= width || Y >= height) continue;
+      std::memcpy(&rgb[(static_cast<size_t>(Y) * width + X) * 3], &src[(static_cast<size_t>(j) * w + i) * 3], 3);
+    }
+}
+
+namespace {
+// 5×7 glyphs, one string of 7 rows × 5 columns ('#' = ink).
+struct Glyph {
+  char c;
+  const char* rows;
+};
+constexpr Glyph kFont[] = {
+    {'A', " ### #   ##   #######   ##   ##   #"},
+    {'B', "#### #   ##   ##### #   ##   ##### "},
+    {'C', " ### #   ##    #    #    #   # ### "},
+    {'D', "#### #   ##   ##   ##   ##   ##### "},
+    {'E', "######    #    #### #    #    #####"},
+    {'F', "######    #    #### #    #    #    "},
+    {'G', " ### #   ##    # ####   ##   # ####"},
+    {'H', "#   ##   ##   #######   ##   ##   #"},
+    {'I', " ###   #    #    #    #    #   ### "},
+    {'J', "  ###   #    #    #    # #  #  ##  "},
+    {'K', "#   ##  # # #  ##   # #  #  # #   #"},
+    {'L', "#    #    #    #    #    #    #####"},
+    {'M', "#   ### ### # ## # ##   ##   ##   #"},
+    {'N', "#   ###  ## # ##  ###   ##   ##   #"},
+    {'O', " ### #   ##   ##   ##   ##   # ### "},
+    {'P', "#### #   ##   ##### #    #    #    "},
+    {'Q', " ### #   ##   ##   ## # ##  #  ## #"},
+    {'R', "#### #   ##   ##### # #  #  # #   #"},
+    {'S', " #####    #     ###     #    ##### "},
+    {'T', "#####  #    #    #    #    #    #  "},
+    {'U', "#   ##   ##   ##   ##   ##   # ### "},
+    {'V', "#   ##   ##   ##   ##   # # #   #  "},
+    {'W', "#   ##   ##   ## # ## # ## # # # # "},
+    {'X', "#   ##   # # #   #   # # #   ##   #"},
+    {'Y', "#   ##   # # #   #    #    #    #  "},
+    {'Z', "#####    #   #   #   #   #    #####"},
+    {'0', " ### #   ##  ### # ###  ##   # ### "},
+    {'1', "  #   ##    #    #    #    #   ### "},
+    {'2', " ### #   #    #   #   #   #   #####"},
+    {'3', "#####   #   #     #     ##   # ### "},
+    {'4', "   #   ##  # # #  # #####   #    # "},
+    {'5', "######    ####     #    ##   # ### "},
+    {'6', "  ##  #   #    #### #   ##   # ### "},
+    {'7', "#####    #   #   #   #    #    #   "},
+    {'8', " ### #   ##   # ### #   ##   # ### "},
+    {'9', " ### #   ##   # ####    #   #  ##  "},
+    {'/', "    #    #   #   #   #   #    #    "},
+    {'-', "               #####               "},
+    {'.', "                          ##   ##  "},
+    {':', "      ##   ##        ##   ##       "},
+    {'(', "   #   #   #    #    #     #     # "},
+    {')', " #     #     #    #    #   #   #   "},
+    {'^', "  #   # # #   #                    "},
+    {'=', "          #####     #####          "},
+    {',', "                     ##    #   #   "},
+    {'+', "       #    #  #####  #    #       "},
+    {'|', "  #    #    #    #    #    #    #  "},
+    {'_', "                              #####"},
+};
+}  // namespace
+
+void Canvas::text(int x, int y, const std::string& s, uint8_t r, uint8_t g, uint8_t b, int scale) {
+  int cx = x;
+  for (char ch0 : s) {
+    const char ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch0)));
+    const char* rows = nullptr;
+    for (const auto& gl : kFont)
+      if (gl.c == ch) rows = gl.rows;
+    if (rows) {
+      const size_t n = std::strlen(rows);
+      for (int j = 0; j < 7; ++j)
+        for (int i = 0; i < 5; ++i) {
+          const size_t k = static_cast<size_t>(j) * 5 + i;
+          if (k >= n || rows[k] != '#') continue;
+          for (int sy = 0; sy < scale; ++sy)
+            for (int sx = 0; sx < scale; ++sx) {
+              const int X = cx + i * scale + sx, Y = y + j * scale + sy;
+              if (X < 0 || Y < 0 || X >= width || Y >= height) continue;
+              uint8_t* px = &rgb[(static_cast<size_t>(Y) * width + X) * 3];
+              px[0] = r, px[1] = g, px[2] = b;
+            }
+        }
+    }
+    cx += 6 * scale;
+  }
+}
+
+}  // namespace shadecore::cli

@@ -1,0 +1,267 @@
+// shadecore — tests of `shadecore render`'s library (shadecore/render.hpp) on the C model: the derived
+// feature sets are the smallest that render the scene, and the full core reproduces the specialised
+// core's image bit for bit (for every example scene and for scenes built to hit every substitution).
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "shadecore/mesh.hpp"
+#include "shadecore/render.hpp"
+#include "shadecore/scene.hpp"
+
+#ifndef SHADECORE_SOURCE_DIR
+#error "SHADECORE_SOURCE_DIR must point at the source tree"
+#endif
+
+namespace {
+
+using namespace shadecore;
+using shadecore::render::Frame;
+using shadecore::render::Settings;
+
+std::string scene_path(const std::string& name) { return std::string(SHADECORE_SOURCE_DIR) + "/scenes/" + name; }
+
+struct Loaded {
+  scene::Scene sc;
+  std::vector<scene::Mesh> meshes;
+};
+Loaded load(const std::string& name) {
+  Loaded l;
+  l.sc = scene::load_scene(scene_path(name));
+  for (const auto& o : l.sc.objects) l.meshes.push_back(scene::build_mesh(o));
+  return l;
+}
+Loaded parse(const std::string& text) {
+  Loaded l;
+  l.sc = scene::parse_scene(text, "inline.json", std::string(SHADECORE_SOURCE_DIR) + "/scenes");
+  for (const auto& o : l.sc.objects) l.meshes.push_back(scene::build_mesh(o));
+  return l;
+}
+
+render::Image cmodel_image(const Frame& fr) {
+  std::vector<std::vector<Colour>> cols;
+  for (const auto& g : fr.groups) cols.push_back(render::run_cmodel(g));
+  return render::resolve(fr, cols);
+}
+
+Frame frame(const Loaded& l, bool full, int w = 96, int h = 64) {
+  Settings s;
+  s.full_core = full;
+  s.width = w;
+  s.height = h;
+  return render::prepare(l.sc, l.meshes, s);
+}
+
+uint64_t covered(const render::Image& img) {
+  uint64_t n = 0;
+  for (auto c : img.covered) n += c;
+  return n;
+}
+
+// Specialised and full core: identical codes in every pixel; and the full core really is bigger.
+void expect_full_identical(const Loaded& l, int w = 96, int h = 64) {
+  const Frame spec = frame(l, false, w, h), full = frame(l, true, w, h);
+  ASSERT_EQ(spec.groups.size(), full.groups.size());
+  for (size_t g = 0; g < spec.groups.size(); ++g) {
+    EXPECT_EQ(full.groups[g].fs.num_lights(), 8);
+    EXPECT_TRUE(full.groups[g].fs.norm && full.groups[g].fs.ambient && full.groups[g].fs.diffuse &&
+                full.groups[g].fs.specular && full.groups[g].fs.normalize);
+    EXPECT_EQ(full.groups[g].fs.channels, 3);
+    EXPECT_EQ(full.groups[g].dests.size(), spec.groups[g].dests.size());
+  }
+  const auto a = cmodel_image(spec), b = cmodel_image(full);
+  EXPECT_GT(covered(a), static_cast<uint64_t>(w * h / 20));
+  EXPECT_EQ(render::mismatching_pixels(a, b), 0u) << l.sc.file;
+}
+
+TEST(RenderFeatures, DiffuseSceneGetsTheSmallestSet) {
+  const auto l = load("diffuse.json");
+  const Frame fr = frame(l, false);
+  ASSERT_EQ(fr.groups.size(), 1u);
+  const FeatureSet& fs = fr.groups[0].fs;
+  EXPECT_EQ(fs.lights, std::vector<LightKind>{LightKind::Directional});
+  EXPECT_TRUE(fs.ambient);
+  EXPECT_TRUE(fs.diffuse);
+  EXPECT_FALSE(fs.specular);
+  EXPECT_FALSE(fs.norm);
+  EXPECT_TRUE(fs.normalize);  // Phong-shaded objects interpolate normals
+  EXPECT_EQ(fs.channels, 3);
+  EXPECT_EQ(fs.key(), fr.groups[0].specialised.key());
+}
+
+TEST(RenderFeatures, SpheresSceneOneCorePerSpecularUnit) {
+  const auto l = load("spheres.json");
+  const Frame fr = frame(l, false);
+  ASSERT_EQ(fr.groups.size(), 2u);
+  EXPECT_EQ(fr.groups[0].unit_label, "cs16/theta_cr");
+  EXPECT_EQ(fr.groups[1].unit_label, "schlick_nr");
+  for (const auto& g : fr.groups) {
+    EXPECT_EQ(g.fs.lights, (std::vector<LightKind>{LightKind::Directional, LightKind::PointAtt, LightKind::PointAtt}));
+    EXPECT_TRUE(g.fs.specular);
+    EXPECT_TRUE(g.fs.blinn);
+    EXPECT_FALSE(g.fs.local_viewer);
+  }
+  EXPECT_EQ(fr.groups[1].fs.variant, VariantId::schlick_nr);
+  // The floor (no specular colour) shares the first core.
+  EXPECT_EQ(fr.groups[0].materials.size(), 3u);
+}
+
+TEST(RenderFeatures, MeshSceneMonoPointLocalViewerPhong) {
+  const auto l = load("mesh.json");
+  const Frame fr = frame(l, false);
+  ASSERT_EQ(fr.groups.size(), 1u);
+  const FeatureSet& fs = fr.groups[0].fs;
+  EXPECT_EQ(fs.lights, std::vector<LightKind>{LightKind::Point});
+  EXPECT_EQ(fs.channels, 1);
+  EXPECT_TRUE(fs.local_viewer);
+  EXPECT_FALSE(fs.blinn);
+  EXPECT_EQ(fs.cutoff, Cutoff::SignClamp);
+  EXPECT_GT(fr.groups[0].faces, 0u);   // the flat icosahedron
+  EXPECT_GT(fr.groups[0].pixels, 0u);  // the Phong knot
+}
+
+const char* kBase = R"({
+  "image": {"width": 64, "height": 48},
+  "camera": {"eye": [0, 0, 6], "center": [0, 0, 0], "up": [0, 1, 0], "fovy": 40, "near": 1, "far": 20},
+  %LIGHTMODEL%
+  "lights": [%LIGHTS%],
+  "materials": {%MATERIALS%},
+  "objects": [%OBJECTS%]
+})";
+std::string make(const std::string& lights, const std::string& materials, const std::string& objects,
+                 const std::string& light_model = "") {
+  std::string s = kBase;
+  auto rep = [&s](const std::string& k, const std::string& v) { s.replace(s.find(k), k.size(), v); };
+  rep("%LIGHTMODEL%", light_model.empty() ? "" : "\"light_model\": " + light_model + ",");
+  rep("%LIGHTS%", lights);
+  rep("%MATERIALS%", materials);
+  rep("%OBJECTS%", objects);
+  return s;
+}
+const std::string kSphere = R"({"type": "sphere", "slices": 16, "stacks": 10, "material": "m", "shading": "%S%",
+                                "transform": {"translate": [-0.6, 0, 0]}},
+                               {"type": "torus", "sides": 10, "rings": 16, "material": "%M2%", "shading": "%S2%",
+                                "transform": {"translate": [1.2, 0.2, -1], "rotate": [50, 1, 0.2, 0]}})";
+std::string objects(const std::string& s1, const std::string& s2, const std::string& m2 = "m") {
+  std::string o = kSphere;
+  o.replace(o.find("%S%"), 3, s1);
+  o.replace(o.find("%M2%"), 4, m2);
+  o.replace(o.find("%S2%"), 4, s2);
+  return o;
+}
+
+TEST(RenderFeatures, MinimalityRules) {
+  // Flat and Gouraud only: unit normals from the host, no GL_NORMALIZE.
+  {
+    const auto l = parse(make(R"({"position": [0, 1, 1, 0]})", R"("m": {"specular": [0.5, 0.5, 0.5], "shininess": 32})",
+                              objects("flat", "gouraud")));
+    const Frame fr = frame(l, false);
+    ASSERT_EQ(fr.groups.size(), 1u);
+    EXPECT_FALSE(fr.groups[0].fs.normalize);
+    EXPECT_EQ(fr.groups[0].fs.channels, 1);  // all grey
+  }
+  // A light with zero colours, and one whose only colour is specular in a scene without specular
+  // materials, are not built; an all-zero specular light colour leaves no specular unit.
+  {
+    const auto l = parse(make(R"({"position": [0, 1, 1, 0], "diffuse": [0, 0, 0], "specular": [0, 0, 0]},
+                                 {"position": [1, 1, 1, 1], "diffuse": [0, 0, 0], "specular": [1, 1, 1]},
+                                 {"position": [-1, 1, 1, 0], "diffuse": [0.5, 0.2, 0.2], "specular": [0, 0, 0]})",
+                              R"("m": {"diffuse": [0.6, 0.6, 0.6]})", objects("phong", "phong")));
+    const Frame fr = frame(l, false);
+    ASSERT_EQ(fr.groups.size(), 1u);
+    const FeatureSet& fs = fr.groups[0].fs;
+    EXPECT_EQ(fs.lights, std::vector<LightKind>{LightKind::Directional});
+    EXPECT_EQ(fr.groups[0].light_slot, std::vector<int>{2});
+    EXPECT_FALSE(fs.specular);
+    EXPECT_EQ(fs.channels, 3);
+    EXPECT_TRUE(fs.normalize);
+  }
+  // Ambient off when nothing ambient or emissive reaches the core.
+  {
+    const auto l = parse(make(R"({"position": [0, 1, 1, 0]})", R"("m": {"ambient": [0, 0, 0], "diffuse": [0.6, 0.6, 0.6]})",
+                              objects("gouraud", "gouraud"), R"({"ambient": [0.2, 0.2, 0.2]})"));
+    const Frame fr = frame(l, false);
+    EXPECT_FALSE(fr.groups[0].fs.ambient);
+    EXPECT_FALSE(fr.groups[0].fs.specular);
+  }
+}
+
+TEST(RenderFullCore, ExampleScenesIdenticalOnTheFullCore) {
+  for (const char* s : {"diffuse.json", "spheres.json", "shading_modes.json", "mesh.json"}) {
+    SCOPED_TRACE(s);
+    expect_full_identical(load(s));
+  }
+}
+
+// Scenes built to hit every difference between a specialised set and 'full': unused light slots,
+// directional lights (substituted), point lights without attenuation on point_att slots (att = 1 exactly),
+// energy normalisation on some materials only (coefficient 1.0 for the others), no GL_NORMALIZE on the
+// specialised core (host normals are fixed points of the normaliser), mono, Phong reflection, local and
+// infinite viewer, each specular unit, emission, materials without specular sharing a specular core.
+TEST(RenderFullCore, EverySubstitutionIdentical) {
+  const std::vector<std::string> units = {"cs16", "schlick_div", "schlick_nr", "schlick_iter"};
+  int n = 0;
+  for (const auto& unit : units)
+    for (const char* reflection : {"blinn", "phong"})
+      for (const char* viewer : {"false", "true"})
+        for (const char* mode : {"flat", "gouraud", "phong"}) {
+          const std::string lights = R"({"position": [-1, 1, 2, 0], "diffuse": [0.7, 0.6, 0.5], "specular": [1, 1, 1]},
+               {"position": [2, 1, 3, 1], "diffuse": [0.3, 0.4, 0.6], "specular": [0.8, 0.8, 0.8], "ambient": [0.05, 0.05, 0.05]},
+               {"position": [0, -2, 2, 1], "diffuse": [0.5, 0.5, 0.5], "specular": [0.5, 0.5, 0.5],
+                "constant_attenuation": 0.5, "linear_attenuation": 0.2, "quadratic_attenuation": 0.05})";
+          const std::string mats = R"("m": {"emission": [0.05, 0, 0], "diffuse": [0.8, 0.5, 0.3], "specular": [0.7, 0.7, 0.7],
+                 "shininess": 50, "specular_unit": ")" + unit + R"(",
+                 "normalization": {"model": "blinn"}},
+               "plain": {"diffuse": [0.3, 0.6, 0.3], "specular": [0.4, 0.4, 0.4], "shininess": 200,
+                 "specular_unit": ")" + unit + R"("},
+               "matte": {"diffuse": [0.6, 0.6, 0.6]})";
+          const std::string objs = objects(mode, n % 2 ? "phong" : "gouraud", n % 3 == 0 ? "matte" : "plain");
+          const std::string lm = std::string(R"({"reflection": ")") + reflection + R"(", "local_viewer": )" + viewer + "}";
+          SCOPED_TRACE(unit + " " + reflection + " local_viewer=" + viewer + " " + mode);
+          expect_full_identical(parse(make(lights, mats, objs, lm)), 48, 40);
+          ++n;
+        }
+  // Mono, one point light without attenuation, no ambient.
+  expect_full_identical(parse(make(R"({"position": [1, 2, 3, 1]})",
+                                   R"("m": {"ambient": [0, 0, 0], "diffuse": [0.5, 0.5, 0.5], "specular": [0.5, 0.5, 0.5], "shininess": 20})",
+                                   objects("phong", "flat"), R"({"ambient": [0, 0, 0]})")));
+}
+
+// The identity above can fail: the literal 'full' set (its light 0 a point_att light) renders a
+// directional light differently, which is why the derivation substitutes it.
+TEST(RenderFullCore, LiteralFullSetDiffersForADirectionalLight) {
+  const auto l = load("diffuse.json");
+  const Frame spec = frame(l, false);
+  Frame full = frame(l, true);
+  ASSERT_FALSE(full.groups[0].full_substitutions.empty());
+  EXPECT_EQ(full.groups[0].full_substitutions[0], "light 0 directional");
+  full.groups[0].fs = feature_set_named_or_file("full");
+  EXPECT_GT(render::mismatching_pixels(cmodel_image(spec), cmodel_image(full)), 100u);
+}
+
+TEST(RenderImage, DeterministicAndReferenceClose) {
+  const auto l = load("shading_modes.json");
+  const Frame a = frame(l, false, 120, 80), b = frame(l, false, 120, 80);
+  const auto ia = cmodel_image(a), ib = cmodel_image(b);
+  EXPECT_EQ(ia.code, ib.code);
+  // Against the unit's own double formula the core is within a few LSB on average (quantisation only);
+  // flat faces are one colour each.
+  std::vector<std::vector<std::array<double, 3>>> ud;
+  for (const auto& g : a.groups) ud.push_back(render::run_reference(g, LightCore::SpecRef::Variant));
+  const auto e = render::error_vs(ia, render::resolve_reference(a, ud));
+  EXPECT_LT(e.mean_lsb, 8.0);
+  EXPECT_GT(e.samples, 1000u);
+}
+
+TEST(RenderImage, SizeOverrideAndCoverage) {
+  const auto l = load("diffuse.json");
+  const Frame fr = frame(l, false, 33, 17);
+  const auto img = cmodel_image(fr);
+  EXPECT_EQ(img.width, 33);
+  EXPECT_EQ(img.height, 17);
+  EXPECT_EQ(img.code.size(), 33u * 17u * 3u);
+  EXPECT_GT(covered(img), 100u);
+}
+
+}  // namespace
