@@ -7,7 +7,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config
-  libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev
+  libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libtinyobjloader-dev
   verilator libsystemc-dev yosys iverilog
   python3 python3-numpy python3-matplotlib zlib1g-dev
   "$@"
