@@ -180,6 +180,7 @@ RtlRunResult run_core_rtl(const FeatureSet& feat, const std::vector<sim::CoreCom
                           quote((tmp / "cmds.bin").string()) + " --out " + quote((tmp / "out.bin").string()) +
                           fmt::format(" --in-stall {} --out-stall {} --seed {}", o.in_stall, o.out_stall, o.seed) +
                           " > " + quote((tmp / "log.txt").string()) + " 2>&1";
+  ::setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
   int rc;
   {
     size_t frags = 0;
@@ -223,6 +224,7 @@ int lighting_cosim(const LightCosimArgs& a) {
   const std::string cmd = quote(b.exe) + " --mode " + a.mode + " --label " + quote(feat.name) +
                           fmt::format(" --count {} --seed {} --in-stall {} --out-stall {}", a.count, seed,
                                       a.in_stall, a.out_stall);
+  ::setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
   std::FILE* p = ::popen((cmd + " 2>&1").c_str(), "r");
   if (!p) throw std::runtime_error("cannot start " + b.exe);
   std::string out, line;

@@ -45,18 +45,15 @@ struct LightPins {
   sc_core::sc_signal<bool> reg_ready{"reg_ready", false};
   sc_core::sc_signal<bool> in_valid{"in_valid", false};
   sc_core::sc_signal<bool> in_ready{"in_ready", false};
-  sc_core::sc_signal<uint32_t> in_n[3] = {sc_core::sc_signal<uint32_t>{"in_nx", 0},
-                                          sc_core::sc_signal<uint32_t>{"in_ny", 0},
-                                          sc_core::sc_signal<uint32_t>{"in_nz", 0}};
-  sc_core::sc_signal<uint32_t> in_p[3] = {sc_core::sc_signal<uint32_t>{"in_px", 0},
-                                          sc_core::sc_signal<uint32_t>{"in_py", 0},
-                                          sc_core::sc_signal<uint32_t>{"in_pz", 0}};
+  sc_core::sc_signal<uint32_t> in_nx{"in_nx", 0}, in_ny{"in_ny", 0}, in_nz{"in_nz", 0};
+  sc_core::sc_signal<uint32_t> in_px{"in_px", 0}, in_py{"in_py", 0}, in_pz{"in_pz", 0};
+  sc_core::sc_signal<uint32_t>* const in_n[3] = {&in_nx, &in_ny, &in_nz};
+  sc_core::sc_signal<uint32_t>* const in_p[3] = {&in_px, &in_py, &in_pz};
   sc_core::sc_signal<uint32_t> in_tag{"in_tag", 0};
   sc_core::sc_signal<bool> out_valid{"out_valid", false};
   sc_core::sc_signal<bool> out_ready{"out_ready", false};
-  sc_core::sc_signal<uint32_t> out_c[3] = {sc_core::sc_signal<uint32_t>{"out_r", 0},
-                                           sc_core::sc_signal<uint32_t>{"out_g", 0},
-                                           sc_core::sc_signal<uint32_t>{"out_b", 0}};
+  sc_core::sc_signal<uint32_t> out_r{"out_r", 0}, out_g{"out_g", 0}, out_b{"out_b", 0};
+  sc_core::sc_signal<uint32_t>* const out_c[3] = {&out_r, &out_g, &out_b};
   sc_core::sc_signal<uint32_t> out_tag{"out_tag", 0};
 
   int frac = 16;
@@ -65,14 +62,14 @@ struct LightPins {
   [[nodiscard]] Fragment in_payload() const {
     Fragment f;
     for (int i = 0; i < 3; ++i) {
-      f.n[i] = sign_extend(in_n[i].read(), light_normal_bits(frac));
-      f.p[i] = sign_extend(in_p[i].read(), light_pos_bits(frac));
+      f.n[i] = sign_extend(in_n[i]->read(), light_normal_bits(frac));
+      f.p[i] = sign_extend(in_p[i]->read(), light_pos_bits(frac));
     }
     return f;
   }
   [[nodiscard]] Colour out_payload() const {
     Colour c;
-    for (int i = 0; i < 3; ++i) c.c[i] = out_c[i].read();
+    for (int i = 0; i < 3; ++i) c.c[i] = out_c[i]->read();
     return c;
   }
   static Colour corrupt(Colour c) {
@@ -97,8 +94,8 @@ struct LightPins {
     const uint32_t nm = static_cast<uint32_t>(mask_bits(light_normal_bits(frac)));
     const uint32_t pm = static_cast<uint32_t>(mask_bits(light_pos_bits(frac)));
     for (int i = 0; i < 3; ++i) {
-      in_n[i].write(static_cast<uint32_t>(f.n[i]) & nm);
-      in_p[i].write(static_cast<uint32_t>(f.p[i]) & pm);
+      in_n[i]->write(static_cast<uint32_t>(f.n[i]) & nm);
+      in_p[i]->write(static_cast<uint32_t>(f.p[i]) & pm);
     }
     in_tag.write(tag);
   }
@@ -113,18 +110,18 @@ struct LightPins {
     dut.reg_ready_o(reg_ready);
     dut.in_valid_i(in_valid);
     dut.in_ready_o(in_ready);
-    dut.in_nx_i(in_n[0]);
-    dut.in_ny_i(in_n[1]);
-    dut.in_nz_i(in_n[2]);
-    dut.in_px_i(in_p[0]);
-    dut.in_py_i(in_p[1]);
-    dut.in_pz_i(in_p[2]);
+    dut.in_nx_i(in_nx);
+    dut.in_ny_i(in_ny);
+    dut.in_nz_i(in_nz);
+    dut.in_px_i(in_px);
+    dut.in_py_i(in_py);
+    dut.in_pz_i(in_pz);
     dut.in_tag_i(in_tag);
     dut.out_valid_o(out_valid);
     dut.out_ready_i(out_ready);
-    dut.out_r_o(out_c[0]);
-    dut.out_g_o(out_c[1]);
-    dut.out_b_o(out_c[2]);
+    dut.out_r_o(out_r);
+    dut.out_g_o(out_g);
+    dut.out_b_o(out_b);
     dut.out_tag_o(out_tag);
   }
 };

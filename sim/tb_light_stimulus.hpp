@@ -66,10 +66,12 @@ class LightStimulus {
     }
     if (frags_ >= count_) return false;
     if (u01() < write_rate_) {
-      random_writes();
-      c = pending_.front();
-      pending_.pop_front();
-      return true;
+      random_writes();  // may come out empty (every raw pick was a unit-contract register)
+      if (!pending_.empty()) {
+        c = pending_.front();
+        pending_.pop_front();
+        return true;
+      }
     }
     c.is_write = false;
     c.f = random_fragment();
