@@ -14,6 +14,9 @@ int main(int argc, char** argv) {
   shadecore::cli::add_fit(app);
   shadecore::cli::add_energy(app);
   shadecore::cli::add_cosim(app);
+  shadecore::cli::add_eval(app);
+  shadecore::cli::add_vectors(app);
+  shadecore::cli::add_handoff(app);
   shadecore::cli::add_render(app);
   try {
     app.parse(argc, argv);

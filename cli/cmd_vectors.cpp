@@ -1,0 +1,190 @@
+// shadecore vectors — stimulus and expected results from the bit-exact C model (shadecore::Unit,
+// the model the co-simulation scoreboard uses), as a hex file any simulator can read with $readmemh.
+//
+//   shadecore vectors --variant cs16 --config default --mode hard --out hard.hex
+//   shadecore vectors --variant schlick_nr --config narrow --mode random --count 5000 --seed 7 --out r.hex
+//   shadecore vectors --config narrow --norm phong --mode exhaustive --n 16..20 --out e.hex
+//
+// File format (also written as the file's header): one vector per line, five hex words
+//   N THR COEF COS EXPECTED
+// N = mat_n_i (11 bits), THR = mat_thr_i (F+1 bits, 0 for units without a threshold), COEF =
+// mat_coef_i (COEFW bits, 0 without NORM), COS = in_cos_i (F+2-bit two's complement), EXPECTED =
+// out_spec_o (F+1 bits, COEFW with NORM). Lines starting with // are comments.
+#include <cinttypes>
+#include <random>
+
+#include <fmt/core.h>
+
+#include "commands.hpp"
+#include "output.hpp"
+#include "shadecore/hard_cases.hpp"
+#include "unit_spec.hpp"
+
+namespace shadecore::cli {
+
+namespace {
+
+// splitmix64: the same sequence on every platform and standard library (the seed in a vector
+// file's header reproduces the file).
+struct SplitMix {
+  uint64_t s;
+  uint64_t next() {
+    uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  int64_t uniform(int64_t lo, int64_t hi) {  // inclusive; the modulo bias (< 2^-30) does not matter here
+    return lo + static_cast<int64_t>(next() % static_cast<uint64_t>(hi - lo + 1));
+  }
+};
+
+constexpr uint64_t kMaxVectors = 20'000'000;  // ~0.8 GB of text; split larger exhaustive runs by --n
+
+int hex_digits(int bits) { return (bits + 3) / 4; }
+
+struct VectorsArgs {
+  std::shared_ptr<UnitOptions> unit = std::make_shared<UnitOptions>();
+  VectorRequest req;
+  std::string n_range = "16..1024";
+  std::string out;
+  CLI::Option* count_opt = nullptr;
+  CLI::Option* seed_opt = nullptr;
+  CLI::Option* n_opt = nullptr;
+};
+
+void run(VectorsArgs& a) {
+  const UnitSpec spec = resolve_unit(*a.unit);
+  VectorRequest req = a.req;
+  if (req.mode != "hard" && req.mode != "random" && req.mode != "exhaustive")
+    throw std::invalid_argument("unknown mode '" + req.mode + "' (known: hard, random, exhaustive)");
+  const auto [lo, hi] = parse_range(a.n_range);
+  validate_n(lo);
+  validate_n(hi);
+  req.n_lo = lo;
+  req.n_hi = hi;
+  if (req.mode == "hard" && a.n_opt->count() > 0)
+    throw std::invalid_argument("--n does not apply to --mode hard (the hard-case list fixes its exponents)");
+  if (req.mode != "random" && (a.count_opt->count() > 0 || a.seed_opt->count() > 0))
+    throw std::invalid_argument("--count and --seed apply to --mode random only");
+  if (req.mode == "random" && req.count == 0) throw std::invalid_argument("--count must be >= 1");
+  if (req.mode == "random" && req.seed == 0) req.seed = pick_seed();
+  check_output_path(a.out);
+
+  const std::vector<TestVector> v = make_vectors(spec, req);
+  write_output_file(a.out, format_vectors(spec, req, v));
+  fmt::print("vectors: {} {} vector(s) for {}{} -> {}\n", v.size(), req.mode, spec.describe(),
+             req.mode == "random" ? fmt::format(", seed {}", req.seed) : "", a.out);
+}
+
+}  // namespace
+
+uint64_t pick_seed() {
+  std::random_device rd;
+  uint64_t s = (static_cast<uint64_t>(rd()) << 32) ^ rd();
+  s &= 0x7fffffffull;  // fits the testbench's +seed= (a 32-bit integer) as well
+  return s == 0 ? 1 : s;
+}
+
+std::vector<TestVector> make_vectors(const UnitSpec& spec, const VectorRequest& req) {
+  const Unit unit = spec.unit();
+  const Format& f = spec.format;
+  const int64_t one = f.one();
+  std::vector<TestVector> v;
+  auto add = [&](int n, const UnitMaterial& m, int64_t code) {
+    v.push_back(TestVector{n, m.thr, m.coef, code, unit.eval(m, code)});
+  };
+  if (req.mode == "hard") {
+    // shadecore::hard_cases(): the list the C model tests and the directed co-simulation use.
+    for (const HardCase& h : hard_cases(f)) add(h.n, unit.setup(h.n), h.code);
+  } else if (req.mode == "exhaustive") {
+    const uint64_t per_n = static_cast<uint64_t>(one) + 1 + 4;
+    const uint64_t total = per_n * static_cast<uint64_t>(req.n_hi - req.n_lo + 1);
+    if (total > kMaxVectors)
+      throw std::invalid_argument(fmt::format("exhaustive run of {} vectors is over the limit of {}; split it with --n",
+                                              total, kMaxVectors));
+    v.reserve(total);
+    for (int n = req.n_lo; n <= req.n_hi; ++n) {
+      const UnitMaterial m = unit.setup(n);
+      for (int64_t c = 0; c <= one; ++c) add(n, m, c);
+      for (int64_t c : {f.in_min(), int64_t{-1}, one + 1, f.in_max()}) add(n, m, c);  // clamp, never wrap
+    }
+  } else {
+    if (req.seed == 0) throw std::invalid_argument("random vectors need a non-zero seed");
+    if (req.count > kMaxVectors)
+      throw std::invalid_argument(fmt::format("--count {} is over the limit of {}", req.count, kMaxVectors));
+    SplitMix rng{req.seed};
+    v.reserve(req.count);
+    int n = static_cast<int>(rng.uniform(req.n_lo, req.n_hi));
+    UnitMaterial m = unit.setup(n);
+    for (uint64_t i = 0; i < req.count; ++i) {
+      if (i > 0 && rng.next() % 8 == 0) {  // material runs of ~8 fragments: writes between fragments
+        n = static_cast<int>(rng.uniform(req.n_lo, req.n_hi));
+        m = unit.setup(n);
+      }
+      const uint64_t r = rng.next() % 100;
+      int64_t code;
+      if (r < 70) {
+        code = rng.uniform(0, one);                       // in range
+      } else if (r < 80) {
+        code = rng.uniform(f.in_min(), f.in_max());       // the whole signed word (clamping)
+      } else {
+        int64_t centre;                                   // near 0, 1.0, thr(n), the base zero
+        switch (rng.next() % 4) {
+          case 0: centre = 0; break;
+          case 1: centre = one; break;
+          case 2: centre = cs16_setup(f, n).thr; break;
+          default: centre = one - ((int64_t{1} << (f.frac + 4)) / n); break;
+        }
+        code = std::clamp<int64_t>(centre + rng.uniform(-4, 4), f.in_min(), f.in_max());
+      }
+      add(n, m, code);
+    }
+  }
+  return v;
+}
+
+std::string format_vectors(const UnitSpec& spec, const VectorRequest& req, const std::vector<TestVector>& v) {
+  const Format& f = spec.format;
+  const int wn = hex_digits(kNBits), wt = hex_digits(f.frac + 1), wc = hex_digits(spec.coef_bits()),
+            wx = hex_digits(f.in_bits()), we = hex_digits(spec.out_bits());
+  const uint64_t cos_mask = (uint64_t{1} << f.in_bits()) - 1;
+  std::string s;
+  s += "// shadecore vectors: " + spec.describe() + "\n";
+  s += "// mode " + req.mode;
+  if (req.mode == "random") s += fmt::format(", seed {}, n {}..{}", req.seed, req.n_lo, req.n_hi);
+  if (req.mode == "exhaustive") s += fmt::format(", n {}..{}: every code 0..2^F, then -2^(F+1), -1, 2^F+1, 2^(F+1)-1", req.n_lo, req.n_hi);
+  if (req.mode == "hard") s += " (shadecore::hard_cases: input extremes, 1.0 +-2, thr +-2, the base zero +-2, 12 exponents)";
+  s += fmt::format("; {} vectors\n", v.size());
+  s += "// made by: " + command_line() + "\n";
+  s += "// expected values: the bit-exact C model (cmodel/include/shadecore/unit.hpp), as the co-simulation\n";
+  s += "// format: one vector per line, five hex words N THR COEF COS EXPECTED ($readmemh into a 32-bit memory,\n";
+  s += "// 5 words a vector; // lines are comments):\n";
+  s += fmt::format("//   N        mat_n_i, 11 bits, exponent n (16..1024)\n");
+  s += fmt::format("//   THR      mat_thr_i, F+1 = {} bits, thr(n) = ceil(cos(6/sqrt(n))*2^F); 0 where unused\n", f.frac + 1);
+  s += fmt::format("//   COEF     mat_coef_i, COEFW = {} bits, coefficient code (8 integer, F fraction bits); 0 without NORM\n",
+                   spec.coef_bits());
+  s += fmt::format("//   COS      in_cos_i, F+2 = {} bits, two's complement, 1.0 = 0x{:x}\n", f.in_bits(), f.one());
+  s += fmt::format("//   EXPECTED out_spec_o, {} bits, 1.0 = 0x{:x}\n", spec.out_bits(), f.one());
+  s += "// apply: load N, THR, COEF with mat_we_i (one cycle without a fragment) whenever they differ from the\n";
+  s += "// loaded material, then present COS; the result must equal EXPECTED bit for bit.\n";
+  s.reserve(s.size() + v.size() * static_cast<size_t>(wn + wt + wc + wx + we + 5));
+  for (const TestVector& t : v)
+    s += fmt::format("{:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x}\n", t.n, wn, t.thr, wt, t.coef, wc,
+                     static_cast<uint64_t>(t.code) & cos_mask, wx, t.expected, we);
+  return s;
+}
+
+void add_vectors(CLI::App& app) {
+  auto a = std::make_shared<VectorsArgs>();
+  auto* sub = app.add_subcommand("vectors", "Write test vectors (stimulus + expected results from the C model) as hex");
+  add_unit_options(sub, a->unit);
+  sub->add_option("--mode", a->req.mode, "hard (the hard-case list) | random | exhaustive");
+  a->count_opt = sub->add_option("--count", a->req.count, "Random: number of vectors (default 1000)");
+  a->seed_opt = sub->add_option("--seed", a->req.seed, "Random: seed (default: picked and recorded in the file)");
+  a->n_opt = sub->add_option("--n", a->n_range, "Random, exhaustive: exponent range LO..HI or N (default 16..1024)");
+  sub->add_option("--out", a->out, "Output file (written atomically)")->required();
+  sub->callback([a] { run(*a); });
+}
+
+}  // namespace shadecore::cli

@@ -1,0 +1,297 @@
+// `shadecore eval`, `shadecore vectors` and the argument checks of `shadecore handoff` (issue 11).
+// The bundles themselves are simulated by the ctest tests handoff.* (handoff/test_bundle.sh).
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_run.hpp"
+#include "shadecore/configs.hpp"
+#include "shadecore/golden.hpp"
+#include "shadecore/hard_cases.hpp"
+#include "shadecore/unit.hpp"
+
+namespace fs = std::filesystem;
+using shadecore::testing::CliRun;
+using shadecore::testing::expect_one_line_error;
+using shadecore::testing::run_cli;
+
+namespace {
+
+fs::path temp_dir(const std::string& tag) {
+  const fs::path d = fs::temp_directory_path() / ("shadecore_h11_" + tag + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct Line {
+  uint32_t n, thr, coef, cos, expected;
+};
+
+// Data lines of a vector file (five hex words each), header lines skipped.
+std::vector<Line> read_vectors(const fs::path& p, std::string* header = nullptr) {
+  std::ifstream in(p);
+  std::string line;
+  std::vector<Line> v;
+  while (std::getline(in, line)) {
+    if (line.rfind("//", 0) == 0) {
+      if (header) *header += line + "\n";
+      continue;
+    }
+    std::stringstream ss(line);
+    Line l{};
+    ss >> std::hex >> l.n >> l.thr >> l.coef >> l.cos >> l.expected;
+    EXPECT_FALSE(ss.fail()) << line;
+    std::string rest;
+    EXPECT_FALSE(ss >> rest) << "more than five words: " << line;
+    v.push_back(l);
+  }
+  return v;
+}
+
+int64_t sign_extend(uint32_t word, int bits) {
+  const int sh = 64 - bits;
+  return static_cast<int64_t>(static_cast<uint64_t>(word) << sh) >> sh;
+}
+
+nlohmann::json eval_json(const std::string& args) {
+  const CliRun r = run_cli("eval " + args + " --json -");
+  EXPECT_EQ(r.status, 0) << args << "\n" << r.err;
+  return nlohmann::json::parse(r.out);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------- eval
+TEST(EvalCli, BadArgumentsGiveOneLineErrors) {
+  expect_one_line_error("eval --n 15 --code 0", "out of range");
+  expect_one_line_error("eval --n 128", "exactly one of --code K and --cos X");
+  expect_one_line_error("eval --n 128 --code 1 --cos 0.5", "exactly one of --code K and --cos X");
+  expect_one_line_error("eval --n 128 --code 0x40000", "does not fit");
+  expect_one_line_error("eval --n 128 --code 131072", "out of range");
+  expect_one_line_error("eval --n 128 --code 12x", "malformed --code");
+  expect_one_line_error("eval --n 128 --cos 2.5", "outside the input word");
+  expect_one_line_error("eval --variant nosuch --n 128 --code 0", "unknown variant");
+  expect_one_line_error("eval --variant schlick_div --cutoff sign_clamp --n 128 --code 0", "cs16 only");
+  expect_one_line_error("eval --coef classical --n 128 --code 0", "--coef needs --norm");
+  expect_one_line_error("eval --norm nosuch --n 128 --code 0", "unknown model");
+  expect_one_line_error("eval --frac 25 --n 128 --code 0", "fraction width 25 out of range");
+  expect_one_line_error("eval --n 128 --code 0 --json /nonexistent-dir/e.json", "cannot write");
+}
+
+TEST(EvalCli, PrintsTheTraceAndMatchesTheModel) {
+  const CliRun r = run_cli("eval --n 128 --cos 0.95");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* s : {"S0  c", "S0  d", "S1  base", "S1  cut", "S1  x0", "S2  x1", "S3  x2", "S4  x3", "S5  x4",
+                        "S6  out", "out_spec_o", "cos^n", "cs16 ="})
+    EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
+  const auto j = eval_json("--n 128 --cos 0.95");
+  const shadecore::Format f = shadecore::default_format();
+  const shadecore::Unit u(shadecore::VariantId::cs16, f, shadecore::Cutoff::ThetaCr);
+  EXPECT_EQ(j["code"].get<int64_t>(), 62259);  // round(0.95 * 2^16)
+  EXPECT_EQ(j["out"].get<uint32_t>(), u.eval(u.setup(128), 62259));
+  EXPECT_EQ(j["trace"]["x"].size(), 5u);
+  // Hex codes are the raw (F+2)-bit word: 0x3ffff is -1 at F = 16 (clamped to 0: output 0).
+  const auto neg = eval_json("--n 128 --code 0x3ffff");
+  EXPECT_EQ(neg["code"].get<int64_t>(), -1);
+  EXPECT_EQ(neg["out"].get<uint32_t>(), 0u);
+  const auto one = eval_json("--n 1024 --code 0x10000");
+  EXPECT_EQ(one["out"].get<uint32_t>(), 65536u);
+  // Schlick and NORM: the output is Unit::eval of the same configuration.
+  shadecore::Unit nu(shadecore::VariantId::schlick_nr, shadecore::config_named("narrow").format, shadecore::Cutoff::ThetaCr);
+  nu.set_norm(true, static_cast<int>(shadecore::Model::Blinn), shadecore::CoefKind::Classical);
+  const auto sj = eval_json("--variant schlick_nr --config narrow --norm blinn --coef classical --n 300 --code 200");
+  EXPECT_EQ(sj["out"].get<uint32_t>(), nu.eval(nu.setup(300), 200));
+  EXPECT_EQ(sj["material"]["coef"].get<uint32_t>(), nu.setup(300).coef);
+  EXPECT_TRUE(sj["trace"].contains("mt"));
+  EXPECT_TRUE(sj["trace"].contains("norm"));
+}
+
+// The sweep's extreme quantisation errors, re-evaluated one by one with eval, give the same numbers.
+TEST(EvalCli, AgreesWithTheSweepExtremes) {
+  const fs::path d = temp_dir("sweep");
+  for (const std::string variant : {"cs16", "schlick_nr", "schlick_div"}) {
+    const fs::path js = d / (variant + ".json");
+    const CliRun s = run_cli("sweep --variant " + variant + " --frac 10 --n 16..60 --no-progress --json " + js.string());
+    ASSERT_EQ(s.status, 0) << s.err;
+    const auto sj = nlohmann::json::parse(slurp(js));
+    for (const char* which : {"max", "min"}) {
+      const auto& e = sj["quant_ulp"][which];
+      const auto j = eval_json("--variant " + variant + " --frac 10 --n " + std::to_string(e["n"].get<int>()) +
+                               " --code " + std::to_string(e["code"].get<int64_t>()));
+      EXPECT_NEAR(j["double"]["error_ulp"].get<double>(), e["value"].get<double>(), 1e-9) << variant << " " << which;
+    }
+  }
+  fs::remove_all(d);
+}
+
+// ---------------------------------------------------------------------------- vectors
+TEST(VectorsCli, HardCasesFromTheModel) {
+  const fs::path d = temp_dir("hard");
+  const fs::path out = d / "hard.hex";
+  const CliRun r = run_cli("vectors --mode hard --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::string header;
+  const auto v = read_vectors(out, &header);
+  const shadecore::Format f = shadecore::default_format();
+  const auto hc = shadecore::hard_cases(f);
+  ASSERT_EQ(v.size(), hc.size());
+  EXPECT_NE(header.find(std::to_string(hc.size()) + " vectors"), std::string::npos) << header;
+  EXPECT_NE(header.find("N THR COEF COS EXPECTED"), std::string::npos);
+  const shadecore::Unit u(shadecore::VariantId::cs16, f, shadecore::Cutoff::ThetaCr);
+  for (size_t i = 0; i < v.size(); ++i) {
+    const auto m = u.setup(hc[i].n);
+    EXPECT_EQ(v[i].n, static_cast<uint32_t>(hc[i].n));
+    EXPECT_EQ(v[i].thr, m.thr);
+    EXPECT_EQ(v[i].coef, 0u);
+    EXPECT_EQ(sign_extend(v[i].cos, f.in_bits()), hc[i].code);
+    EXPECT_EQ(v[i].expected, u.eval(m, hc[i].code));
+  }
+  // eval of a few lines gives the file's EXPECTED word.
+  for (size_t i : {size_t{7}, v.size() / 2, v.size() - 3}) {
+    const auto j = eval_json("--n " + std::to_string(v[i].n) + " --code " + std::to_string(sign_extend(v[i].cos, f.in_bits())));
+    EXPECT_EQ(j["out"].get<uint32_t>(), v[i].expected) << i;
+  }
+  fs::remove_all(d);
+}
+
+TEST(VectorsCli, RandomIsReproducibleFromItsSeed) {
+  const fs::path d = temp_dir("rand");
+  auto make = [&](const std::string& name, const std::string& args) {
+    const CliRun r = run_cli("vectors --variant schlick_div --config narrow --mode random " + args + " --out " + (d / name).string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    std::string header;
+    auto v = read_vectors(d / name, &header);
+    return std::make_pair(v, header);
+  };
+  const auto [a, ha] = make("a.hex", "--count 500 --seed 42");
+  const auto [b, hb] = make("b.hex", "--count 500 --seed 42");
+  const auto [c, hc] = make("c.hex", "--count 500 --seed 43");
+  const auto [p, hp] = make("p.hex", "--count 300");  // seed picked and recorded
+  ASSERT_EQ(a.size(), 500u);
+  EXPECT_EQ(slurp(d / "a.hex").substr(slurp(d / "a.hex").find("\n0")), slurp(d / "b.hex").substr(slurp(d / "b.hex").find("\n0")));
+  EXPECT_NE(slurp(d / "a.hex").substr(slurp(d / "a.hex").find("\n0")), slurp(d / "c.hex").substr(slurp(d / "c.hex").find("\n0")));
+  EXPECT_NE(ha.find("seed 42"), std::string::npos);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(hp, m, std::regex("seed (\\d+)"))) << hp;
+  const auto [q, hq] = make("q.hex", "--count 300 --seed " + m[1].str());
+  EXPECT_EQ(slurp(d / "p.hex").substr(slurp(d / "p.hex").find("\n0")), slurp(d / "q.hex").substr(slurp(d / "q.hex").find("\n0")));
+  // Several materials, out-of-range codes, and every expected value from the model.
+  const shadecore::Format f = shadecore::config_named("narrow").format;
+  const shadecore::Unit u(shadecore::VariantId::schlick_div, f, shadecore::Cutoff::ThetaCr);
+  std::set<uint32_t> ns;
+  int outside = 0;
+  for (const auto& l : a) {
+    ns.insert(l.n);
+    const int64_t code = sign_extend(l.cos, f.in_bits());
+    outside += code < 0 || code > f.one();
+    EXPECT_EQ(l.thr, 0u);  // the Schlick units have no threshold
+    EXPECT_EQ(l.expected, u.eval(u.setup(l.n), code));
+  }
+  EXPECT_GT(ns.size(), 20u);
+  EXPECT_GT(outside, 10);
+  fs::remove_all(d);
+}
+
+TEST(VectorsCli, ExhaustiveAndNorm) {
+  const fs::path d = temp_dir("exh");
+  const CliRun r = run_cli("vectors --config narrow --norm phong --mode exhaustive --n 16..17 --out " + (d / "e.hex").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto v = read_vectors(d / "e.hex");
+  const shadecore::Format f = shadecore::config_named("narrow").format;
+  ASSERT_EQ(v.size(), 2u * (f.one() + 1 + 4));
+  shadecore::Unit u(shadecore::VariantId::cs16, f, shadecore::Cutoff::ThetaCr);
+  u.set_norm(true, static_cast<int>(shadecore::Model::Phong), shadecore::CoefKind::Fitted);
+  std::set<int64_t> codes;
+  for (const auto& l : v) {
+    const auto m = u.setup(l.n);
+    EXPECT_EQ(l.coef, m.coef);
+    EXPECT_NE(l.coef, 0u);
+    const int64_t code = sign_extend(l.cos, f.in_bits());
+    codes.insert(code);
+    EXPECT_EQ(l.expected, u.eval(m, code));
+  }
+  EXPECT_EQ(codes.size(), static_cast<size_t>(f.one() + 1 + 4));
+  EXPECT_TRUE(codes.count(f.in_min()) && codes.count(f.in_max()) && codes.count(-1) && codes.count(f.one() + 1));
+  fs::remove_all(d);
+}
+
+TEST(VectorsCli, BadArgumentsAndOutputRules) {
+  const fs::path d = temp_dir("rules");
+  expect_one_line_error("vectors --mode sometimes --out " + (d / "x.hex").string(), "unknown mode");
+  expect_one_line_error("vectors --mode hard --n 16..20 --out " + (d / "x.hex").string(), "--n does not apply");
+  expect_one_line_error("vectors --mode exhaustive --seed 3 --out " + (d / "x.hex").string(), "random only");
+  expect_one_line_error("vectors --mode random --count 0 --out " + (d / "x.hex").string(), "--count must be");
+  expect_one_line_error("vectors --mode exhaustive --config wide --out " + (d / "x.hex").string(), "over the limit");
+  expect_one_line_error("vectors --mode hard --out " + d.string(), "is a directory");
+  expect_one_line_error("vectors --mode hard --out /nonexistent-dir/x.hex", "cannot write");
+  EXPECT_FALSE(fs::exists(d / "x.hex"));
+  // A symlink is written through (the link stays a link); a character device is written in place.
+  std::ofstream(d / "target.hex") << "old\n";
+  fs::create_symlink(d / "target.hex", d / "link.hex");
+  ASSERT_EQ(run_cli("vectors --mode hard --out " + (d / "link.hex").string()).status, 0);
+  EXPECT_TRUE(fs::is_symlink(d / "link.hex"));
+  EXPECT_NE(slurp(d / "target.hex").find("shadecore vectors"), std::string::npos);
+  ASSERT_EQ(run_cli("vectors --mode hard --out /dev/null").status, 0);
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  for (const auto& e : fs::directory_iterator(d))
+    EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << "temporary file left behind";
+  fs::remove_all(d);
+}
+
+// ---------------------------------------------------------------------------- handoff (arguments only)
+TEST(HandoffCli, BadArgumentsGiveOneLineErrorsAndWriteNothing) {
+  const fs::path d = temp_dir("ho");
+  expect_one_line_error("handoff", "--out DIR is required");
+  expect_one_line_error("handoff --core lighting --out " + (d / "b").string(), "not available yet");
+  expect_one_line_error("handoff --tagw 0 --out " + (d / "b").string(), "--tagw");
+  expect_one_line_error("handoff --top 9x --out " + (d / "b").string(), "not a Verilog identifier");
+  expect_one_line_error("handoff --top sc_cs16 --out " + (d / "b").string(), "clashes");
+  expect_one_line_error("handoff --variant nosuch --out " + (d / "b").string(), "unknown variant");
+  expect_one_line_error("handoff --config huge --out " + (d / "b").string(), "unknown config");
+  std::ofstream(d / "file") << "x";
+  expect_one_line_error("handoff --out " + (d / "file").string(), "not a directory");
+  fs::create_directories(d / "full");
+  std::ofstream(d / "full" / "keep.txt") << "mine";
+  expect_one_line_error("handoff --out " + (d / "full").string(), "not empty");
+  EXPECT_EQ(slurp(d / "full" / "keep.txt"), "mine");
+  EXPECT_FALSE(fs::exists(d / "b"));
+  EXPECT_FALSE(fs::exists(d / "b.tar.gz"));
+  fs::remove_all(d);
+}
+
+// config/interface.json (the README table's and every interface.md's source) lists exactly the ports
+// of rtl/sc_specular.v, in order.
+TEST(HandoffCli, PortTableMatchesTheRtl) {
+  const CliRun r = run_cli("handoff --print-port-table");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> table, rtl;
+  std::smatch m;
+  std::stringstream ts(r.out);
+  std::string line;
+  while (std::getline(ts, line))
+    if (std::regex_search(line, m, std::regex("^\\| `(\\w+)` \\|"))) table.push_back(m[1]);
+  const fs::path src = fs::path(__FILE__).parent_path().parent_path() / "rtl" / "sc_specular.v";
+  std::stringstream rs(slurp(src));
+  while (std::getline(rs, line))
+    if (std::regex_search(line, m, std::regex("^\\s*(input|output)\\s+wire\\b.*?(\\w+)\\s*,?\\s*$"))) rtl.push_back(m[2]);
+  ASSERT_FALSE(rtl.empty());
+  EXPECT_EQ(table, rtl);
+}
