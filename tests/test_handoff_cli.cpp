@@ -295,3 +295,33 @@ TEST(HandoffCli, PortTableMatchesTheRtl) {
   ASSERT_FALSE(rtl.empty());
   EXPECT_EQ(table, rtl);
 }
+
+// docs/spec.md states what an independent implementer needs (issue 11): its coefficient table (§7.0)
+// and its per-unit latency table (§4) must be the C model's.
+TEST(SpecDocs, CoefficientAndLatencyTablesMatchTheModel) {
+  const std::string spec = slurp(fs::path(__FILE__).parent_path().parent_path() / "docs" / "spec.md");
+  ASSERT_FALSE(spec.empty());
+  int rows = 0;
+  for (const auto& m : shadecore::kModels) {
+    std::smatch r;
+    const std::regex re("\\| [^|]*\\(`" + std::string(m.key) + "`\\) \\| (\\d+) \\| ([0-9.]+) \\| ([0-9.]+) \\|");
+    ASSERT_TRUE(std::regex_search(spec, r, re)) << m.key;
+    EXPECT_EQ(std::stoi(r[1]), m.k) << m.key;
+    EXPECT_DOUBLE_EQ(std::stod(r[2]), m.pub_a) << m.key;
+    EXPECT_DOUBLE_EQ(std::stod(r[3]), m.pub_b) << m.key;
+    ++rows;
+  }
+  EXPECT_EQ(rows, shadecore::kNumModels);
+  const shadecore::Format f = shadecore::default_format();
+  auto lat = [&](shadecore::VariantId v, bool norm) {
+    shadecore::Unit u(v, f, shadecore::Cutoff::ThetaCr);
+    u.set_norm(norm);
+    return u.latency();
+  };
+  EXPECT_NE(spec.find("| `sc_cs16` (cs16) | " + std::to_string(lat(shadecore::VariantId::cs16, false)) + " |"), std::string::npos);
+  EXPECT_NE(spec.find("| `sc_schlick_nr` | " + std::to_string(lat(shadecore::VariantId::schlick_nr, false)) + " |"), std::string::npos);
+  EXPECT_NE(spec.find("F + 4 (12 / 20 / 28 at F = 8 / 16 / 24)"), std::string::npos);
+  EXPECT_EQ(lat(shadecore::VariantId::schlick_div, false), f.frac + 4);
+  EXPECT_EQ(lat(shadecore::VariantId::schlick_iter, false), f.frac + 4);
+  EXPECT_NE(spec.find("the unit's + 2 (cs16: " + std::to_string(lat(shadecore::VariantId::cs16, true)) + ")"), std::string::npos);
+}
