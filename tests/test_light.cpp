@@ -173,7 +173,12 @@ TEST(LightHardCases, HugeDistance) {
   const double n[3] = {1, 1, 1}, p[3] = {-128, -128, -128};
   LightCoreTrace t;
   const Colour c = r.core.eval(r.regs, make_fragment(r.F, n, p), &t);
-  EXPECT_NEAR(std::ldexp(double(t.light[0].d), -r.F), 256 * std::sqrt(3.0), 0.01);
+  // d = (P_j − P)·L̂ against the exact length of the coded difference (0.55-ulp unit vector: < 0.01)
+  const Fragment fr = make_fragment(r.F, n, p);
+  double d2 = 0;
+  for (int i = 0; i < 3; ++i) d2 += std::pow(std::ldexp(double(r.regs.light[0].pos[i] - fr.p[i]), -r.F), 2);
+  EXPECT_NEAR(std::ldexp(double(t.light[0].d), -r.F), std::sqrt(d2), 0.01);
+  EXPECT_GT(std::sqrt(d2), 443.0);
   EXPECT_GT(t.light[0].att, 0u);
   EXPECT_LE(c.c[0], 1u << r.F);
 }
@@ -293,7 +298,7 @@ TEST(FeatureSets, StrictParsing) {
   bad(R"({"ambient": 1})", "true or false");
   bad(R"({"config": "wide"})", "frac <= 16");
   bad(R"({"specular": "none", "norm": true})", "'norm' needs a specular unit");
-  bad(R"({"specular": "schlick_div", "cutoff": "sign_clamp"})", "cs16 only");
+  bad(R"({"specular": "schlick_div", "cutoff": "sign_clamp"})", "cs16 unit only");
   bad(R"({"specular": "phong"})", "unknown variant 'phong'");
   EXPECT_THROW(feature_set_named_or_file("no_such_set_or_file"), std::invalid_argument);
 }
