@@ -3,9 +3,14 @@
 // The CLI cannot link SystemC (libsystemc defines main()), so it runs the per-configuration
 // simulator executables sim/shadecore_cosim_<config> as subprocesses — their paths come from the
 // build (SHADECORE_COSIM_SIMS) — splits the work into shards (exhaustive: the n range; random: the
-// count, shard i with seed+i; directed: one shard), runs them in parallel and merges their
-// "COSIM-RESULT {json}" lines. Exit 0 only if every shard passed.
+// transaction indices, every shard with the same seed and its own --first, so the stimulus of
+// transaction i depends on (seed, i) only; directed: one shard), runs them in parallel and merges their
+// "COSIM-RESULT {json}" lines. Every argument is checked here before any simulator starts.
+// Exit 0 only if every shard passed; 2 if the co-simulation ran and FAILED (the JSON and the waveform
+// that record it are written); 1 for any error (nothing written).
 #include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -23,12 +28,15 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "args.hpp"
 #include "commands.hpp"
+#include "light_rtl.hpp"
 #include "output.hpp"
+#include "progress.hpp"
+#include "shadecore/coef.hpp"
 #include "shadecore/configs.hpp"
+#include "shadecore/hard_cases.hpp"
 #include "shadecore/unit.hpp"
-
-extern char** environ;
 
 namespace shadecore::cli {
 namespace {
@@ -48,6 +56,9 @@ struct CosimArgs {
   int show = 5;
   bool norm = false;              // sc_specular NORM = 1 (energy-normalised output, docs/spec.md §7)
   std::string coef_model, coef_kind;
+  ProgressFlags progress;
+  // Given explicitly (options a mode or a setting would ignore are errors).
+  bool n_given = false, count_given = false, shards_given = false, coef_model_given = false, coef_given = false;
 };
 
 std::map<std::string, std::string> simulators() {
@@ -65,41 +76,125 @@ std::map<std::string, std::string> simulators() {
 
 struct Shard {
   std::vector<std::string> argv;
+  pid_t pid = -1;
+  int out_fd = -1, err_fd = -1;
+  std::string out_partial, err;
+  std::vector<std::string> lines;  // stdout lines other than COSIM-RESULT / COSIM-PROGRESS
+  uint64_t progress = 0;
   int status = -1;
-  std::string out;
   nlohmann::json result;
 };
 
-// fork/exec argv with stdout captured (stderr passes through); fills status and out.
-void run_capture(Shard& s) {
-  int fds[2];
-  if (::pipe(fds) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
+void spawn(Shard& s) {
+  int outp[2], errp[2];
+  if (::pipe2(outp, O_CLOEXEC) != 0 || ::pipe2(errp, O_CLOEXEC) != 0)
+    throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
   std::vector<char*> args;
   for (auto& a : s.argv) args.push_back(a.data());
   args.push_back(nullptr);
+  sigset_t all, old;
+  sigfillset(&all);
+  ::pthread_sigmask(SIG_BLOCK, &all, &old);
   const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
   if (pid == 0) {
-    ::dup2(fds[1], 1);
-    ::close(fds[0]);
-    ::close(fds[1]);
+    // Ctrl-C reaches the whole process group: the simulators ignore it and are stopped (SIGTERM) by
+    // this process's handler, which also removes what they were writing.
+    ::signal(SIGINT, SIG_IGN);
+    ::signal(SIGTERM, SIG_DFL);
+    ::signal(SIGHUP, SIG_DFL);
+    ::signal(SIGPIPE, SIG_DFL);
+    ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
+    ::dup2(outp[1], 1);
+    ::dup2(errp[1], 2);
     ::setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
     ::execv(args[0], args.data());
-    std::fprintf(stderr, "shadecore: error: cannot run %s: %s\n", args[0], std::strerror(errno));
+    std::fprintf(stderr, "cannot run %s: %s\n", args[0], std::strerror(errno));
     ::_exit(127);
   }
-  ::close(fds[1]);
-  char buf[65536];
-  ssize_t k;
-  while ((k = ::read(fds[0], buf, sizeof buf)) > 0) s.out.append(buf, static_cast<size_t>(k));
-  ::close(fds[0]);
-  int st = 0;
-  ::waitpid(pid, &st, 0);
-  s.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
-  std::stringstream ss(s.out);
+  if (pid > 0) io::track_child(pid);
+  ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
+  ::close(outp[1]);
+  ::close(errp[1]);
+  if (pid < 0) {
+    ::close(outp[0]);
+    ::close(errp[0]);
+    throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
+  }
+  s.pid = pid;
+  s.out_fd = outp[0];
+  s.err_fd = errp[0];
+}
+
+void take_line(Shard& s, const std::string& line) {
+  if (line.rfind("COSIM-RESULT ", 0) == 0) {
+    try {
+      s.result = nlohmann::json::parse(line.substr(13));
+    } catch (const std::exception&) {
+      s.lines.push_back(line);
+    }
+  } else if (line.rfind("COSIM-PROGRESS ", 0) == 0) {
+    uint64_t v = 0;
+    if (cliargs::parse_u64(line.substr(15), v)) s.progress = v;
+  } else {
+    s.lines.push_back(line);
+  }
+}
+
+// Reads every shard's stdout and stderr until they close (one thread, poll), feeding the progress bar,
+// then reaps the processes.
+void run_all(std::vector<Shard>& shards, io::Progress& bar) {
+  for (;;) {
+    std::vector<pollfd> fds;
+    std::vector<std::pair<size_t, bool>> who;  // (shard, is stderr)
+    for (size_t i = 0; i < shards.size(); ++i) {
+      if (shards[i].out_fd >= 0) fds.push_back({shards[i].out_fd, POLLIN, 0}), who.push_back({i, false});
+      if (shards[i].err_fd >= 0) fds.push_back({shards[i].err_fd, POLLIN, 0}), who.push_back({i, true});
+    }
+    if (fds.empty()) break;
+    const int k = ::poll(fds.data(), fds.size(), 500);
+    if (k < 0 && errno != EINTR) throw std::runtime_error(std::string("poll: ") + std::strerror(errno));
+    for (size_t j = 0; k > 0 && j < fds.size(); ++j) {
+      if (!(fds[j].revents & (POLLIN | POLLHUP | POLLERR))) continue;
+      Shard& s = shards[who[j].first];
+      char buf[65536];
+      const ssize_t r = ::read(fds[j].fd, buf, sizeof buf);
+      if (r < 0 && errno == EINTR) continue;
+      if (r <= 0) {
+        ::close(fds[j].fd);
+        (who[j].second ? s.err_fd : s.out_fd) = -1;
+        if (!who[j].second && !s.out_partial.empty()) take_line(s, s.out_partial), s.out_partial.clear();
+        continue;
+      }
+      if (who[j].second) {
+        s.err.append(buf, static_cast<size_t>(r));
+        continue;
+      }
+      s.out_partial.append(buf, static_cast<size_t>(r));
+      size_t nl;
+      while ((nl = s.out_partial.find('\n')) != std::string::npos) {
+        take_line(s, s.out_partial.substr(0, nl));
+        s.out_partial.erase(0, nl + 1);
+      }
+    }
+    uint64_t done = 0;
+    for (const auto& s : shards) done += s.progress;
+    bar.set(done);
+  }
+  for (auto& s : shards) {
+    int st = 0;
+    while (::waitpid(s.pid, &st, 0) < 0 && errno == EINTR) {
+    }
+    io::untrack_child(s.pid);
+    s.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
+  }
+}
+
+std::string first_line(const std::string& text) {
+  std::stringstream ss(text);
   std::string line;
   while (std::getline(ss, line))
-    if (line.rfind("COSIM-RESULT ", 0) == 0) s.result = nlohmann::json::parse(line.substr(13));
+    if (line.find_first_not_of(" \t\r") != std::string::npos) return line;
+  return {};
 }
 
 void run_cosim(const CosimArgs& a) {
@@ -107,16 +202,38 @@ void run_cosim(const CosimArgs& a) {
   const NamedConfig* found = &config_named(a.config);
   const std::string cfg(found->name);
   Unit unit(parse_variant(a.variant), found->format, parse_cutoff_name(a.cutoff));
-  unit.set_norm(a.norm);  // for the latency the summary reports; the simulator checks the model itself
-  const auto [n_lo, n_hi] = parse_range(a.n_range);
-  validate_n(n_lo);
-  validate_n(n_hi);
-  if (n_lo > n_hi) throw std::invalid_argument("empty n range " + a.n_range);
+  const auto [n_lo, n_hi] = cliargs::parse_n_range(a.n_range);
   if (a.mode != "exhaustive" && a.mode != "random" && a.mode != "directed")
     throw std::invalid_argument("unknown mode '" + a.mode + "' (known: exhaustive, random, directed)");
-  if (a.count == 0) throw std::invalid_argument("--count must be >= 1");
-  if (!a.json_path.empty()) check_writable_file(a.json_path);
-  if (!a.trace.empty()) check_writable_file(a.trace);
+  if (a.mode == "directed" && a.n_given)
+    throw std::invalid_argument("--n does not apply to --mode directed (the hard cases carry their own n)");
+  if (a.mode == "exhaustive" && a.count_given)
+    throw std::invalid_argument("--count does not apply to --mode exhaustive (every code of every n)");
+  if (a.shards_given && a.shards != 1 && (a.mode == "directed" || !a.trace.empty()))
+    throw std::invalid_argument("--shards applies to exhaustive and random runs without --trace (those run one simulator)");
+  if (!a.norm && (a.coef_model_given || a.coef_given))
+    throw std::invalid_argument("--coef-model and --coef apply with --norm only");
+  std::string norm_text;
+  if (a.norm) {
+    if (unit.variant() != VariantId::cs16 || unit.cutoff() != Cutoff::ThetaCr)
+      throw std::invalid_argument("--norm is built for --variant cs16 --cutoff theta_cr only");
+    const bool one_model = a.coef_model_given && a.coef_model != "all";
+    if (a.coef_given && !one_model)
+      throw std::invalid_argument("--coef needs --coef-model MODEL (with all, the kind is picked per material)");
+    const CoefKind kind = parse_coef_kind(a.coef_given ? a.coef_kind : "fitted");
+    if (one_model) {
+      const Model m = parse_model(a.coef_model);
+      norm_text = fmt::format(" norm: {} {} coefficient", info(m).key, to_string(kind));
+    } else {
+      norm_text = " norm: every model and kind (picked per material from n)";
+    }
+    unit.set_norm(true, one_model ? static_cast<int>(parse_model(a.coef_model)) : -1, kind);
+  }
+  // Outputs: checked now, written together at the end (the waveform through a temporary file the
+  // simulator writes).
+  io::OutputSet outs;
+  const int json_out = a.json_path.empty() ? -1 : outs.file("--json", a.json_path);
+  const int trace_out = a.trace.empty() ? -1 : outs.file("--trace", a.trace, /*allow_stream=*/false);
   const auto sims = simulators();
   if (sims.empty()) throw std::runtime_error("this shadecore was built without the RTL co-simulation (SHADECORE_WITH_RTL=OFF)");
   const auto it = sims.find(cfg);
@@ -130,16 +247,19 @@ void run_cosim(const CosimArgs& a) {
     seed = (static_cast<uint64_t>(std::random_device{}()) << 32) ^ std::random_device{}();
     if (seed == 0) seed = 1;
   }
-  int shards = a.shards > 0 ? a.shards : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  if (!a.trace.empty() || a.mode == "directed") shards = 1;  // one waveform; the list is short
+  int shards = cliargs::resolve_parallel(a.shards);
+  if (trace_out >= 0 || a.mode == "directed") shards = 1;  // one waveform; the list is short
   if (a.mode == "exhaustive") shards = std::min(shards, n_hi - n_lo + 1);
   if (a.mode == "random") shards = static_cast<int>(std::min<uint64_t>(shards, a.count));
+  const std::string trace_tmp = trace_out >= 0 ? outs.produce_path(trace_out) : std::string();
 
   // ---- build the shards
+  const Format& f = found->format;
+  uint64_t planned = 0;
   std::vector<Shard> jobs(shards);
   for (int i = 0; i < shards; ++i) {
     auto& v = jobs[i].argv;
-    v = {sim, "--variant", a.variant, "--cutoff", a.cutoff, "--mode", a.mode, "--quiet",
+    v = {sim, "--variant", a.variant, "--cutoff", a.cutoff, "--mode", a.mode, "--quiet", "--progress-lines",
          "--in-stall", fmt::format("{}", a.in_stall), "--out-stall", fmt::format("{}", a.out_stall),
          "--show", std::to_string(a.show)};
     if (a.mode == "exhaustive") {
@@ -149,52 +269,58 @@ void run_cosim(const CosimArgs& a) {
       const int hi = n_lo + static_cast<int>(static_cast<long long>(total) * (i + 1) / shards) - 1;
       v.insert(v.end(), {"--n", fmt::format("{}..{}", lo, hi), "--seed", std::to_string(seed)});
     } else if (a.mode == "random") {
-      const uint64_t c = a.count / shards + (static_cast<uint64_t>(i) < a.count % shards ? 1 : 0);
-      v.insert(v.end(), {"--n", fmt::format("{}..{}", n_lo, n_hi), "--count", std::to_string(c), "--seed",
-                         std::to_string(seed + static_cast<uint64_t>(i))});
+      // Shard i runs transactions [first, first + c) of the one seeded run.
+      const uint64_t base = a.count / shards, extra = a.count % shards, k = static_cast<uint64_t>(i);
+      const uint64_t c = base + (k < extra ? 1 : 0);
+      const uint64_t first = k * base + std::min(k, extra);
+      v.insert(v.end(), {"--n", fmt::format("{}..{}", n_lo, n_hi), "--count", std::to_string(c), "--first",
+                         std::to_string(first), "--seed", std::to_string(seed)});
     } else {
       v.insert(v.end(), {"--count", std::to_string(a.count), "--seed", std::to_string(seed)});
     }
     if (a.reset_at != -2) v.insert(v.end(), {"--reset-at", std::to_string(a.reset_at)});
-    if (!a.trace.empty()) v.insert(v.end(), {"--trace", a.trace});
+    if (!trace_tmp.empty()) v.insert(v.end(), {"--trace", trace_tmp});
     if (a.norm) v.push_back("--norm");
-    if (!a.coef_model.empty()) v.insert(v.end(), {"--coef-model", a.coef_model});
-    if (!a.coef_kind.empty()) v.insert(v.end(), {"--coef", a.coef_kind});
+    if (a.coef_model_given) v.insert(v.end(), {"--coef-model", a.coef_model});
+    if (a.coef_given) v.insert(v.end(), {"--coef", a.coef_kind});
   }
-  fmt::print("cosim: {} {} ({}, F={} G={}) cutoff {} mode {} n {}..{}{} seed {} in-stall {} out-stall {}, {} shard(s)\n",
-             a.variant, cfg, sim, found->format.frac, found->format.guard, a.cutoff, a.mode, n_lo, n_hi,
-             a.mode == "exhaustive" ? "" : fmt::format(" count {}", a.count), seed, a.in_stall, a.out_stall,
-             shards);
+  if (a.mode == "exhaustive") {
+    planned = static_cast<uint64_t>(n_hi - n_lo + 1) * static_cast<uint64_t>(f.one() + 1 + 4);
+  } else if (a.mode == "random") {
+    planned = a.count;
+  } else {
+    const uint64_t len = hard_cases(f).size();
+    planned = len * (a.count > len ? (a.count + len - 1) / len : 1);
+  }
+  fmt::print("cosim: {} {} ({}, F={} G={}) cutoff {}{} mode {} n {}..{}{} seed {} in-stall {} out-stall {}, {} shard(s)\n",
+             a.variant, cfg, sim, f.frac, f.guard, a.cutoff, norm_text, a.mode, n_lo, n_hi,
+             a.mode == "exhaustive" ? "" : fmt::format(" count {}", a.count), seed, a.in_stall, a.out_stall, shards);
   std::fflush(stdout);
 
   const auto t0 = std::chrono::steady_clock::now();
-  std::vector<std::thread> threads;
-  std::vector<std::string> spawn_errors(shards);
-  for (int i = 0; i < shards; ++i)
-    threads.emplace_back([&, i] {
-      try {
-        run_capture(jobs[i]);
-      } catch (const std::exception& e) {
-        spawn_errors[i] = e.what();
-      }
-    });
-  for (auto& t : threads) t.join();
+  io::Progress bar(planned, a.progress.enabled(), "cosim");
+  for (auto& s : jobs) spawn(s);
+  run_all(jobs, bar);
+  bar.stop();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   // ---- merge
-  uint64_t vectors = 0, mismatches = 0, lost = 0, dup = 0, lat_err = 0, proto = 0, dropped = 0, cycles = 0;
+  uint64_t vectors = 0, mismatches = 0, lost = 0, dup = 0, lat_err = 0, proto = 0, dropped = 0, cycles = 0, digest = 0;
   uint64_t lat_min = ~uint64_t{0}, lat_max = 0;
   bool ok = true;
+  std::string causes;
   nlohmann::json shard_json = nlohmann::json::array(), first = nlohmann::json::array();
   for (int i = 0; i < shards; ++i) {
     const Shard& s = jobs[i];
-    if (!spawn_errors[i].empty()) throw std::runtime_error(spawn_errors[i]);
     if (s.result.is_null()) {
       // The simulator rejected its arguments or crashed: pass its words on, one line.
-      throw std::runtime_error(fmt::format("simulator shard {} exited with status {} and no result", i, s.status));
+      const std::string said = first_line(s.err);
+      throw std::runtime_error(fmt::format("simulator shard {} exited with status {} and no result{}", i, s.status,
+                                           said.empty() ? "" : ": " + said));
     }
     const auto& r = s.result;
-    ok = ok && s.status == 0 && r.value("ok", false);
+    const bool shard_ok = s.status == 0 && r.value("ok", false);
+    ok = ok && shard_ok;
     vectors += r.value("vectors", uint64_t{0});
     mismatches += r.value("mismatches", uint64_t{0});
     lost += r.value("lost", uint64_t{0});
@@ -203,17 +329,18 @@ void run_cosim(const CosimArgs& a) {
     proto += r.value("protocol_errors", uint64_t{0});
     dropped += r.value("dropped_by_reset", uint64_t{0});
     cycles += r.value("cycles", uint64_t{0});
+    digest += r.value("stimulus_digest", uint64_t{0});
+    const std::string cause = r.value("cause", std::string());
+    if (!cause.empty() && causes.find(cause) == std::string::npos) causes += (causes.empty() ? "" : "; ") + cause;
     if (r.value("vectors", uint64_t{0}) > 0) lat_min = std::min(lat_min, r.value("latency_min", uint64_t{0}));
     lat_max = std::max(lat_max, r.value("latency_max", uint64_t{0}));
     for (const auto& m : r["first_mismatches"])
       if (first.size() < static_cast<size_t>(a.show)) first.push_back(m);
     shard_json.push_back(r);
-    if (s.status != 0 || !r.value("ok", false)) {
+    if (!shard_ok) {
       // Print what the failing shard said (errors, mismatches, the reproduce line).
-      std::stringstream ss(s.out);
-      std::string line;
-      while (std::getline(ss, line))
-        if (line.rfind("COSIM-RESULT ", 0) != 0) fmt::print("  [shard {}] {}\n", i, line);
+      for (const auto& line : s.lines) fmt::print("  [shard {}] {}\n", i, line);
+      if (!s.err.empty()) fmt::print("  [shard {}] stderr: {}\n", i, first_line(s.err));
     }
   }
   if (lat_min == ~uint64_t{0}) lat_min = 0;
@@ -221,18 +348,18 @@ void run_cosim(const CosimArgs& a) {
     fmt::print("  mismatch: n={} code={} expected={} got={}\n", m.value("n", 0), m.value("code", 0LL),
                m.value("expected", 0u), m.value("got", 0u));
   const double vps = wall > 0 ? static_cast<double>(vectors) / wall : 0.0;
-  fmt::print("cosim: {}: {} vectors, {} mismatches, {} lost, {} duplicated/reordered, {} latency errors, "
+  fmt::print("cosim: {}{}: {} vectors, {} mismatches, {} lost, {} duplicated/reordered, {} latency errors, "
              "{} protocol errors, {} dropped by mid-stream reset; latency {}..{} cycles (spec {}); "
              "{} cycles; {:.2f} s wall, {:.3g} vectors/s\n",
-             ok ? "PASS" : "FAIL", vectors, mismatches, lost, dup, lat_err, proto, dropped, lat_min, lat_max,
-             unit.latency(), cycles, wall, vps);
-  if (!a.trace.empty() && ok) fmt::print("cosim: waveform written to {}\n", a.trace);
-  if (!a.json_path.empty()) {
+             ok ? "PASS" : "FAIL", causes.empty() ? "" : " (" + causes + ")", vectors, mismatches, lost, dup, lat_err,
+             proto, dropped, lat_min, lat_max, unit.latency(), cycles, wall, vps);
+  if (json_out >= 0) {
     nlohmann::json j = {{"ok", ok},
+                        {"cause", causes},
                         {"variant", a.variant},
                         {"config", cfg},
-                        {"frac", found->format.frac},
-                        {"guard", found->format.guard},
+                        {"frac", f.frac},
+                        {"guard", f.guard},
                         {"cutoff", a.cutoff},
                         {"mode", a.mode},
                         {"norm", a.norm},
@@ -242,6 +369,8 @@ void run_cosim(const CosimArgs& a) {
                         {"in_stall", a.in_stall},
                         {"out_stall", a.out_stall},
                         {"shards", shards},
+                        {"planned", planned},
+                        {"stimulus_digest", digest},
                         {"vectors", vectors},
                         {"mismatches", mismatches},
                         {"lost", lost},
@@ -257,40 +386,90 @@ void run_cosim(const CosimArgs& a) {
                         {"vectors_per_s", vps},
                         {"first_mismatches", first},
                         {"shard_results", shard_json}};
-    write_file_atomic(a.json_path, j.dump(2) + "\n");
+    if (a.norm) {
+      j["coef_model"] = a.coef_model_given ? a.coef_model : "all";
+      j["coef"] = a.coef_given ? a.coef_kind : (a.coef_model_given && a.coef_model != "all" ? "fitted" : "per material");
+    }
+    outs.set(json_out, j.dump(2) + "\n");
   }
-  if (!ok) throw std::runtime_error(fmt::format(
-      "co-simulation FAILED ({} mismatches, {} lost, {} duplicated/reordered, {} latency, {} protocol errors)",
-      mismatches, lost, dup, lat_err, proto));
+  // A FAIL verdict is a completed run: its JSON and waveform are the record of the failure.
+  outs.commit();
+  if (trace_out >= 0) fmt::print("cosim: waveform written to {}\n", a.trace);
+  std::fflush(stdout);
+  if (!ok)
+    throw CheckFailed(fmt::format("co-simulation FAILED{} ({} mismatches, {} lost, {} duplicated/reordered, {} latency, "
+                                  "{} protocol errors)",
+                                  causes.empty() ? "" : ": " + causes, mismatches, lost, dup, lat_err, proto));
 }
 
 }  // namespace
 
 void add_cosim(CLI::App& app) {
   auto args = std::make_shared<CosimArgs>();
+  using namespace cliargs;
   auto* sub = app.add_subcommand(
       "cosim", "co-simulate the Verilated RTL against the C model, bit for bit (runs sim/shadecore_cosim_<config>)");
   sub->add_option("--variant", args->variant, "unit (config/configs.json variants)");
-  sub->add_option("--config", args->config, "named width configuration (narrow, default, wide)");
+  sub->add_option("--config", args->config, "named width configuration (narrow, default, wide)")
+      ->check(NonEmpty("config name"));
   sub->add_option("--cutoff", args->cutoff, "theta_cr | sign_clamp");
-  sub->add_option("--n", args->n_range, "exponent range LO..HI or N (default 16..1024)");
+  auto* n_opt = sub->add_option("--n", args->n_range, "exponent range LO..HI or N (default 16..1024; exhaustive, random)");
   sub->add_option("--mode", args->mode, "exhaustive | random | directed (default directed)");
-  sub->add_option("--count", args->count, "random: transactions in total; directed: minimum items");
-  sub->add_option("--seed", args->seed, "random seed (default: pick one and print it)");
-  sub->add_option("--in-stall", args->in_stall, "probability per cycle of an input gap")->check(CLI::Range(0.0, 1.0));
-  sub->add_option("--out-stall", args->out_stall, "probability per cycle of out_ready low")->check(CLI::Range(0.0, 1.0));
+  auto* count_opt = sub->add_option("--count", args->count, "random: transactions in total; directed: minimum items")
+                        ->check(UInt(1, 1000000000000ull));
+  sub->add_option("--seed", args->seed,
+                  "random seed, 1..2^64-1 (default or 0: pick one and print it); the same seed gives the same "
+                  "stimulus whatever the shard count")
+      ->check(UInt(0));
+  sub->add_option("--in-stall", args->in_stall, "probability per cycle of an input gap, in [0, 1)")
+      ->check(Probability(false));
+  sub->add_option("--out-stall", args->out_stall, "probability per cycle of out_ready low, in [0, 1)")
+      ->check(Probability(false));
   sub->add_option("--reset-at", args->reset_at,
-                  "per shard: rst_ni pulse after this many accepted fragments (-1 none; default half way in random/directed)");
-  sub->add_option("--shards", args->shards, "parallel simulator processes (default: number of cores)")
-      ->check(CLI::Range(1, 1024));
-  sub->add_option("--trace", args->trace, "FST waveform file (forces one shard)");
-  sub->add_option("--json", args->json_path, "write the merged result as JSON (atomically)");
+                  "per shard: rst_ni pulse after this many accepted fragments (-1 none; default half way in random/directed)")
+      ->check(ResetAt());
+  auto* shards_opt = sub->add_option("--shards", args->shards, "parallel simulator processes (0 = one per core; at most 64)")
+                         ->check(Int(0, kMaxParallel));
+  sub->add_option("--trace", args->trace, "FST waveform file (one shard)")->check(NonEmpty("path"));
+  sub->add_option("--json", args->json_path, "write the merged result as JSON (atomically)")->check(NonEmpty("path"));
   sub->add_flag("--norm", args->norm, "energy-normalised output: sc_specular NORM = 1 (cs16, theta_cr)");
-  sub->add_option("--coef-model", args->coef_model,
-                  "with --norm: all | phong | phong_mod | blinn | blinn_mod | blinn_ndf | blinn_hf");
-  sub->add_option("--coef", args->coef_kind, "with --norm and one model: fitted | classical");
-  sub->add_option("--show", args->show, "mismatches printed in full")->check(CLI::Range(0, 1000));
-  sub->callback([args] { run_cosim(*args); });
+  auto* cm_opt = sub->add_option("--coef-model", args->coef_model,
+                                 "with --norm: all (default) | phong | phong_mod | blinn | blinn_mod | blinn_ndf | blinn_hf");
+  auto* coef_opt = sub->add_option("--coef", args->coef_kind, "with --norm and one --coef-model: fitted | classical");
+  sub->add_option("--show", args->show, "mismatches printed in full")->check(Int(0, 1000));
+  args->progress.add(sub);
+  // The lighting core (docs/lighting.md): --core lighting --features NAME|FILE, built on demand per
+  // feature set (cli/light_rtl.cpp); random or directed mode, stalls, seed, --json.
+  auto core = std::make_shared<std::string>("unit");
+  auto features = std::make_shared<std::string>();
+  sub->add_option("--core", *core, "unit (default: rtl/sc_specular.v) | lighting (rtl/sc_light.v)")
+      ->check(CLI::IsMember({"unit", "lighting"}));
+  auto* feat_opt = sub->add_option("--features", *features, "--core lighting: a named feature set of config/configs.json or a JSON file");
+  sub->callback([args, n_opt, count_opt, shards_opt, cm_opt, coef_opt, core, features, feat_opt, sub] {
+    if (*core == "lighting") {
+      for (const char* unit_only : {"--variant", "--config", "--cutoff", "--n", "--norm", "--coef-model", "--coef",
+                                    "--shards", "--trace", "--reset-at"})
+        if (sub->count(unit_only) > 0)
+          throw std::invalid_argument(std::string(unit_only) + " does not apply to --core lighting (the feature set says it)");
+      LightCosimArgs la;
+      la.features = features->empty() ? "full" : *features;
+      la.mode = args->mode == "directed" && !sub->count("--mode") ? "random" : args->mode;
+      la.count = args->count;
+      la.seed = args->seed;
+      la.in_stall = args->in_stall;
+      la.out_stall = args->out_stall;
+      la.json_path = args->json_path;
+      if (lighting_cosim(la) != 0) throw CheckFailed("cosim: FAIL (lighting core '" + la.features + "')");
+      return;
+    }
+    if (feat_opt->count() > 0) throw std::invalid_argument("--features needs --core lighting");
+    args->n_given = n_opt->count() > 0;
+    args->count_given = count_opt->count() > 0;
+    args->shards_given = shards_opt->count() > 0;
+    args->coef_model_given = cm_opt->count() > 0;
+    args->coef_given = coef_opt->count() > 0;
+    run_cosim(*args);
+  });
 }
 
 }  // namespace shadecore::cli

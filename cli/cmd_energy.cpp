@@ -13,8 +13,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "args.hpp"
 #include "commands.hpp"
 #include "output.hpp"
+#include "progress.hpp"
 #include "shadecore/coef.hpp"
 #include "shadecore/configs.hpp"
 #include "shadecore/energy.hpp"
@@ -35,7 +37,11 @@ struct EnergyArgs {
   bool double_model = false;
   int threads = 1;
   std::string json_path, plots_dir;
+  bool grid_option_given = false;  // --radial / --azimuth given explicitly (they apply to --method grid)
+  ProgressFlags progress;
 };
+
+const std::vector<std::string> kPlotFiles = {"energy.csv", "energy_vs_angle.png", "energy_max_vs_n.png"};
 
 std::vector<double> parse_angles(const std::string& s) {
   std::vector<double> out;
@@ -76,19 +82,20 @@ void run(const EnergyArgs& a) {
   if (a.method == "cells") o.method = energy::Options::Method::Cells;
   else if (a.method == "grid") o.method = energy::Options::Method::Grid;
   else throw std::invalid_argument("unknown method '" + a.method + "' (known: cells, grid)");
+  if (a.grid_option_given && o.method != energy::Options::Method::Grid)
+    throw std::invalid_argument("--radial and --azimuth apply to --method grid only");
   o.radial = a.radial;
   o.azimuth = a.azimuth;
-  const auto [lo, hi] = parse_range(a.n_range);
-  validate_n(lo);
-  validate_n(hi);
-  if (a.n_step < 1) throw std::invalid_argument("--n-step must be >= 1");
-  if (a.threads < 1 || a.threads > 64) throw std::invalid_argument("--threads must be in [1, 64]");
+  const auto [lo, hi] = cliargs::parse_n_range(a.n_range);
+  const int threads = cliargs::resolve_parallel(a.threads);
   const std::vector<double> angles = parse_angles(a.angles);
   std::vector<Model> models;
   if (a.model == "all") for (const auto& mi : kModels) models.push_back(mi.model);
   else models.push_back(parse_model(a.model));
-  if (!a.json_path.empty()) check_writable_file(a.json_path);
-  if (!a.plots_dir.empty()) ensure_dir(a.plots_dir);
+  // Every output is checked before the run and written only if the whole run succeeds.
+  io::OutputSet outs;
+  const int json_out = a.json_path.empty() ? -1 : outs.file("--json", a.json_path);
+  const int plots_out = a.plots_dir.empty() ? -1 : outs.dir("--plots", a.plots_dir, kPlotFiles);
   std::vector<int> ns;
   for (int n = lo; n <= hi; n += a.n_step) ns.push_back(n);
   if (ns.back() != hi) ns.push_back(hi);
@@ -100,6 +107,10 @@ void run(const EnergyArgs& a) {
   std::atomic<std::size_t> next{0};
   std::mutex err_mu;
   std::string err;
+  // The cost of one reflectance grows with n (the lobe is narrower, more cells): weight progress by n.
+  uint64_t work = 0;
+  for (int n : ns) work += static_cast<uint64_t>(n);
+  io::Progress bar(work * models.size() * NA, a.progress.enabled());
   auto worker = [&] {
     for (std::size_t idx; (idx = next++) < R.size();) {
       const std::size_t mi = idx / (NN * NA), ni = (idx / NA) % NN, ai = idx % NA;
@@ -109,11 +120,13 @@ void run(const EnergyArgs& a) {
         std::lock_guard<std::mutex> lk(err_mu);
         err = e.what();
       }
+      bar.add(static_cast<uint64_t>(ns[ni]));
     }
   };
   std::vector<std::thread> pool;
-  for (int t = 0; t < a.threads; ++t) pool.emplace_back(worker);
+  for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
+  bar.stop();
   if (!err.empty()) throw std::runtime_error(err);
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -125,7 +138,7 @@ void run(const EnergyArgs& a) {
              a.coef, a.cutoff, o.format.frac, o.format.guard, o.coef_int_bits,
              o.fixed_point ? "fixed-point unit output × fixed-point coefficient" : "double cs16 × double coefficient",
              lo, hi, a.n_step, NN, method_text);
-  fmt::print("{} reflectances in {:.2f} s on {} thread(s)\n\n", R.size(), secs, a.threads);
+  fmt::print("{} reflectances in {:.2f} s on {} thread(s)\n\n", R.size(), secs, threads);
   fmt::print("R(θi) = ∫ f_r cos θo dωo; max and min over n, per incidence angle:\n");
   fmt::print("{:<12}", "model");
   for (double ang : angles) fmt::print(" | {:>6.0f}° max      min", ang);
@@ -176,7 +189,7 @@ void run(const EnergyArgs& a) {
   fmt::print("\nwhere R > 1 (energy created):\n");
   for (const auto& m : jm) fmt::print("  {:<12} {}\n", m["model"].get<std::string>(), m["R_gt_1"].get<std::string>());
 
-  if (!a.json_path.empty()) {
+  if (json_out >= 0) {
     nlohmann::json j;
     j["command"] = "shadecore energy";
     j["date"] = utc_now();
@@ -189,14 +202,17 @@ void run(const EnergyArgs& a) {
     j["angles_deg"] = angles;
     j["models"] = jm;
     j["seconds"] = secs;
-    write_file_atomic(a.json_path, j.dump(2) + "\n");
+    outs.set(json_out, j.dump(2) + "\n");
   }
-  if (!a.plots_dir.empty()) {
-    write_file_atomic(a.plots_dir + "/energy.csv", csv.str());
-    run_python_script("plot_fit.py", fmt::format("--dir '{}' --energy --caption 'shadecore energy --coef {} --n {}..{} --n-step {}, {}'",
-                                                 a.plots_dir, a.coef, lo, hi, a.n_step, utc_now()));
-    fmt::print("plots written to {}/\n", a.plots_dir);
+  if (plots_out >= 0) {
+    const std::string stage = outs.stage(plots_out);
+    write_staged(stage + "/energy.csv", csv.str());
+    std::fflush(stdout);
+    run_python("plot_fit.py", {"--dir", stage, "--energy", "--caption",
+                               fmt::format("{}, {}", command_line(), utc_now())});
   }
+  outs.commit();
+  if (plots_out >= 0) fmt::print("plots written to {}/\n", a.plots_dir);
 }
 
 }  // namespace
@@ -206,19 +222,27 @@ void add_energy(CLI::App& app) {
   auto* sub = app.add_subcommand("energy", "Directional-hemispherical reflectance of the normalised BRDFs (bit-accurate)");
   sub->add_option("--model", args->model, "all | phong | phong_mod | blinn | blinn_mod | blinn_ndf | blinn_hf");
   sub->add_option("--n", args->n_range, "Exponent range LO..HI (within 16..1024)");
-  sub->add_option("--n-step", args->n_step, "Stride over n (the last n is always included)");
+  sub->add_option("--n-step", args->n_step, "Stride over n (the last n is always included)")
+      ->check(cliargs::Int(1, 1024));
   sub->add_option("--angles", args->angles, "Incidence angles in degrees, comma-separated, each in [0, 90)");
   sub->add_option("--coef", args->coef, "Coefficient: fitted (the paper's) | classical");
   sub->add_option("--cutoff", args->cutoff, "cs16 cut-off: theta_cr | sign_clamp");
-  sub->add_option("--config", args->config, "Named width configuration from config/configs.json");
+  sub->add_option("--config", args->config, "Named width configuration from config/configs.json")
+      ->check(cliargs::NonEmpty("config name"));
   sub->add_option("--method", args->method, "cells (exact per input code, azimuth in closed form) | grid (2-D midpoint)");
-  sub->add_option("--radial", args->radial, "grid: midpoint cells in the polar angle around the lobe axis");
-  sub->add_option("--azimuth", args->azimuth, "grid: quadrature cells in the azimuth over [0, pi]");
+  auto* radial = sub->add_option("--radial", args->radial, "grid: midpoint cells in the polar angle around the lobe axis");
+  auto* azimuth = sub->add_option("--azimuth", args->azimuth, "grid: quadrature cells in the azimuth over [0, pi]");
   sub->add_flag("--double", args->double_model, "Use the double-precision cs16 and coefficient instead of the fixed point");
-  sub->add_option("--threads", args->threads, "Worker threads (default 1; the machine is shared)");
-  sub->add_option("--json", args->json_path, "Write the results as JSON (atomic)");
-  sub->add_option("--plots", args->plots_dir, "Write PNG plots (and the CSV data) into this directory");
-  sub->callback([args] { run(*args); });
+  sub->add_option("--threads", args->threads, "Worker threads (default 1; 0 = all cores; at most 64)")
+      ->check(cliargs::Int(0, cliargs::kMaxParallel));
+  sub->add_option("--json", args->json_path, "Write the results as JSON (atomic)")->check(cliargs::NonEmpty("path"));
+  sub->add_option("--plots", args->plots_dir, "Write PNG plots (and the CSV data) into this directory")
+      ->check(cliargs::NonEmpty("path"));
+  args->progress.add(sub);
+  sub->callback([args, radial, azimuth] {
+    args->grid_option_given = radial->count() + azimuth->count() > 0;
+    run(*args);
+  });
 }
 
 }  // namespace shadecore::cli

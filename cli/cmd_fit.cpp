@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "args.hpp"
 #include "commands.hpp"
 #include "output.hpp"
 #include "shadecore/coef.hpp"
@@ -25,7 +26,22 @@ struct FitArgs {
   std::string n_range = "16..1024";
   double tol = 1e-13;
   std::string json_path, plots_dir;
+  bool cutoff_given = false;
 };
+
+const std::vector<std::string> kPlotFiles = {"fit_res.csv", "fig5_res.png"};
+
+// Fixed-point text without a negative zero ("-0.00000" when a tiny negative value rounds to zero).
+std::string fixed(double v, int width, int prec) {
+  std::string s = fmt::format("{:.{}f}", v, prec);
+  if (s[0] == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
+  return fmt::format("{:>{}}", s, width);
+}
+
+// Scientific text; "n/a" where there is no value (no closed form to compare with).
+std::string sci(double v, int width, int prec) {
+  return fmt::format("{:>{}}", std::isnan(v) ? std::string("n/a") : fmt::format("{:.{}e}", v, prec), width);
+}
 
 // Reproduced = the measured value, rounded to the two significant digits the paper prints, equals
 // the published value (same rule as `shadecore sweep`).
@@ -73,9 +89,7 @@ std::string utc_now() {
 
 void run(const FitArgs& a) {
   const fit::LobeKind lk = fit::parse_lobe(a.lobe);
-  const auto [lo, hi] = parse_range(a.n_range);
-  validate_n(lo);
-  validate_n(hi);
+  const auto [lo, hi] = cliargs::parse_n_range(a.n_range);
   if (hi - lo < 1) throw std::invalid_argument("--n needs at least two exponents to fit a and b");
   if (!(a.tol >= 1e-15 && a.tol <= 1e-3)) throw std::invalid_argument("--tol must be in [1e-15, 1e-3]");
   std::vector<Cutoff> cutoffs;
@@ -83,12 +97,17 @@ void run(const FitArgs& a) {
   else if (a.cutoff == "theta_cr") cutoffs = {Cutoff::ThetaCr};
   else if (a.cutoff == "sign_clamp") cutoffs = {Cutoff::SignClamp};
   else throw std::invalid_argument("unknown cutoff '" + a.cutoff + "' (known: both, theta_cr, sign_clamp)");
-  if (lk != fit::LobeKind::Cs16) cutoffs = {Cutoff::ThetaCr};  // not used by uncut lobes
+  if (lk != fit::LobeKind::Cs16) {
+    if (a.cutoff_given) throw std::invalid_argument("--cutoff applies to --lobe cs16 only (" + a.lobe + " has no cut-off)");
+    cutoffs = {Cutoff::ThetaCr};  // not used by uncut lobes
+  }
   std::vector<Model> models;
   if (a.model == "all") for (const auto& mi : kModels) models.push_back(mi.model);
   else models.push_back(parse_model(a.model));
-  if (!a.json_path.empty()) check_writable_file(a.json_path);
-  if (!a.plots_dir.empty()) ensure_dir(a.plots_dir);
+  // Every output is checked before the run and written only if the whole run succeeds.
+  io::OutputSet outs;
+  const int json_out = a.json_path.empty() ? -1 : outs.file("--json", a.json_path);
+  const int plots_out = a.plots_dir.empty() ? -1 : outs.dir("--plots", a.plots_dir, kPlotFiles);
 
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<Case> cases;
@@ -115,9 +134,13 @@ void run(const FitArgs& a) {
   };
   std::vector<Row> rows;
 
-  fmt::print("{:<40} {:>9} {:>9} | {:>10} {:>6} | {:>10} {:>9} {:>10} | {:>10} {:>9} {:>10} | {:>10}\n", "case", "quad vs", "GK err",
+  // The case column is as wide as the longest case name ("blinn_mod cs16/sign_clamp double_capped").
+  size_t cw = 4;
+  for (const Case& c : cases) cw = std::max(cw, case_name(c).size());
+  const int W = static_cast<int>(cw);
+  fmt::print("{:<{}} {:>9} {:>9} | {:>10} {:>6} | {:>10} {:>9} {:>10} | {:>10} {:>9} {:>10} | {:>10}\n", "case", W, "quad vs", "GK err",
              "published", "at n", "LSQ a", "LSQ b", "LSQ res", "minimax a", "b", "res", "LSQ@paper");
-  fmt::print("{:<40} {:>9} {:>9} | {:>10} {:>6} | {:>10} {:>9} {:>10} | {:>10} {:>9} {:>10} | {:>10}\n", "", "exact",
+  fmt::print("{:<{}} {:>9} {:>9} | {:>10} {:>6} | {:>10} {:>9} {:>10} | {:>10} {:>9} {:>10} | {:>10}\n", "", W, "exact",
              "(max)", "max res", "", "", "", "max res", "", "", "max res", "digits");
   fmt::print("{}\n", std::string(160, '-'));
   for (const Case& c : cases) {
@@ -158,8 +181,9 @@ void run(const FitArgs& a) {
       cl_res[i] = 2 * M_PI * classical_coef(c.model, s.n[i]) * s.integral[i] - 1;
       cl_max = std::max(cl_max, std::fabs(cl_res[i]));
     }
-    fmt::print("{:<40} {:>9.1e} {:>9.1e} | {:>10.3e} {:>6} | {:>10.6f} {:>9.5f} {:>10.3e} | {:>10.6f} {:>9.5f} {:>10.3e} | {:>10.3e}\n",
-               case_name(c), closed ? max_rel : std::nan(""), max_err, pub_max, pub_at, ls.a, ls.b, ls_max, mm.a, mm.b,
+    fmt::print("{:<{}} {} {:>9.1e} | {:>10.3e} {:>6} | {} {} {:>10.3e} | {} {} {:>10.3e} | {:>10.3e}\n",
+               case_name(c), W, sci(closed ? max_rel : std::nan(""), 9, 1), max_err, pub_max, pub_at, fixed(ls.a, 10, 6),
+               fixed(ls.b, 9, 5), ls_max, fixed(mm.a, 10, 6), fixed(mm.b, 9, 5),
                mm_max, ls_round_max);
     rows.push_back({c, pub_max, pub_at});
     const auto rp = fit::residuals(s, pub), rl = fit::residuals(s, ls), rm = fit::residuals(s, mm);
@@ -245,9 +269,9 @@ void run(const FitArgs& a) {
     if (m == Model::BlinnMod) jclass.back()["paper_printed_4pi_form_max_res"] = paper_form_max;
   }
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  fmt::print("\n{} cases in {:.2f} s\n", cases.size(), secs);
+  fmt::print("\n{} case{} in {:.2f} s\n", cases.size(), cases.size() == 1 ? "" : "s", secs);
 
-  if (!a.json_path.empty()) {
+  if (json_out >= 0) {
     nlohmann::json j;
     j["command"] = "shadecore fit";
     j["date"] = utc_now();
@@ -259,14 +283,16 @@ void run(const FitArgs& a) {
     j["verdicts"] = verdicts;
     j["classical"] = jclass;
     j["seconds"] = secs;
-    write_file_atomic(a.json_path, j.dump(2) + "\n");
+    outs.set(json_out, j.dump(2) + "\n");
   }
-  if (!a.plots_dir.empty()) {
-    write_file_atomic(a.plots_dir + "/fit_res.csv", csv.str());
-    run_python_script("plot_fit.py", fmt::format("--dir '{}' --fit --caption 'shadecore fit --lobe {} --n {}..{}, {}'",
-                                                 a.plots_dir, a.lobe, lo, hi, utc_now()));
-    fmt::print("plots written to {}/\n", a.plots_dir);
+  if (plots_out >= 0) {
+    const std::string stage = outs.stage(plots_out);
+    write_staged(stage + "/fit_res.csv", csv.str());
+    std::fflush(stdout);
+    run_python("plot_fit.py", {"--dir", stage, "--fit", "--caption", fmt::format("{}, {}", command_line(), utc_now())});
   }
+  outs.commit();
+  if (plots_out >= 0) fmt::print("plots written to {}/\n", a.plots_dir);
 }
 
 }  // namespace
@@ -275,13 +301,18 @@ void add_fit(CLI::App& app) {
   auto args = std::make_shared<FitArgs>();
   auto* sub = app.add_subcommand("fit", "Re-derive the energy-normalisation coefficients coef(n) and check the published bounds");
   sub->add_option("--lobe", args->lobe, "Highlight function: cs16 | cos_pow | schlick");
-  sub->add_option("--cutoff", args->cutoff, "cs16 cut-off: both | theta_cr (6/sqrt n) | sign_clamp (exact zero of the base)");
+  auto* cutoff = sub->add_option("--cutoff", args->cutoff,
+                                 "cs16 cut-off: both | theta_cr (6/sqrt n) | sign_clamp (exact zero of the base)");
   sub->add_option("--model", args->model, "all | phong | phong_mod | blinn | blinn_mod | blinn_ndf | blinn_hf");
   sub->add_option("--n", args->n_range, "Exponent range LO..HI (within 16..1024)");
   sub->add_option("--tol", args->tol, "Relative tolerance of the adaptive quadrature");
-  sub->add_option("--json", args->json_path, "Write all results as JSON (atomic)");
-  sub->add_option("--plots", args->plots_dir, "Write PNG plots (and the CSV data) into this directory");
-  sub->callback([args] { run(*args); });
+  sub->add_option("--json", args->json_path, "Write all results as JSON (atomic)")->check(cliargs::NonEmpty("path"));
+  sub->add_option("--plots", args->plots_dir, "Write PNG plots (and the CSV data) into this directory")
+      ->check(cliargs::NonEmpty("path"));
+  sub->callback([args, cutoff] {
+    args->cutoff_given = cutoff->count() > 0;
+    run(*args);
+  });
 }
 
 }  // namespace shadecore::cli

@@ -587,7 +587,11 @@ implements is shadecore's docs/spec.md; this file is the part an integrator need
 | `COEFW` | {coefw} | coefficient width (8 integer + F fraction bits), used with `NORM` = 1 |
 
 All of them are fixed in `rtl/{top}.v`; the RTL needs no parameter overrides. Files: `filelist.f`
-(`+incdir+rtl` for `sc_variants.vh`), plain Verilog-2005 (Icarus `-g2005`, Verilator, Yosys).
+(`+incdir+rtl` for `sc_variants.vh`), plain Verilog-2005 (Icarus `-g2005`, Verilator, Yosys). `rtl/` holds
+only the units this configuration uses: with Yosys read it with `read_verilog -defer` (as
+`reports/yosys_synth.ys` does), otherwise Yosys also elaborates `sc_specular` with its default parameters,
+which name a unit that is not in the bundle. Tools that elaborate from the top (Icarus, Verilator, most
+synthesis tools) need nothing special.
 
 ## Ports
 
@@ -651,8 +655,9 @@ qualify them). After power-up hold `rst_ni` low for at least one rising edge.
   exponents) and `vectors/random.hex` ({nrand} vectors, seed {seed}): stimulus and expected results from
   the C model (`shadecore vectors`; format in each file's header: N THR COEF COS EXPECTED, hex).
 - `tb/tb_shadecore.v`: plain Verilog-2005 self-checking testbench (value, order, latency, output
-  stability, a reset in the middle of the stream; random input gaps and output backpressure from
-  `+seed=`); prints one `PASS <n> vectors` or `FAIL ...` line and exits non-zero on failure.
+  stability; material writes at the edge that takes the previous fragment and during a reset in the
+  middle of the stream; random input gaps and output backpressure from `+seed=`); prints one
+  `PASS <n> vectors` or `FAIL ...` line and exits non-zero on failure.
 - `./run_icarus.sh` and `./run_verilator.sh` (`SEED=`, `IN_GAP=`, `OUT_STALL=`, `RESET_AT=` to vary):
   exit 0 only on PASS. Their results at generation time, the lint and the synthesis reports: `reports/`.
 - `sha256sum -c MANIFEST.sha256` checks that no file changed.
@@ -678,9 +683,11 @@ stated assumptions. Every path is register to register except `out_ready_i` → 
                                                      "fragment is cut to 0 when its clamped code is below thr.\n",
                                                      f.frac + 1)
                                        : ""),
-      fmt::arg("coefline", s.norm ? fmt::format("- `mat_coef_i`: ⌊coef(n)·2^F + ½⌋ with coef(n) = (a·n + b)/(k·π) of the "
-                                                "chosen model ({}), {} bits unsigned (docs/spec.md §7).\n",
-                                                s.norm_label(), s.coef_bits())
+      fmt::arg("coefline", s.norm ? fmt::format("- `mat_coef_i`: ⌊coef(n)·2^F + ½⌋ for the material's energy-normalisation "
+                                                "coefficient coef(n) (docs/spec.md §7: (a·n + b)/(k·π) fitted, or the "
+                                                "classical closed forms), {} bits unsigned; the hardware takes any code. "
+                                                "This bundle's vectors: {}.\n",
+                                                s.coef_bits(), s.norm_label())
                                   : ""),
       fmt::arg("examples", examples), fmt::arg("ready", ready), fmt::arg("lat", lat), fmt::arg("thru", thru),
       fmt::arg("matports", std::string(s.uses_thr() ? ", `mat_thr_i`" : "") + (s.norm ? ", `mat_coef_i`" : "")),

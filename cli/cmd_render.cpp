@@ -228,11 +228,8 @@ std::vector<std::vector<Colour>> run_rtl(const render::Frame& fr, RtlTotals& tot
     }
     RtlRunOptions o;
     o.quiet = false;
-    RtlRunResult r;
-    {
-      Step step(fmt::format("RTL core {}/{} ({}): {} fragments", g + 1, fr.groups.size(), grp.fs.key(), grp.dests.size()));
-      r = run_core_rtl(grp.fs, cmds, o);
-    }
+    // run_core_rtl reports the build (when the core is new) and the simulation on stderr itself.
+    RtlRunResult r = run_core_rtl(grp.fs, cmds, o);
     if (r.colours.size() != grp.dests.size())
       throw std::runtime_error(fmt::format("RTL core {} returned {} colours for {} fragments ({})", grp.fs.key(),
                                            r.colours.size(), grp.dests.size(), r.summary));

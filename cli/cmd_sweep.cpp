@@ -14,8 +14,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "args.hpp"
 #include "commands.hpp"
 #include "output.hpp"
+#include "progress.hpp"
 #include "shadecore/configs.hpp"
 #include "shadecore/golden.hpp"
 #include "shadecore/schlick.hpp"
@@ -28,11 +30,12 @@ struct SweepArgs {
   std::string variant = "cs16";
   std::string cutoff = "theta_cr";
   std::string config;  // a name from config/configs.json
-  int frac = -1, guard = -1;
+  int frac = 16, guard = 5;
+  bool frac_given = false;
   std::string n_range = "16..1024";
   int threads = 0;
   std::string json_path, csv_path, plots_dir;
-  bool no_progress = false;
+  ProgressFlags progress;
   bool compare_cutoffs = false;
   bool cutoff_given = false, guard_given = false;  // cs16-only options given explicitly
   bool energy = false;
@@ -54,8 +57,8 @@ bool reproduces(double claimed, double measured) {
 
 Format resolve_format(const SweepArgs& a) {
   Format f = config_named(a.config).format;
-  if (a.frac >= 0) f.frac = a.frac;
-  if (a.guard >= 0) f.guard = a.guard;
+  if (a.frac_given) f.frac = a.frac;  // explicit values are checked as given (validate), never ignored
+  if (a.guard_given) f.guard = a.guard;
   validate(f);
   return f;
 }
@@ -74,47 +77,6 @@ std::string where(const Extreme& e, const Format& f) {
                      e.code);
 }
 
-// Progress bar on stderr while the sweep runs (only when stderr is a terminal).
-class Progress {
- public:
-  Progress(uint64_t total, bool enabled) : total_(total), enabled_(enabled) {
-    if (enabled_) th_ = std::thread([this] { loop(); });
-  }
-  ~Progress() { stop(); }
-  void add(uint64_t k) { done_ += k; }
-  void stop() {
-    if (!th_.joinable()) return;
-    {
-      std::lock_guard<std::mutex> lk(mu_);
-      stopping_ = true;
-    }
-    cv_.notify_all();
-    th_.join();
-    std::fputs("\r\033[K", stderr);
-  }
-
- private:
-  void loop() {
-    const auto t0 = std::chrono::steady_clock::now();
-    std::unique_lock<std::mutex> lk(mu_);
-    while (!cv_.wait_for(lk, std::chrono::milliseconds(100), [this] { return stopping_; })) {
-      const double frac = total_ ? double(done_.load()) / double(total_) : 1.0;
-      const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      const int w = 40, fill = static_cast<int>(frac * w);
-      fmt::print(stderr, "\r[{}{}] {:5.1f}%  {:.1f} s", std::string(fill, '#'), std::string(w - fill, ' '),
-                 100 * frac, el);
-      std::fflush(stderr);
-    }
-  }
-  uint64_t total_;
-  bool enabled_;
-  std::atomic<uint64_t> done_{0};
-  std::mutex mu_;
-  std::condition_variable cv_;
-  bool stopping_ = false;
-  std::thread th_;
-};
-
 std::string csv_rows(const SweepResult& r) {
   std::ostringstream o;
   o << "n,approx_max,approx_max_code,approx_min,approx_min_code,quant_max_ulp,quant_max_code,"
@@ -129,7 +91,12 @@ std::string csv_rows(const SweepResult& r) {
   return o.str();
 }
 
-// Data for the plots: Fig. 3 (n = 128 curves) and Fig. 4 (Δ over n and θ, 20θ in [0, 30]).
+// Every file --plots DIR gets: the CSV data and the PNGs drawn from it by scripts/plot_sweep.py.
+const std::vector<std::string> kPlotFiles = {"fig3_n128.csv", "fig4_grid.csv", "per_n.csv",   "fig3_n128.png",
+                                             "fig4_delta.png", "quant_ulp.png", "approx_over_n.png"};
+
+// Data for the plots: Fig. 3 (n = 128 curves) and Fig. 4 (Δ over n and θ in [0, 1.5] rad, the paper's
+// 20θ in [0, 30]).
 void write_plot_data(const SweepArgs& a, const SweepResult& r, const std::string& dir) {
   const Format f = r.options.format;
   const Cutoff cut = r.options.cutoff;
@@ -152,7 +119,7 @@ void write_plot_data(const SweepArgs& a, const SweepResult& r, const std::string
       o << fmt::format("{:.9f},{:.12e},{:.12e},{:.12e}\n", th, golden::cos_pow(c, n),
                        variant_golden(a.variant, cut, n, c), fixed);
     }
-    write_file_atomic(dir + "/fig3_n128.csv", o.str());
+    write_staged(dir + "/fig3_n128.csv", o.str());
   }
   {
     std::ostringstream o;
@@ -165,9 +132,9 @@ void write_plot_data(const SweepArgs& a, const SweepResult& r, const std::string
         const double c = std::cos(th);
         o << fmt::format("{},{:.6f},{:.9e}\n", n, th, golden::cos_pow(c, n) - variant_golden(a.variant, cut, n, c));
       }
-    write_file_atomic(dir + "/fig4_grid.csv", o.str());
+    write_staged(dir + "/fig4_grid.csv", o.str());
   }
-  write_file_atomic(dir + "/per_n.csv", csv_rows(r));
+  write_staged(dir + "/per_n.csv", csv_rows(r));
 }
 
 // Lobe energy against cos^n (docs/schlick.md): ∫ f sin θ dθ and ∫ f cos θ sin θ dθ over [0, π/2] for
@@ -232,14 +199,6 @@ nlohmann::json print_energy(const SweepArgs& a, const SweepOptions& opt) {
 void run(const SweepArgs& a) {
   SweepOptions opt;
   opt.variant = a.variant;
-  opt.format = resolve_format(a);
-  opt.cutoff = parse_cutoff_name(a.cutoff);
-  const auto [lo, hi] = parse_range(a.n_range);
-  validate_n(lo);
-  validate_n(hi);
-  opt.n_lo = lo;
-  opt.n_hi = hi;
-  opt.threads = a.threads;
   bool known = false;
   for (const auto& v : sweep_variants()) known |= (v == a.variant);
   if (!known) {
@@ -247,16 +206,22 @@ void run(const SweepArgs& a) {
     for (const auto& v : sweep_variants()) names += (names.empty() ? "" : ", ") + v;
     throw std::invalid_argument("unknown variant '" + a.variant + "' (known: " + names + ")");
   }
-  if (a.threads < 0) throw std::invalid_argument("--threads must be >= 0");
+  opt.format = resolve_format(a);
+  opt.cutoff = parse_cutoff_name(a.cutoff);
+  const auto [lo, hi] = cliargs::parse_n_range(a.n_range);
+  opt.n_lo = lo;
+  opt.n_hi = hi;
+  opt.threads = cliargs::resolve_parallel(a.threads);
   if (a.variant != "cs16" && (a.cutoff_given || a.guard_given || a.compare_cutoffs))
     throw std::invalid_argument("--cutoff, --guard and --compare-cutoffs apply to the cs16 variant only");
-  // Fail on unwritable outputs before the run, not after it.
-  if (!a.json_path.empty()) check_writable_file(a.json_path);
-  if (!a.csv_path.empty()) check_writable_file(a.csv_path);
-  if (!a.plots_dir.empty()) ensure_dir(a.plots_dir);
+  // Every output is checked before the run and written only if the whole run succeeds.
+  io::OutputSet outs;
+  const int json_out = a.json_path.empty() ? -1 : outs.file("--json", a.json_path);
+  const int csv_out = a.csv_path.empty() ? -1 : outs.file("--csv", a.csv_path);
+  const int plots_out = a.plots_dir.empty() ? -1 : outs.dir("--plots", a.plots_dir, kPlotFiles);
 
   const uint64_t total = uint64_t(opt.format.one() + 1) * uint64_t(hi - lo + 1);
-  Progress bar(total, !a.no_progress && ::isatty(STDERR_FILENO));
+  io::Progress bar(total, a.progress.enabled());
   opt.progress = [&bar](uint64_t k) { bar.add(k); };
   const SweepResult r = run_sweep(opt);
   bar.stop();
@@ -334,7 +299,7 @@ void run(const SweepArgs& a) {
     cutcmp = {{"differing_fixed_outputs", diff_fixed}, {"max_abs_double_difference", max_double}};
   }
 
-  if (!a.json_path.empty()) {
+  if (json_out >= 0) {
     nlohmann::json j;
     j["variant"] = a.variant;
     j["cutoff"] = to_string(opt.cutoff);
@@ -348,15 +313,20 @@ void run(const SweepArgs& a) {
     j["verdicts"] = verdicts;
     if (!cutcmp.is_null()) j["cutoff_comparison"] = cutcmp;
     if (!energy.is_null()) j["energy"] = energy;
-    write_file_atomic(a.json_path, j.dump(2) + "\n");
+    outs.set(json_out, j.dump(2) + "\n");
   }
-  if (!a.csv_path.empty()) write_file_atomic(a.csv_path, csv_rows(r));
-  if (!a.plots_dir.empty()) {
-    write_plot_data(a, r, a.plots_dir);
-    run_python_script("plot_sweep.py",
-                      fmt::format("--dir '{}' --title '{}' --command '{}'", a.plots_dir, label, command_line()));
-    fmt::print("\nplots written to {}/\n", a.plots_dir);
+  if (csv_out >= 0) outs.set(csv_out, csv_rows(r));
+  if (plots_out >= 0) {
+    const std::string stage = outs.stage(plots_out);
+    write_plot_data(a, r, stage);
+    std::fflush(stdout);
+    run_python("plot_sweep.py",
+               {"--dir", stage, "--title", label, "--variant", a.variant, "--frac", std::to_string(f.frac), "--guard",
+                std::to_string(f.guard), "--approx-max", fmt::format("{:.6e}", r.approx.max.value), "--approx-min",
+                fmt::format("{:.6e}", r.approx.min.value), "--command", command_line()});
   }
+  outs.commit();
+  if (plots_out >= 0) fmt::print("\nplots written to {}/\n", a.plots_dir);
 }
 
 }  // namespace
@@ -366,19 +336,23 @@ void add_sweep(CLI::App& app) {
   auto* sub = app.add_subcommand("sweep", "Exhaustive error sweep: every n × every input code");
   sub->add_option("--variant", args->variant, "Specular variant (cs16, schlick_div, schlick_nr, schlick_iter)");
   auto* cutoff_opt = sub->add_option("--cutoff", args->cutoff, "cs16 cut-off form: theta_cr | sign_clamp");
-  sub->add_option("--config", args->config, "Named width configuration from config/configs.json");
-  sub->add_option("--frac", args->frac, "Fraction bits F (8..24), overrides --config");
+  sub->add_option("--config", args->config, "Named width configuration from config/configs.json")
+      ->check(cliargs::NonEmpty("config name"));
+  auto* frac_opt = sub->add_option("--frac", args->frac, "Fraction bits F (8..24), overrides --config");
   auto* guard_opt = sub->add_option("--guard", args->guard, "Guard bits G (4..8, F+G <= 31), overrides --config");
   sub->add_option("--n", args->n_range, "Exponent range LO..HI or N (within 16..1024)");
-  sub->add_option("--threads", args->threads, "Worker threads (0 = all cores)");
-  sub->add_option("--json", args->json_path, "Write the summary as JSON");
-  sub->add_option("--csv", args->csv_path, "Write one row per n as CSV");
-  sub->add_option("--plots", args->plots_dir, "Write PNG plots (and their CSV data) into this directory");
-  sub->add_flag("--no-progress", args->no_progress, "No progress bar");
+  sub->add_option("--threads", args->threads, "Worker threads (0 = all cores; at most 64)")
+      ->check(cliargs::Int(0, cliargs::kMaxParallel));
+  sub->add_option("--json", args->json_path, "Write the summary as JSON")->check(cliargs::NonEmpty("path"));
+  sub->add_option("--csv", args->csv_path, "Write one row per n as CSV")->check(cliargs::NonEmpty("path"));
+  sub->add_option("--plots", args->plots_dir, "Write PNG plots (and their CSV data) into this directory")
+      ->check(cliargs::NonEmpty("path"));
+  args->progress.add(sub);
   sub->add_flag("--energy", args->energy, "Also print the lobe energy relative to cos^n per n (docs/schlick.md)");
   sub->add_flag("--compare-cutoffs", args->compare_cutoffs, "Also count outputs where theta_cr and sign_clamp differ");
-  sub->callback([args, cutoff_opt, guard_opt] {
+  sub->callback([args, cutoff_opt, frac_opt, guard_opt] {
     args->cutoff_given = cutoff_opt->count() > 0;
+    args->frac_given = frac_opt->count() > 0;
     args->guard_given = guard_opt->count() > 0;
     run(*args);
   });

@@ -1,5 +1,8 @@
 #include "output.hpp"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -7,9 +10,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <regex>
 #include <stdexcept>
+
+#include <fmt/core.h>
+
+#include "output_files.hpp"
+#include "progress.hpp"
 
 #ifndef SHADECORE_SOURCE_DIR
 #error "SHADECORE_SOURCE_DIR must be defined by the build"
@@ -17,41 +24,89 @@
 #ifndef SHADECORE_PYTHON
 #define SHADECORE_PYTHON "/usr/bin/python3"
 #endif
+#ifndef SHADECORE_VERSION
+#define SHADECORE_VERSION "unknown"
+#endif
 
 namespace fs = std::filesystem;
 
 namespace shadecore::cli {
 
-void check_writable_file(const std::string& path) {
-  if (path.empty()) throw std::runtime_error("empty output path");
-  const fs::path p(path);
-  if (fs::is_directory(p)) throw std::runtime_error("cannot write " + path + ": is a directory");
-  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir)) throw std::runtime_error("cannot write " + path + ": no directory " + dir.string());
-  if (::access(dir.c_str(), W_OK) != 0)
-    throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+namespace {
+
+// One line: a message never spans lines on stderr.
+std::string one_line(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
 }
 
+}  // namespace
+
+int run_app(CLI::App& app, int argc, char** argv) {
+  io::install_interrupt_cleanup("shadecore");
+  app.set_version_flag("--version", "shadecore " SHADECORE_VERSION);
+  std::string names;
+  bool known = false;
+  for (const CLI::App* s : app.get_subcommands([](CLI::App*) { return true; })) {
+    names += (names.empty() ? "" : ", ") + s->get_name();
+    if (argc > 1 && s->get_name() == argv[1]) known = true;
+  }
+  if (argc > 1 && argv[1][0] != '-' && !known) {
+    fmt::print(stderr, "shadecore: error: unknown subcommand '{}' (known: {}; see shadecore --help)\n", argv[1], names);
+    return kExitError;
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::RequiredError& e) {
+    // CLI11 says "A subcommand is required" without naming them.
+    const std::string what = e.what();
+    if (what.find("subcommand") != std::string::npos)
+      fmt::print(stderr, "shadecore: error: a subcommand is required ({}; see shadecore --help)\n", names);
+    else
+      fmt::print(stderr, "shadecore: error: {} (see shadecore --help)\n", one_line(what));
+    return kExitError;
+  } catch (const CLI::ParseError& e) {
+    // One line, like every other error, and status 1 for every usage error (CLI11's own exit() prints
+    // a second "Run with --help" line and uses 100+ statuses).
+    fmt::print(stderr, "shadecore: error: {} (see shadecore --help)\n", one_line(e.what()));
+    return kExitError;
+  } catch (const CheckFailed& e) {
+    fmt::print(stderr, "shadecore: {}\n", one_line(e.what()));
+    return kExitCheckFailed;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "shadecore: error: {}\n", one_line(e.what()));
+    return kExitError;
+  }
+  return 0;
+}
+
+void write_staged(const std::string& path, const std::string& content) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) throw io::cannot_write(path, std::strerror(errno));
+  try {
+    io::write_all(fd, content, path);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  if (::close(fd) != 0) throw io::cannot_write(path, std::strerror(errno));
+}
+
+void check_writable_file(const std::string& path) { (void)io::resolve_output(path); }
+
 void write_file_atomic(const std::string& path, const std::string& content) {
-  check_writable_file(path);
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-    out << content;
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw std::runtime_error("cannot write " + path + ": write failed");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw std::runtime_error("cannot write " + path + ": " + ec.message());
-  }
+  io::OutputSet out;
+  const int id = out.file("output", path);
+  out.set(id, content);
+  out.commit();
 }
 
 void ensure_dir(const std::string& dir) {
@@ -70,35 +125,122 @@ std::pair<int, int> parse_range(const std::string& text) {
     throw std::invalid_argument("malformed range '" + text + "' (expected N or LO..HI, e.g. 16..1024)");
   const int lo = std::stoi(m[1].str());
   const int hi = m[2].matched ? std::stoi(m[2].str()) : lo;
-  if (lo > hi) throw std::invalid_argument("malformed range '" + text + "': LO > HI");
+  if (lo > hi) throw std::invalid_argument("empty range '" + text + "' (LO > HI)");
   return {lo, hi};
 }
 
 namespace {
 std::string g_command_line = "shadecore";
+
+// fork/exec argv with stderr captured; SIGINT is ignored in the child (the parent's handler stops it
+// with SIGTERM and cleans up, so no Python traceback reaches the terminal).
+void run_child(const std::vector<std::string>& argv, const std::string& what) {
+  int errp[2];
+  if (::pipe2(errp, O_CLOEXEC) != 0) throw std::runtime_error(what + ": pipe: " + std::strerror(errno));
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  sigset_t all, old;
+  sigfillset(&all);
+  ::pthread_sigmask(SIG_BLOCK, &all, &old);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::signal(SIGINT, SIG_IGN);
+    ::signal(SIGTERM, SIG_DFL);
+    ::signal(SIGHUP, SIG_DFL);
+    ::signal(SIGPIPE, SIG_DFL);
+    ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
+    ::dup2(errp[1], 2);
+    ::execv(args[0], args.data());
+    const char* m = "cannot run the interpreter\n";
+    ssize_t r = ::write(2, m, std::strlen(m));
+    (void)r;
+    ::_exit(127);
+  }
+  if (pid > 0) io::track_child(pid);
+  ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
+  ::close(errp[1]);
+  if (pid < 0) {
+    ::close(errp[0]);
+    throw std::runtime_error(what + ": fork: " + std::strerror(errno));
+  }
+  std::string err;
+  char buf[4096];
+  for (;;) {
+    const ssize_t k = ::read(errp[0], buf, sizeof buf);
+    if (k > 0) err.append(buf, static_cast<size_t>(k));
+    else if (k == 0 || errno != EINTR) break;
+  }
+  ::close(errp[0]);
+  int st = 0;
+  while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
+  }
+  io::untrack_child(pid);
+  if (WIFEXITED(st) && WEXITSTATUS(st) == 0) return;
+  // The last non-empty line says what went wrong (a Python traceback ends with the exception).
+  std::string last;
+  size_t end = err.size();
+  while (end > 0) {
+    const size_t b = err.rfind('\n', end - 1);
+    const size_t s = b == std::string::npos ? 0 : b + 1;
+    const std::string line = err.substr(s, end - s);
+    if (line.find_first_not_of(" \t\r") != std::string::npos) {
+      last = line;
+      break;
+    }
+    if (b == std::string::npos) break;
+    end = b;
+  }
+  if (last.empty())
+    last = WIFSIGNALED(st) ? "killed by signal " + std::to_string(WTERMSIG(st)) : "exit status " + std::to_string(WEXITSTATUS(st));
+  throw std::runtime_error(what + " failed: " + one_line(last));
 }
+
+std::string scripts_dir() {
+  const char* env_dir = std::getenv("SHADECORE_SCRIPTS");
+  return env_dir ? env_dir : std::string(SHADECORE_SOURCE_DIR) + "/scripts";
+}
+}  // namespace
 
 void set_command_line(int argc, char** argv) {
   std::string s = "shadecore";
   for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    for (char& c : a)
-      if (c == '\'' || c == '"') c = '_';  // the line is passed to a shell in single quotes
-    s += " " + a;
+    const std::string a = argv[i];
+    const bool plain = !a.empty() && a.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                          "0123456789-_./=,:+@%") == std::string::npos;
+    if (plain) {
+      s += " " + a;
+    } else {
+      std::string q;
+      for (char c : a) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+      s += " '" + q + "'";
+    }
   }
   g_command_line = s;
 }
 
 const std::string& command_line() { return g_command_line; }
 
-void run_python_script(const std::string& script, const std::string& args) {
-  const char* env_dir = std::getenv("SHADECORE_SCRIPTS");
-  const std::string dir = env_dir ? env_dir : std::string(SHADECORE_SOURCE_DIR) + "/scripts";
-  const std::string path = dir + "/" + script;
+void run_python(const std::string& script, const std::vector<std::string>& args) {
+  const std::string path = scripts_dir() + "/" + script;
   if (!fs::exists(path)) throw std::runtime_error("plot script not found: " + path);
-  const std::string cmd = std::string(SHADECORE_PYTHON) + " '" + path + "' " + args;
-  const int rc = std::system(cmd.c_str());
-  if (rc != 0) throw std::runtime_error("plotting failed (" + cmd + ")");
+  std::vector<std::string> argv = {SHADECORE_PYTHON, path};
+  argv.insert(argv.end(), args.begin(), args.end());
+  run_child(argv, "plotting");
 }
+
+void run_python_script(const std::string& script, const std::string& args) {
+  const std::string path = scripts_dir() + "/" + script;
+  if (!fs::exists(path)) throw std::runtime_error("plot script not found: " + path);
+  run_child({"/bin/sh", "-c", std::string(SHADECORE_PYTHON) + " '" + path + "' " + args}, "plotting");
+}
+
+void ProgressFlags::add(CLI::App* sub) {
+  auto* a = sub->add_flag("--progress", on, "Progress bar on stderr even when it is not a terminal");
+  auto* b = sub->add_flag("--no-progress", off, "No progress bar (default: shown when stderr is a terminal)");
+  a->excludes(b);
+}
+
+bool ProgressFlags::enabled() const { return io::progress_wanted(on, off); }
 
 }  // namespace shadecore::cli

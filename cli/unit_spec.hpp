@@ -60,7 +60,7 @@ struct UnitSpec {
   [[nodiscard]] bool uses_thr() const { return is_cs16() && cutoff == Cutoff::ThetaCr; }       // mat_thr_i read
   [[nodiscard]] std::string norm_label() const {
     if (!norm) return "off";
-    if (norm_model < 0) return "all (model and coefficient kind chosen per n)";
+    if (norm_model < 0) return "all (any coefficient code; vectors use model n mod 6, classical kind when n/6 is odd)";
     return std::string(kModels[norm_model].key) + ", " + to_string(coef_kind);
   }
   // One line: "cs16 default (F=16 G=5) cutoff theta_cr" (+ ", norm phong fitted").

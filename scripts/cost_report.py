@@ -119,11 +119,22 @@ def fmt(v, spec):
     return "—" if v is None else format(v, spec)
 
 
-def write_atomic(path, data, mode="w"):
-    tmp = path + ".tmp"
-    with open(tmp, mode) as f:
-        f.write(data)
-    os.replace(tmp, path)
+def check_out_dir(out):
+    """--out may be missing (it is created when the report is written), but it must be creatable: the
+    nearest existing ancestor is a writable directory. Checked before the long run."""
+    d = os.path.abspath(out)
+    if os.path.exists(d):
+        if not os.path.isdir(d):
+            sys.exit(f"cost_report: error: --out {out} is not a directory")
+    else:
+        anc = d
+        while not os.path.exists(anc):
+            anc = os.path.dirname(anc)
+        if not os.path.isdir(anc):
+            sys.exit(f"cost_report: error: cannot create --out {out}: {anc} is not a directory")
+        d = anc
+    if not os.access(d, os.W_OK):
+        sys.exit(f"cost_report: error: cannot write to {d}")
 
 
 def plot(rows, path, footer):
@@ -156,9 +167,10 @@ def plot(rows, path, footer):
                  fontsize=10)
     fig.tight_layout(rect=(0, 0.04, 1, 1))
     fig.text(0.01, 0.005, footer, fontsize=6, color="0.35")
-    tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=120)
-    os.replace(tmp, path)
+    try:
+        fig.savefig(path, dpi=120, format="png")
+    finally:
+        plt.close(fig)
 
 
 def write_report(rows, cmd, out):
@@ -200,9 +212,30 @@ def write_report(rows, cmd, out):
               "cos^n) does not depend on the width; the width buys quantisation error (≤ 1 ulp = 2^−F), which "
               "the plot shows in absolute units against cost.", "",
               "![error against cost](tradeoffs.png)", ""]
-    write_atomic(os.path.join(out, "tradeoffs.md"), "\n".join(lines))
-    write_atomic(os.path.join(out, "tradeoffs.json"), json.dumps(rows, indent=2) + "\n")
-    plot(rows, os.path.join(out, "tradeoffs.png"), footer)
+    # All three or none: written to temporary files in OUT (created if missing), renamed together at the end.
+    created = []
+    d = os.path.abspath(out)
+    while not os.path.exists(d):
+        created.append(d)
+        d = os.path.dirname(d)
+    for c in reversed(created):
+        os.mkdir(c)
+    tmps = {name: os.path.join(out, f".{name}.tmp.{os.getpid()}") for name in ("tradeoffs.md", "tradeoffs.json", "tradeoffs.png")}
+    try:
+        with open(tmps["tradeoffs.md"], "w") as f:
+            f.write("\n".join(lines))
+        with open(tmps["tradeoffs.json"], "w") as f:
+            f.write(json.dumps(rows, indent=2) + "\n")
+        plot(rows, tmps["tradeoffs.png"], footer)
+    except BaseException:
+        for t in tmps.values():
+            if os.path.exists(t):
+                os.unlink(t)
+        for c in created:
+            os.rmdir(c)
+        raise
+    for name, t in tmps.items():
+        os.replace(t, os.path.join(out, name))
     print("\n".join(lines))
 
 
@@ -222,8 +255,10 @@ def main():
                     help="only redraw tradeoffs.png from OUT/tradeoffs.json (no synthesis or simulation)")
     a = ap.parse_args()
     a.cli = os.path.join(a.build, "cli", "shadecore")
-    if not os.path.isdir(a.out):
-        sys.exit(f"cost_report: error: no directory {a.out}")
+    # Everything that can fail quickly is checked before the long run: the plotting modules, the output
+    # directory, the build.
+    figures.require("matplotlib")
+    check_out_dir(a.out)
     if a.replot:
         if not os.path.exists(os.path.join(a.out, "tradeoffs.json")):
             sys.exit(f"cost_report: error: no {a.out}/tradeoffs.json to replot (run without --replot first)")
@@ -232,13 +267,13 @@ def main():
         m = re.search(r"Command: `([^`]*)`", md)
         write_report(rows, m.group(1) if m else "scripts/cost_report.py", a.out)
         return
+    if not os.access(a.cli, os.X_OK):
+        sys.exit(f"cost_report: error: {a.cli} is not an executable (build first: scripts/build.sh)")
     # The iCE40 flow is not part of the default setup; install it the same way (idempotent, quiet).
     try:
         run([os.path.join(ROOT, "scripts", "setup.sh"), "nextpnr-ice40", "fpga-icestorm", "yosys"])
     except RuntimeError as e:
         sys.exit(f"cost_report: error: {e}")
-    if not os.access(a.cli, os.X_OK):
-        sys.exit(f"cost_report: error: {a.cli} is not an executable (build first: scripts/build.sh)")
     cfgs = json.load(open(os.path.join(ROOT, "config", "configs.json")))
     variants = [v for v in cfgs["variants"] if not a.variants or v["name"] in a.variants.split(",")]
     configs = [c for c in cfgs["configs"] if not a.configs or c["name"] in a.configs.split(",")]
@@ -259,4 +294,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except KeyboardInterrupt:
+        sys.exit("cost_report: interrupted")

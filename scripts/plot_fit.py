@@ -10,11 +10,16 @@ Each figure carries the command, machine and date in a footer. Files are written
 import argparse
 import csv
 import datetime
+import math
 import os
+import signal
+import sys
 from collections import defaultdict
 
-import figures  # scripts/figures.py: footer and atomic save
-import matplotlib
+import figures  # scripts/figures.py: footer, atomic save, import check
+
+figures.require("numpy", "matplotlib")
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -40,7 +45,8 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
-def plot_fit(d, footer):
+def fit_figure(d):
+    """fig5_res.png: res(n) per model; the y range covers every plotted line (none hides below the axis)."""
     rows = read_csv(os.path.join(d, "fit_res.csv"))
     series = defaultdict(lambda: defaultdict(list))
     for r in rows:
@@ -69,15 +75,30 @@ def plot_fit(d, footer):
         ax.set_title(TITLES.get(m, m))
         ax.set_xlabel("n")
         ax.set_ylabel("res(n) = |2π·coef(n)·Int(n) − 1|")
-        ax.set_ylim(1e-9, 1)
+        # The y range follows the data: the floor is a decade below the 5th percentile of the lowest line
+        # (so every line is visible, also fits that are exact to rounding, while the isolated dips where
+        # a residual changes sign do not stretch the axis over many empty decades).
+        lows, top = [], 1.0
+        for line in ax.get_lines():
+            y = np.asarray(line.get_ydata(), dtype=float)
+            y = y[np.isfinite(y) & (y > 0)]
+            if y.size:
+                lows.append(np.percentile(y, 5))
+                top = max(top, float(y.max()))
+        floor = 10.0 ** (math.floor(math.log10(min(lows))) - 1) if lows else 1e-9
+        ax.set_ylim(floor, top * 2)
         ax.grid(True, which="both", lw=0.3)
         ax.legend(fontsize=6)
     for ax in list(axes.flat)[len(models):]:
         ax.axis("off")
-    save(fig, os.path.join(d, "fig5_res.png"), footer)
+    return fig
 
 
-def plot_energy(d, footer):
+def plot_fit(d, footer):
+    figures.save_all({"fig5_res.png": fit_figure(d)}, d, footer)
+
+
+def energy_figures(d):
     rows = read_csv(os.path.join(d, "energy.csv"))
     data = defaultdict(lambda: defaultdict(dict))  # model -> n -> angle -> R
     for r in rows:
@@ -98,7 +119,7 @@ def plot_energy(d, footer):
         ax.legend(fontsize=7)
     for ax in list(axes.flat)[len(models):]:
         ax.axis("off")
-    save(fig, os.path.join(d, "energy_vs_angle.png"), footer)
+    out = {"energy_vs_angle.png": fig}
 
     fig, ax = plt.subplots(figsize=(8, 5))
     for i, m in enumerate(models):
@@ -110,7 +131,12 @@ def plot_energy(d, footer):
     ax.set_title("Energy check: maximum directional-hemispherical reflectance per n (fixed point)")
     ax.grid(True, lw=0.3)
     ax.legend(fontsize=7)
-    save(fig, os.path.join(d, "energy_max_vs_n.png"), footer)
+    out["energy_max_vs_n.png"] = fig
+    return out
+
+
+def plot_energy(d, footer):
+    figures.save_all(energy_figures(d), d, footer)
 
 
 def main():
@@ -130,4 +156,8 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except KeyboardInterrupt:
+        print("plot_fit.py: interrupted", file=sys.stderr)
+        sys.exit(128 + signal.SIGINT)

@@ -1,19 +1,24 @@
 #!/usr/bin/python3
-"""Plots for `shadecore sweep --plots DIR`: reads the CSV files the sweep wrote into DIR and
-writes fig3_n128.png (cos^n θ and the variant at n = 128, the paper's Fig. 3), fig4_delta.png
-(Δ = cos^n θ − f over n and 20·θ in [0, 30], the paper's Fig. 4), quant_ulp.png (quantisation
-error in output ulps over n) and approx_over_n.png (max/min approximation error per n).
+"""Plots for `shadecore sweep --plots DIR`: reads the CSV files the sweep wrote into DIR and writes
+fig3_n128.png (cos^n θ and the unit at n = 128, the paper's Fig. 3, with the fixed-point error in a
+second panel), fig4_delta.png (Δ = cos^n θ − f over n and θ, the paper's Fig. 4, whose axis is 20·θ),
+quant_ulp.png (quantisation error in output ulps per n against the contract's bounds) and
+approx_over_n.png (max/min approximation error per n).
 Each figure carries the command, machine and date in a footer. Files are written atomically."""
 import argparse
 import os
+import signal
+import sys
 
-import figures  # scripts/figures.py: footer and atomic save
-import matplotlib
+import figures  # scripts/figures.py: footer, atomic save, import check
+
+figures.require("numpy", "matplotlib")
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-
+from matplotlib.colors import TwoSlopeNorm  # noqa: E402
 
 machine = figures.machine
 save = figures.save
@@ -23,68 +28,136 @@ def load(path):
     return np.genfromtxt(path, delimiter=",", names=True)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--dir", required=True, help="directory with the sweep's CSV files; PNGs go here")
-    ap.add_argument("--title", default="cs16", help="variant/format label for titles")
-    ap.add_argument("--command", default="shadecore sweep --plots DIR", help="command for the footer")
-    a = ap.parse_args()
-    footer = figures.footer(a.command)
+def quant_bounds(variant, frac, guard):
+    """The contract's bounds on f_fixed − f_double in output ulps (docs/spec.md §3 and §6.4)."""
+    if variant == "cs16":
+        lo = -(0.5 + 15 * 2.0 ** -guard)
+        return lo, 0.5, f"−(½ + 15·2⁻ᴳ) = {lo:.4f} (G = {guard})", "+½"
+    if variant == "schlick_nr":
+        r = frac + 6
+        e1 = 0.0080872 ** 2 + 2 * 2.0 ** -r
+        b = 0.5 + 2.0 ** frac * (e1 ** 2 + 3 * 2.0 ** -r)
+        return -b, b, f"−{b:.4f}", f"+{b:.4f}"
+    return -0.5, 0.5, "−½", "+½"
 
-    f3 = load(os.path.join(a.dir, "fig3_n128.csv"))
-    fig, ax = plt.subplots(figsize=(7, 4.2))
+
+def fig3(d, unit, frac):
+    f3 = load(os.path.join(d, "fig3_n128.csv"))
+    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True, gridspec_kw={"height_ratios": [3, 1.4]})
     ax.plot(f3["theta"], f3["cos_pow"], label=r"$\cos^{128}\theta$", lw=2)
-    ax.plot(f3["theta"], f3["golden"], "--", label="variant (double)", lw=1.5)
-    if not np.all(np.isnan(f3["fixed"])):
-        ax.plot(f3["theta"], f3["fixed"], ":", label="variant (fixed point)", lw=1.5)
+    ax.plot(f3["theta"], f3["golden"], "--", label=f"{unit} (double)", lw=1.5)
+    has_fixed = not np.all(np.isnan(f3["fixed"]))
+    if has_fixed:
+        ax.plot(f3["theta"], f3["fixed"], ":", label=f"{unit} (fixed point, F = {frac})", lw=1.5)
     ax.set_xlim(0, 0.6)
-    ax.set_xlabel(r"$\theta$ [rad]")
     ax.set_ylabel("highlight")
-    ax.set_title(f"Fig. 3: n = 128 — {a.title}")
+    ax.set_title(f"Fig. 3: n = 128 — {unit}")
     ax.legend()
     ax.grid(alpha=0.3)
-    save(fig, os.path.join(a.dir, "fig3_n128.png"), footer)
+    # The fixed-point and double curves coincide at this scale: their difference, in output ulps.
+    if has_fixed:
+        err = (f3["fixed"] - f3["golden"]) * 2.0 ** frac
+        ax2.plot(f3["theta"], err, lw=0.8, color="C2", label=f"{unit}: fixed − double")
+        ax2.legend(fontsize=7)
+    ax2.axhline(0, color="0.5", lw=0.6)
+    ax2.set_xlabel(r"$\theta$ [rad]")
+    ax2.set_ylabel("fixed − double\n[output ulps]")
+    ax2.grid(alpha=0.3)
+    return fig
 
-    g = load(os.path.join(a.dir, "fig4_grid.csv"))
+
+def fig4(d, unit, approx_max=None, approx_min=None):
+    g = load(os.path.join(d, "fig4_grid.csv"))
     ns = np.unique(g["n"])
     th = np.unique(g["theta"])
     z = g["delta"].reshape(len(ns), len(th))
-    fig, ax = plt.subplots(figsize=(7, 4.6))
-    lim = np.max(np.abs(z)) or 1.0
-    im = ax.pcolormesh(20 * th, ns, z, shading="auto", cmap="RdBu_r", vmin=-lim, vmax=lim)
+    fig, ax = plt.subplots(figsize=(7, 4.8))
+    zmax, zmin = float(z.max()), float(z.min())
+    span = max(abs(zmax), abs(zmin)) or 1.0
+    if zmin < -0.01 * span and zmax > 0.01 * span:
+        # Both signs matter: a diverging scale centred on 0 (each side to its own extreme).
+        im = ax.pcolormesh(th, ns, z, shading="auto", cmap="RdBu_r", norm=TwoSlopeNorm(0.0, zmin, zmax))
+    else:
+        # One-signed (up to rounding noise): a sequential scale over the data's own range.
+        im = ax.pcolormesh(th, ns, z, shading="auto", cmap="viridis", vmin=zmin, vmax=zmax)
     fig.colorbar(im, ax=ax, label=r"$\Delta(\theta,n)=\cos^n\theta - f(\theta,n)$")
-    ax.set_xlabel(r"$20\cdot\theta$")
+    ax.set_xlabel(r"$\theta$ [rad]")
+    top = ax.secondary_xaxis("top", functions=(lambda x: 20 * x, lambda x: x / 20))
+    top.set_xlabel(r"$20\cdot\theta$ (the axis of the paper's Fig. 4)", fontsize=8)
     ax.set_ylabel("n")
-    ax.set_title(f"Fig. 4: Δ over n and θ — {a.title} (max {z.max():.3g}, min {z.min():.3g})")
-    save(fig, os.path.join(a.dir, "fig4_delta.png"), footer)
+    title = f"Fig. 4: Δ over n and θ — {unit}\non this θ grid ({len(th)} points): max {zmax:.3g}, min {zmin:.3g}"
+    if approx_max is not None and approx_min is not None:
+        title += f"; every input code (sweep): max {approx_max:.3g}, min {approx_min:.3g}"
+    ax.set_title(title)
+    return fig
 
-    r = load(os.path.join(a.dir, "per_n.csv"))
+
+def quant(d, unit, variant, frac, guard):
+    r = load(os.path.join(d, "per_n.csv"))
     fig, ax = plt.subplots(figsize=(7, 4))
-    ax.plot(r["n"], r["quant_max_ulp"], label="max (fixed − double)")
-    ax.plot(r["n"], r["quant_min_ulp"], label="min (fixed − double)")
-    ax.axhline(0.5, color="0.5", ls=":", lw=1)
-    ax.axhline(-1.0, color="0.5", ls=":", lw=1)
+    ax.plot(r["n"], r["quant_max_ulp"], label="max over codes (fixed − double)")
+    ax.plot(r["n"], r["quant_min_ulp"], label="min over codes (fixed − double)")
+    lo, hi, lo_text, hi_text = quant_bounds(variant, frac, guard)
+    ax.axhline(hi, color="C3", ls=":", lw=1, label=f"contract upper bound {hi_text}")
+    ax.axhline(lo, color="C4", ls=":", lw=1, label=f"contract lower bound {lo_text}")
     ax.set_xlabel("n")
     ax.set_ylabel("output ulps")
-    ax.set_title(f"Quantisation error per n — {a.title}")
-    ax.legend()
+    ax.set_title(f"Quantisation error per n — {unit}")
+    ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
-    save(fig, os.path.join(a.dir, "quant_ulp.png"), footer)
+    return fig
 
+
+def approx(d, unit, variant):
+    r = load(os.path.join(d, "per_n.csv"))
     fig, ax = plt.subplots(figsize=(7, 4))
     ax.plot(r["n"], r["approx_max"], label=r"max $\Delta$ (double)")
     ax.plot(r["n"], r["approx_min"], label=r"min $\Delta$ (double)")
     ax.plot(r["n"], r["total_max"], "--", label=r"max $\Delta$ (fixed point)")
     ax.plot(r["n"], r["total_min"], "--", label=r"min $\Delta$ (fixed point)")
-    ax.axhline(1.7e-2, color="C3", ls=":", lw=1, label="published max 1.7e-2")
-    ax.axhline(-9.7e-3, color="C4", ls=":", lw=1, label="published min −9.7e-3")
+    if variant == "cs16":
+        ax.axhline(1.7e-2, color="C3", ls=":", lw=1, label="published max 1.7e-2")
+        ax.axhline(-9.7e-3, color="C4", ls=":", lw=1, label="published min −9.7e-3")
     ax.set_xlabel("n")
     ax.set_ylabel(r"$\cos^n\theta - f$")
-    ax.set_title(f"Approximation error per n — {a.title}")
+    ax.set_title(f"Approximation error per n — {unit}")
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
-    save(fig, os.path.join(a.dir, "approx_over_n.png"), footer)
+    return fig
+
+
+def build(a):
+    """The four figures, by file name (not saved: the tests inspect them)."""
+    unit = a.variant
+    return {
+        "fig3_n128.png": fig3(a.dir, unit, a.frac),
+        "fig4_delta.png": fig4(a.dir, a.title, a.approx_max, a.approx_min),
+        "quant_ulp.png": quant(a.dir, a.title, a.variant, a.frac, a.guard),
+        "approx_over_n.png": approx(a.dir, a.title, a.variant),
+    }
+
+
+def parser():
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--dir", required=True, help="directory with the sweep's CSV files; PNGs go here")
+    ap.add_argument("--title", default="cs16", help="variant/format label for titles")
+    ap.add_argument("--variant", default="cs16", help="the unit's name (legends, contract bounds)")
+    ap.add_argument("--frac", type=int, default=16, help="fraction bits F")
+    ap.add_argument("--guard", type=int, default=5, help="guard bits G (cs16)")
+    ap.add_argument("--approx-max", type=float, default=None, help="max Δ over every input code (sweep)")
+    ap.add_argument("--approx-min", type=float, default=None, help="min Δ over every input code (sweep)")
+    ap.add_argument("--command", default="shadecore sweep --plots DIR", help="command for the footer")
+    return ap
+
+
+def main():
+    a = parser().parse_args()
+    figures.save_all(build(a), a.dir, figures.footer(a.command))
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except KeyboardInterrupt:
+        print("plot_sweep.py: interrupted", file=sys.stderr)
+        sys.exit(128 + signal.SIGINT)

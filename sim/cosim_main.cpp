@@ -1,20 +1,23 @@
 // shadecore sim — co-simulation of rtl/sc_specular.v (Verilated with --sc) against the C model.
 // One executable per configuration of config/configs.json (shadecore_cosim_<config>); it holds a
 // Verilated model per (variant, CUTOFF) and elaborates the one asked for. `shadecore cosim` runs
-// it as a subprocess (and shards the n range over several of them).
+// it as a subprocess (and shards the n range, or the transaction indices, over several of them).
 //
 //   shadecore_cosim_default --mode random --count 1000000 --in-stall 0.2 --out-stall 0.3 --seed 7
 //   shadecore_cosim_default --mode exhaustive --n 16..1024
 //   shadecore_cosim_default --mode directed +trace            (waveform: cosim.fst)
 //
-// Prints a human summary and one machine-readable line "COSIM-RESULT {json}". Exit 0 only if every
-// output matched the C model bit for bit, no transaction was lost, duplicated or reordered, every
-// latency was the unit's, and the port protocol held.
+// Prints a human summary and one machine-readable line "COSIM-RESULT {json}". Exit status (docs/cli.md):
+// 0 only if every output matched the C model bit for bit, no transaction was lost, duplicated or
+// reordered, every latency was the unit's, the port protocol held and at least one vector was checked;
+// 2 when the run completed and one of those checks FAILED (the waveform, if asked for, is kept: it is
+// the evidence); 1 for a bad argument or any other error (one line on stderr, no waveform left).
 #include <systemc.h>
 #include <verilated.h>
 #include <verilated_fst_sc.h>
 
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -25,6 +28,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "args.hpp"
+#include "output_files.hpp"
+#include "progress.hpp"
+#include "shadecore/coef.hpp"
 #include "shadecore/configs.hpp"
 #include "shadecore/unit.hpp"
 #include "sim_models.hpp"
@@ -35,59 +42,107 @@
 #include "tb_scoreboard.hpp"
 #include "tb_stimulus.hpp"
 
+// libsystemc's main() prints the SystemC banner before sc_main() runs (even for --help): silence it
+// before main() unless the user set the variable.
+static const int g_banner_off = (setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 0), 0);
+
 namespace shadecore::sim {
 namespace {
 
-std::pair<int, int> parse_n_range(const std::string& s) {
-  const auto dots = s.find("..");
-  try {
-    size_t pos = 0;
-    if (dots == std::string::npos) {
-      const int v = std::stoi(s, &pos);
-      if (pos != s.size()) throw std::invalid_argument("");
-      return {v, v};
-    }
-    const std::string a = s.substr(0, dots), b = s.substr(dots + 2);
-    const int lo = std::stoi(a, &pos);
-    if (pos != a.size()) throw std::invalid_argument("");
-    const int hi = std::stoi(b, &pos);
-    if (pos != b.size()) throw std::invalid_argument("");
-    return {lo, hi};
-  } catch (const std::exception&) {
-    throw std::invalid_argument("bad n range '" + s + "' (want LO..HI or N)");
-  }
+std::string g_prog = "shadecore_cosim";
+
+std::string shortest(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
 
+// Reports the driver's accepted count every 4096 clock cycles of simulated time: to the progress bar
+// (stderr, when it is a terminal or --progress) and/or as "COSIM-PROGRESS k" lines on stdout for
+// `shadecore cosim` (at most 4 per second).
+class ProgressProbe : public sc_core::sc_module {
+ public:
+  SC_HAS_PROCESS(ProgressProbe);
+  ProgressProbe(sc_core::sc_module_name name, const Driver& drv, const sc_core::sc_time& period, io::Progress* bar,
+                bool lines)
+      : sc_module(name), drv_(drv), period_(period * 4096), bar_(bar), lines_(lines) {
+    SC_THREAD(loop);
+  }
+
+ private:
+  void loop() {
+    auto last = std::chrono::steady_clock::now();
+    for (;;) {
+      wait(period_);
+      const uint64_t d = drv_.accepted();
+      if (bar_) bar_->set(d);
+      if (lines_) {
+        const auto now = std::chrono::steady_clock::now();
+        if (now - last >= std::chrono::milliseconds(250)) {
+          std::printf("COSIM-PROGRESS %llu\n", static_cast<unsigned long long>(d));
+          std::fflush(stdout);
+          last = now;
+        }
+      }
+    }
+  }
+  const Driver& drv_;
+  sc_core::sc_time period_;
+  io::Progress* bar_;
+  bool lines_;
+};
+
+struct RunConfig {
+  std::string repro;
+  std::string trace_file;  // where the waveform is written while the run lasts ("" = none)
+  bool progress_bar = false, progress_lines = false;
+};
+
 template <class M>
-int run(const Options& o, const Unit& unit, const std::string& repro) {
+int run(const Options& o, const Unit& unit, const RunConfig& rc, std::string& cause) {
   Pins pins;
   M dut("dut");
   pins.bind(dut);
   Scoreboard sb(unit, o.show);
   Stimulus stim(o, unit);
-  Driver drv("driver", pins, stim, unit, o);
+  // Stalls, material writes and the reset point come from the driver's own generators, seeded per run:
+  // a shard starting at transaction `first` gets its own streams (shard 0 / an unsharded run: the seed).
+  Options timing = o;
+  if (o.first != 0) timing.seed = mix64(o.seed ^ mix64(o.first));
+  Driver drv("driver", pins, stim, unit, timing);
   Monitor mon("monitor", pins, sb, drv, o.inject, o.inject_at);
   mon.set_in_bits(unit.format().in_bits());
+  std::unique_ptr<io::Progress> bar;
+  if (rc.progress_bar) bar = std::make_unique<io::Progress>(stim.planned(), true, "cosim");
+  std::unique_ptr<ProgressProbe> probe;
+  if (bar || rc.progress_lines)
+    probe = std::make_unique<ProgressProbe>("progress", drv, pins.clk.period(), bar.get(), rc.progress_lines);
 
   std::unique_ptr<VerilatedFstSc> tfp;
-  if (!o.trace.empty()) {
+  if (!rc.trace_file.empty()) {
     Verilated::traceEverOn(true);
     sc_core::sc_start(sc_core::SC_ZERO_TIME);  // elaborate before tracing (Verilator + SystemC)
     tfp = std::make_unique<VerilatedFstSc>();
     dut.trace(tfp.get(), 99);
-    tfp->open(o.trace.c_str());
+    tfp->open(rc.trace_file.c_str());
   }
   // The kernel's "Info: /OSCI/SystemC: Simulation stopped by user." after sc_stop() is noise here.
   sc_core::sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
   const auto t0 = std::chrono::steady_clock::now();
   sc_core::sc_start();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (bar) bar->stop();
   if (tfp) tfp->close();
   sb.finish();
   dut.final();
 
   const Format& f = unit.format();
-  const bool ok = sb.ok() && !mon.watchdog_fired();
+  // A run that checked nothing is not a pass; a watchdog stop is named as the cause.
+  if (mon.watchdog_fired())
+    cause = "watchdog: no transfer for " + std::to_string(Monitor::kIdleLimit) + " cycles";
+  else if (sb.checked_ == 0)
+    cause = "no vector was checked";
+  const bool ok = sb.ok() && cause.empty();
   const double vps = wall > 0 ? static_cast<double>(sb.checked_) / wall : 0.0;
   for (const auto& m : sb.first_)
     std::printf("MISMATCH n=%d code=%lld expected=%u got=%u (tag %u, cycle %llu)\n", m.n,
@@ -95,19 +150,20 @@ int run(const Options& o, const Unit& unit, const std::string& repro) {
                 static_cast<unsigned long long>(m.cycle));
   if (!o.quiet || !ok) {
     std::printf(
-        "cosim: %s: %llu vectors checked, %llu mismatches, %llu lost, %llu duplicated/reordered, "
+        "cosim: %s%s%s%s: %llu vectors checked, %llu mismatches, %llu lost, %llu duplicated/reordered, "
         "%llu latency errors, %llu protocol errors; %llu dropped by %llu mid-stream reset(s); "
         "latency %llu..%llu cycles (spec %d advancing); %llu cycles, %.3f s, %.0f vectors/s\n",
-        ok ? "PASS" : "FAIL", (unsigned long long)sb.checked_, (unsigned long long)sb.mismatches_,
-        (unsigned long long)sb.lost_, (unsigned long long)sb.unexpected_,
-        (unsigned long long)sb.latency_errors_, (unsigned long long)sb.protocol_errors_,
-        (unsigned long long)sb.dropped_by_reset_, (unsigned long long)drv.resets(),
-        (unsigned long long)(sb.checked_ ? sb.lat_min_ : 0), (unsigned long long)sb.lat_max_,
-        unit.latency(), (unsigned long long)mon.cycles(), wall, vps);
+        ok ? "PASS" : "FAIL", cause.empty() ? "" : " (", cause.c_str(), cause.empty() ? "" : ")",
+        (unsigned long long)sb.checked_, (unsigned long long)sb.mismatches_, (unsigned long long)sb.lost_,
+        (unsigned long long)sb.unexpected_, (unsigned long long)sb.latency_errors_,
+        (unsigned long long)sb.protocol_errors_, (unsigned long long)sb.dropped_by_reset_,
+        (unsigned long long)drv.resets(), (unsigned long long)(sb.checked_ ? sb.lat_min_ : 0),
+        (unsigned long long)sb.lat_max_, unit.latency(), (unsigned long long)mon.cycles(), wall, vps);
   }
-  if (!ok) std::printf("cosim: reproduce with: %s\n", repro.c_str());
+  if (!ok) std::printf("cosim: reproduce with: %s\n", rc.repro.c_str());
   nlohmann::json j = {
       {"ok", ok},
+      {"cause", cause},
       {"config", kSimConfig},
       {"frac", f.frac},
       {"guard", f.guard},
@@ -118,9 +174,11 @@ int run(const Options& o, const Unit& unit, const std::string& repro) {
       {"n_lo", o.n_lo},
       {"n_hi", o.n_hi},
       {"seed", o.seed},
+      {"first", o.first},
       {"in_stall", o.in_stall},
       {"out_stall", o.out_stall},
       {"planned", stim.planned()},
+      {"stimulus_digest", stim.digest()},
       {"accepted", sb.accepted_},
       {"vectors", sb.checked_},
       {"mismatches", sb.mismatches_},
@@ -138,7 +196,7 @@ int run(const Options& o, const Unit& unit, const std::string& repro) {
       {"wall_s", wall},
       {"vectors_per_s", vps},
       {"watchdog", mon.watchdog_fired()},
-      {"reproduce", repro},
+      {"reproduce", rc.repro},
   };
   nlohmann::json mm = nlohmann::json::array();
   for (const auto& m : sb.first_)
@@ -146,107 +204,202 @@ int run(const Options& o, const Unit& unit, const std::string& repro) {
   j["first_mismatches"] = mm;
   std::printf("COSIM-RESULT %s\n", j.dump().c_str());
   std::fflush(stdout);
-  return ok ? 0 : 1;
+  return ok ? 0 : 2;
 }
 
 int main_impl(int argc, char** argv) {
+  {
+    const std::string a0 = argc > 0 ? argv[0] : "shadecore_cosim";
+    const auto slash = a0.rfind('/');
+    g_prog = slash == std::string::npos ? a0 : a0.substr(slash + 1);
+  }
+  io::install_interrupt_cleanup(g_prog.c_str());
+  const auto fail = [](const std::string& msg) {
+    std::string m = msg;
+    for (char& c : m)
+      if (c == '\n') c = ' ';
+    std::fprintf(stderr, "%s: error: %s\n", g_prog.c_str(), m.c_str());
+    return 1;
+  };
   // Verilator-style plusarg: +trace (waveform cosim.fst) or +trace=FILE.
   std::vector<char*> args;
   std::string plus_trace;
+  bool plus_trace_given = false;
   for (int i = 0; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "+trace") plus_trace = "cosim.fst";
-    else if (a.rfind("+trace=", 0) == 0) plus_trace = a.substr(7);
-    else args.push_back(argv[i]);
+    if (i > 0 && a == "+trace") {
+      plus_trace = "cosim.fst";
+      plus_trace_given = true;
+    } else if (i > 0 && a.rfind("+trace=", 0) == 0) {
+      plus_trace = a.substr(7);
+      plus_trace_given = true;
+      if (plus_trace.empty()) return fail("+trace=: empty path");
+    } else if (i > 0 && a[0] == '+') {
+      return fail("unknown plusarg '" + a + "' (known: +trace, +trace=FILE)");
+    } else {
+      args.push_back(argv[i]);
+    }
   }
-  std::string repro;
-  for (int i = 0; i < argc; ++i) repro += (i ? " " : "") + std::string(argv[i]);
 
   Options o;
   std::string mode = "directed", n_range = "16..1024";
-  bool norm = false;
-  std::string coef_model = "all", coef_kind = "fitted";
-  CLI::App app{std::string("co-simulation of rtl/sc_specular.v (config '") + kSimConfig +
-               "') against the C model"};
+  bool norm = false, force_progress = false, no_progress = false, progress_lines = false;
+  std::string coef_model, coef_kind;
+  using namespace cliargs;
+  CLI::App app{std::string("co-simulation of rtl/sc_specular.v (config '") + kSimConfig + "') against the C model"};
   app.add_option("--variant", o.variant, "unit variant (config/configs.json variants)");
   app.add_option("--cutoff", o.cutoff, "theta_cr | sign_clamp");
   app.add_option("--mode", mode, "exhaustive | random | directed");
-  app.add_option("--n", n_range, "exponent range LO..HI or N (exhaustive, random)");
-  app.add_option("--count", o.count, "random: transactions; directed: minimum items (list repeated)");
-  app.add_option("--seed", o.seed, "random seed (0 = pick one and print it)");
-  app.add_option("--in-stall", o.in_stall, "probability per cycle of an input gap")->check(CLI::Range(0.0, 1.0));
-  app.add_option("--out-stall", o.out_stall, "probability per cycle of out_ready_i low")->check(CLI::Range(0.0, 1.0));
-  app.add_option("--mat-rate", o.mat_rate, "random mode: probability per cycle of a material write")
-      ->check(CLI::Range(0.0, 1.0));
-  app.add_option("--reset-at", o.reset_at,
-                 "pulse rst_ni low after this many accepted fragments (-1 none; default: half way in "
-                 "random/directed, none in exhaustive)");
-  app.add_option("--reset-cycles", o.reset_cycles, "length of each reset pulse")->check(CLI::Range(1, 1000));
-  app.add_option("--trace", o.trace, "write an FST waveform to this file (also: +trace, +trace=FILE)");
-  app.add_option("--show", o.show, "errors printed in full per kind")->check(CLI::Range(0, 1000000));
-  app.add_option("--inject", o.inject, "self-test: corrupt one observed output (value | drop | dup); the run must FAIL")
-      ->check(CLI::IsMember({"value", "drop", "dup"}));
-  app.add_option("--inject-at", o.inject_at, "self-test: which output transfer (1-based)")->check(CLI::PositiveNumber);
+  auto* n_opt = app.add_option("--n", n_range, "exponent range LO..HI or N (exhaustive, random)");
+  auto* count_opt = app.add_option("--count", o.count, "random: transactions; directed: minimum items (list repeated)")
+                        ->check(UInt(1, 1000000000000ull));
+  app.add_option("--seed", o.seed, "random seed (0 = pick one and print it)")->check(UInt(0));
+  auto* first_opt = app.add_option("--first", o.first,
+                                   "random: index of the first transaction (a shard of a longer run with the same seed)")
+                        ->check(UInt(0));
+  app.add_option("--in-stall", o.in_stall, "probability per cycle of an input gap, in [0, 1)")->check(Probability(false));
+  app.add_option("--out-stall", o.out_stall, "probability per cycle of out_ready_i low, in [0, 1)")
+      ->check(Probability(false));
+  auto* mat_opt = app.add_option("--mat-rate", o.mat_rate, "random mode: probability per cycle of a material write")
+                      ->check(Probability(true));
+  auto* reset_opt = app.add_option("--reset-at", o.reset_at,
+                                   "pulse rst_ni low after this many accepted fragments (-1 none; default: half way "
+                                   "in random/directed, none in exhaustive)")
+                        ->check(ResetAt());
+  app.add_option("--reset-cycles", o.reset_cycles, "length of each reset pulse")->check(Int(1, 1000));
+  app.add_option("--trace", o.trace, "write an FST waveform to this file (also: +trace, +trace=FILE)")
+      ->check(NonEmpty("path"));
+  app.add_option("--show", o.show, "errors printed in full per kind")->check(Int(0, 1000000));
+  auto* inject_opt =
+      app.add_option("--inject", o.inject, "self-test: corrupt one observed output (value | drop | dup); the run must FAIL")
+          ->check(CLI::IsMember({"value", "drop", "dup"}));
+  auto* inject_at_opt =
+      app.add_option("--inject-at", o.inject_at, "self-test: which output transfer (1-based)")->check(UInt(1));
   app.add_flag("--quiet", o.quiet, "print only the COSIM-RESULT line when the run passes");
   app.add_flag("--norm", norm, "sc_specular with NORM = 1: rtl/sc_norm.v after the unit (cs16, theta_cr)");
-  app.add_option("--coef-model", coef_model,
-                 "--norm: all (model and kind picked per material from n) | phong | phong_mod | blinn | "
-                 "blinn_mod | blinn_ndf | blinn_hf");
-  app.add_option("--coef", coef_kind, "--norm with one model: fitted | classical");
+  auto* coef_model_opt = app.add_option("--coef-model", coef_model,
+                                        "--norm: all (model and kind picked per material from n; the default) | phong | "
+                                        "phong_mod | blinn | blinn_mod | blinn_ndf | blinn_hf");
+  auto* coef_opt = app.add_option("--coef", coef_kind, "--norm with one --coef-model: fitted (default) | classical");
+  auto* pon = app.add_flag("--progress", force_progress, "progress bar on stderr even when it is not a terminal");
+  auto* poff = app.add_flag("--no-progress", no_progress, "no progress bar (default: shown when stderr is a terminal)");
+  pon->excludes(poff);
+  app.add_flag("--progress-lines", progress_lines, "print COSIM-PROGRESS lines on stdout (for shadecore cosim)");
   try {
     app.parse(static_cast<int>(args.size()), args.data());
+  } catch (const CLI::CallForHelp&) {
+    std::fputs(app.help().c_str(), stdout);
+    return 0;
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return fail(std::string(e.what()) + " (see " + g_prog + " --help)");
   }
-  if (!plus_trace.empty() && o.trace.empty()) o.trace = plus_trace;
+  if (plus_trace_given && !o.trace.empty()) return fail("give the waveform file once: --trace or +trace, not both");
+  if (plus_trace_given) o.trace = plus_trace;
   try {
     if (mode == "exhaustive") o.mode = Mode::Exhaustive;
     else if (mode == "random") o.mode = Mode::Random;
     else if (mode == "directed") o.mode = Mode::Directed;
     else throw std::invalid_argument("unknown mode '" + mode + "' (known: exhaustive, random, directed)");
     std::tie(o.n_lo, o.n_hi) = parse_n_range(n_range);
-    if (o.n_lo > o.n_hi) throw std::invalid_argument("empty n range " + n_range);
-    validate_n(o.n_lo);
-    validate_n(o.n_hi);
-    if (o.seed == 0) {
-      o.seed = (static_cast<uint64_t>(std::random_device{}()) << 32) ^ std::random_device{}();
-      if (o.seed == 0) o.seed = 1;
-      repro += " --seed " + std::to_string(o.seed);
-    }
-    if (o.reset_at == -2)
-      o.reset_at = -1;  // resolved below once the stimulus length is known
+    // Options that the chosen mode would ignore are errors, not silently dropped.
+    if (o.mode == Mode::Directed && n_opt->count())
+      throw std::invalid_argument("--n does not apply to --mode directed (the hard cases carry their own n)");
+    if (o.mode == Mode::Exhaustive && count_opt->count())
+      throw std::invalid_argument("--count does not apply to --mode exhaustive (every code of every n)");
+    if (o.mode != Mode::Random && first_opt->count()) throw std::invalid_argument("--first applies to --mode random only");
+    if (o.mode != Mode::Random && mat_opt->count()) throw std::invalid_argument("--mat-rate applies to --mode random only");
+    if (inject_at_opt->count() && !inject_opt->count()) throw std::invalid_argument("--inject-at needs --inject");
+    if (!norm && (coef_model_opt->count() || coef_opt->count()))
+      throw std::invalid_argument("--coef-model and --coef apply with --norm only");
     const Format* fmt = nullptr;
     for (const auto& c : kConfigs)
       if (c.name == kSimConfig) fmt = &c.format;
     if (!fmt) throw std::invalid_argument(std::string("config ") + kSimConfig + " not in configs.hpp");
     Unit unit(parse_variant(o.variant), *fmt, parse_cutoff_name(o.cutoff));
-    if (norm)
-      unit.set_norm(true, coef_model == "all" ? -1 : static_cast<int>(parse_model(coef_model)),
-                    parse_coef_kind(coef_kind));
-    if (o.reset_at == -1 && mode != "exhaustive") {
-      bool explicit_reset = app.count("--reset-at") > 0;
-      if (!explicit_reset) {
+    if (norm) {
+      if (unit.variant() != VariantId::cs16 || unit.cutoff() != Cutoff::ThetaCr)
+        throw std::invalid_argument("--norm is built for --variant cs16 --cutoff theta_cr only");
+      const bool one_model = !coef_model.empty() && coef_model != "all";
+      if (coef_opt->count() && !one_model)
+        throw std::invalid_argument("--coef needs --coef-model MODEL (with all, the kind is picked per material)");
+      unit.set_norm(true, one_model ? static_cast<int>(parse_model(coef_model)) : -1,
+                    parse_coef_kind(coef_kind.empty() ? "fitted" : coef_kind));
+    }
+    if (o.seed == 0) {
+      o.seed = (static_cast<uint64_t>(std::random_device{}()) << 32) ^ std::random_device{}();
+      if (o.seed == 0) o.seed = 1;
+    }
+    if (o.reset_at == -2) {
+      o.reset_at = -1;
+      if (o.mode != Mode::Exhaustive && !reset_opt->count()) {
         Stimulus probe(o, unit);
         o.reset_at = static_cast<int64_t>(probe.planned() / 2);
       }
     }
+    // The command that replays this run exactly: every option resolved (the seed picked, the reset
+    // point), each given once. The waveform is left out (add +trace to get one).
+    RunConfig rc;
+    {
+      std::string r = argv[0];
+      const auto add = [&r](const std::string& k, const std::string& v) { r += " " + k + " " + v; };
+      add("--variant", o.variant);
+      add("--cutoff", o.cutoff);
+      add("--mode", mode);
+      if (o.mode != Mode::Directed) add("--n", std::to_string(o.n_lo) + ".." + std::to_string(o.n_hi));
+      if (o.mode != Mode::Exhaustive) add("--count", std::to_string(o.count));
+      if (o.mode == Mode::Random && o.first) add("--first", std::to_string(o.first));
+      add("--seed", std::to_string(o.seed));
+      add("--in-stall", shortest(o.in_stall));
+      add("--out-stall", shortest(o.out_stall));
+      if (o.mode == Mode::Random) add("--mat-rate", shortest(o.mat_rate));
+      add("--reset-at", std::to_string(o.reset_at));
+      add("--reset-cycles", std::to_string(o.reset_cycles));
+      if (norm) {
+        r += " --norm";
+        if (!coef_model.empty()) add("--coef-model", coef_model);
+        if (!coef_kind.empty()) add("--coef", coef_kind);
+      }
+      if (!o.inject.empty()) {
+        add("--inject", o.inject);
+        add("--inject-at", std::to_string(o.inject_at));
+      }
+      add("--show", std::to_string(o.show));
+      rc.repro = r;
+    }
+    // The waveform is an output like any other: checked now, written beside its target, renamed at the end.
+    io::OutputSet outs;
+    int trace_out = -1;
+    if (!o.trace.empty()) {
+      trace_out = outs.file("--trace", o.trace, /*allow_stream=*/false);
+      rc.trace_file = outs.produce_path(trace_out, {".hier"});
+    }
+    rc.progress_bar = io::progress_wanted(force_progress, no_progress);
+    rc.progress_lines = progress_lines;
     if (!o.quiet)
-      std::printf("cosim: config %s (F=%d G=%d) variant %s cutoff %s mode %s n %d..%d count %llu seed %llu "
+      std::printf("cosim: config %s (F=%d G=%d) variant %s cutoff %s%s mode %s n %d..%d count %llu seed %llu "
                   "in-stall %g out-stall %g reset-at %lld%s%s\n",
-                  kSimConfig, fmt->frac, fmt->guard, o.variant.c_str(), o.cutoff.c_str(), mode.c_str(), o.n_lo,
-                  o.n_hi, (unsigned long long)o.count, (unsigned long long)o.seed, o.in_stall, o.out_stall,
-                  (long long)o.reset_at, o.trace.empty() ? "" : " trace ", o.trace.c_str());
-    int rc = -1;
+                  kSimConfig, fmt->frac, fmt->guard, o.variant.c_str(), o.cutoff.c_str(),
+                  norm ? (" norm (coef model " + (coef_model.empty() ? std::string("all") : coef_model) +
+                          (coef_kind.empty() ? "" : " " + coef_kind) + ")")
+                             .c_str()
+                       : "",
+                  mode.c_str(), o.n_lo, o.n_hi, (unsigned long long)o.count, (unsigned long long)o.seed, o.in_stall,
+                  o.out_stall, (long long)o.reset_at, o.trace.empty() ? "" : " trace ", o.trace.c_str());
+    int rc_status = -1;
+    std::string cause;
     const bool found = with_model(static_cast<int>(unit.variant()), static_cast<int>(unit.cutoff()),
-                                  [&](auto tag) { rc = run<typename decltype(tag)::type>(o, unit, repro); },
+                                  [&](auto tag) { rc_status = run<typename decltype(tag)::type>(o, unit, rc, cause); },
                                   norm ? 1 : 0);
     if (!found)
       throw std::invalid_argument("no Verilated model for variant " + o.variant + " cutoff " + o.cutoff +
                                   (norm ? " with --norm" : ""));
-    return rc;
+    // A failing run keeps its waveform: it is the evidence. An error (exception) leaves nothing.
+    outs.commit();
+    if (!o.trace.empty()) std::printf("cosim: waveform written to %s\n", o.trace.c_str());
+    std::fflush(stdout);
+    return rc_status;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "cosim: error: %s\n", e.what());
-    return 2;
+    return fail(e.what());
   }
 }
 
@@ -254,6 +407,6 @@ int main_impl(int argc, char** argv) {
 }  // namespace shadecore::sim
 
 int sc_main(int argc, char** argv) {
-  setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 0);
+  (void)g_banner_off;
   return shadecore::sim::main_impl(argc, argv);
 }

@@ -15,6 +15,10 @@ struct Options {
   int n_lo = 16, n_hi = 1024;   // exponent range (exhaustive, random)
   uint64_t count = 100000;      // random: transactions; directed: at least this many (list repeated)
   uint64_t seed = 1;
+  // Random mode: global index of this run's first transaction. Transaction i's stimulus is a function of
+  // (seed, i) only, so `shadecore cosim` can split one seeded run into shards (shard k runs `count`
+  // transactions from `first`) and the same seed gives the same stimulus whatever the shard count.
+  uint64_t first = 0;
   double in_stall = 0.0;        // probability per cycle that the driver withholds in_valid_i
   double out_stall = 0.0;       // probability per cycle that out_ready_i is low
   double mat_rate = 0.01;       // random mode: probability per cycle of a material write

@@ -6,10 +6,22 @@
 
 namespace shadecore::sim {
 
+// The SplitMix64 output function: a 64-bit bijective mix.
+inline uint64_t mix64(uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
 // SplitMix64 (Steele, Lea, Flood 2014): full-period 64-bit generator, good enough for stimulus.
 class Rng {
  public:
   explicit Rng(uint64_t seed) : s_(seed) {}
+  // An independent stream for item `index` of a run seeded with `seed`: a function of (seed, index)
+  // only (hashed, so neighbouring items do not share draws).
+  static Rng for_item(uint64_t seed, uint64_t index) {
+    return Rng(mix64(mix64(seed ^ 0x5eed5eed5eedull) ^ mix64(index + 0x632BE59BD9B4E019ull)));
+  }
   uint64_t next() {
     uint64_t z = (s_ += 0x9E3779B97F4A7C15ull);
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;

@@ -3,7 +3,11 @@
 //               in_min, -1, 2^F+1, in_max (the clamp must saturate, never wrap);
 //   random:     `count` codes: 70 % uniform in [0, 2^F], 10 % uniform over the whole signed input
 //               word, 20 % within ±4 of a special point (0, 2^F, thr(n'), base zero of n'); the
-//               material changes at random cycles (the driver), so no n is attached here;
+//               material changes at random cycles (the driver), so no n is attached here.
+//               The code of transaction i (i = first, first+1, ...) is drawn from its own stream,
+//               Rng::for_item(seed, i): a function of (seed, i) only, so one seeded run split into
+//               shards by index gives the same codes whatever the shard count. (Stalls, material
+//               writes and the reset come from the driver's per-run generators: timing, not stimulus.)
 //   directed:   shadecore::hard_cases() — the list the C model tests use — repeated until `count`
 //               items (at least once).
 // No allocation per item; the directed list is built once.
@@ -27,7 +31,7 @@ struct Item {
 class Stimulus {
  public:
   Stimulus(const Options& o, const Unit& unit)
-      : o_(o), unit_(unit), f_(unit.format()), rng_(o.seed ^ 0x5eed5eed5eedull), n_(o.n_lo) {
+      : o_(o), unit_(unit), f_(unit.format()), n_(o.n_lo) {
     const int64_t one = f_.one();
     extras_[0] = f_.in_min();
     extras_[1] = -1;
@@ -52,16 +56,38 @@ class Stimulus {
   }
 
   bool next(Item& it) {
+    uint64_t index = 0;
+    bool more = false;
     switch (o_.mode) {
-      case Mode::Exhaustive: return next_exhaustive(it);
-      case Mode::Random: return next_random(it);
-      case Mode::Directed: return next_directed(it);
+      case Mode::Exhaustive:
+        index = static_cast<uint64_t>(n_ - kNMin) * static_cast<uint64_t>(f_.one() + 1 + kExtras) +
+                static_cast<uint64_t>(idx_);
+        more = next_exhaustive(it);
+        break;
+      case Mode::Random:
+        index = o_.first + done_;
+        more = next_random(it);
+        break;
+      case Mode::Directed:
+        index = rep_ * directed_.size() + static_cast<uint64_t>(idx_);
+        more = next_directed(it);
+        break;
     }
-    return false;
+    if (more) digest_ += item_digest(index, it);
+    return more;
   }
+
+  // Sum over the items produced of a hash of (global index, n, code): equal for two runs that produce
+  // the same transactions, however they are split into shards (the sums of the shards add up).
+  [[nodiscard]] uint64_t digest() const { return digest_; }
 
  private:
   static constexpr int kExtras = 4;
+
+  static uint64_t item_digest(uint64_t index, const Item& it) {
+    return mix64(mix64(index) ^ mix64(static_cast<uint64_t>(it.code) + 0x9E3779B97F4A7C15ull) ^
+                 (static_cast<uint64_t>(it.n + 1) << 40));
+  }
 
   bool next_exhaustive(Item& it) {
     if (n_ > o_.n_hi) return false;
@@ -77,24 +103,25 @@ class Stimulus {
 
   bool next_random(Item& it) {
     if (done_ == o_.count) return false;
+    Rng rng = Rng::for_item(o_.seed, o_.first + done_);
     ++done_;
     it.n = -1;
-    const uint64_t r = rng_.next() % 100;
+    const uint64_t r = rng.next() % 100;
     const int64_t one = f_.one();
     if (r < 70) {
-      it.code = rng_.uniform(0, one);
+      it.code = rng.uniform(0, one);
     } else if (r < 80) {
-      it.code = rng_.uniform(f_.in_min(), f_.in_max());
+      it.code = rng.uniform(f_.in_min(), f_.in_max());
     } else {
-      const int n = static_cast<int>(rng_.uniform(o_.n_lo, o_.n_hi));
+      const int n = static_cast<int>(rng.uniform(o_.n_lo, o_.n_hi));
       int64_t centre = 0;
-      switch (rng_.next() % 4) {
+      switch (rng.next() % 4) {
         case 0: centre = 0; break;
         case 1: centre = one; break;
         case 2: centre = unit_.setup(n).thr; break;
         default: centre = one - ((int64_t{1} << (f_.frac + 4)) / n); break;  // last code with base <= 0
       }
-      it.code = centre + rng_.uniform(-4, 4);
+      it.code = centre + rng.uniform(-4, 4);
       if (it.code < f_.in_min()) it.code = f_.in_min();
       if (it.code > f_.in_max()) it.code = f_.in_max();
     }
@@ -115,13 +142,13 @@ class Stimulus {
   const Options& o_;
   const Unit& unit_;
   Format f_;
-  Rng rng_;
   int n_;
   int64_t idx_ = 0;
   int64_t extras_[kExtras] = {};
   uint64_t done_ = 0;
   std::vector<HardCase> directed_;
   uint64_t repeats_ = 1, rep_ = 0;
+  uint64_t digest_ = 0;
 };
 
 }  // namespace shadecore::sim
