@@ -1,0 +1,103 @@
+// Issue 10, plots and scripts: what the figures show (checked on real CLI output by
+// tests/cli_plots_check.py), and scripts/cost_report.py's import check and all-or-nothing report.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+
+#include "cli_run.hpp"
+
+#if defined(SHADECORE_SCRIPTS_DIR) && defined(SHADECORE_TESTS_DIR)
+
+namespace fs = std::filesystem;
+using shadecore::testing::CliRun;
+using shadecore::testing::lines;
+using shadecore::testing::run_cli;
+using shadecore::testing::run_shell;
+using shadecore::testing::slurp;
+using shadecore::testing::TempDir;
+
+namespace {
+const std::string kPython = "/usr/bin/python3";
+}
+
+TEST(CliPlots, FiguresShowWhatTheySay) {
+  const TempDir d;
+  const CliRun s = run_cli("sweep --n 16..200 --frac 10 --guard 5 --no-progress --plots sweep", d.str());
+  ASSERT_EQ(s.status, 0) << s.err;
+  std::set<std::string> files;
+  for (const auto& e : fs::directory_iterator(d / "sweep")) files.insert(e.path().filename().string());
+  EXPECT_EQ(files, (std::set<std::string>{"approx_over_n.png", "fig3_n128.csv", "fig3_n128.png", "fig4_delta.png",
+                                          "fig4_grid.csv", "per_n.csv", "quant_ulp.png"}));
+  // cos_pow: the least-squares fit is exact to rounding, so its res(n) lies far below 1e-9.
+  const CliRun f = run_cli("fit --lobe cos_pow --model phong --plots fit", d.str());
+  ASSERT_EQ(f.status, 0) << f.err;
+  EXPECT_TRUE(fs::exists(d / "fit/fig5_res.png"));
+  const CliRun c = run_shell(kPython + " " + SHADECORE_TESTS_DIR + "/cli_plots_check.py --scripts " +
+                             SHADECORE_SCRIPTS_DIR + " --sweep-dir " + (d / "sweep") + " --fit-dir " + (d / "fit") +
+                             " --variant cs16 --frac 10 --guard 5");
+  EXPECT_EQ(c.status, 0) << c.out << c.err;
+}
+
+TEST(CliPlots, SchlickQuantBoundsAreTheContracts) {
+  const TempDir d;
+  const CliRun s = run_cli("sweep --variant schlick_div --n 16..40 --frac 8 --no-progress --plots p", d.str());
+  ASSERT_EQ(s.status, 0) << s.err;
+  const CliRun f = run_cli("fit --model phong --n 16..40 --plots fit", d.str());
+  ASSERT_EQ(f.status, 0) << f.err;
+  const CliRun c = run_shell(kPython + " " + SHADECORE_TESTS_DIR + "/cli_plots_check.py --scripts " +
+                             SHADECORE_SCRIPTS_DIR + " --sweep-dir " + (d / "p") + " --fit-dir " + (d / "fit") +
+                             " --variant schlick_div --frac 8 --guard 5");
+  EXPECT_EQ(c.status, 0) << c.out << c.err;
+}
+
+// A python without matplotlib (here: Debian's python with site-packages switched off, -S) fails at once
+// with one line and writes nothing; it does not run for minutes first.
+TEST(CostReport, MissingMatplotlibFailsFirstAndWritesNothing) {
+  const TempDir d;
+  const CliRun r = run_shell(kPython + " -S " + SHADECORE_SCRIPTS_DIR + "/cost_report.py --out " + (d / "new/out"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("python module 'matplotlib' is not installed"), std::string::npos) << r.err;
+  EXPECT_TRUE(d.entries().empty());
+  // Same for the sweep plotting script run by hand.
+  const CliRun p = run_shell(kPython + " -S " + SHADECORE_SCRIPTS_DIR + "/plot_sweep.py --dir " + d.str());
+  EXPECT_EQ(p.status, 1);
+  EXPECT_EQ(lines(p.err), 1) << p.err;
+}
+
+// The report is all three files or none; --out is created when missing (and removed again on failure).
+TEST(CostReport, ReportIsAllOrNothingAndCreatesOut) {
+  const TempDir d;
+  const std::string rows =
+      R"([{"variant": "cs16", "config": "default", "frac": 16, "guard": 5, "quant_max": 0.5, "quant_min": -0.9,)"
+      R"( "total_max": 0.017, "total_min": -1e-15, "latency": 7, "vectors_per_s": 1e6, "luts": 900}])";
+  const auto report = [&](const std::string& rows_json, const std::string& out) {
+    return run_shell("cd " + std::string(SHADECORE_SCRIPTS_DIR) + " && " + kPython +
+                     " -c 'import json, sys, cost_report; cost_report.write_report(json.loads(sys.argv[1]), \"x\", "
+                     "sys.argv[2])' '" + rows_json + "' " + out);
+  };
+  const CliRun ok = report(rows, d / "a/b");
+  ASSERT_EQ(ok.status, 0) << ok.err;
+  std::set<std::string> files;
+  for (const auto& e : fs::directory_iterator(d / "a/b")) files.insert(e.path().filename().string());
+  EXPECT_EQ(files, (std::set<std::string>{"tradeoffs.json", "tradeoffs.md", "tradeoffs.png"}));
+  // The plot step fails (F given as text: the table prints it, the plot cannot compute 2^-F): no file is
+  // written, the new directories are removed.
+  std::string broken = rows;
+  broken.replace(broken.find("\"frac\": 16"), 10, "\"frac\": \"16\"");
+  const CliRun bad = report(broken, d / "c/d");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_FALSE(fs::exists(d / "c"));
+  // An existing report is kept as it was when the new one fails.
+  const std::string before = slurp(d / "a/b/tradeoffs.md");
+  EXPECT_NE(report(broken, d / "a/b").status, 0);
+  EXPECT_EQ(slurp(d / "a/b/tradeoffs.md"), before);
+  files.clear();
+  for (const auto& e : fs::directory_iterator(d / "a/b")) files.insert(e.path().filename().string());
+  EXPECT_EQ(files.size(), 3u);
+}
+
+#endif
