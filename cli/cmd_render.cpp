@@ -146,7 +146,11 @@ class Outputs {
       if (!fsys::is_directory(anc, ec)) throw std::runtime_error("cannot create directory " + dir_ + ": " + anc.string() + " is not a directory");
       if (::access(anc.c_str(), W_OK) != 0) throw std::runtime_error("cannot create directory " + dir_ + ": permission denied");
     }
-    if (!json_.empty()) check_writable_file_in(json_);
+    if (!json_.empty()) {
+      // --json inside the --out directory that this run creates: checked with the directory above.
+      const fsys::path jp = fsys::absolute(json_).lexically_normal(), dp = fsys::absolute(dir_).lexically_normal();
+      if (!(jp.parent_path() == dp && !fsys::exists(dir_, ec))) check_writable_file_in(json_);
+    }
   }
 
   void add(const std::string& name, std::string content) { files_.emplace_back(name, std::move(content)); }
