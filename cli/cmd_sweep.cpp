@@ -102,7 +102,9 @@ void write_plot_data(const SweepArgs& a, const SweepResult& r, const std::string
   const Cutoff cut = r.options.cutoff;
   {
     std::ostringstream o;
-    o << "theta,cos_pow,golden,fixed\n";
+    // golden_at_code: the double function at the input code's own cos value (code / 2^F): fixed minus it
+    // is the quantisation error the contract bounds (fixed minus golden also has the input rounding).
+    o << "theta,cos_pow,golden,fixed,golden_at_code\n";
     const int n = 128;
     const Cs16Material m = cs16_setup(f, n);
     for (int i = 0; i <= 1000; ++i) {
@@ -116,8 +118,9 @@ void write_plot_data(const SweepArgs& a, const SweepResult& r, const std::string
           a.variant == "cs16" ? std::ldexp(double(cs16_eval(f, cut, m, code)), -f.frac)
           : schlick           ? std::ldexp(double(schlick_eval(form, f, schlick_setup(f, n), code)), -f.frac)
                               : std::nan("");
-      o << fmt::format("{:.9f},{:.12e},{:.12e},{:.12e}\n", th, golden::cos_pow(c, n),
-                       variant_golden(a.variant, cut, n, c), fixed);
+      const double c_code = std::ldexp(static_cast<double>(code), -f.frac);
+      o << fmt::format("{:.9f},{:.12e},{:.12e},{:.12e},{:.12e}\n", th, golden::cos_pow(c, n),
+                       variant_golden(a.variant, cut, n, c), fixed, variant_golden(a.variant, cut, n, c_code));
     }
     write_staged(dir + "/fig3_n128.csv", o.str());
   }
@@ -322,8 +325,8 @@ void run(const SweepArgs& a) {
     std::fflush(stdout);
     run_python("plot_sweep.py",
                {"--dir", stage, "--title", label, "--variant", a.variant, "--frac", std::to_string(f.frac), "--guard",
-                std::to_string(f.guard), "--approx-max", fmt::format("{:.6e}", r.approx.max.value), "--approx-min",
-                fmt::format("{:.6e}", r.approx.min.value), "--command", command_line()});
+                std::to_string(f.guard), fmt::format("--approx-max={:.6e}", r.approx.max.value),
+                fmt::format("--approx-min={:.6e}", r.approx.min.value), "--command", command_line()});
   }
   outs.commit();
   if (plots_out >= 0) fmt::print("\nplots written to {}/\n", a.plots_dir);

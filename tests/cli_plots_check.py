@@ -17,20 +17,30 @@ def check(ok, what):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--scripts", required=True)
-    ap.add_argument("--sweep-dir", required=True)
+    ap.add_argument("--sweep", action="append", required=True, metavar="DIR:VARIANT:F:G",
+                    help="a `shadecore sweep --plots DIR` output and its parameters (repeatable)")
     ap.add_argument("--fit-dir", required=True)
-    ap.add_argument("--variant", default="cs16")
-    ap.add_argument("--frac", type=int, required=True)
-    ap.add_argument("--guard", type=int, required=True)
     a = ap.parse_args()
     sys.path.insert(0, a.scripts)
-    import numpy as np
     import plot_fit
+
+    for spec in a.sweep:
+        d, variant, frac, guard = spec.rsplit(":", 3)
+        check_sweep(d, variant, int(frac), int(guard))
+    check_fit(a.fit_dir)
+    for f in failures:
+        print("FAIL:", f)
+    return 1 if failures else 0
+
+
+def check_sweep(sweep_dir, variant, frac, guard):
+    import numpy as np
     import plot_sweep
 
+    a = argparse.Namespace(sweep_dir=sweep_dir, variant=variant, frac=frac, guard=guard)
     args = plot_sweep.parser().parse_args(
         ["--dir", a.sweep_dir, "--variant", a.variant, "--title", f"{a.variant} F={a.frac}", "--frac", str(a.frac),
-         "--guard", str(a.guard), "--approx-max", "0.0169", "--approx-min", "-1e-15"])
+         "--guard", str(a.guard), "--approx-max=0.0169", "--approx-min=-1e-15"])
     figs = plot_sweep.build(args)
 
     # fig3: the unit's name in the legend (not "variant"), and the fixed-point error in its own panel.
@@ -44,7 +54,9 @@ def main():
         check("ulp" in f3.axes[1].get_ylabel(), "fig3 error panel is not in ulps")
         err = np.concatenate([ln.get_ydata() for ln in f3.axes[1].get_lines() if len(ln.get_ydata()) > 2])
         check(np.nanmax(np.abs(err)) > 0, "fig3 error panel is empty")
-        check(np.nanmax(np.abs(err)) <= 1.0, f"fig3 error panel exceeds 1 ulp: {np.nanmax(np.abs(err))}")
+        lo, hi, _, _ = plot_sweep.quant_bounds(variant, frac, guard)
+        check(np.nanmin(err) >= lo - 1e-9 and np.nanmax(err) <= hi + 1e-9,
+              f"fig3 error panel [{np.nanmin(err)}, {np.nanmax(err)}] outside the contract [{lo}, {hi}]")
 
     # fig4: θ axis in radians, the paper's 20·θ explained, a colour scale fitting one-signed data, and the
     # title says where its max/min come from.
@@ -62,6 +74,9 @@ def main():
         check(math.isclose(mesh.norm.vmin, zmin, rel_tol=1e-9, abs_tol=1e-30),
               f"fig4 colour scale starts at {mesh.norm.vmin}, data at {zmin} (symmetric scale for one-signed data)")
         check(mesh.get_cmap().name != "RdBu_r", "fig4 uses a diverging colour map for one-signed data")
+    else:  # both signs: centred on 0, each side to its own extreme (not a symmetric ±max scale)
+        check(math.isclose(mesh.norm.vmin, zmin) and math.isclose(mesh.norm.vmax, zmax),
+              f"fig4 colour scale [{mesh.norm.vmin}, {mesh.norm.vmax}] for data [{zmin}, {zmax}]")
 
     # quant_ulp: the contract's bounds, labelled.
     q = figs["quant_ulp.png"].axes[0]
@@ -75,8 +90,14 @@ def main():
     data = [ln for ln in q.get_lines() if len(set(ln.get_ydata())) > 1]
     check(all(not ln.get_label().startswith("_") for ln in data), "quant_ulp has unlabelled lines")
 
+
+
+def check_fit(fit_dir):
+    import numpy as np
+    import plot_fit
+
     # fig5: every line in the legend is visible (its data mostly above the axis floor).
-    f5 = plot_fit.fit_figure(a.fit_dir)
+    f5 = plot_fit.fit_figure(fit_dir)
     drawn = 0
     for ax in f5.axes:
         lo = ax.get_ylim()[0]
@@ -88,10 +109,6 @@ def main():
             drawn += 1
             check(np.mean(y >= lo) >= 0.9, f"fig5 '{ax.get_title()}': line '{ln.get_label()}' is below the floor {lo:g}")
     check(drawn > 0, "fig5 has no lines")
-
-    for f in failures:
-        print("FAIL:", f)
-    return 1 if failures else 0
 
 
 if __name__ == "__main__":

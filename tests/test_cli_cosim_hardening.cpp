@@ -29,9 +29,12 @@ CliRun run_sim(const std::string& args, const std::string& cwd = "") {
   return run_shell("env -u SYSTEMC_DISABLE_COPYRIGHT_MESSAGE " + std::string(SHADECORE_COSIM_SIM) + " " + args, cwd);
 }
 
+// A top-level field: in the CLI's indented JSON the top-level keys are indented by two spaces (nested
+// shard results carry the same keys deeper); the simulator's one-line JSON has no nested copies.
 std::string json_field(const std::string& json, const std::string& key) {
   std::smatch m;
-  if (std::regex_search(json, m, std::regex("\"" + key + "\":\\s*\"?([^,\"}\\n]*)"))) return m[1].str();
+  if (std::regex_search(json, m, std::regex("\n  \"" + key + "\": \"?([^,\"}\\n]*)"))) return m[1].str();
+  if (std::regex_search(json, m, std::regex("\"" + key + "\":\"?([^,\"}\\n]*)"))) return m[1].str();
   return "";
 }
 

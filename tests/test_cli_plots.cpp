@@ -31,25 +31,15 @@ TEST(CliPlots, FiguresShowWhatTheySay) {
   for (const auto& e : fs::directory_iterator(d / "sweep")) files.insert(e.path().filename().string());
   EXPECT_EQ(files, (std::set<std::string>{"approx_over_n.png", "fig3_n128.csv", "fig3_n128.png", "fig4_delta.png",
                                           "fig4_grid.csv", "per_n.csv", "quant_ulp.png"}));
-  // cos_pow: the least-squares fit is exact to rounding, so its res(n) lies far below 1e-9.
+  const CliRun sd = run_cli("sweep --variant schlick_div --n 16..40 --frac 8 --no-progress --plots schlick", d.str());
+  ASSERT_EQ(sd.status, 0) << sd.err;
+  // cos_pow: the least-squares fit is exact to rounding, so its res(n) lies far below the old 1e-9 floor.
   const CliRun f = run_cli("fit --lobe cos_pow --model phong --plots fit", d.str());
   ASSERT_EQ(f.status, 0) << f.err;
   EXPECT_TRUE(fs::exists(d / "fit/fig5_res.png"));
   const CliRun c = run_shell(kPython + " " + SHADECORE_TESTS_DIR + "/cli_plots_check.py --scripts " +
-                             SHADECORE_SCRIPTS_DIR + " --sweep-dir " + (d / "sweep") + " --fit-dir " + (d / "fit") +
-                             " --variant cs16 --frac 10 --guard 5");
-  EXPECT_EQ(c.status, 0) << c.out << c.err;
-}
-
-TEST(CliPlots, SchlickQuantBoundsAreTheContracts) {
-  const TempDir d;
-  const CliRun s = run_cli("sweep --variant schlick_div --n 16..40 --frac 8 --no-progress --plots p", d.str());
-  ASSERT_EQ(s.status, 0) << s.err;
-  const CliRun f = run_cli("fit --model phong --n 16..40 --plots fit", d.str());
-  ASSERT_EQ(f.status, 0) << f.err;
-  const CliRun c = run_shell(kPython + " " + SHADECORE_TESTS_DIR + "/cli_plots_check.py --scripts " +
-                             SHADECORE_SCRIPTS_DIR + " --sweep-dir " + (d / "p") + " --fit-dir " + (d / "fit") +
-                             " --variant schlick_div --frac 8 --guard 5");
+                             SHADECORE_SCRIPTS_DIR + " --sweep " + (d / "sweep") + ":cs16:10:5 --sweep " +
+                             (d / "schlick") + ":schlick_div:8:5 --fit-dir " + (d / "fit"));
   EXPECT_EQ(c.status, 0) << c.out << c.err;
 }
 

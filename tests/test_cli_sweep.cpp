@@ -18,7 +18,7 @@ using shadecore::testing::run_cli;
 TEST(CliSweep, BadArgumentsGiveOneLineErrors) {
   expect_one_line_error("sweep --variant nosuch --no-progress", "unknown variant");
   expect_one_line_error("sweep --n 16..x --no-progress", "malformed range");
-  expect_one_line_error("sweep --n 100..20 --no-progress", "malformed range");
+  expect_one_line_error("sweep --n 100..20 --no-progress", "LO > HI");
   expect_one_line_error("sweep --n 15..20 --no-progress", "out of range");
   expect_one_line_error("sweep --n 16..1025 --no-progress", "out of range");
   expect_one_line_error("sweep --frac 25 --no-progress", "fraction width 25 out of range");
