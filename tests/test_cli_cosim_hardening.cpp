@@ -3,8 +3,13 @@
 // named as the cause, the "reproduce with" line reproduces, the same --seed gives the same stimulus
 // whatever the shard count, waveforms follow the output rules, and the CLI shows progress.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <fstream>
+#include <thread>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -210,6 +215,61 @@ TEST(CosimHardening, CliShowsProgressAndNamesTheNormModel) {
   const CliRun all = run_cli("cosim --config narrow --norm --mode exhaustive --n 16");
   ASSERT_EQ(all.status, 0) << all.err;
   EXPECT_NE(all.out.find("norm: every model and kind"), std::string::npos) << all.out;
+}
+
+// The simulators themselves show progress on stderr (on a terminal, or with --progress), never in a pipe.
+TEST(CosimHardening, SimulatorsShowProgress) {
+  const CliRun sim = run_sim("--mode random --count 300000 --seed 5 --progress");
+  ASSERT_EQ(sim.status, 0) << sim.out << sim.err;
+  EXPECT_NE(sim.err.find("ETA"), std::string::npos) << sim.err;
+  const CliRun quiet = run_sim("--mode random --count 300000 --seed 5");
+  EXPECT_TRUE(quiet.err.empty()) << quiet.err;
+  if (std::system("command -v script >/dev/null 2>&1") == 0) {
+    const CliRun tty = run_shell("script -qec '" + std::string(SHADECORE_COSIM_SIM) +
+                                 " --mode random --count 300000 --seed 5' /dev/null");
+    EXPECT_NE(tty.out.find("ETA"), std::string::npos) << "no progress on a terminal";
+  }
+  const CliRun bare = run_shell(std::string(SHADECORE_BARE_SIM) + " --n 16..60 --progress");
+  ASSERT_EQ(bare.status, 0) << bare.err;
+  EXPECT_NE(bare.err.find("ETA"), std::string::npos) << bare.err;
+}
+
+// Ctrl-C during a co-simulation with a waveform: the simulators are stopped, one line, status 130, and
+// neither the waveform nor the JSON nor a temporary file is left.
+TEST(CosimHardening, InterruptLeavesNoWaveform) {
+  const TempDir d;
+  const std::string err = d.str() + ".err";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::setpgid(0, 0);
+    if (::chdir(d.str().c_str()) != 0) ::_exit(99);
+    std::freopen("/dev/null", "w", stdout);
+    std::freopen(err.c_str(), "w", stderr);
+    ::execl(SHADECORE_CLI, SHADECORE_CLI, "cosim", "--config", "narrow", "--mode", "random", "--count", "50000000",
+            "--seed", "3", "--trace", "t.fst", "--json", "t.json", static_cast<char*>(nullptr));
+    ::_exit(98);
+  }
+  ::setpgid(pid, pid);
+  // Wait until the simulator is writing its waveform (its temporary file is in the directory).
+  const auto writing = [&] {
+    for (const auto& e : d.entries())
+      if (e.find(".part.") != std::string::npos) return true;
+    return false;
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!writing() && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(30))
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_TRUE(writing()) << slurp(err);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  ::kill(-pid, SIGINT);
+  int st = 0;
+  ::waitpid(pid, &st, 0);
+  ASSERT_TRUE(WIFEXITED(st));
+  EXPECT_EQ(WEXITSTATUS(st), 128 + SIGINT);
+  EXPECT_EQ(slurp(err), "shadecore: interrupted\n");
+  EXPECT_TRUE(d.entries().empty()) << *d.entries().begin();
+  fs::remove(err);
 }
 
 #endif
