@@ -38,9 +38,7 @@
 #include "shadecore/render.hpp"
 #include "shadecore/scene.hpp"
 
-#if defined(SHADECORE_LIGHT_RTL)
 #include "light_rtl.hpp"
-#endif
 
 namespace shadecore::cli {
 namespace {
@@ -218,7 +216,6 @@ struct RtlTotals {
 // Every fragment of every core through the Verilated RTL.
 std::vector<std::vector<Colour>> run_rtl(const render::Frame& fr, RtlTotals& tot) {
   std::vector<std::vector<Colour>> out;
-#if defined(SHADECORE_LIGHT_RTL)
   for (size_t g = 0; g < fr.groups.size(); ++g) {
     const auto& grp = fr.groups[g];
     std::vector<sim::CoreCommand> cmds;
@@ -255,11 +252,6 @@ std::vector<std::vector<Colour>> run_rtl(const render::Frame& fr, RtlTotals& tot
                          {"summary", r.summary}});
     out.push_back(std::move(r.colours));
   }
-#else
-  (void)fr;
-  (void)tot;
-  throw std::runtime_error("--rtl: this shadecore was built without the lighting-core RTL (SHADECORE_WITH_RTL=OFF)");
-#endif
   return out;
 }
 
@@ -311,9 +303,6 @@ void run_render(const RenderArgs& a) {
   if (sheet) names.push_back("contact_sheet.png");
   Outputs outs(a.out, a.json_path);
   outs.check(names);
-#if !defined(SHADECORE_LIGHT_RTL)
-  if (a.rtl) throw std::runtime_error("--rtl: this shadecore was built without the lighting-core RTL (SHADECORE_WITH_RTL=OFF)");
-#endif
 
   std::vector<scene::Mesh> meshes;
   Rendered main;
