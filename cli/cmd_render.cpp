@@ -10,11 +10,12 @@
 //   rtl.png          (--rtl) the image through the Verilated core, checked pixel by pixel against cmodel.png
 //   diff_rtl.png     (--rtl) white where the RTL pixel differs from the C model's
 //   contact_sheet.png  where the scene asks for one: shading modes × exact / unit / difference
-// Every output is computed first and written at the end, each through a temporary file and a rename; a
-// failure before leaves nothing behind. An RTL image that differs from the C model's is written and the
-// exit status is non-zero.
+// Every output is computed first and written at the end through io::OutputSet (docs/cli.md: checked before the
+// run, staged, renamed into place together; a failure or an interrupt leaves nothing behind). An RTL image
+// that differs from the C model's is written and the exit status is 2.
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -120,80 +121,6 @@ std::string stats_text(const render::ErrorStats& s) {
   return fmt::format("max {:.1f} LSB, mean {:.2f} LSB, PSNR {}", s.max_lsb, s.mean_lsb,
                      std::isfinite(s.psnr_db) ? fmt::format("{:.1f} dB", s.psnr_db) : std::string("inf (identical)"));
 }
-
-// The outputs of one run, written together at the end (see the file comment).
-class Outputs {
- public:
-  Outputs(std::string dir, std::string json_path) : dir_(std::move(dir)), json_(std::move(json_path)) {}
-
-  // Up front: DIR is (or can be created as) a writable directory, the names in it are not directories,
-  // and --json can be written.
-  void check(const std::vector<std::string>& names) const {
-    if (dir_.empty()) throw std::invalid_argument("--out: empty directory name");
-    std::error_code ec;
-    if (fsys::exists(dir_, ec)) {
-      if (!fsys::is_directory(dir_, ec)) throw std::runtime_error("cannot write to directory " + dir_ + ": not a directory");
-      if (::access(dir_.c_str(), W_OK) != 0) throw std::runtime_error("cannot write to directory " + dir_ + ": permission denied");
-      for (const auto& n : names)
-        if (fsys::is_directory(fsys::path(dir_) / n, ec))
-          throw std::runtime_error("cannot write " + (fsys::path(dir_) / n).string() + ": is a directory");
-    } else {
-      fsys::path anc = fsys::path(dir_).lexically_normal();
-      while (!anc.empty() && !fsys::exists(anc, ec)) anc = anc.has_parent_path() && anc.parent_path() != anc ? anc.parent_path() : fsys::path();
-      if (anc.empty()) anc = ".";
-      if (!fsys::is_directory(anc, ec)) throw std::runtime_error("cannot create directory " + dir_ + ": " + anc.string() + " is not a directory");
-      if (::access(anc.c_str(), W_OK) != 0) throw std::runtime_error("cannot create directory " + dir_ + ": permission denied");
-    }
-    if (!json_.empty()) {
-      // --json inside the --out directory that this run creates: checked with the directory above.
-      const fsys::path jp = fsys::absolute(json_).lexically_normal(), dp = fsys::absolute(dir_).lexically_normal();
-      if (!(jp.parent_path() == dp && !fsys::exists(dir_, ec))) check_writable_file_in(json_);
-    }
-  }
-
-  void add(const std::string& name, std::string content) { files_.emplace_back(name, std::move(content)); }
-  void set_json(std::string content) { json_content_ = std::move(content); }
-
-  void commit() {
-    std::vector<std::string> created_dirs, created_files;
-    try {
-      std::error_code ec;
-      if (!fsys::exists(dir_, ec)) {
-        std::vector<fsys::path> missing;
-        for (fsys::path p = fsys::path(dir_).lexically_normal(); !p.empty() && !fsys::exists(p, ec);
-             p = p.has_parent_path() && p.parent_path() != p ? p.parent_path() : fsys::path())
-          missing.push_back(p);
-        for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
-          if (!fsys::create_directory(*it, ec) && ec) throw std::runtime_error("cannot create directory " + it->string() + ": " + ec.message());
-          created_dirs.push_back(it->string());
-        }
-      }
-      for (const auto& [name, content] : files_) {
-        const std::string path = (fsys::path(dir_) / name).string();
-        const bool existed = fsys::exists(fsys::symlink_status(path, ec));
-        write_file_atomic(path, content);
-        if (!existed) created_files.push_back(path);
-      }
-      if (!json_.empty()) {
-        const bool existed = fsys::exists(fsys::symlink_status(json_, ec));
-        write_file_atomic(json_, json_content_);
-        if (!existed) created_files.push_back(json_);
-      }
-    } catch (...) {
-      std::error_code ec;
-      for (const auto& f : created_files) fsys::remove(f, ec);
-      for (auto it = created_dirs.rbegin(); it != created_dirs.rend(); ++it) fsys::remove(*it, ec);
-      throw;
-    }
-  }
-
- private:
-  static void check_writable_file_in(const std::string& p) { check_writable_file(p); }
-  std::string dir_, json_;
-  std::vector<std::pair<std::string, std::string>> files_;
-  std::string json_content_;
-};
-
 
 std::pair<int, int> parse_size(const std::string& s) {
   static const std::regex re(R"(^\s*(\d{1,5})\s*[xX]\s*(\d{1,5})\s*$)");
@@ -301,8 +228,23 @@ void run_render(const RenderArgs& a) {
   std::vector<std::string> names = {"cmodel.png", "exact.png", "diff_exact.png"};
   if (a.rtl) names.insert(names.end(), {"rtl.png", "diff_rtl.png"});
   if (sheet) names.push_back("contact_sheet.png");
-  Outputs outs(a.out, a.json_path);
-  outs.check(names);
+  // All outputs through io::OutputSet (docs/cli.md): checked now, written together at the end; a --json inside
+  // --out is one more file of that directory.
+  io::OutputSet outs;
+  std::string json_member;
+  if (!a.json_path.empty() && !a.out.empty()) {
+    const fsys::path jp = fsys::absolute(a.json_path).lexically_normal(), dp = fsys::absolute(a.out).lexically_normal();
+    if (jp.parent_path() == dp) {
+      json_member = jp.filename().string();
+      if (std::find(names.begin(), names.end(), json_member) != names.end())
+        throw std::invalid_argument("--json " + a.json_path + " is one of the images written to --out");
+    }
+  }
+  std::vector<std::string> dir_names = names;
+  if (!json_member.empty()) dir_names.push_back(json_member);
+  const int dir_out = outs.dir("--out", a.out, dir_names);
+  const int json_out = a.json_path.empty() || !json_member.empty() ? -1 : outs.file("--json", a.json_path);
+  std::vector<std::pair<std::string, std::string>> files;  // name in --out, content
 
   std::vector<scene::Mesh> meshes;
   Rendered main;
@@ -362,9 +304,9 @@ void run_render(const RenderArgs& a) {
   json images = json::array();
   images.push_back({{"name", "cmodel"}, {"file", "cmodel.png"}, {"error_vs_exact", stats_json(err_exact)},
                     {"error_vs_unit_double", stats_json(err_unit)}});
-  outs.add("cmodel.png", encode_png(fr.width, fr.height, render::to_rgb8(main.image)));
-  outs.add("exact.png", encode_png(fr.width, fr.height, render::to_rgb8(main.exact)));
-  outs.add("diff_exact.png", encode_png(fr.width, fr.height, render::diff_rgb8(main.image, main.exact)));
+  files.emplace_back("cmodel.png", encode_png(fr.width, fr.height, render::to_rgb8(main.image)));
+  files.emplace_back("exact.png", encode_png(fr.width, fr.height, render::to_rgb8(main.exact)));
+  files.emplace_back("diff_exact.png", encode_png(fr.width, fr.height, render::diff_rgb8(main.image, main.exact)));
 
   // RTL.
   json rtl_json = nullptr;
@@ -391,8 +333,8 @@ void run_render(const RenderArgs& a) {
                 {"cores", tot.cores}};
     images.push_back({{"name", "rtl"}, {"file", "rtl.png"}, {"error_vs_exact", stats_json(err_rtl)},
                       {"mismatching_pixels_vs_cmodel", bad_pixels}});
-    outs.add("rtl.png", encode_png(fr.width, fr.height, render::to_rgb8(rimg)));
-    outs.add("diff_rtl.png", encode_png(fr.width, fr.height, render::mismatch_rgb8(main.image, rimg)));
+    files.emplace_back("rtl.png", encode_png(fr.width, fr.height, render::to_rgb8(rimg)));
+    files.emplace_back("diff_rtl.png", encode_png(fr.width, fr.height, render::mismatch_rgb8(main.image, rimg)));
   }
 
   // Contact sheet: rows = shading modes, columns = exact cos^n, then per unit its image and |unit − exact|.
@@ -448,7 +390,7 @@ void run_render(const RenderArgs& a) {
       row["cells"] = cells;
       rows.push_back(row);
     }
-    outs.add("contact_sheet.png", encode_png(cv.width, cv.height, cv.rgb));
+    files.emplace_back("contact_sheet.png", encode_png(cv.width, cv.height, cv.rgb));
     sheet_json = {{"file", "contact_sheet.png"}, {"columns", col_names}, {"rows", rows}, {"cell", {cs.cell_width, cs.cell_height}}, {"path", "C model"}};
   }
 
@@ -468,17 +410,20 @@ void run_render(const RenderArgs& a) {
     j["rtl"] = rtl_json;
     j["contact_sheet"] = sheet_json;
     j["seconds"] = seconds_since(t_start);
-    outs.set_json(j.dump(2) + "\n");
+    if (json_out >= 0) outs.set(json_out, j.dump(2) + "\n");
+    else files.emplace_back(json_member, j.dump(2) + "\n");
   }
+  const std::string stage = outs.stage(dir_out);
+  for (const auto& [name, content] : files) write_staged(stage + "/" + name, content);
   outs.commit();
   fmt::print("wrote {}/{{{}}}{}\n", a.out, [&] {
     std::string s;
     for (const auto& n : names) s += (s.empty() ? "" : ",") + n;
     return s;
   }(), a.json_path.empty() ? std::string() : " and " + a.json_path);
-  if (!rtl_ok)
-    throw std::runtime_error(fmt::format("RTL render FAILED: {} pixels differ from the C model (images written to {})",
-                                         bad_pixels, a.out));
+  if (!rtl_ok)  // exit status 2: the check ran and failed; the images and the JSON are its record
+    throw CheckFailed(fmt::format("RTL render FAILED: {} pixels differ from the C model (images written to {})",
+                                  bad_pixels, a.out));
 }
 
 }  // namespace

@@ -189,6 +189,22 @@ TEST_F(RenderCli, WritesImagesAndJson) {
   EXPECT_EQ(j["width"], 40);
 }
 
+// --json inside the --out directory the run creates: one more file of it; naming an image is an error.
+TEST_F(RenderCli, JsonInsideOutDirectory) {
+  const std::string scene = write("scene.json", kGood);
+  const fs::path out = dir_ / "new";
+  auto r = run_cli("render " + scene + " --out " + out.string() + " --json " + (out / "report.json").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "report.json"));
+  EXPECT_TRUE(fs::exists(out / "cmodel.png"));
+  fs::remove_all(out);
+  r = run_cli("render " + scene + " --out " + out.string() + " --json " + (out / "exact.png").string());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("one of the images"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 // The same scene on the full core: byte-identical C-model image.
 TEST_F(RenderCli, FullCoreSameImage) {
   const std::string scene = std::string(SHADECORE_SOURCE_DIR) + "/scenes/diffuse.json";
