@@ -283,7 +283,7 @@ Transform parse_transform(const Parser& P, const json& j, const std::string& pat
 
 Object parse_object(const Parser& P, const json& j, const std::string& path, const Scene& sc) {
   if (!j.is_object()) P.fail(path, "must be a JSON object");
-  if (!j.contains("type")) P.fail(path, "missing 'type' (sphere, plane, torus, mesh)");
+  if (!j.contains("type")) P.fail(path, "missing 'type' (sphere, plane or quad, torus, mesh)");
   const std::string type = P.string(j["type"], path + ".type");
   Object o;
   o.where = path;
@@ -294,7 +294,7 @@ Object parse_object(const Parser& P, const json& j, const std::string& path, con
     if (j.contains("radius")) o.radius = P.number_in(j["radius"], path + ".radius", 0, false, 1e4, true, "(0, 1e4]");
     if (j.contains("slices")) o.slices = P.integer(j["slices"], path + ".slices", 3, 1024);
     if (j.contains("stacks")) o.stacks = P.integer(j["stacks"], path + ".stacks", 2, 1024);
-  } else if (type == "plane") {
+  } else if (type == "plane" || type == "quad") {  // "quad": the same object (one quad unless subdivided)
     o.type = ObjectType::Plane;
     P.keys(j, path, {"type", "name", "material", "shading", "transform", "size", "subdivisions"});
     if (j.contains("size")) {
@@ -324,7 +324,7 @@ Object parse_object(const Parser& P, const json& j, const std::string& path, con
     const std::filesystem::path fp(o.file);
     o.file_path = fp.is_absolute() || sc.dir.empty() ? o.file : (std::filesystem::path(sc.dir) / fp).string();
   } else {
-    P.fail(path + ".type", "unknown object type '" + type + "' (known: sphere, plane, torus, mesh)");
+    P.fail(path + ".type", "unknown object type '" + type + "' (known: sphere, plane or quad, torus, mesh)");
   }
   o.name = j.contains("name") ? P.string(j["name"], path + ".name") : path;
   if (!j.contains("material")) P.fail(path, "missing 'material'");
