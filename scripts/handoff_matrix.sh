@@ -2,10 +2,11 @@
 # The full handoff matrix (issue 11): `shadecore handoff` for every variant at every named width, each
 # also with energy normalisation (--norm all), and cs16 with the sign_clamp cut-off — each bundle is
 # simulated by its own testbench on Icarus and Verilator before the command succeeds; then one expected
-# value is corrupted in a copy and run_icarus.sh must FAIL. The default ctest suite runs a subset
-# (rtl/CMakeLists.txt, handoff.*). Results: one line per bundle and a summary; docs/handoff.md records one.
+# value is corrupted in a copy and both run_icarus.sh and run_verilator.sh must FAIL. The default ctest
+# suite runs a subset (rtl/CMakeLists.txt, handoff.*). Results: one line per bundle and a summary;
+# docs/handoff.md records one.
 #
-#   scripts/handoff_matrix.sh [OUT_DIR]          default out/handoff-matrix; ~20 min on 2 cores
+#   scripts/handoff_matrix.sh [OUT_DIR]          default out/handoff-matrix; ~30-60 min on 2 cores
 #   ICE40=1 scripts/handoff_matrix.sh            also iCE40 place and route where the tools are installed
 #   SHADECORE=build-h11/cli/shadecore scripts/handoff_matrix.sh
 set -u
@@ -29,9 +30,11 @@ run() {  # name, handoff options...
     awk 'BEGIN{d=0} !d && $0 !~ /^\/\// && NF==5 && $5 !~ /^0+$/ {gsub(/./,"0",$5); d=1} {print}' \
       "$b/vectors/random.hex" > "$out/.corrupt/vectors/random.hex"
     if "$out/.corrupt/run_icarus.sh" > "$out/.corrupt.log" 2>&1; then
-      e="FAIL (corrupted vector not detected)"; fail=$((fail + 1))
+      e="FAIL (corrupted vector not detected by run_icarus.sh)"; fail=$((fail + 1))
+    elif "$out/.corrupt/run_verilator.sh" >> "$out/.corrupt.log" 2>&1; then
+      e="FAIL (corrupted vector not detected by run_verilator.sh)"; fail=$((fail + 1))
     else
-      e="PASS  $(grep -o 'run_icarus.sh: PASS [0-9]* vectors' "$out/$name.log") / $(grep -o 'run_verilator.sh: PASS [0-9]* vectors' "$out/$name.log" | sed 's/run_verilator.sh: //'); corrupted: FAIL as it must; $(grep -o 'Yosys: .*' "$out/$name.log")"
+      e="PASS  $(grep -o 'run_icarus.sh: PASS [0-9]* vectors' "$out/$name.log") / $(grep -o 'run_verilator.sh: PASS [0-9]* vectors' "$out/$name.log" | sed 's/run_verilator.sh: //'); corrupted: both FAIL as they must; $(grep -o 'Yosys: .*' "$out/$name.log")"
       pass=$((pass + 1))
     fi
     rm -rf "$out/.corrupt" "$out/.corrupt.log"
