@@ -90,8 +90,9 @@ extern "C" inline void on_fatal_signal(int sig) {
 }
 }  // namespace detail
 
-// Installs the handler for SIGINT, SIGTERM and SIGHUP (unless the signal is inherited as ignored) and
-// ignores SIGPIPE (a FIFO whose reader went away is a write error, not a silent death).
+// Installs the handler for SIGINT, SIGTERM and SIGHUP (unless the signal is inherited as ignored).
+// (SIGPIPE keeps its default, so `shadecore ... | head` ends quietly; a FIFO output whose reader went
+// away is turned into a write error by write_stream(), which blocks SIGPIPE while it writes.)
 inline void install_interrupt_cleanup(const char* prog) {
   std::snprintf(detail::g_prog, sizeof detail::g_prog, "%s", prog);
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
@@ -103,7 +104,6 @@ inline void install_interrupt_cleanup(const char* prog) {
     sa.sa_flags = 0;
     ::sigaction(sig, &sa, nullptr);
   }
-  ::signal(SIGPIPE, SIG_IGN);
 }
 
 inline int track(const std::string& path, int kind) {
@@ -451,13 +451,26 @@ class OutputSet {
   static void write_stream(const Target& t, const std::string& content) {
     const int fd = ::open(t.path.c_str(), O_WRONLY | O_CLOEXEC);
     if (fd < 0) throw cannot_write(t.shown, std::strerror(errno));
+    // A FIFO without a reader raises SIGPIPE: block it here, so the write fails with EPIPE instead,
+    // and take the pending signal away before unblocking.
+    sigset_t pipe_set, old;
+    sigemptyset(&pipe_set);
+    sigaddset(&pipe_set, SIGPIPE);
+    ::pthread_sigmask(SIG_BLOCK, &pipe_set, &old);
+    std::string error;
     try {
       write_all(fd, content, t.shown);
-    } catch (...) {
-      ::close(fd);
-      throw;
+    } catch (const std::exception& e) {
+      error = e.what();
     }
     ::close(fd);
+    if (!sigismember(&old, SIGPIPE)) {
+      const timespec zero{0, 0};
+      while (::sigtimedwait(&pipe_set, nullptr, &zero) > 0) {
+      }
+      ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
+    }
+    if (!error.empty()) throw std::runtime_error(error);
   }
 
   // Moves a finished file onto its target: rename for a regular file (through a temporary beside the

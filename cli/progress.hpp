@@ -1,5 +1,5 @@
 // shadecore — progress bar on stderr for long runs (header-only; the CLI and the simulators).
-// Drawn only when enabled (by default: stderr is a terminal), from its own thread every 200 ms:
+// Drawn only when enabled (by default: stderr is a terminal), from its own thread at once and every 200 ms:
 //   [##########                    ]  33.0%  4.1 s, ETA 8 s
 // and erased when the run ends, so stdout and the final stderr lines stay clean.
 #pragma once
@@ -66,7 +66,8 @@ class Progress {
   void loop() {
     const auto t0 = std::chrono::steady_clock::now();
     std::unique_lock<std::mutex> lk(mu_);
-    while (!cv_.wait_for(lk, std::chrono::milliseconds(200), [this] { return stopping_; })) {
+    // Drawn at once (so even a short run shows that it is working), then every 200 ms.
+    do {
       const uint64_t d = done_.load(std::memory_order_relaxed);
       const double frac = total_ ? std::min(1.0, double(d) / double(total_)) : 0.0;
       const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -76,7 +77,7 @@ class Progress {
                    std::string(fill, '#').c_str(), std::string(w - fill, ' ').c_str(), 100 * frac, el,
                    eta_text(eta).c_str());
       std::fflush(stderr);
-    }
+    } while (!cv_.wait_for(lk, std::chrono::milliseconds(200), [this] { return stopping_; }));
   }
 
   uint64_t total_;

@@ -90,7 +90,7 @@ def fig4(d, unit, approx_max=None, approx_min=None):
     ax.set_ylabel("n")
     title = f"Fig. 4: Δ over n and θ — {unit}\non this θ grid ({len(th)} points): max {zmax:.3g}, min {zmin:.3g}"
     if approx_max is not None and approx_min is not None:
-        title += f"; every input code (sweep): max {approx_max:.3g}, min {approx_min:.3g}"
+        title += f"\nover every input code (the sweep): max {approx_max:.3g}, min {approx_min:.3g}"
     ax.set_title(title)
     return fig
 
