@@ -355,6 +355,10 @@ TEST(CliHardening, ProgressOnATerminalOnly) {
   const CliRun forced = run_shell(cmd + " --progress");
   EXPECT_NE(forced.err.find("ETA"), std::string::npos);
   EXPECT_EQ(forced.err.substr(forced.err.size() >= 4 ? forced.err.size() - 4 : 0), "\r\033[K");
+  // The sweep's bar has an ETA too.
+  const CliRun sweep = run_shell("script -qec '" + std::string(SHADECORE_CLI) + " sweep --n 16..300 --frac 12' /dev/null");
+  ASSERT_EQ(sweep.status, 0) << sweep.out;
+  EXPECT_NE(sweep.out.find("ETA"), std::string::npos);
 }
 
 TEST(CliHardening, FitTableIsClean) {
