@@ -25,19 +25,22 @@ run() {  # name, handoff options...
   rm -rf "$b" "$b.tar.gz"
   s=$(date +%s)
   if "$exe" handoff "$@" $ice --seed 1 --out "$b" > "$out/$name.log" 2>&1; then
-    # a corrupted expected value must make the delivered Icarus run fail
+    # one corrupted expected value must make both delivered simulator runs fail
     rm -rf "$out/.corrupt" && cp -r "$b" "$out/.corrupt"
     awk 'BEGIN{d=0} !d && $0 !~ /^\/\// && NF==5 && $5 !~ /^0+$/ {gsub(/./,"0",$5); d=1} {print}' \
       "$b/vectors/random.hex" > "$out/.corrupt/vectors/random.hex"
-    if "$out/.corrupt/run_icarus.sh" > "$out/.corrupt.log" 2>&1; then
+    # each must exit non-zero AND name the corrupted vector (not fail for another reason)
+    "$out/.corrupt/run_icarus.sh" > "$out/.corrupt_i.log" 2>&1; ri=$?
+    "$out/.corrupt/run_verilator.sh" > "$out/.corrupt_v.log" 2>&1; rv=$?
+    if [ $ri -eq 0 ] || ! grep -q '^FAIL vector' "$out/.corrupt_i.log"; then
       e="FAIL (corrupted vector not detected by run_icarus.sh)"; fail=$((fail + 1))
-    elif "$out/.corrupt/run_verilator.sh" >> "$out/.corrupt.log" 2>&1; then
+    elif [ $rv -eq 0 ] || ! grep -q '^FAIL vector' "$out/.corrupt_v.log"; then
       e="FAIL (corrupted vector not detected by run_verilator.sh)"; fail=$((fail + 1))
     else
       e="PASS  $(grep -o 'run_icarus.sh: PASS [0-9]* vectors' "$out/$name.log") / $(grep -o 'run_verilator.sh: PASS [0-9]* vectors' "$out/$name.log" | sed 's/run_verilator.sh: //'); corrupted: both FAIL as they must; $(grep -o 'Yosys: .*' "$out/$name.log")"
       pass=$((pass + 1))
     fi
-    rm -rf "$out/.corrupt" "$out/.corrupt.log"
+    rm -rf "$out/.corrupt" "$out/.corrupt_i.log" "$out/.corrupt_v.log"
   else
     e="FAIL  $(tail -n 1 "$out/$name.log")"; fail=$((fail + 1))
   fi
