@@ -533,6 +533,11 @@ std::string error_contract(const UnitSpec& s) {
           "always correctly rounded); output ≤ 2^F, non-decreasing in the code (docs/spec.md §6.4).\n",
           schlick_nr_bound_ulp(F));
       break;
+    case VariantId::table256:
+    case VariantId::table1024:
+      e = "Table of T(i) = (i/(E−1))^n (E entries {D, V}, loaded per material) interpolated at f = (E−1)·c:\n"
+          "−1 < out − 2^F·lerp ≤ +1 ulp against the double table lerp of the same clamped code (docs/spec.md §9.4).\n";
+      break;
   }
   if (s.norm)
     e += "\nWith NORM = 1 the unit output u is multiplied by the material's coefficient code k and rounded half up:\n"

@@ -84,9 +84,11 @@ TEST(TableEval, ClampsAndEnds) {
         table_eval(f, m, -5, &tr);
         EXPECT_EQ(tr.c, 0u);
         EXPECT_EQ(tr.index, 0u);
-        // just below 1: the last interval, interpolated towards V[E−1] = 2^F
+        // just below 1: an interval below the last entry (E − 2 when 2^F ≥ E), never the last entry itself
         table_eval(f, m, f.one() - 1, &tr);
-        EXPECT_EQ(tr.index, static_cast<uint32_t>(E - 2));
+        EXPECT_EQ(tr.index, static_cast<uint32_t>((uint64_t(E - 1) * uint64_t(f.one() - 1)) >> f.frac));
+        if (f.one() >= E) EXPECT_EQ(tr.index, static_cast<uint32_t>(E - 2));
+        EXPECT_LT(tr.index, static_cast<uint32_t>(E - 1));
         EXPECT_LE(tr.out, one);
       }
 }
