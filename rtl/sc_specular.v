@@ -77,7 +77,9 @@ module sc_specular #(
   // when sc_specular sits below another top with a Schlick VARIANT (they are ignored then).
   wire unused_cfg = (GUARD == 0) || (CUTOFF == 0);
   // The table write port is used by the table units only.
-  wire is_table = (VARIANT == VARIANT_TABLE256) || (VARIANT == VARIANT_TABLE1024);
+  // (The table sizes are referenced here too: outside g_table they would be unused parameters.)
+  wire is_table = ((VARIANT == VARIANT_TABLE256) || (VARIANT == VARIANT_TABLE1024)) &&
+                  (VARIANT_TABLE256_ENTRIES > 0) && (VARIANT_TABLE1024_ENTRIES > 0);
   wire unused_tab = &{1'b0, is_table ? 1'b0 : &{1'b0, tab_we_i, tab_addr_i, tab_value_i, tab_delta_i}};
 
   generate
