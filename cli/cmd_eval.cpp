@@ -116,6 +116,22 @@ void run(EvalArgs& a) {
              {"x", {t.x[0], t.x[1], t.x[2], t.x[3], t.x[4]}}, {"out", t.out}};
     ref = spec.cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(c_real, n) : golden::cs16_sign_clamp(c_real, n);
     ref_name = "cs16";
+  } else if (is_table_variant(spec.variant)) {
+    const int E = unit.entries();
+    TableTrace t;
+    unit_out = table_eval(f, mat.tab->data(), E, code, &t);
+    rows.push_back({"-", "c", hexw(t.c, F + 1), std::to_string(t.c), fixed(t.c, F), "cos clamped to [0, 2^F]"});
+    rows.push_back({"-", "i", std::to_string(t.index), std::to_string(t.index), "",
+                    fmt::format("((E-1)*c) >> F, E = {}: RAM read address", E)});
+    rows.push_back({"S0", "fr", hexw(t.frac, F), std::to_string(t.frac), fixed(t.frac, F), "((E-1)*c) mod 2^F"});
+    rows.push_back({"S0", "V", hexw(t.value, F + 1), std::to_string(t.value), fixed(t.value, F), "RAM[i] value"});
+    rows.push_back({"S0", "D", hexw(t.delta, F + 1), std::to_string(t.delta), fixed(t.delta, F), "RAM[i] delta"});
+    rows.push_back({"S1", "prod", hexw(t.prod, 2 * F + 1), std::to_string(t.prod), "", "D*fr + 2^(F-1)"});
+    rows.push_back({"S2", "out", hexw(t.out, F + 1), std::to_string(t.out), fixed(t.out, F), "V + (prod >> F)"});
+    trace = {{"c", t.c}, {"index", t.index}, {"frac", t.frac}, {"value", t.value}, {"delta", t.delta},
+             {"prod", t.prod}, {"out", t.out}};
+    ref = golden::table_lerp(E, n, c_real);
+    ref_name = "table_lerp";
   } else {
     SchlickTrace t;
     const SchlickMaterial sm{mat.n};
@@ -177,6 +193,7 @@ void run(EvalArgs& a) {
     fmt::print("eval: {}, n = {}\n", spec.describe(), n);
     fmt::print("material   mat_n_i = {}", n);
     if (spec.is_cs16()) fmt::print(", mat_thr_i = {} ({}) = thr(n) = ceil(cos(6/sqrt(n))*2^F)", hexw(mat.thr, F + 1), mat.thr);
+    if (mat.tab) fmt::print(", table RAM = {} words {{D, V}} (V[i] = round((i/{})^n * 2^F))", mat.tab->size(), mat.tab->size() - 1);
     if (spec.norm) fmt::print(", mat_coef_i = {} ({}) = {} coef(n) = {:.9f}", hexw(mat.coef, spec.coef_bits()), mat.coef,
                               norm_desc, coef_real);
     fmt::print("\n");

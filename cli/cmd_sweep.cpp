@@ -3,6 +3,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
@@ -22,6 +23,7 @@
 #include "shadecore/golden.hpp"
 #include "shadecore/schlick.hpp"
 #include "shadecore/sweep.hpp"
+#include "shadecore/unit.hpp"
 
 namespace shadecore::cli {
 namespace {
@@ -107,6 +109,13 @@ void write_plot_data(const SweepArgs& a, const SweepResult& r, const std::string
     o << "theta,cos_pow,golden,fixed,golden_at_code\n";
     const int n = 128;
     const Cs16Material m = cs16_setup(f, n);
+    // Table units: the bit-exact model through Unit (the table is set up once for n = 128).
+    std::unique_ptr<Unit> table_unit;
+    UnitMaterial table_n128;
+    if (const VariantId vid = parse_variant(a.variant); is_table_variant(vid)) {
+      table_unit = std::make_unique<Unit>(vid, f, cut);
+      table_n128 = table_unit->setup(n);
+    }
     for (int i = 0; i <= 1000; ++i) {
       const double th = (M_PI / 2) * i / 1000.0;
       const double c = std::cos(th);
@@ -117,6 +126,7 @@ void write_plot_data(const SweepArgs& a, const SweepResult& r, const std::string
       const double fixed =
           a.variant == "cs16" ? std::ldexp(double(cs16_eval(f, cut, m, code)), -f.frac)
           : schlick           ? std::ldexp(double(schlick_eval(form, f, schlick_setup(f, n), code)), -f.frac)
+          : table_n128.tab    ? std::ldexp(double(table_unit->eval(table_n128, code)), -f.frac)
                               : std::nan("");
       const double c_code = std::ldexp(static_cast<double>(code), -f.frac);
       o << fmt::format("{:.9f},{:.12e},{:.12e},{:.12e},{:.12e}\n", th, golden::cos_pow(c, n),
@@ -217,6 +227,8 @@ void run(const SweepArgs& a) {
   opt.threads = cliargs::resolve_parallel(a.threads);
   if (a.variant != "cs16" && (a.cutoff_given || a.guard_given || a.compare_cutoffs))
     throw std::invalid_argument("--cutoff, --guard and --compare-cutoffs apply to the cs16 variant only");
+  if (a.energy && is_table_variant(parse_variant(a.variant)))
+    throw std::invalid_argument("--energy is implemented for cs16 and the Schlick forms only, not for " + a.variant);
   // Every output is checked before the run and written only if the whole run succeeds.
   io::OutputSet outs;
   const int json_out = a.json_path.empty() ? -1 : outs.file("--json", a.json_path);
@@ -313,6 +325,17 @@ void run(const SweepArgs& a) {
     j["threads"] = r.threads_used;
     for (auto [key, s] : {std::pair{"approx", &r.approx}, {"quant_ulp", &r.quant}, {"total", &r.total}})
       j[key] = {{"max", extreme_json(s->max, f)}, {"min", extreme_json(s->min, f)}};
+    // Per n: the extremes of each error (scripts/plot_table_crossover.py reads max |total| per n from here).
+    nlohmann::json per_n = nlohmann::json::array();
+    for (const auto& row : r.rows)
+      per_n.push_back({{"n", row.n},
+                       {"approx_max", row.approx.max.value},
+                       {"approx_min", row.approx.min.value},
+                       {"quant_max_ulp", row.quant.max.value},
+                       {"quant_min_ulp", row.quant.min.value},
+                       {"total_max", row.total.max.value},
+                       {"total_min", row.total.min.value}});
+    j["per_n"] = per_n;
     j["verdicts"] = verdicts;
     if (!cutcmp.is_null()) j["cutoff_comparison"] = cutcmp;
     if (!energy.is_null()) j["energy"] = energy;
@@ -337,7 +360,7 @@ void run(const SweepArgs& a) {
 void add_sweep(CLI::App& app) {
   auto args = std::make_shared<SweepArgs>();
   auto* sub = app.add_subcommand("sweep", "Exhaustive error sweep: every n × every input code");
-  sub->add_option("--variant", args->variant, "Specular variant (cs16, schlick_div, schlick_nr, schlick_iter)");
+  sub->add_option("--variant", args->variant, "Specular variant (cs16, schlick_div, schlick_nr, schlick_iter, table256, table1024)");
   auto* cutoff_opt = sub->add_option("--cutoff", args->cutoff, "cs16 cut-off form: theta_cr | sign_clamp");
   sub->add_option("--config", args->config, "Named width configuration from config/configs.json")
       ->check(cliargs::NonEmpty("config name"));

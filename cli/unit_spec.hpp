@@ -79,7 +79,7 @@ struct UnitSpec {
 };
 
 inline void add_unit_options(CLI::App* sub, const std::shared_ptr<UnitOptions>& o, bool allow_custom_width = true) {
-  sub->add_option("--variant", o->variant, "Unit: cs16, schlick_div, schlick_nr, schlick_iter");
+  sub->add_option("--variant", o->variant, "Unit: cs16, schlick_div, schlick_nr, schlick_iter, table256, table1024 (config/configs.json variants)");
   sub->add_option("--config", o->config, "Named width configuration (config/configs.json: narrow, default, wide)");
   if (allow_custom_width) {
     o->frac_opt = sub->add_option("--frac", o->frac, "Fraction bits F (8..24), overrides --config");

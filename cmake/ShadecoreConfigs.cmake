@@ -63,12 +63,27 @@ set(_vvh "")
 foreach(i RANGE ${_lastv})
   string(JSON _vname GET "${_cfg_json}" variants ${i} name)
   string(JSON _vid GET "${_cfg_json}" variants ${i} id)
+  # Optional fields: "contract" (the unit's error contract / kind, e.g. "table"; "" when absent) and
+  # "entries" (table variants: entries of the per-material table; 0 when absent).
+  string(JSON _vcontract ERROR_VARIABLE _nocontract GET "${_cfg_json}" variants ${i} contract)
+  if(_nocontract)
+    set(_vcontract "")
+  endif()
+  string(JSON _ventries_n ERROR_VARIABLE _noentries GET "${_cfg_json}" variants ${i} entries)
+  if(_noentries)
+    set(_ventries_n 0)
+  endif()
   list(APPEND SHADECORE_VARIANT_NAMES "${_vname}")
   set(SHADECORE_VARIANT_${_vname}_ID "${_vid}")
+  set(SHADECORE_VARIANT_${_vname}_CONTRACT "${_vcontract}")
+  set(SHADECORE_VARIANT_${_vname}_ENTRIES "${_ventries_n}")
   string(TOUPPER "${_vname}" _vupper)
   string(APPEND _venum "  ${_vname} = ${_vid},\n")
-  string(APPEND _ventries "    NamedVariant{\"${_vname}\", VariantId::${_vname}},\n")
+  string(APPEND _ventries "    NamedVariant{\"${_vname}\", VariantId::${_vname}, \"${_vcontract}\", ${_ventries_n}},\n")
   string(APPEND _vvh "localparam integer VARIANT_${_vupper} = ${_vid};\n")
+  if(NOT _ventries_n EQUAL 0)
+    string(APPEND _vvh "localparam integer VARIANT_${_vupper}_ENTRIES = ${_ventries_n};\n")
+  endif()
 endforeach()
 file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/variants.hpp" CONTENT
 "// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
@@ -79,7 +94,9 @@ namespace shadecore {
 // The VARIANT parameter of rtl/sc_specular.v.
 enum class VariantId : int {
 ${_venum}};
-struct NamedVariant { std::string_view name; VariantId id; };
+// contract: the variant's kind / error contract from configs.json (\"table\" for the per-material table
+// units, \"\" when not given); entries: table size of a \"table\" variant (0 otherwise).
+struct NamedVariant { std::string_view name; VariantId id; std::string_view contract; int entries; };
 inline constexpr std::array<NamedVariant, ${_nv}> kVariants{{
 ${_ventries}}};
 }  // namespace shadecore

@@ -286,6 +286,13 @@ module sc_light #(
     if (NORMALIZE != 0 && NORMALIZE != 1) begin : g_check_normalize
       sc_light_error_illegal_NORMALIZE_must_be_0_or_1 u_error ();
     end
+    // The table units (docs/spec.md §9) need their table RAM loaded through sc_specular's tab_*_i
+    // port, which the lighting core's register file does not have.
+    // (sc_variants.vh's table sizes are named here so that lint does not flag them unused in this module.)
+    if (SPECULAR != 0 && (VARIANT == VARIANT_TABLE256 || VARIANT == VARIANT_TABLE1024) &&
+        VARIANT_TABLE256_ENTRIES + VARIANT_TABLE1024_ENTRIES > 0) begin : g_check_table
+      sc_light_error_table_VARIANT_not_supported_no_table_load_port u_error ();
+    end
     if (NORM != 0 && SPECULAR == 0) begin : g_check_norm_spec
       sc_light_error_illegal_NORM_needs_SPECULAR u_error ();
     end
@@ -893,6 +900,10 @@ module sc_light #(
             .mat_n_i    (mat_n_u),
             .mat_thr_i  (mat_thr_u),
             .mat_coef_i (mat_coef_u),
+            .tab_we_i   (1'b0),
+            .tab_addr_i (10'd0),
+            .tab_value_i({(FRAC+1){1'b0}}),
+            .tab_delta_i({(FRAC+1){1'b0}}),
             .in_valid_i (vf_last),
             .in_ready_o (u_in_ready_all[j]),
             .in_cos_i   (x_f),

@@ -11,7 +11,10 @@
 //              VARIANT_SCHLICK_DIV (1): rtl/sc_schlick_div.v, latency FRAC+4, one per clock
 //              VARIANT_SCHLICK_NR (2): rtl/sc_schlick_nr.v, latency 10, one per clock
 //              VARIANT_SCHLICK_ITER (3): rtl/sc_schlick_iter.v, latency FRAC+4, one per FRAC+4 clocks
-//            (the Schlick units take FRAC and TAGW only; GUARD and CUTOFF do not apply to them)
+//              VARIANT_TABLE256 (6), VARIANT_TABLE1024 (7): rtl/sc_table.v with 256 / 1024 entries
+//                (VARIANT_<NAME>_ENTRIES), latency 3, one per clock; the table is loaded through the
+//                tab_*_i ports (docs/spec.md §9)
+//            (the Schlick and table units take FRAC and TAGW only; GUARD and CUTOFF do not apply to them)
 //   FRAC, GUARD, CUTOFF, TAGW: passed to the unit; legal ranges in the unit's header
 //            (cs16: 8 <= FRAC <= 24, 4 <= GUARD <= 8, FRAC+GUARD <= 31, CUTOFF 0/1, TAGW >= 1).
 //   NORM     0 (default): out_spec_o is the unit's output, F+1 bits.
@@ -22,6 +25,9 @@
 //            fragment in flight.
 //   COEFW    coefficient (and, with NORM = 1, output) width I+F, FRAC+1..FRAC+16 (default FRAC+8,
 //            enough for every model's coef over n = 16..1024). mat_coef_i is ignored when NORM = 0.
+// Table port: tab_we_i, tab_addr_i[9:0], tab_value_i[FRAC:0], tab_delta_i[FRAC:0] write one entry of a
+//            table unit's RAM per edge (docs/spec.md §9); every other unit ignores them (like mat_coef_i
+//            with NORM = 0): tie tab_we_i low.
 // Latency / throughput: those of the selected unit (cs16: 7 cycles, 1 per clock), + 2 with NORM = 1.
 //
 // Adding a unit: add {"name", "id"} to config/configs.json "variants", then one labelled
@@ -44,6 +50,10 @@ module sc_specular #(
     input  wire [10:0]       mat_n_i,
     input  wire [FRAC:0]     mat_thr_i,
     input  wire [COEFW-1:0]  mat_coef_i,
+    input  wire              tab_we_i,
+    input  wire [9:0]        tab_addr_i,
+    input  wire [FRAC:0]     tab_value_i,
+    input  wire [FRAC:0]     tab_delta_i,
     input  wire              in_valid_i,
     output wire              in_ready_o,
     input  wire [FRAC+1:0]   in_cos_i,
@@ -66,6 +76,11 @@ module sc_specular #(
   // GUARD and CUTOFF configure cs16 only. Referenced here so that lint does not flag them as unused
   // when sc_specular sits below another top with a Schlick VARIANT (they are ignored then).
   wire unused_cfg = (GUARD == 0) || (CUTOFF == 0);
+  // The table write port is used by the table units only.
+  // (The table sizes are referenced here too: outside g_table they would be unused parameters.)
+  wire is_table = ((VARIANT == VARIANT_TABLE256) || (VARIANT == VARIANT_TABLE1024)) &&
+                  (VARIANT_TABLE256_ENTRIES > 0) && (VARIANT_TABLE1024_ENTRIES > 0);
+  wire unused_tab = &{1'b0, is_table ? 1'b0 : &{1'b0, tab_we_i, tab_addr_i, tab_value_i, tab_delta_i}};
 
   generate
     if (VARIANT == VARIANT_CS16) begin : g_cs16
@@ -137,6 +152,30 @@ module sc_specular #(
           .mat_we_i   (mat_we_i),
           .mat_n_i    (mat_n_i),
           .mat_thr_i  (mat_thr_i),
+          .in_valid_i (in_valid_i),
+          .in_ready_o (in_ready_o),
+          .in_cos_i   (in_cos_i),
+          .in_tag_i   (u_in_tag),
+          .out_valid_o(u_out_valid),
+          .out_ready_i(u_out_ready),
+          .out_spec_o (u_out_spec),
+          .out_tag_o  (u_out_tag)
+      );
+    end else if (VARIANT == VARIANT_TABLE256 || VARIANT == VARIANT_TABLE1024) begin : g_table
+      sc_table #(
+          .FRAC   (FRAC),
+          .ENTRIES((VARIANT == VARIANT_TABLE256) ? VARIANT_TABLE256_ENTRIES : VARIANT_TABLE1024_ENTRIES),
+          .TAGW   (UTAGW)
+      ) u_unit (
+          .clk_i      (clk_i),
+          .rst_ni     (rst_ni),
+          .mat_we_i   (mat_we_i),
+          .mat_n_i    (mat_n_i),
+          .mat_thr_i  (mat_thr_i),
+          .tab_we_i   (tab_we_i),
+          .tab_addr_i (tab_addr_i),
+          .tab_value_i(tab_value_i),
+          .tab_delta_i(tab_delta_i),
           .in_valid_i (in_valid_i),
           .in_ready_o (in_ready_o),
           .in_cos_i   (in_cos_i),

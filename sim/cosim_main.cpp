@@ -188,6 +188,7 @@ int run(const Options& o, const Unit& unit, const RunConfig& rc, std::string& ca
       {"protocol_errors", sb.protocol_errors_},
       {"dropped_by_reset", sb.dropped_by_reset_},
       {"resets", drv.resets()},
+      {"table_writes", drv.table_writes()},
       {"material_writes", sb.material_writes_},
       {"latency_spec", unit.latency()},
       {"latency_min", sb.checked_ ? sb.lat_min_ : 0},

@@ -16,6 +16,11 @@ struct Pins {
   sc_core::sc_signal<uint32_t> mat_n{"mat_n", 16};
   sc_core::sc_signal<uint32_t> mat_thr{"mat_thr", 0};
   sc_core::sc_signal<uint32_t> mat_coef{"mat_coef", 0};  // NORM = 1 only (ignored otherwise)
+  // Table write port (table units only, docs/spec.md §9; tied low for the others by the driver).
+  sc_core::sc_signal<bool> tab_we{"tab_we", false};
+  sc_core::sc_signal<uint32_t> tab_addr{"tab_addr", 0};
+  sc_core::sc_signal<uint32_t> tab_value{"tab_value", 0};
+  sc_core::sc_signal<uint32_t> tab_delta{"tab_delta", 0};
   sc_core::sc_signal<bool> in_valid{"in_valid", false};
   sc_core::sc_signal<bool> in_ready{"in_ready", false};
   sc_core::sc_signal<uint32_t> in_cos{"in_cos", 0};
@@ -33,12 +38,12 @@ struct Pins {
   }
   [[nodiscard]] uint32_t out_payload() const { return out_spec.read(); }
   static uint32_t corrupt(uint32_t v) { return v ^ 1u; }  // self-test: flip bit 0
-  // A material write at this edge (after the input of the same edge: it uses the old material).
+  // A material or table write at this edge (after the input of the same edge: it uses the old state).
   template <class Sb>
   bool observe_state(Sb& sb, uint64_t /*cycle*/) {
-    if (!mat_we.read()) return false;
-    sb.on_material(static_cast<int>(mat_n.read()), mat_thr.read(), mat_coef.read());
-    return false;  // a material write is not a data transfer (the watchdog counts transfers)
+    if (mat_we.read()) sb.on_material(static_cast<int>(mat_n.read()), mat_thr.read(), mat_coef.read());
+    if (tab_we.read()) sb.on_table_write(tab_addr.read(), tab_value.read(), tab_delta.read());
+    return false;  // a state write is not a data transfer (the watchdog counts transfers)
   }
 
   template <class M>
@@ -49,6 +54,10 @@ struct Pins {
     dut.mat_n_i(mat_n);
     dut.mat_thr_i(mat_thr);
     dut.mat_coef_i(mat_coef);
+    dut.tab_we_i(tab_we);
+    dut.tab_addr_i(tab_addr);
+    dut.tab_value_i(tab_value);
+    dut.tab_delta_i(tab_delta);
     dut.in_valid_i(in_valid);
     dut.in_ready_o(in_ready);
     dut.in_cos_i(in_cos);

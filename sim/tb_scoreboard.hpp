@@ -183,14 +183,21 @@ struct UnitIn {
   int64_t code;  // signed input word
 };
 
+// Table units (docs/spec.md §9): the model mirrors the table RAM from the observed tab_we_i writes, so
+// the expected value uses what the RAM holds at the accepting edge, not what the driver meant to write.
+// Testbench convention: a table load starts with a mat_we_i write (n, for the reports) and is complete
+// after E table writes; a fragment accepted before that breaks the host rule (no fragments during a
+// reload) and is reported as a protocol error.
 struct UnitModel {
   using In = UnitIn;
   using Out = uint32_t;
-  static constexpr const char* kNotReadyMessage = "input accepted before any material was written";
+  static constexpr const char* kNotReadyMessage =
+      "input accepted before a material was written (or while a table load was in progress)";
   const Unit* unit;
   UnitMaterial mat;
   bool mat_valid = false;
-  [[nodiscard]] bool ready() const { return mat_valid; }
+  int table_left = 0;  // table writes still missing from the load in progress
+  [[nodiscard]] bool ready() const { return mat_valid && table_left == 0; }
   [[nodiscard]] int latency() const { return unit->latency(); }
   [[nodiscard]] int latency_min() const { return unit->latency_min(); }
   [[nodiscard]] Out expected(const In& in) const { return unit->eval(mat, in.code); }
@@ -201,16 +208,31 @@ using Mismatch = MismatchT<UnitModel>;
 
 class Scoreboard : public ScoreboardT<UnitModel> {
  public:
-  Scoreboard(const Unit& unit, int show) : ScoreboardT<UnitModel>(UnitModel{&unit, {}, false}, show) {}
+  Scoreboard(const Unit& unit, int show) : ScoreboardT<UnitModel>(UnitModel{&unit, {}, false}, show) {
+    if (unit.entries() > 0) ram_ = std::make_shared<std::vector<uint64_t>>(static_cast<size_t>(unit.entries()), 0);
+  }
 
   void on_material(int n, uint32_t thr, uint32_t coef = 0) {
     model_.mat = UnitMaterial{n, thr, coef};
+    model_.mat.tab = ram_;
     model_.mat_valid = true;
+    if (ram_) model_.table_left = static_cast<int>(ram_->size());
     ++material_writes_;
   }
+  // One table RAM write (rtl/sc_table.v: addresses >= E are ignored).
+  void on_table_write(uint32_t addr, uint32_t value, uint32_t delta) {
+    ++table_writes_;
+    if (!ram_ || addr >= ram_->size()) return;
+    (*ram_)[addr] = table_word(model_.unit->format().frac, value, delta);
+    if (model_.table_left > 0) --model_.table_left;
+  }
+  uint64_t table_writes_ = 0;
   void on_input(uint32_t tag, int64_t code, uint64_t cycle, uint64_t adv) {
     ScoreboardT<UnitModel>::on_input(tag, model_.input(code), cycle, adv);
   }
+
+ private:
+  std::shared_ptr<std::vector<uint64_t>> ram_;  // mirror of the table RAM (table units only)
 };
 
 }  // namespace shadecore::sim

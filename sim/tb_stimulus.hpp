@@ -118,7 +118,14 @@ class Stimulus {
       switch (rng.next() % 4) {
         case 0: centre = 0; break;
         case 1: centre = one; break;
-        case 2: centre = unit_.setup(n).thr; break;
+        case 2:  // cs16: the θcr threshold; table units: an entry boundary ⌈i·2^F/(E−1)⌉
+          if (const int e = unit_.entries(); e > 0) {
+            const int64_t i = rng.uniform(0, e - 1);
+            centre = (i * one + e - 2) / (e - 1);
+          } else {
+            centre = unit_.setup(n).thr;
+          }
+          break;
         default: centre = one - ((int64_t{1} << (f_.frac + 4)) / n); break;  // last code with base <= 0
       }
       it.code = centre + rng.uniform(-4, 4);

@@ -9,6 +9,8 @@
 
 #include "shadecore/golden.hpp"
 #include "shadecore/schlick.hpp"
+#include "shadecore/table.hpp"
+#include "shadecore/unit.hpp"
 
 namespace shadecore {
 
@@ -51,6 +53,27 @@ struct SchlickKernel {
   uint32_t fixed(const Mat& m, int64_t code) const { return schlick_eval(form, f, m, code); }
   double golden(const Mat& m, double c) const { return golden::schlick(c, m.n); }
 };
+
+// Table-and-interpolate units (docs/spec.md §9): the fixed-point table lerp and the same table lerp in
+// double (T(i) = (i/(E−1))^n exact in double, interpolated at f = (E−1)·c).
+struct TableKernel {
+  Format f;
+  int entries;
+  struct Mat {
+    TableMaterial m;
+    std::vector<double> t;  // golden table
+  };
+  Mat setup(int n) const { return {table_setup(f, entries, n), golden::table_golden(entries, n)}; }
+  uint32_t fixed(const Mat& m, int64_t code) const { return table_eval(f, m.m.words.data(), entries, code); }
+  double golden(const Mat& m, double c) const { return golden::table_lerp(m.t.data(), entries, c); }
+};
+
+// Name -> table size; 0 if the name is not a table variant.
+int table_variant_entries(const std::string& v) {
+  for (const auto& nv : kVariants)
+    if (nv.name == v && nv.contract == "table") return nv.entries;
+  return 0;
+}
 
 // Name -> form; false if the name is not a Schlick variant.
 bool schlick_form(const std::string& v, SchlickForm& form) {
@@ -135,7 +158,12 @@ SweepResult run_kernel(const Kernel& k, const SweepOptions& opt) {
 
 }  // namespace
 
-std::vector<std::string> sweep_variants() { return {"cs16", "schlick_div", "schlick_nr", "schlick_iter"}; }
+std::vector<std::string> sweep_variants() {
+  std::vector<std::string> v = {"cs16", "schlick_div", "schlick_nr", "schlick_iter"};
+  for (const auto& nv : kVariants)
+    if (nv.contract == "table") v.emplace_back(nv.name);
+  return v;
+}
 
 SweepResult run_sweep(const SweepOptions& opt) {
   validate(opt.format);
@@ -145,6 +173,7 @@ SweepResult run_sweep(const SweepOptions& opt) {
     throw std::invalid_argument("empty n range " + std::to_string(opt.n_lo) + ".." + std::to_string(opt.n_hi));
   if (opt.variant == "cs16") return run_kernel(Cs16Kernel{opt.format, opt.cutoff}, opt);
   if (SchlickForm form; schlick_form(opt.variant, form)) return run_kernel(SchlickKernel{opt.format, form}, opt);
+  if (const int e = table_variant_entries(opt.variant)) return run_kernel(TableKernel{opt.format, e}, opt);
   throw std::invalid_argument("unknown variant '" + opt.variant + "'");
 }
 
@@ -152,6 +181,17 @@ double variant_golden(const std::string& variant, Cutoff cutoff, int n, double c
   if (variant == "cs16")
     return cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(c, n) : golden::cs16_sign_clamp(c, n);
   if (SchlickForm form; schlick_form(variant, form)) return golden::schlick(c, n);
+  if (const int e = table_variant_entries(variant)) {
+    // The golden table of the last (entries, n) asked for in this thread (the plot loops go n by n).
+    thread_local int last_e = 0, last_n = 0;
+    thread_local std::vector<double> t;
+    if (last_e != e || last_n != n) {
+      t = golden::table_golden(e, n);
+      last_e = e;
+      last_n = n;
+    }
+    return golden::table_lerp(t.data(), e, c);
+  }
   throw std::invalid_argument("unknown variant '" + variant + "'");
 }
 

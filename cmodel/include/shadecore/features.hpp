@@ -125,6 +125,9 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
         } catch (const std::exception& e) {
           fs_fail(where, std::string(e.what()) + " or none");
         }
+        if (is_table_variant(fs.variant))
+          fs_fail(where, "specular unit '" + s + "' is not supported by the lighting core (it has no table-load port; "
+                         "use cs16, schlick_div, schlick_nr or schlick_iter)");
         fs.specular = true;
       }
     } else if (k == "cutoff") {

@@ -3,6 +3,9 @@
 //   setup(n)        -> the values the material ports of rtl/sc_specular.v get (mat_n_i, mat_thr_i)
 //   eval(mat, code) -> out_spec_o for the signed input word `code` shaded with material `mat`
 //   latency()       -> the unit's fixed pipeline latency in cycles (its RTL header documents it)
+// Table variants (config/configs.json contract "table", docs/spec.md §9): setup(n) also gives the
+// table RAM contents (UnitMaterial::tab, E words, written through tab_we_i/tab_addr_i/tab_value_i/
+// tab_delta_i), and eval() reads the words in UnitMaterial::tab — whatever the RAM holds.
 // Optionally (set_norm) the energy-normalisation stage rtl/sc_norm.v chained after the unit inside
 // sc_specular (parameter NORM = 1): setup() also gives mat_coef_i, eval() the normalised output,
 // latency() + 2 (docs/spec.md §7).
@@ -11,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -19,6 +23,7 @@
 #include "shadecore/cs16.hpp"
 #include "shadecore/format.hpp"
 #include "shadecore/schlick.hpp"
+#include "shadecore/table.hpp"
 #include "shadecore/variants.hpp"
 
 namespace shadecore {
@@ -28,6 +33,9 @@ struct UnitMaterial {
   int n = kNMin;     // mat_n_i, 16..1024
   uint32_t thr = 0;  // mat_thr_i
   uint32_t coef = 0; // mat_coef_i (NORM = 1 only: coef_code of the material's model, spec §7)
+  // Table variants only: the table RAM contents (E words, table_word() layout), loaded through the
+  // tab_*_i ports; null for every other unit. Shared, not copied, when a material is passed around.
+  std::shared_ptr<const std::vector<uint64_t>> tab = nullptr;
 };
 
 inline VariantId parse_variant(std::string_view name) {
@@ -55,6 +63,8 @@ class Unit {
       case VariantId::schlick_div:
       case VariantId::schlick_nr:
       case VariantId::schlick_iter: return;
+      case VariantId::table256:
+      case VariantId::table1024: table_index_bits(table_entries(variant_)); return;
     }
     throw std::invalid_argument("variant id " + std::to_string(static_cast<int>(variant)) +
                                 " has no model in shadecore/unit.hpp");
@@ -63,6 +73,8 @@ class Unit {
   [[nodiscard]] VariantId variant() const { return variant_; }
   [[nodiscard]] const Format& format() const { return format_; }
   [[nodiscard]] Cutoff cutoff() const { return cutoff_; }
+  // Table variants: entries E of the table RAM (writes per material change); 0 for the other units.
+  [[nodiscard]] int entries() const { return table_entries(variant_); }
 
   // Chain the energy-normalisation stage (I = kCoefIntBits, F = format().frac). model < 0 picks the
   // model per material from n (kModels[n % 6], classical coefficient when (n / 6) is odd), so a
@@ -83,6 +95,8 @@ class Unit {
       case VariantId::schlick_div: return schlick_div_latency(format_.frac) + (norm_ ? 2 : 0);
       case VariantId::schlick_nr: return kSchlickNrLatency + (norm_ ? 2 : 0);
       case VariantId::schlick_iter: return schlick_iter_latency(format_.frac) + (norm_ ? 2 : 0);
+      case VariantId::table256:
+      case VariantId::table1024: return kTableLatency + (norm_ ? 2 : 0);  // rtl/sc_table.v: S0..S2
     }
     return -1;
   }
@@ -105,6 +119,13 @@ class Unit {
       case VariantId::schlick_nr:
       case VariantId::schlick_iter:  // no threshold: mat_thr_i unused (0)
         return with_coef(UnitMaterial{schlick_setup(format_, n).n, 0}, n);
+      case VariantId::table256:
+      case VariantId::table1024: {  // no threshold; the table contents (E RAM writes per material)
+        TableMaterial t = table_setup(format_, entries(), n);
+        UnitMaterial m{t.n, 0};
+        m.tab = std::make_shared<const std::vector<uint64_t>>(std::move(t.words));
+        return with_coef(std::move(m), n);
+      }
     }
     return {};
   }
@@ -116,6 +137,11 @@ class Unit {
       case VariantId::schlick_div: return normalise(m, schlick_div_eval(format_, SchlickMaterial{m.n}, code));
       case VariantId::schlick_nr: return normalise(m, schlick_nr_eval(format_, SchlickMaterial{m.n}, code));
       case VariantId::schlick_iter: return normalise(m, schlick_iter_eval(format_, SchlickMaterial{m.n}, code));
+      case VariantId::table256:
+      case VariantId::table1024:
+        if (!m.tab || static_cast<int>(m.tab->size()) != entries())
+          throw std::invalid_argument("table unit evaluated without its " + std::to_string(entries()) + "-entry table");
+        return normalise(m, table_eval(format_, m.tab->data(), entries(), code));
     }
     return 0;
   }
