@@ -43,7 +43,7 @@ UP5K = {"lcs": 5280, "dsp": 8, "bram": 30}
 METRICS = ("sweep", "cosim", "generic", "hx8k", "up5k", "ecp5", "xc7")
 SIM_METRICS = ("sweep", "cosim")
 # Bumped when a metric's flow changes (invalidates its cached results).
-FLOW_VERSION = {"sweep": "1", "cosim": "1", "generic": "1", "hx8k": "1", "up5k": "1", "ecp5": "1", "xc7": "1"}
+FLOW_VERSION = {"sweep": "1", "cosim": "1", "generic": "1", "hx8k": "1", "up5k": "2", "ecp5": "1", "xc7": "1"}
 # Rough first-run durations [s] at F = 16 for the ETA before any job of that metric has finished.
 DEFAULT_SECONDS = {"sweep": 60, "cosim": 30, "generic": 90, "hx8k": 240, "up5k": 300, "ecp5": 120, "xc7": 150}
 # n bands of the "which unit for which n" section (total error per band from the per-n sweep rows).
@@ -121,10 +121,12 @@ def parse_icetime(text):
     return float(m[-1][1]) if m else None
 
 
-def icetime_path_through_dsp(report):
-    """True when the critical path listed by `icetime -mtr` passes through an SB_MAC16."""
+def icetime_dsp_on_path(report):
+    """SB_MAC16 cells on the critical path listed by `icetime -mtr` (their configured mode, e.g.
+    "SB_MAC16_MAS_U_16X16_BYPASS"), [] when the path is fabric only. icetime ends or starts such a path at the
+    SB_MAC16 port ("[setup]: 0.000 ns") in the modes seen here, i.e. without the multiplier's own delay."""
     crit = report.split("Resolvable net names on path")[0]
-    return bool(re.search(r"MAC16", crit))
+    return re.findall(r"^\s+MAC16_\S+ \((SB_MAC16\w*)\)", crit, flags=re.M)
 
 
 def parse_nextpnr_fmax(log):
@@ -373,7 +375,7 @@ def place_ice40(dev, pkg, js, tmp, freq):
     run(["icetime", "-d", dev, "-P", pkg, "-m", "-t", "-r", rpt, asc])
     text = open(rpt).read()
     return parse_icetime(text), parse_nextpnr_fmax(log.stderr), parse_nextpnr_lcs(log.stderr), \
-        icetime_path_through_dsp(text)
+        icetime_dsp_on_path(text)
 
 
 def m_hx8k(ctx, variant, cfg, design, tmp):
@@ -417,7 +419,7 @@ def m_up5k(ctx, variant, cfg, design, tmp):
     except Failure as e:
         res.update(fits_up5k=False, pnr_up5k=f"place and route failed: {one_line(e, 120)}")
         return res
-    res.update(fmax_up5k_mhz=fmax, fmax_up5k_nextpnr_mhz=fnp, up5k_lcs=lcs, up5k_crit_dsp=crit_dsp,
+    res.update(fmax_up5k_mhz=fmax, fmax_up5k_nextpnr_mhz=fnp, up5k_lcs=lcs, up5k_crit_dsp=", ".join(sorted(set(crit_dsp))) or None,
                pnr_up5k="UP5K sg48 (serial wrapper)")
     return res
 
