@@ -686,9 +686,19 @@ def write_report(rows, cmd, out, baseline, run_seconds):
             f"HX8K {fmt(r.get('bram_hx8k'))} / UP5K {fmt(r.get('bram_up5k'))} SB_RAM40_4K, ECP5 "
             f"{fmt(r.get('ecp5_bram'))} DP16KD, 7-series {fmt(r.get('x7_bram'))} RAMB" for r in rams) + "."]
     L += ["", TIMING_NOTE, ""]
-    errs = [f"- {r['variant']}/{r['config']}: {k[:-6]}: {r[k]}" for r in rows for k in sorted(r) if k.endswith("_error")]
+    errs = [f"- {r['variant']}/{r['config']}: {k[:-6]}: {r[k]}" for r in rows for k in sorted(r)
+            if k.endswith("_error") and r[k] != "not run"]
     if errs:
-        L += ["Steps that failed or were not run (reported, not hidden):", ""] + errs + [""]
+        L += ["Steps that failed (reported, not hidden):", ""] + errs + [""]
+    missing = {}
+    for r in rows:
+        for k in sorted(r):
+            if k.endswith("_error") and r[k] == "not run":
+                missing.setdefault(k[:-6], []).append(f"{r['variant']}/{r['config']}")
+    if missing:
+        L += ["Not measured yet (no result in the cache; a dash in the tables): "
+              + "; ".join(f"{m}: {', '.join(v) if len(v) < len(rows) else 'every row'}" for m, v in missing.items())
+              + ".", ""]
     L += guidance(rows, baseline)
     L += ["## Pareto plot", "",
           "![error against area](tradeoffs.png)", "",
@@ -730,7 +740,7 @@ RERUN_NOTE = (
     "sweep and co-simulation also by the SHA-256 of the shadecore binary (and of the co-simulator), so a rerun "
     "after adding a unit computes the new rows only, and a rebuilt binary reruns the sweeps and co-simulations. "
     "`--only VARIANT[,..]`, `--configs NAME[,..]`, `--metrics sweep,cosim,generic,hx8k,up5k,ecp5,xc7`, `-j N` "
-    "(default 1; synthesis runs under `nice -n 5`), `--dry-run` (list the jobs and what is cached), `--replot` "
+    "(default 1; synthesis runs under `nice -n 5`), `--dry-run` (list the jobs and what is cached), `--cached-only` (report what the cache holds), `--replot` "
     "(redraw from docs/tradeoffs.json). Progress with an ETA goes to stderr.")
 
 
@@ -805,6 +815,8 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "docs"), help="directory for tradeoffs.md/.json/.png")
     ap.add_argument("--cache", default=None, help="result cache (default OUT/tradeoffs.cache.json)")
     ap.add_argument("--dry-run", action="store_true", help="list the jobs and which are cached; run nothing")
+    ap.add_argument("--cached-only", action="store_true",
+                    help="write the report from the cache alone (what is missing shows as not run)")
     ap.add_argument("--replot", action="store_true", help="only redraw OUT/tradeoffs.png from OUT/tradeoffs.json")
     a = ap.parse_args()
     log = lambda s: print(f"{PROG}: {s}", file=sys.stderr, flush=True)  # noqa: E731
@@ -890,7 +902,8 @@ def main():
             print(f"cached {k.split('|')[0]}/{k.split('|')[1]} {k.split('|')[2]}")
         return 0
     results = dict(cached)
-    results.update(run_jobs(ctx, jobs, log))
+    if not a.cached_only:
+        results.update(run_jobs(ctx, jobs, log))
     # Rows: every variant x config of configs.json with whatever the cache holds (the report always lists all
     # rows; --only/--configs choose what is computed).
     rows, failed = [], 0
@@ -925,6 +938,8 @@ def main():
     cmd = "scripts/cost_report.py " + " ".join(sys.argv[1:])
     write_report(rows, cmd, a.out, a.baseline, time.time() - t0 if jobs else None)
     log(f"wrote {a.out}/tradeoffs.md, .json, .png in {fmt_s(time.time() - t0)}")
+    if a.cached_only and jobs:
+        log(f"{len(jobs)} results were not in the cache (shown as not run)")
     if failed:
         raise Failure(f"{failed} step(s) failed (listed in {a.out}/tradeoffs.md)")
     return 0
