@@ -388,8 +388,8 @@ def m_hx8k(ctx, variant, cfg, design, tmp):
     if res["luts"] > HX8K_LCS:
         res["pnr"] = "does not fit an HX8K"
         return res
-    fmax, _, _, _ = place_ice40("hx8k", "ct256", js, tmp, 12)
-    res.update(fmax_mhz=fmax, pnr="HX8K ct256")
+    fmax, fnp, _, _ = place_ice40("hx8k", "ct256", js, tmp, 12)
+    res.update(fmax_mhz=fmax, fmax_hx8k_nextpnr_mhz=fnp, pnr="HX8K ct256")
     return res
 
 
@@ -522,7 +522,7 @@ def run_jobs(ctx, jobs, log):
                 res = METRIC_FN[m](ctx, v, c, ctx.designs[(v["name"], c["name"])], tmp)
             dt = time.time() - t0
             ctx.cache.put(key, {"result": res, "seconds": round(dt, 1), "date": datetime.date.today().isoformat(),
-                                "machine": figures.machine()}, prefix=prefix)
+                                "machine": figures.machine(), "load": round(os.getloadavg()[0], 1)}, prefix=prefix)
             out = res
         except Failure as e:
             dt, out = time.time() - t0, e
@@ -615,7 +615,7 @@ def guidance(rows, baseline):
     return lines
 
 
-def write_report(rows, cmd, out, baseline, run_seconds):
+def write_report(rows, cmd, out, baseline, run_seconds, loads=()):
     footer = figures.footer(cmd)
     base = {r["config"]: r for r in rows if r["variant"] == baseline}
     ratio = lambda r, k: (r[k] / base[r["config"]][k]) if (r.get(k) is not None and r["config"] in base  # noqa: E731
@@ -626,7 +626,10 @@ def write_report(rows, cmd, out, baseline, run_seconds):
         f"Command: `{cmd.strip()}`  ",
         f"Machine: {figures.machine()}; date: {datetime.date.today().isoformat()}; Yosys 0.23, nextpnr-ice40 0.4, "
         "icetime, Verilator 5.006 + SystemC 2.3.4."
-        + (f" This run took {fmt_s(run_seconds)} (h:mm:ss or m:ss; cached results are reused)." if run_seconds else ""),
+        + (f" Computing every row from an empty cache took {fmt_s(sum(run_seconds.values()))} (h:mm:ss or m:ss, the "
+           "sum of the measured job times at -j 1: " + ", ".join(f"{m} {fmt_s(t)}" for m, t in run_seconds.items())
+           + (f"; the machine was shared, 1-minute load average {min(loads)}–{max(loads)} at the end of the jobs"
+              if loads else "") + ")." if run_seconds else ""),
         "",
         "## Error, latency, throughput, simulation speed", "",
         "*contract*: the unit's stated bound (config/configs.json; docs/spec.md §3.3 and §6.4). *quant*: fixed-point "
@@ -663,10 +666,10 @@ def write_report(rows, cmd, out, baseline, run_seconds):
           "place and route of a generated serial wrapper (every core input from a shift register fed by one pin, "
           "every output captured into a shift register read out on one pin: 4 pins, the sg48 package has too few "
           "for the ports) with nextpnr-ice40 --up5k --package sg48; Fmax from icetime (`icetime -d up5k -P sg48 -mtr`); "
-          "*path via DSP*: icetime's critical path passes through an SB_MAC16; nextpnr's own figure in brackets. "
+          "nextpnr's own figure in brackets. "
           "ECP5: `synth_ecp5` (MULT18X18D, LUT4, TRELLIS_FF); 7-series: `synth_xilinx -family xc7` (DSP48E1, "
           "LUT1..6, FD*). ECP5 and 7-series are cell counts only (no place and route).", "",
-          "| variant | F | HX8K LUT4 | HX8K DFF | HX8K Fmax (MHz) | UP5K MAC16 | UP5K LUT4 | fits UP5K | UP5K Fmax icetime (nextpnr) | path via DSP | ECP5 MULT18 | ECP5 LUT4 | ECP5 FF | 7s DSP48 | 7s LUT | 7s FF |",
+          "| variant | F | HX8K LUT4 | HX8K DFF | HX8K Fmax (MHz) | UP5K MAC16 | UP5K LUT4 | fits UP5K | UP5K Fmax icetime (nextpnr) | DSP on path | ECP5 MULT18 | ECP5 LUT4 | ECP5 FF | 7s DSP48 | 7s LUT | 7s FF |",
           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         hx = fmt(r.get("fmax_mhz"), ".1f") if r.get("fmax_mhz") else r.get("pnr", "—")
@@ -685,7 +688,7 @@ def write_report(rows, cmd, out, baseline, run_seconds):
             f"{r['variant']} F{r['frac']}: {', '.join(r.get('memories', []))} = {r['ram_bits']:,} bits, "
             f"HX8K {fmt(r.get('bram_hx8k'))} / UP5K {fmt(r.get('bram_up5k'))} SB_RAM40_4K, ECP5 "
             f"{fmt(r.get('ecp5_bram'))} DP16KD, 7-series {fmt(r.get('x7_bram'))} RAMB" for r in rams) + "."]
-    L += ["", TIMING_NOTE, ""]
+    L += ["", timing_note(rows), ""]
     errs = [f"- {r['variant']}/{r['config']}: {k[:-6]}: {r[k]}" for r in rows for k in sorted(r)
             if k.endswith("_error") and r[k] != "not run"]
     if errs:
@@ -724,13 +727,27 @@ def write_report(rows, cmd, out, baseline, run_seconds):
         os.replace(t, os.path.join(out, n))
 
 
-TIMING_NOTE = (
-    "Which timing numbers to trust: HX8K Fmax (LUT logic only) — icetime and nextpnr agree to within a few per "
-    "cent, trustworthy as a relative figure. UP5K with SB_MAC16: nextpnr-ice40 0.4 has no delay model for paths "
-    "through SB_MAC16 (its figure, in brackets, is an optimistic bound that ignores the multiplier); icetime has "
-    "per-mode SB_MAC16 delays and is the figure reported. Where *path via DSP* is *no*, the critical path is LUT "
-    "logic and the icetime figure is as trustworthy as the HX8K one; where it is *yes*, the figure rests on "
-    "icetime's SB_MAC16 model only (not checked on silicon). Neither ECP5 nor 7-series was placed and routed.")
+def timing_note(rows):
+    """Which timing numbers to trust, with the agreement of the two tools measured on these rows."""
+    def spread(a, b):
+        d = [abs(r[a] / r[b] - 1) for r in rows if r.get(a) and r.get(b)]
+        return f"{100 * max(d):.1f} % ({len(d)} rows)" if d else "not measured"
+    on_dsp = sorted({f"{r['variant']} F{r['frac']}" for r in rows if r.get("up5k_crit_dsp")})
+    return (
+        "Which timing numbers to trust. *HX8K* (LUT logic only): icetime and nextpnr model the same LUT and "
+        f"routing delays; largest difference between them here: {spread('fmax_mhz', 'fmax_hx8k_nextpnr_mhz')}. "
+        "*UP5K* with SB_MAC16: nextpnr-ice40 0.4 has no delay for paths through an SB_MAC16 (TOOLCHAIN: 181 MHz "
+        "reported where icetime gives 18), and icetime, in the SB_MAC16 modes Yosys produced here, ends a path "
+        "at the SB_MAC16 input with a 0.000 ns setup and starts the next one at its output, so neither includes "
+        "the multiplier array's own delay when the DSP is used without its internal registers. Handling: the "
+        "reported UP5K Fmax is icetime's (nextpnr's in brackets, largest difference here: "
+        f"{spread('fmax_up5k_mhz', 'fmax_up5k_nextpnr_mhz')}), and *DSP on path* names the SB_MAC16 mode where "
+        "icetime's critical path starts or ends at one — there the figure is an upper bound"
+        + (f" ({', '.join(on_dsp)})" if on_dsp else "") + "; where it is empty the critical path is fabric "
+        "logic, but a shorter-looking DSP path may still be the real limit, so every UP5K Fmax of a unit with "
+        "SB_MAC16 is an upper bound, and the HX8K figure (multipliers in LUTs, fully modelled) is the "
+        "trustworthy one. ECP5 and 7-series: cell counts only, no timing.")
+
 
 RERUN_NOTE = (
     "## Rerunning\n\n"
@@ -906,7 +923,7 @@ def main():
         results.update(run_jobs(ctx, jobs, log))
     # Rows: every variant x config of configs.json with whatever the cache holds (the report always lists all
     # rows; --only/--configs choose what is computed).
-    rows, failed = [], 0
+    rows, failed, seconds, loads = [], 0, {}, []
     for v in cfgs["variants"]:
         for c in cfgs["configs"]:
             r = {"variant": v["name"], "config": c["name"], "frac": c["frac"], "guard": c["guard"],
@@ -933,10 +950,15 @@ def main():
                     r[f"{m}_error"] = "not run"
                 else:
                     r.update(res)
+                    e = ctx.cache.get(key)
+                    if e:
+                        seconds[m] = seconds.get(m, 0) + e.get("seconds", 0)
+                        if "load" in e:
+                            loads.append(e["load"])
             r["total_abs_max"] = err_abs(r)
             rows.append(r)
     cmd = "scripts/cost_report.py " + " ".join(sys.argv[1:])
-    write_report(rows, cmd, a.out, a.baseline, time.time() - t0 if jobs else None)
+    write_report(rows, cmd, a.out, a.baseline, seconds, loads)
     log(f"wrote {a.out}/tradeoffs.md, .json, .png in {fmt_s(time.time() - t0)}")
     if a.cached_only and jobs:
         log(f"{len(jobs)} results were not in the cache (shown as not run)")
