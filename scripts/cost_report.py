@@ -556,6 +556,8 @@ def fmt(v, spec="d"):
         return "—"
     if isinstance(v, bool):
         return "yes" if v else "no"
+    if isinstance(v, str):
+        return v
     return format(v, spec)
 
 
@@ -650,10 +652,10 @@ def write_report(rows, cmd, out, baseline, run_seconds, loads=()):
           "Yosys `synth -flatten; abc` on `sc_specular` (`-run :fine` stops before `memory_map`): *cells* are gates "
           "and flip-flops, *FFs* the flip-flops, *depth* the longest path in gates (`ltp -noff`). *transistors*: "
           "`dffunmap; stat -tech cmos` after the same synthesis (every flip-flop counted, enable/reset turned into "
-          "gates; the run fails if any cell has no CMOS cost). RAM: bits of the inferred memories; the generic figures "
+          "gates; the run fails if any cell has no CMOS cost). RAM/ROM: bits of the inferred memories (a case-statement table such as schlick_nr's reciprocal seed is a ROM); the generic figures "
           "map them to flip-flops (`memory_map`), the *without RAM* figures keep each as a black box "
           f"(the logic around it). *÷ {baseline}*: ratio to {baseline} at the same width.", "",
-          f"| variant | F | cells | ÷ {baseline} | FFs | depth | transistors | ÷ {baseline} | RAM bits | cells w/o RAM | transistors w/o RAM |",
+          f"| variant | F | cells | ÷ {baseline} | FFs | depth | transistors | ÷ {baseline} | RAM/ROM bits | cells w/o RAM | transistors w/o RAM |",
           "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         L.append(f"| {r['variant']} | {r['frac']} | {fmt(r.get('cells'), ',')} | {fmt(ratio(r, 'cells'), '.2f')} "
@@ -731,7 +733,7 @@ def timing_note(rows):
     """Which timing numbers to trust, with the agreement of the two tools measured on these rows."""
     def spread(a, b):
         d = [abs(r[a] / r[b] - 1) for r in rows if r.get(a) and r.get(b)]
-        return f"{100 * max(d):.1f} % ({len(d)} rows)" if d else "not measured"
+        return f"{100 * max(d):.1f} % ({len(d)} row{'s' if len(d) != 1 else ''})" if d else "not measured"
     on_dsp = sorted({f"{r['variant']} F{r['frac']}" for r in rows if r.get("up5k_crit_dsp")})
     return (
         "Which timing numbers to trust. *HX8K* (LUT logic only): icetime and nextpnr model the same LUT and "
@@ -784,8 +786,12 @@ def plot(rows, path, footer):
             m = markers[variants.index(r["variant"]) % len(markers)]
             ax.scatter([x], [y], marker=m, s=46, edgecolors=colour[r["config"]],
                        facecolors=colour[r["config"]] if full else "none", linewidths=1.4, zorder=3)
-            ax.annotate(f"{r['variant']} ({r['contract']}) F{r['frac']}", (x, y), fontsize=6, xytext=(4, 3),
-                        textcoords="offset points", zorder=4)
+        # Labels: points at about the same error (e.g. every Schlick form at 0.20) get staggered offsets.
+        offsets = (3, -10, 10, -17, 17, -24)
+        for i, (x, y, r) in enumerate(sorted(pts, key=lambda p: p[0])):
+            near = sum(1 for x2, y2, _ in sorted(pts, key=lambda p: p[0])[:i] if abs(math.log(y2 / y)) < 0.15)
+            ax.annotate(f"{r['variant']} ({r['contract']}) F{r['frac']}", (x, y), fontsize=6,
+                        xytext=(4, offsets[near % len(offsets)]), textcoords="offset points", zorder=4)
         front = pareto(pts)
         if front:
             xs, ys = [front[0][0]], [front[0][1]]
