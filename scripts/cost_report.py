@@ -617,7 +617,52 @@ def guidance(rows, baseline):
     return lines
 
 
-def write_report(rows, cmd, out, baseline, run_seconds, loads=()):
+def check_rows(rows):
+    for r in rows:
+        for k in ("frac", "guard"):
+            if not isinstance(r.get(k), int) or isinstance(r.get(k), bool):
+                raise Failure(f"row {r.get('variant')}/{r.get('config')}: {k} is {r.get(k)!r}, not an integer")
+
+
+def check_out_dir(out):
+    """--out may be missing (it is created when the report is written), but it must be creatable: the
+    nearest existing ancestor is a writable directory. Checked before the long run."""
+    d = os.path.abspath(out)
+    if os.path.exists(d):
+        if not os.path.isdir(d):
+            raise Failure(f"--out {out} is not a directory")
+    else:
+        anc = d
+        while not os.path.exists(anc):
+            anc = os.path.dirname(anc)
+        if not os.path.isdir(anc):
+            raise Failure(f"cannot create --out {out}: {anc} is not a directory")
+        d = anc
+    if not os.access(d, os.W_OK):
+        raise Failure(f"cannot write to {d}")
+
+
+def write_report(rows, cmd, out, baseline="schlick_div", run_seconds=None, loads=()):
+    """OUT/tradeoffs.md, .json and .png from the rows: all three or none (OUT and missing parents are created
+    and removed again when anything fails)."""
+    created = []
+    d = os.path.abspath(out)
+    while not os.path.exists(d):
+        created.append(d)
+        d = os.path.dirname(d)
+    for c in reversed(created):
+        os.mkdir(c)
+    try:
+        check_rows(rows)
+        _write_report(rows, cmd, out, baseline, run_seconds, loads)
+    except BaseException:
+        for c in created:
+            if os.path.isdir(c) and not os.listdir(c):
+                os.rmdir(c)
+        raise
+
+
+def _write_report(rows, cmd, out, baseline, run_seconds, loads):
     footer = figures.footer(cmd)
     base = {r["config"]: r for r in rows if r["variant"] == baseline}
     ratio = lambda r, k: (r[k] / base[r["config"]][k]) if (r.get(k) is not None and r["config"] in base  # noqa: E731
@@ -644,7 +689,7 @@ def write_report(rows, cmd, out, baseline, run_seconds, loads=()):
         "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
-        L.append(f"| {r['variant']} | {r['contract']} | {r['frac']} | {r['guard'] if r['variant'].startswith('cs16') else '—'} "
+        L.append(f"| {r['variant']} | {r.get('contract', '—')} | {r['frac']} | {r['guard'] if r['variant'].startswith('cs16') else '—'} "
                  f"| {r.get('sweep_n', '—')} | {fmt(r.get('quant_max'), '+.3f')} / {fmt(r.get('quant_min'), '+.3f')} "
                  f"| {fmt(r.get('total_max'), '.3e')} | {fmt(r.get('total_min'), '.3e')} | {fmt(r.get('latency'))} "
                  f"| {rate(r)} | {fmt(r.get('vectors_per_s'), ',.0f')} |")
@@ -712,7 +757,6 @@ def write_report(rows, cmd, out, baseline, run_seconds, loads=()):
           "both cheaper and more accurate); lower left is better. Hollow markers take fewer than one fragment per clock.",
           "", RERUN_NOTE]
     # All three or none: temporary files in OUT, renamed together at the end.
-    os.makedirs(out, exist_ok=True)
     tmps = {n: os.path.join(out, f".{n}.tmp.{os.getpid()}") for n in ("tradeoffs.md", "tradeoffs.json", "tradeoffs.png")}
     try:
         with open(tmps["tradeoffs.md"], "w") as f:
@@ -790,7 +834,7 @@ def plot(rows, path, footer):
         offsets = (3, -10, 10, -17, 17, -24)
         for i, (x, y, r) in enumerate(sorted(pts, key=lambda p: p[0])):
             near = sum(1 for x2, y2, _ in sorted(pts, key=lambda p: p[0])[:i] if abs(math.log(y2 / y)) < 0.15)
-            ax.annotate(f"{r['variant']} ({r['contract']}) F{r['frac']}", (x, y), fontsize=6,
+            ax.annotate(f"{r['variant']} ({r.get('contract', '?')}) F{r['frac']}", (x, y), fontsize=6,
                         xytext=(4, offsets[near % len(offsets)]), textcoords="offset points", zorder=4)
         front = pareto(pts)
         if front:
@@ -872,6 +916,7 @@ def main():
     missing = [v["name"] for v in variants if not v.get("contract")]
     if missing:
         raise Failure(f"variant '{missing[0]}' has no \"contract\" in config/configs.json")
+    check_out_dir(a.out)
     ctx = Ctx()
     ctx.n, ctx.cosim_count, ctx.sweep_threads, ctx.jobs = a.n, a.cosim_count, a.sweep_threads, a.jobs
     ctx.n_for = {}
