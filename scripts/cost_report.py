@@ -296,6 +296,7 @@ class Cache:
                     with os.fdopen(fd, "w") as f:
                         json.dump(self.data, f, indent=1, sort_keys=True)
                         f.write("\n")
+                    os.chmod(tmp, 0o644)
                     os.replace(tmp, self.path)
                 except BaseException:
                     if os.path.exists(tmp):
