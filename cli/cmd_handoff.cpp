@@ -336,6 +336,12 @@ std::vector<std::string> unit_files(const UnitSpec& s) {
     case VariantId::schlick_div: v.push_back("sc_schlick_div.v"); break;
     case VariantId::schlick_nr: v.push_back("sc_schlick_nr.v"); break;
     case VariantId::schlick_iter: v.push_back("sc_schlick_iter.v"); break;
+    default:
+      if (squarer_form(s.variant)) {  // cs16 forms: sc_cs16 FORM = 1 with the folded squarer
+        v.push_back("sc_cs16.v");
+        v.push_back("sc_square.v");
+      }
+      break;
   }
   if (s.norm) v.push_back("sc_norm.v");
   return v;
@@ -523,6 +529,20 @@ std::string error_contract(const UnitSpec& s) {
           "multiply: |out − 2^F·S| ≤ {:.4f} ulp against the double S of the same clamped code (faithful, not\n"
           "always correctly rounded); output ≤ 2^F, non-decreasing in the code (docs/spec.md §6.4).\n",
           schlick_nr_bound_ulp(F));
+      break;
+    default:
+      if (const SquarerForm* form = squarer_form(s.variant)) {
+        const Cs16Contract c = cs16_contract(form->contract, s.format);
+        e = fmt::format(
+            "cs16(c, n) = ((n/16)(c − 1) + 1)^16, cut to 0 by the {cut} test and where the base is ≤ 0, computed with\n"
+            "folded, truncated squarers (form {name}, docs/spec.md §3.4). Against the double-precision cs16 of the\n"
+            "same input code y, the '{contract}' contract:\n\n"
+            "    {lo:.5f} {op} out − y·2^F ≤ +{hi:.1f} ulp    (1 ulp = 2^−{F})\n\n"
+            "checked exhaustively (every code, n = 16..1024) at F = 8 and 16 (tests/test_cs16_forms.cpp, `shadecore sweep`).\n",
+            fmt::arg("cut", s.cutoff == Cutoff::ThetaCr ? "θcr (c < thr(n))" : "sign (base ≤ 0)"),
+            fmt::arg("name", s.variant_name), fmt::arg("contract", form->contract), fmt::arg("lo", c.lo),
+            fmt::arg("op", c.lo_strict ? "<" : "≤"), fmt::arg("hi", c.hi), fmt::arg("F", F));
+      }
       break;
   }
   if (s.norm)

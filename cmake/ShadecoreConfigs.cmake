@@ -79,6 +79,7 @@ foreach(i RANGE ${_lastv})
     string(JSON _rg GET "${_cfg_json}" variants ${i} squarer rel_guard)
     string(JSON _keep GET "${_cfg_json}" variants ${i} squarer keep)
     string(JSON _comp GET "${_cfg_json}" variants ${i} squarer compensate)
+    string(JSON _contract GET "${_cfg_json}" variants ${i} contract)
     string(JSON _nsf LENGTH "${_cfg_json}" variants ${i} squarer stage_frac)
     if(NOT _nsf EQUAL 4)
       message(FATAL_ERROR "config/configs.json: variant ${_vname}: squarer.stage_frac must have 4 entries")
@@ -103,7 +104,7 @@ foreach(i RANGE ${_lastv})
     list(GET _a 2 _a3)
     list(GET _a 3 _a4)
     list(APPEND SHADECORE_SQUARER_VARIANTS "${_vname}")
-    string(APPEND _sqentries "    NamedSquarer{VariantId::${_vname}, SquarerForm{${_rg} != 0, {${_a1}, ${_a2}, ${_a3}, ${_a4}}, ${_keep}, ${_comp} != 0}},\n")
+    string(APPEND _sqentries "    NamedSquarer{VariantId::${_vname}, SquarerForm{${_rg} != 0, {${_a1}, ${_a2}, ${_a3}, ${_a4}}, ${_keep}, ${_comp} != 0, \"${_contract}\"}},\n")
     string(APPEND _sqcase "      VARIANT_${_vupper}: case (field) 0: cs16_sq_param = 1; 1: cs16_sq_param = ${_rg}; 2: cs16_sq_param = ${_a1}; 3: cs16_sq_param = ${_a2}; 4: cs16_sq_param = ${_a3}; 5: cs16_sq_param = ${_a4}; 6: cs16_sq_param = ${_keep}; 7: cs16_sq_param = ${_comp}; default: cs16_sq_param = 0; endcase\n")
     math(EXPR _nsq "${_nsq} + 1")
   endif()
@@ -126,6 +127,7 @@ struct SquarerForm {
   int stage_frac[4];  // x_k has B + stage_frac[k-1] fraction bits (stage 4: truncation point only)
   int keep;           // columns kept below each truncation point: ceil(log2 N) + keep
   bool compensate;    // add round(E[dropped]) and round (not floor) each stage
+  std::string_view contract;  // the variant's \"contract\" (faithful | compact; docs/spec.md §3.4)
 };
 struct NamedSquarer { VariantId id; SquarerForm form; };
 inline constexpr std::array<NamedSquarer, ${_nsq}> kSquarerForms{{

@@ -17,6 +17,7 @@
 
 #include "shadecore/coef.hpp"
 #include "shadecore/cs16.hpp"
+#include "shadecore/cs16_forms.hpp"
 #include "shadecore/format.hpp"
 #include "shadecore/schlick.hpp"
 #include "shadecore/variants.hpp"
@@ -50,11 +51,16 @@ class Unit {
   Unit(VariantId variant, const Format& format, Cutoff cutoff)
       : variant_(variant), format_(format), cutoff_(cutoff) {
     validate(format_);
+    if (const SquarerForm* form = squarer_form(variant_)) {  // cs16 forms (cs16_forms.hpp)
+      stages_ = cs16_stages(format_, *form);
+      return;
+    }
     switch (variant_) {
       case VariantId::cs16:
       case VariantId::schlick_div:
       case VariantId::schlick_nr:
       case VariantId::schlick_iter: return;
+      default: break;
     }
     throw std::invalid_argument("variant id " + std::to_string(static_cast<int>(variant)) +
                                 " has no model in shadecore/unit.hpp");
@@ -63,6 +69,11 @@ class Unit {
   [[nodiscard]] VariantId variant() const { return variant_; }
   [[nodiscard]] const Format& format() const { return format_; }
   [[nodiscard]] Cutoff cutoff() const { return cutoff_; }
+  // A cs16 form with folded truncated squarers (a variant with "squarer" in configs.json).
+  [[nodiscard]] bool is_cs16_form() const { return squarer_form(variant_) != nullptr; }
+  // The unit takes a CUTOFF parameter (cs16 and its forms).
+  [[nodiscard]] bool has_cutoff() const { return variant_ == VariantId::cs16 || is_cs16_form(); }
+  [[nodiscard]] const Cs16Stages& stages() const { return stages_; }
 
   // Chain the energy-normalisation stage (I = kCoefIntBits, F = format().frac). model < 0 picks the
   // model per material from n (kModels[n % 6], classical coefficient when (n / 6) is odd), so a
@@ -77,12 +88,14 @@ class Unit {
 
   // Pipeline latency in cycles: accepted at the rising edge ending cycle t -> out_valid_o in t+latency.
   [[nodiscard]] int latency() const {
+    if (is_cs16_form()) return 7 + (norm_ ? 2 : 0);  // rtl/sc_cs16.v FORM = 1: S0..S6, as cs16
     switch (variant_) {
       case VariantId::cs16: return 7 + (norm_ ? 2 : 0);  // rtl/sc_cs16.v: S0..S6 (+ sc_norm N1, N2)
       // Schlick units (docs/spec.md §6.5): div/iter S0, S1, Q0..Q(F+1); nr S0..S9.
       case VariantId::schlick_div: return schlick_div_latency(format_.frac) + (norm_ ? 2 : 0);
       case VariantId::schlick_nr: return kSchlickNrLatency + (norm_ ? 2 : 0);
       case VariantId::schlick_iter: return schlick_iter_latency(format_.frac) + (norm_ ? 2 : 0);
+      default: break;
     }
     return -1;
   }
@@ -96,6 +109,10 @@ class Unit {
 
   // Material setup (docs/spec.md §3.1); throws std::invalid_argument for n outside [16, 1024].
   [[nodiscard]] UnitMaterial setup(long long n) const {
+    if (is_cs16_form()) {  // same material as cs16 (n, thr)
+      const Cs16Material m = cs16_setup(format_, n);
+      return with_coef(UnitMaterial{m.n, m.thr}, n);
+    }
     switch (variant_) {
       case VariantId::cs16: {
         const Cs16Material m = cs16_setup(format_, n);
@@ -105,17 +122,20 @@ class Unit {
       case VariantId::schlick_nr:
       case VariantId::schlick_iter:  // no threshold: mat_thr_i unused (0)
         return with_coef(UnitMaterial{schlick_setup(format_, n).n, 0}, n);
+      default: break;
     }
     return {};
   }
 
   // The per-fragment datapath, for the material values actually on the material ports.
   [[nodiscard]] uint32_t eval(const UnitMaterial& m, int64_t code) const {
+    if (is_cs16_form()) return normalise(m, cs16f_eval(format_, cutoff_, stages_, Cs16Material{m.n, m.thr}, code));
     switch (variant_) {
       case VariantId::cs16: return normalise(m, cs16_eval(format_, cutoff_, Cs16Material{m.n, m.thr}, code));
       case VariantId::schlick_div: return normalise(m, schlick_div_eval(format_, SchlickMaterial{m.n}, code));
       case VariantId::schlick_nr: return normalise(m, schlick_nr_eval(format_, SchlickMaterial{m.n}, code));
       case VariantId::schlick_iter: return normalise(m, schlick_iter_eval(format_, SchlickMaterial{m.n}, code));
+      default: break;
     }
     return 0;
   }
@@ -137,6 +157,7 @@ class Unit {
   VariantId variant_;
   Format format_;
   Cutoff cutoff_;
+  Cs16Stages stages_{};  // cs16 forms only
   bool norm_ = false;
   int norm_model_ = -1;
   CoefKind norm_kind_ = CoefKind::Fitted;
