@@ -11,7 +11,7 @@
 
 namespace shadecore {
 
-using u128 = unsigned __int128;
+__extension__ typedef unsigned __int128 u128;  // GCC/Clang: products up to 2^81
 
 inline constexpr int kSquareMaxN = 40;  // rtl/sc_square.v: 1 <= N <= 40 (product < 2^81)
 
