@@ -68,7 +68,7 @@ TEST(Square, FoldedUntruncatedEqualsProduct) {
     for (int k = 0; k < 2000; ++k) {
       const uint64_t x = (k == 0) ? mask : (k == 1 ? 0 : rng() & mask);
       ASSERT_EQ(square_kept(x, n, 0), u128{x} * x) << "n=" << n << " x=" << x;
-      ASSERT_EQ(square_eval(SquareStage{n, 2 * n, 0, 0, 0}, x), u128{x} * x) << "n=" << n;
+      if (n <= 32) ASSERT_EQ(square_eval(SquareStage{n, 2 * n, 0, 0, 0}, x), u128{x} * x) << "n=" << n;  // 64-bit result
     }
   }
   for (uint64_t x = 0; x < (1u << 12); ++x) ASSERT_EQ(square_kept_columns(x, 12, 0), u128{x} * x) << x;
