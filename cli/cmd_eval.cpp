@@ -98,7 +98,10 @@ void run(EvalArgs& a) {
   const double c_real = std::ldexp(static_cast<double>(std::clamp<int64_t>(code, 0, f.one())), -F);
   if (spec.is_cs16()) {
     Cs16Trace t;
-    unit_out = cs16_eval(f, spec.cutoff, Cs16Material{mat.n, mat.thr}, code, &t);
+    const Unit u = spec.unit();
+    const bool form = u.is_cs16_form();
+    unit_out = form ? cs16f_eval(f, spec.cutoff, u.stages(), Cs16Material{mat.n, mat.thr}, code, &t)
+                    : cs16_eval(f, spec.cutoff, Cs16Material{mat.n, mat.thr}, code, &t);
     rows.push_back({"S0", "c", hexw(t.c, F + 1), std::to_string(t.c), fixed(t.c, F), "cos clamped to [0, 2^F]"});
     rows.push_back({"S0", "d", hexw(t.d, F + 1), std::to_string(t.d), fixed(t.d, F), "2^F - c"});
     rows.push_back({"S1", "base", hexw(static_cast<uint64_t>(t.base) & ((uint64_t{1} << (F + 13)) - 1), F + 13),
@@ -107,11 +110,23 @@ void run(EvalArgs& a) {
     rows.push_back({"S1", "cut", t.cut ? "1" : "0", t.cut ? "1" : "0", "",
                     spec.cutoff == Cutoff::ThetaCr ? fmt::format("c < thr ({} {} {})", t.c, t.c < mat.thr ? "<" : ">=", mat.thr)
                                                    : fmt::format("base <= 0 ({})", t.base <= 0 ? "yes" : "no")});
-    for (int k = 0; k <= 4; ++k)
-      rows.push_back({fmt::format("S{}", k + 1), fmt::format("x{}", k), hexw(t.x[k], W + 1), std::to_string(t.x[k]),
-                      fixed(t.x[k], W), k == 0 ? fmt::format("|base| aligned to W = {} fraction bits", W)
-                                               : "floor(x^2 / 2^W)"});
-    rows.push_back({"S6", "out", hexw(t.out, F + 1), std::to_string(t.out), fixed(t.out, F), "round half up to F bits"});
+    if (form) {  // docs/spec.md §3.4: per-stage widths, truncated folded squarers
+      const Cs16Stages& st = u.stages();
+      for (int k = 0; k <= 3; ++k)
+        rows.push_back({fmt::format("S{}", k + 1), fmt::format("x{}", k), hexw(t.x[k], st.w[k] + 1), std::to_string(t.x[k]),
+                        fixed(t.x[k], st.w[k]),
+                        k == 0 ? fmt::format("base if not cut (cut also where base <= 0), {} fraction bits", st.w[0])
+                               : fmt::format("x^2 to {} fraction bits ({} columns dropped{})", st.w[k], st.sq[k].drop,
+                                             squarer_form(spec.variant)->compensate ? ", compensated, rounded" : ", floor")});
+      rows.push_back({"S5", "out", hexw(t.out, F + 1), std::to_string(t.out), fixed(t.out, F),
+                      fmt::format("x3^2 rounded half up to F bits ({} columns dropped); S6 registers it", st.sq[4].drop)});
+    } else {
+      for (int k = 0; k <= 4; ++k)
+        rows.push_back({fmt::format("S{}", k + 1), fmt::format("x{}", k), hexw(t.x[k], W + 1), std::to_string(t.x[k]),
+                        fixed(t.x[k], W), k == 0 ? fmt::format("|base| aligned to W = {} fraction bits", W)
+                                                 : "floor(x^2 / 2^W)"});
+      rows.push_back({"S6", "out", hexw(t.out, F + 1), std::to_string(t.out), fixed(t.out, F), "round half up to F bits"});
+    }
     trace = {{"c", t.c}, {"d", t.d}, {"base", t.base}, {"cut", t.cut},
              {"x", {t.x[0], t.x[1], t.x[2], t.x[3], t.x[4]}}, {"out", t.out}};
     ref = spec.cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(c_real, n) : golden::cs16_sign_clamp(c_real, n);

@@ -339,6 +339,12 @@ std::vector<std::string> unit_files(const UnitSpec& s) {
     case VariantId::schlick_iter: v.push_back("sc_schlick_iter.v"); break;
     case VariantId::table256:
     case VariantId::table1024: v.push_back("sc_table.v"); break;
+    default:
+      if (squarer_form(s.variant)) {  // cs16 forms: sc_cs16 FORM = 1 with the folded squarer
+        v.push_back("sc_cs16.v");
+        v.push_back("sc_square.v");
+      }
+      break;
   }
   if (s.norm) v.push_back("sc_norm.v");
   return v;
@@ -537,6 +543,20 @@ std::string error_contract(const UnitSpec& s) {
     case VariantId::table1024:
       e = "Table of T(i) = (i/(E−1))^n (E entries {D, V}, loaded per material) interpolated at f = (E−1)·c:\n"
           "−1 < out − 2^F·lerp ≤ +1 ulp against the double table lerp of the same clamped code (docs/spec.md §9.4).\n";
+      break;
+    default:
+      if (const SquarerForm* form = squarer_form(s.variant)) {
+        const Cs16Contract c = cs16_contract(form->contract, s.format);
+        e = fmt::format(
+            "cs16(c, n) = ((n/16)(c − 1) + 1)^16, cut to 0 by the {cut} test and where the base is ≤ 0, computed with\n"
+            "folded, truncated squarers (form {name}, docs/spec.md §3.4). Against the double-precision cs16 of the\n"
+            "same input code y, the '{contract}' contract:\n\n"
+            "    {lo:.5f} {op} out − y·2^F ≤ +{hi:.1f} ulp    (1 ulp = 2^−{F})\n\n"
+            "checked exhaustively (every code, n = 16..1024) at F = 8 and 16 (tests/test_cs16_forms.cpp, `shadecore sweep`).\n",
+            fmt::arg("cut", s.cutoff == Cutoff::ThetaCr ? "θcr (c < thr(n))" : "sign (base ≤ 0)"),
+            fmt::arg("name", s.variant_name), fmt::arg("contract", form->contract), fmt::arg("lo", c.lo),
+            fmt::arg("op", c.lo_strict ? "<" : "≤"), fmt::arg("hi", c.hi), fmt::arg("F", F));
+      }
       break;
   }
   if (s.norm)

@@ -28,6 +28,13 @@
 namespace shadecore::cli {
 namespace {
 
+// A cs16 form with folded truncated squarers (config/configs.json "squarer").
+bool is_form(const std::string& v) {
+  for (const auto& s : kSquarerForms)
+    if (variant_name(s.id) == v) return true;
+  return false;
+}
+
 struct SweepArgs {
   std::string variant = "cs16";
   std::string cutoff = "theta_cr";
@@ -125,6 +132,7 @@ void write_plot_data(const SweepArgs& a, const SweepResult& r, const std::string
       if (a.variant == "schlick_nr") form = SchlickForm::Nr;
       const double fixed =
           a.variant == "cs16" ? std::ldexp(double(cs16_eval(f, cut, m, code)), -f.frac)
+          : is_form(a.variant) ? std::ldexp(double(Unit(parse_variant(a.variant), f, cut).eval(UnitMaterial{m.n, m.thr}, code)), -f.frac)
           : schlick           ? std::ldexp(double(schlick_eval(form, f, schlick_setup(f, n), code)), -f.frac)
           : table_n128.tab    ? std::ldexp(double(table_unit->eval(table_n128, code)), -f.frac)
                               : std::nan("");
@@ -225,8 +233,10 @@ void run(const SweepArgs& a) {
   opt.n_lo = lo;
   opt.n_hi = hi;
   opt.threads = cliargs::resolve_parallel(a.threads);
-  if (a.variant != "cs16" && (a.cutoff_given || a.guard_given || a.compare_cutoffs))
-    throw std::invalid_argument("--cutoff, --guard and --compare-cutoffs apply to the cs16 variant only");
+  if (a.variant != "cs16" && !is_form(a.variant) && (a.cutoff_given || a.guard_given))
+    throw std::invalid_argument("--cutoff and --guard apply to cs16 and its forms only");
+  if (a.variant != "cs16" && a.compare_cutoffs)
+    throw std::invalid_argument("--compare-cutoffs applies to the cs16 variant only");
   if (a.energy && is_table_variant(parse_variant(a.variant)))
     throw std::invalid_argument("--energy is implemented for cs16 and the Schlick forms only, not for " + a.variant);
   // Every output is checked before the run and written only if the whole run succeeds.
@@ -242,7 +252,7 @@ void run(const SweepArgs& a) {
   bar.stop();
   const Format f = opt.format;
   // The cut-off form and the guard bits are cs16 parameters; the Schlick forms use F only.
-  const std::string label = a.variant == "cs16"
+  const std::string label = (a.variant == "cs16" || is_form(a.variant))
                                 ? fmt::format("{} cutoff={} F={} G={}", a.variant, to_string(opt.cutoff), f.frac, f.guard)
                                 : fmt::format("{} F={}", a.variant, f.frac);
 
@@ -293,6 +303,16 @@ void run(const SweepArgs& a) {
     }
   }
 
+  // cs16 forms (docs/spec.md §3.4): the variant's contract on the quantisation error.
+  nlohmann::json contract;
+  if (const SquarerForm* form = squarer_form(parse_variant(a.variant))) {
+    const Cs16Contract c = cs16_contract(form->contract, f);
+    const bool met = (c.lo_strict ? r.quant.min.value > c.lo : r.quant.min.value >= c.lo) && r.quant.max.value <= c.hi;
+    fmt::print("\nContract '{}': {:.5f} {} quant <= {:.5f} ulp; measured [{:.5f}, {:.5f}] → {}\n", form->contract, c.lo,
+               c.lo_strict ? "<" : "<=", c.hi, r.quant.min.value, r.quant.max.value, met ? "MET" : "VIOLATED");
+    contract = {{"name", form->contract}, {"lo", c.lo}, {"lo_strict", c.lo_strict}, {"hi", c.hi}, {"met", met}};
+  }
+
   nlohmann::json energy;
   if (a.energy) energy = print_energy(a, opt);
 
@@ -337,6 +357,7 @@ void run(const SweepArgs& a) {
                        {"total_min", row.total.min.value}});
     j["per_n"] = per_n;
     j["verdicts"] = verdicts;
+    if (!contract.is_null()) j["contract"] = contract;
     if (!cutcmp.is_null()) j["cutoff_comparison"] = cutcmp;
     if (!energy.is_null()) j["energy"] = energy;
     outs.set(json_out, j.dump(2) + "\n");

@@ -54,7 +54,8 @@ struct UnitSpec {
   int norm_model = -1;  // index into kModels; -1 = per n (Unit::set_norm)
   CoefKind coef_kind = CoefKind::Fitted;
 
-  [[nodiscard]] bool is_cs16() const { return variant == VariantId::cs16; }
+  // cs16 or one of its squarer forms (cs16_faithful, cs16_compact): G and the cut-off apply.
+  [[nodiscard]] bool is_cs16() const { return variant == VariantId::cs16 || squarer_form(variant) != nullptr; }
   [[nodiscard]] int coef_bits() const { return format.frac + kCoefIntBits; }                   // COEFW
   [[nodiscard]] int out_bits() const { return norm ? coef_bits() : format.out_bits(); }        // out_spec_o
   [[nodiscard]] bool uses_thr() const { return is_cs16() && cutoff == Cutoff::ThetaCr; }       // mat_thr_i read
@@ -79,7 +80,7 @@ struct UnitSpec {
 };
 
 inline void add_unit_options(CLI::App* sub, const std::shared_ptr<UnitOptions>& o, bool allow_custom_width = true) {
-  sub->add_option("--variant", o->variant, "Unit: cs16, schlick_div, schlick_nr, schlick_iter, table256, table1024 (config/configs.json variants)");
+  sub->add_option("--variant", o->variant, "Unit: cs16, schlick_div, schlick_nr, schlick_iter, cs16_faithful, cs16_compact, table256, table1024 (config/configs.json variants)");
   sub->add_option("--config", o->config, "Named width configuration (config/configs.json: narrow, default, wide)");
   if (allow_custom_width) {
     o->frac_opt = sub->add_option("--frac", o->frac, "Fraction bits F (8..24), overrides --config");

@@ -60,6 +60,10 @@ set(SHADECORE_VARIANT_NAMES "")
 set(_venum "")
 set(_ventries "")
 set(_vvh "")
+set(_sqentries "")
+set(_sqcase "")
+set(_nsq 0)
+set(SHADECORE_SQUARER_VARIANTS "")
 foreach(i RANGE ${_lastv})
   string(JSON _vname GET "${_cfg_json}" variants ${i} name)
   string(JSON _vid GET "${_cfg_json}" variants ${i} id)
@@ -84,6 +88,41 @@ foreach(i RANGE ${_lastv})
   if(NOT _ventries_n EQUAL 0)
     string(APPEND _vvh "localparam integer VARIANT_${_vupper}_ENTRIES = ${_ventries_n};\n")
   endif()
+  # Optional "squarer": a cs16 form with folded truncated squarers (rtl/sc_cs16.v FORM = 1, spec §3.4).
+  string(JSON _sq ERROR_VARIABLE _nosq GET "${_cfg_json}" variants ${i} squarer)
+  if(NOT _nosq)
+    string(JSON _rg GET "${_cfg_json}" variants ${i} squarer rel_guard)
+    string(JSON _keep GET "${_cfg_json}" variants ${i} squarer keep)
+    string(JSON _comp GET "${_cfg_json}" variants ${i} squarer compensate)
+    string(JSON _contract GET "${_cfg_json}" variants ${i} contract)
+    string(JSON _nsf LENGTH "${_cfg_json}" variants ${i} squarer stage_frac)
+    if(NOT _nsf EQUAL 4)
+      message(FATAL_ERROR "config/configs.json: variant ${_vname}: squarer.stage_frac must have 4 entries")
+    endif()
+    set(_a "")
+    foreach(k RANGE 3)
+      string(JSON _ak GET "${_cfg_json}" variants ${i} squarer stage_frac ${k})
+      list(APPEND _a ${_ak})
+    endforeach()
+    if(_rg)
+      set(_rg 1)
+    else()
+      set(_rg 0)
+    endif()
+    if(_comp)
+      set(_comp 1)
+    else()
+      set(_comp 0)
+    endif()
+    list(GET _a 0 _a1)
+    list(GET _a 1 _a2)
+    list(GET _a 2 _a3)
+    list(GET _a 3 _a4)
+    list(APPEND SHADECORE_SQUARER_VARIANTS "${_vname}")
+    string(APPEND _sqentries "    NamedSquarer{VariantId::${_vname}, SquarerForm{${_rg} != 0, {${_a1}, ${_a2}, ${_a3}, ${_a4}}, ${_keep}, ${_comp} != 0, \"${_contract}\"}},\n")
+    string(APPEND _sqcase "      VARIANT_${_vupper}: case (field) 0: cs16_sq_param = 1; 1: cs16_sq_param = ${_rg}; 2: cs16_sq_param = ${_a1}; 3: cs16_sq_param = ${_a2}; 4: cs16_sq_param = ${_a3}; 5: cs16_sq_param = ${_a4}; 6: cs16_sq_param = ${_keep}; 7: cs16_sq_param = ${_comp}; default: cs16_sq_param = 0; endcase\n")
+    math(EXPR _nsq "${_nsq} + 1")
+  endif()
 endforeach()
 file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/variants.hpp" CONTENT
 "// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
@@ -99,6 +138,23 @@ ${_venum}};
 struct NamedVariant { std::string_view name; VariantId id; std::string_view contract; int entries; };
 inline constexpr std::array<NamedVariant, ${_nv}> kVariants{{
 ${_ventries}}};
+// cs16 forms with folded truncated squarers (\"squarer\" in configs.json; docs/spec.md §3.4).
+struct SquarerForm {
+  bool rel_guard;     // stage widths relative to F+G (true) or F (false)
+  int stage_frac[4];  // x_k has B + stage_frac[k-1] fraction bits (stage 4: truncation point only)
+  int keep;           // columns kept below each truncation point: ceil(log2 N) + keep
+  bool compensate;    // add round(E[dropped]) and round (not floor) each stage
+  std::string_view contract;  // the variant's \"contract\" (faithful | compact; docs/spec.md §3.4)
+};
+struct NamedSquarer { VariantId id; SquarerForm form; };
+inline constexpr std::array<NamedSquarer, ${_nsq}> kSquarerForms{{
+${_sqentries}}};
+// The form of a variant, or nullptr for one without squarer (cs16 reference, Schlick units).
+inline constexpr const SquarerForm* squarer_form(VariantId v) {
+  for (const auto& s : kSquarerForms)
+    if (s.id == v) return &s.form;
+  return nullptr;
+}
 }  // namespace shadecore
 " @ONLY)
 # The Verilog include is written into rtl/ (and committed) so that the RTL is self-contained for a
@@ -107,7 +163,18 @@ set(SHADECORE_RTL_INCDIR "${CMAKE_SOURCE_DIR}/rtl")
 file(CONFIGURE OUTPUT "${SHADECORE_RTL_INCDIR}/sc_variants.vh" CONTENT
 "// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
 // Values of the VARIANT parameter of rtl/sc_specular.v (included inside the module).
-${_vvh}" @ONLY)
+${_vvh}
+// cs16 squaring forms (\"squarer\" in configs.json; rtl/sc_cs16.v FORM = 1, docs/spec.md §3.4): field
+// 0 FORM, 1 SQ_REL_G, 2..5 SQ_A1..SQ_A4, 6 SQ_KEEP, 7 SQ_COMP of sc_cs16 for a VARIANT (0 for others).
+function integer cs16_sq_param(input integer variant, input integer field);
+  begin
+    cs16_sq_param = 0;
+    case (variant)
+${_sqcase}      default: cs16_sq_param = 0;
+    endcase
+  end
+endfunction
+" @ONLY)
 
 # Lighting core (config/configs.json "light", docs/lighting.md): the register map and the light kinds,
 # generated for both sides:

@@ -65,7 +65,16 @@ module sc_cs16 #(
     parameter integer FRAC   = 16,
     parameter integer GUARD  = 5,
     parameter integer CUTOFF = 0,
-    parameter integer TAGW   = 8
+    parameter integer TAGW   = 8,
+    // squaring form (docs/spec.md §3.4); the SQ_* parameters apply to FORM = 1 only
+    parameter integer FORM     = 0,
+    parameter integer SQ_REL_G = 1,
+    parameter integer SQ_A1    = 0,
+    parameter integer SQ_A2    = 0,
+    parameter integer SQ_A3    = 0,
+    parameter integer SQ_A4    = 0,
+    parameter integer SQ_KEEP  = 99,
+    parameter integer SQ_COMP  = 0
 ) (
     input  wire              clk_i,
     input  wire              rst_ni,
@@ -140,94 +149,216 @@ module sc_cs16 #(
     end
   end
 
+  // ceil(log2(v)), v >= 1
+  function integer clog2(input integer v);
+    integer r;
+    begin
+      r = 0;
+      while ((1 << r) < v) r = r + 1;
+      clog2 = r;
+    end
+  endfunction
+  // Columns a FORM = 1 squaring drops (docs/spec.md §3.4): those more than T = clog2(N) + SQ_KEEP
+  // below the stage's truncation point 2·Win - Wout, clamped to [0, shift].
+  function integer drop_cols(input integer shift, input integer win, input integer wout);
+    integer d;
+    begin
+      d = 2 * win - wout - (clog2(win) + SQ_KEEP);
+      if (d < 0) d = 0;
+      if (d > shift) d = shift;
+      drop_cols = d;
+    end
+  endfunction
+
   // ---------------------------------------------------------------------------- S0: clamp
   wire        cos_neg  = in_cos_i[F+1];
   wire        cos_over = !cos_neg && (in_cos_i[F:0] > ONE);
   wire [F:0]  c_d      = cos_neg ? {(F+1){1'b0}} : (cos_over ? ONE : in_cos_i[F:0]);
 
-  reg [F:0]      s0_c_q, s0_d_q, s0_thr_q;
-  reg [10:0]     s0_n_q;
-  reg [TAGW-1:0] s0_tag_q;
-  always @(posedge clk_i) begin
-    if (adv) begin
-      s0_c_q   <= c_d;
-      s0_d_q   <= ONE - c_d;
-      s0_n_q   <= mat_n_q;
-      s0_thr_q <= mat_thr_q;
-      s0_tag_q <= in_tag_i;
-    end
-  end
-
-  // ---------------------------------------------------------------------------- S1: scale, offset, cut
-  wire [BW-1:0] nd      = {{(BW-11){1'b0}}, s0_n_q} * {{(BW-F-1){1'b0}}, s0_d_q};  // < 2^(F+11)
-  wire [BW-1:0] base    = BASE_ONE - nd;                 // two's complement, exact
-  wire          base_le0 = (nd >= BASE_ONE);             // base <= 0
-  wire [BW-1:0] mag     = base_le0 ? (nd - BASE_ONE) : base;  // |base|
-  wire          cut;
   generate
-    if (CUTOFF == 0) begin : g_cut_theta_cr
-      assign cut = (s0_c_q < s0_thr_q);
-    end else begin : g_cut_sign_clamp
-      assign cut = base_le0;
-      wire unused_thr = &{1'b0, s0_thr_q, s0_c_q};       // thr and c are not needed by this form
+    if (FORM == 0) begin : g_ref
+      // Reference form: full products x·x, one truncation per squaring (the docs/spec.md §3.2 datapath).
+      wire unused_form = &{1'b0, SQ_REL_G[0], SQ_A1[0], SQ_A2[0], SQ_A3[0], SQ_A4[0], SQ_KEEP[0], SQ_COMP[0]};
+      reg [F:0]      s0_c_q, s0_d_q, s0_thr_q;
+      reg [10:0]     s0_n_q;
+      reg [TAGW-1:0] s0_tag_q;
+      always @(posedge clk_i) begin
+        if (adv) begin
+          s0_c_q   <= c_d;
+          s0_d_q   <= ONE - c_d;
+          s0_n_q   <= mat_n_q;
+          s0_thr_q <= mat_thr_q;
+          s0_tag_q <= in_tag_i;
+        end
+      end
+
+      // ---------------------------------------------------------------------------- S1: scale, offset, cut
+      wire [BW-1:0] nd      = {{(BW-11){1'b0}}, s0_n_q} * {{(BW-F-1){1'b0}}, s0_d_q};  // < 2^(F+11)
+      wire [BW-1:0] base    = BASE_ONE - nd;                 // two's complement, exact
+      wire          base_le0 = (nd >= BASE_ONE);             // base <= 0
+      wire [BW-1:0] mag     = base_le0 ? (nd - BASE_ONE) : base;  // |base|
+      wire          cut;
+      // cut decision (one test per CUTOFF form)
+      if (CUTOFF == 0) begin : g_cut_theta_cr
+        assign cut = (s0_c_q < s0_thr_q);
+      end else begin : g_cut_sign_clamp
+        assign cut = base_le0;
+        wire unused_thr = &{1'b0, s0_thr_q, s0_c_q};       // thr and c are not needed by this form
+      end
+      // |base| <= 2^(F+4) for every shaded fragment (spec §3.2), so F+5 bits carry it exactly.
+      wire [W:0] x0_d = cut ? {(W+1){1'b0}} : {mag[F+4:0], {(G-4){1'b0}}};
+      wire unused_mag = &{1'b0, mag[BW-1:F+5]};
+
+      reg [W:0]      s1_x_q;
+      reg [TAGW-1:0] s1_tag_q;
+      always @(posedge clk_i) begin
+        if (adv) begin
+          s1_x_q   <= x0_d;
+          s1_tag_q <= s0_tag_q;
+        end
+      end
+
+      // ---------------------------------------------------------------------------- S2..S5: x <- floor(x^2 / 2^W)
+      wire [2*W+1:0] sq1 = s1_x_q * s1_x_q;
+      reg  [W:0]     s2_x_q;
+      reg  [TAGW-1:0] s2_tag_q;
+      wire [2*W+1:0] sq2 = s2_x_q * s2_x_q;
+      reg  [W:0]     s3_x_q;
+      reg  [TAGW-1:0] s3_tag_q;
+      wire [2*W+1:0] sq3 = s3_x_q * s3_x_q;
+      reg  [W:0]     s4_x_q;
+      reg  [TAGW-1:0] s4_tag_q;
+      wire [2*W+1:0] sq4 = s4_x_q * s4_x_q;
+      reg  [W:0]     s5_x_q;
+      reg  [TAGW-1:0] s5_tag_q;
+      // x <= 2^W, so x^2 <= 2^(2W): bit 2W+1 is always 0 and bits W-1..0 are truncated.
+      wire unused_sq = &{1'b0, sq1[2*W+1], sq1[W-1:0], sq2[2*W+1], sq2[W-1:0],
+                         sq3[2*W+1], sq3[W-1:0], sq4[2*W+1], sq4[W-1:0]};
+      always @(posedge clk_i) begin
+        if (adv) begin
+          s2_x_q   <= sq1[2*W:W];
+          s2_tag_q <= s1_tag_q;
+          s3_x_q   <= sq2[2*W:W];
+          s3_tag_q <= s2_tag_q;
+          s4_x_q   <= sq3[2*W:W];
+          s4_tag_q <= s3_tag_q;
+          s5_x_q   <= sq4[2*W:W];
+          s5_tag_q <= s4_tag_q;
+        end
+      end
+
+      // ---------------------------------------------------------------------------- S6: round half up
+      wire [W+1:0] rnd = {1'b0, s5_x_q} + HALF_G;          // <= 2^W + 2^(G-1)
+      wire unused_rnd = &{1'b0, rnd[W+1], rnd[G-1:0]};     // result <= 2^F: bit W+1 is 0
+      reg  [F:0]      s6_out_q;
+      reg  [TAGW-1:0] s6_tag_q;
+      always @(posedge clk_i) begin
+        if (adv) begin
+          s6_out_q <= rnd[W:G];
+          s6_tag_q <= s5_tag_q;
+        end
+      end
+
+      assign out_spec_o = s6_out_q;
+      assign out_tag_o  = s6_tag_q;
+    end else begin : g_form
+      // FORM = 1: folded, truncated squarers (rtl/sc_square.v) with per-stage widths (docs/spec.md §3.4).
+      // x_k has W_k fraction bits plus the integer bit; x_k = 1.0 only when x0 = 1.0 (c = 2^F), so each
+      // squarer takes the W_(k-1) fraction bits and the integer bit is passed on (1.0^2 = 1.0).
+      localparam integer WB = F + (SQ_REL_G != 0 ? G : 0);
+      localparam integer W0 = F + 4;        // x0 = base, exact (F+4 fraction bits)
+      localparam integer W1 = WB + SQ_A1;
+      localparam integer W2 = WB + SQ_A2;
+      localparam integer W3 = WB + SQ_A3;
+      localparam integer W4 = WB + SQ_A4;   // stage 4 rounds to F; W4 only places its truncation
+      localparam integer S1 = 2 * W0 - W1, S2 = 2 * W1 - W2, S3 = 2 * W2 - W3, S4 = 2 * W3 - F;
+      localparam integer D1 = drop_cols(S1, W0, W1);
+      localparam integer D2 = drop_cols(S2, W1, W2);
+      localparam integer D3 = drop_cols(S3, W2, W3);
+      localparam integer D4 = drop_cols(S4, W3, W4);
+      if (SQ_REL_G != 0 && SQ_REL_G != 1) begin : g_check_rel
+        sc_cs16_error_illegal_SQ_REL_G_must_be_0_or_1 u_error ();
+      end
+      if (SQ_COMP != 0 && SQ_COMP != 1) begin : g_check_comp
+        sc_cs16_error_illegal_SQ_COMP_must_be_0_or_1 u_error ();
+      end
+      if (W1 < F || W2 < F || W3 < F || W4 < F || W1 > 40 || W2 > 40 || W3 > 40) begin : g_check_w
+        sc_cs16_error_illegal_SQ_A_stage_widths_must_be_F_to_40 u_error ();
+      end
+      if (SQ_KEEP < -8 || SQ_KEEP > 99) begin : g_check_keep
+        sc_cs16_error_illegal_SQ_KEEP_legal_range_is_minus_8_to_99 u_error ();
+      end
+
+      // S0: clamp, 1 - cos, and the theta_cr test here (one flop instead of c and thr).
+      reg [F:0]      s0_d_q;
+      reg [10:0]     s0_n_q;
+      reg            s0_cthr_q;
+      reg [TAGW-1:0] s0_tag_q;
+      always @(posedge clk_i) begin
+        if (adv) begin
+          s0_d_q    <= ONE - c_d;
+          s0_n_q    <= mat_n_q;
+          s0_cthr_q <= (CUTOFF == 0) && (c_d < mat_thr_q);
+          s0_tag_q  <= in_tag_i;
+        end
+      end
+      // S1: base = 2^(F+4) - n·d, cut where base <= 0 too (both CUTOFF forms): no |base| needed.
+      wire [BW-1:0] nd       = {{(BW-11){1'b0}}, s0_n_q} * {{(BW-F-1){1'b0}}, s0_d_q};  // < 2^(F+11)
+      wire          base_pos = ~|nd[BW-1:F+4];                 // n·d < 2^(F+4)  <=>  base > 0
+      wire [F+4:0]  base     = BASE_ONE[F+4:0] - nd[F+4:0];    // exact when base_pos
+      wire [F+4:0]  x0_d     = (base_pos && !s0_cthr_q) ? base : {(F+5){1'b0}};
+      wire unused_nd = &{1'b0, BASE_ONE, HALF_G};
+      reg [W0:0]     s1_x_q;
+      reg [TAGW-1:0] s1_tag_q;
+      always @(posedge clk_i) begin
+        if (adv) begin
+          s1_x_q   <= x0_d;
+          s1_tag_q <= s0_tag_q;
+        end
+      end
+      // S2..S4: x_k = x_(k-1)^2 truncated to W_k fraction bits; S5: x3^2 rounded to F bits (= output).
+      wire [W1:0] sq1;
+      wire [W2:0] sq2;
+      wire [W3:0] sq3;
+      wire [F:0]  sq4;
+      reg  [W1:0] s2_x_q;
+      reg  [W2:0] s3_x_q;
+      reg  [W3:0] s4_x_q;
+      reg  [F:0]  s5_x_q;
+      reg  [TAGW-1:0] s2_tag_q, s3_tag_q, s4_tag_q, s5_tag_q;
+      sc_square #(.N(W0), .OW(W1 + 1), .SHIFT(S1), .DROP(D1), .RND(SQ_COMP), .ECOMP(SQ_COMP))
+          u_sq1 (.x_i(s1_x_q[W0-1:0]), .sq_o(sq1));
+      sc_square #(.N(W1), .OW(W2 + 1), .SHIFT(S2), .DROP(D2), .RND(SQ_COMP), .ECOMP(SQ_COMP))
+          u_sq2 (.x_i(s2_x_q[W1-1:0]), .sq_o(sq2));
+      sc_square #(.N(W2), .OW(W3 + 1), .SHIFT(S3), .DROP(D3), .RND(SQ_COMP), .ECOMP(SQ_COMP))
+          u_sq3 (.x_i(s3_x_q[W2-1:0]), .sq_o(sq3));
+      sc_square #(.N(W3), .OW(F + 1), .SHIFT(S4), .DROP(D4), .RND(1), .ECOMP(SQ_COMP))
+          u_sq4 (.x_i(s4_x_q[W3-1:0]), .sq_o(sq4));
+      always @(posedge clk_i) begin
+        if (adv) begin
+          s2_x_q   <= {s1_x_q[W0], {W1{1'b0}}} | sq1;
+          s2_tag_q <= s1_tag_q;
+          s3_x_q   <= {s2_x_q[W1], {W2{1'b0}}} | sq2;
+          s3_tag_q <= s2_tag_q;
+          s4_x_q   <= {s3_x_q[W2], {W3{1'b0}}} | sq3;
+          s4_tag_q <= s3_tag_q;
+          s5_x_q   <= {s4_x_q[W3], {F{1'b0}}} | sq4;
+          s5_tag_q <= s4_tag_q;
+        end
+      end
+      // S6: output register (keeps the reference form's latency of 7).
+      reg  [F:0]      s6_out_q;
+      reg  [TAGW-1:0] s6_tag_q;
+      always @(posedge clk_i) begin
+        if (adv) begin
+          s6_out_q <= s5_x_q;
+          s6_tag_q <= s5_tag_q;
+        end
+      end
+      assign out_spec_o = s6_out_q;
+      assign out_tag_o  = s6_tag_q;
     end
   endgenerate
-  // |base| <= 2^(F+4) for every shaded fragment (spec §3.2), so F+5 bits carry it exactly.
-  wire [W:0] x0_d = cut ? {(W+1){1'b0}} : {mag[F+4:0], {(G-4){1'b0}}};
-  wire unused_mag = &{1'b0, mag[BW-1:F+5]};
-
-  reg [W:0]      s1_x_q;
-  reg [TAGW-1:0] s1_tag_q;
-  always @(posedge clk_i) begin
-    if (adv) begin
-      s1_x_q   <= x0_d;
-      s1_tag_q <= s0_tag_q;
-    end
-  end
-
-  // ---------------------------------------------------------------------------- S2..S5: x <- floor(x^2 / 2^W)
-  wire [2*W+1:0] sq1 = s1_x_q * s1_x_q;
-  reg  [W:0]     s2_x_q;
-  reg  [TAGW-1:0] s2_tag_q;
-  wire [2*W+1:0] sq2 = s2_x_q * s2_x_q;
-  reg  [W:0]     s3_x_q;
-  reg  [TAGW-1:0] s3_tag_q;
-  wire [2*W+1:0] sq3 = s3_x_q * s3_x_q;
-  reg  [W:0]     s4_x_q;
-  reg  [TAGW-1:0] s4_tag_q;
-  wire [2*W+1:0] sq4 = s4_x_q * s4_x_q;
-  reg  [W:0]     s5_x_q;
-  reg  [TAGW-1:0] s5_tag_q;
-  // x <= 2^W, so x^2 <= 2^(2W): bit 2W+1 is always 0 and bits W-1..0 are truncated.
-  wire unused_sq = &{1'b0, sq1[2*W+1], sq1[W-1:0], sq2[2*W+1], sq2[W-1:0],
-                     sq3[2*W+1], sq3[W-1:0], sq4[2*W+1], sq4[W-1:0]};
-  always @(posedge clk_i) begin
-    if (adv) begin
-      s2_x_q   <= sq1[2*W:W];
-      s2_tag_q <= s1_tag_q;
-      s3_x_q   <= sq2[2*W:W];
-      s3_tag_q <= s2_tag_q;
-      s4_x_q   <= sq3[2*W:W];
-      s4_tag_q <= s3_tag_q;
-      s5_x_q   <= sq4[2*W:W];
-      s5_tag_q <= s4_tag_q;
-    end
-  end
-
-  // ---------------------------------------------------------------------------- S6: round half up
-  wire [W+1:0] rnd = {1'b0, s5_x_q} + HALF_G;          // <= 2^W + 2^(G-1)
-  wire unused_rnd = &{1'b0, rnd[W+1], rnd[G-1:0]};     // result <= 2^F: bit W+1 is 0
-  reg  [F:0]      s6_out_q;
-  reg  [TAGW-1:0] s6_tag_q;
-  always @(posedge clk_i) begin
-    if (adv) begin
-      s6_out_q <= rnd[W:G];
-      s6_tag_q <= s5_tag_q;
-    end
-  end
-
-  assign out_spec_o = s6_out_q;
-  assign out_tag_o  = s6_tag_q;
 
 endmodule
 

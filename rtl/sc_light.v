@@ -232,7 +232,7 @@ module sc_light #(
   localparam integer SPW   = (NORM != 0) ? FRAC + 8 : FRAC + 1;           // unit output width
   localparam integer SUMW  = imax(SPW + 2, FRAC + 3) + 2;                // per-light sum
   localparam integer TOTW  = FRAC + 5;                                    // <= 9 terms of <= 2^F
-  localparam integer LAT_UNIT = ((VARIANT == VARIANT_CS16) ? 7 :
+  localparam integer LAT_UNIT = ((VARIANT == VARIANT_CS16 || cs16_sq_param(VARIANT, 0) == 1) ? 7 :
                                  (VARIANT == VARIANT_SCHLICK_NR) ? 10 :
                                  (VARIANT == VARIANT_SCHLICK_DIV || VARIANT == VARIANT_SCHLICK_ITER) ? FRAC + 4 : 0)
                                 + ((NORM != 0) ? 2 : 0);

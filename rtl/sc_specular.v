@@ -11,6 +11,9 @@
 //              VARIANT_SCHLICK_DIV (1): rtl/sc_schlick_div.v, latency FRAC+4, one per clock
 //              VARIANT_SCHLICK_NR (2): rtl/sc_schlick_nr.v, latency 10, one per clock
 //              VARIANT_SCHLICK_ITER (3): rtl/sc_schlick_iter.v, latency FRAC+4, one per FRAC+4 clocks
+//              VARIANT_CS16_FAITHFUL (4), VARIANT_CS16_COMPACT (5) — every variant with a "squarer"
+//                entry: rtl/sc_cs16.v FORM = 1 with rtl/sc_square.v (docs/spec.md §3.4), latency 7,
+//                one per clock; the form's constants come from sc_variants.vh (cs16_sq_param)
 //              VARIANT_TABLE256 (6), VARIANT_TABLE1024 (7): rtl/sc_table.v with 256 / 1024 entries
 //                (VARIANT_<NAME>_ENTRIES), latency 3, one per clock; the table is loaded through the
 //                tab_*_i ports (docs/spec.md §9)
@@ -31,7 +34,8 @@
 // Latency / throughput: those of the selected unit (cs16: 7 cycles, 1 per clock), + 2 with NORM = 1.
 //
 // Adding a unit: add {"name", "id"} to config/configs.json "variants", then one labelled
-// generate branch below with the same port list.
+// generate branch below with the same port list (a new cs16 squaring form needs only its
+// "squarer" entry in configs.json).
 // ============================================================================================
 `default_nettype none
 
@@ -146,6 +150,37 @@ module sc_specular #(
       sc_schlick_iter #(
           .FRAC(FRAC),
           .TAGW(UTAGW)
+      ) u_unit (
+          .clk_i      (clk_i),
+          .rst_ni     (rst_ni),
+          .mat_we_i   (mat_we_i),
+          .mat_n_i    (mat_n_i),
+          .mat_thr_i  (mat_thr_i),
+          .in_valid_i (in_valid_i),
+          .in_ready_o (in_ready_o),
+          .in_cos_i   (in_cos_i),
+          .in_tag_i   (u_in_tag),
+          .out_valid_o(u_out_valid),
+          .out_ready_i(u_out_ready),
+          .out_spec_o (u_out_spec),
+          .out_tag_o  (u_out_tag)
+      );
+    end else if (cs16_sq_param(VARIANT, 0) == 1) begin : g_cs16_form
+      // cs16 forms with folded truncated squarers (config/configs.json "squarer", docs/spec.md §3.4):
+      // the same sc_cs16, FORM = 1, the stage widths/truncation from sc_variants.vh.
+      sc_cs16 #(
+          .FRAC    (FRAC),
+          .GUARD   (GUARD),
+          .CUTOFF  (CUTOFF),
+          .TAGW    (UTAGW),
+          .FORM    (1),
+          .SQ_REL_G(cs16_sq_param(VARIANT, 1)),
+          .SQ_A1   (cs16_sq_param(VARIANT, 2)),
+          .SQ_A2   (cs16_sq_param(VARIANT, 3)),
+          .SQ_A3   (cs16_sq_param(VARIANT, 4)),
+          .SQ_A4   (cs16_sq_param(VARIANT, 5)),
+          .SQ_KEEP (cs16_sq_param(VARIANT, 6)),
+          .SQ_COMP (cs16_sq_param(VARIANT, 7))
       ) u_unit (
           .clk_i      (clk_i),
           .rst_ni     (rst_ni),

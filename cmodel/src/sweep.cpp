@@ -7,7 +7,9 @@
 #include <stdexcept>
 #include <thread>
 
+#include "shadecore/cs16_forms.hpp"
 #include "shadecore/golden.hpp"
+#include "shadecore/unit.hpp"
 #include "shadecore/schlick.hpp"
 #include "shadecore/table.hpp"
 #include "shadecore/unit.hpp"
@@ -35,8 +37,11 @@ struct Cs16Kernel {
     Cs16Material m;
     double ccr;  // cos θcr in double, the golden twin of m.thr
   };
+  const Cs16Stages* stages = nullptr;  // a cs16 form (cs16_forms.hpp), or the reference datapath
   Mat setup(int n) const { return {cs16_setup(f, n), std::cos(golden::theta_cr(n))}; }
-  uint32_t fixed(const Mat& m, int64_t code) const { return cs16_eval(f, cut, m.m, code); }
+  uint32_t fixed(const Mat& m, int64_t code) const {
+    return stages ? cs16f_eval(f, cut, *stages, m.m, code) : cs16_eval(f, cut, m.m, code);
+  }
   double golden(const Mat& m, double c) const {
     const double b = golden::cs16_base(c, m.m.n);
     const bool is_cut = (cut == Cutoff::ThetaCr) ? (c < m.ccr) : (b <= 0.0);
@@ -160,10 +165,19 @@ SweepResult run_kernel(const Kernel& k, const SweepOptions& opt) {
 
 std::vector<std::string> sweep_variants() {
   std::vector<std::string> v = {"cs16", "schlick_div", "schlick_nr", "schlick_iter"};
+  for (const auto& s : kSquarerForms) v.emplace_back(variant_name(s.id));  // cs16 forms
   for (const auto& nv : kVariants)
-    if (nv.contract == "table") v.emplace_back(nv.name);
+    if (nv.contract == "table") v.emplace_back(nv.name);  // table units
   return v;
 }
+
+namespace {
+const SquarerForm* form_named(const std::string& v) {
+  for (const auto& s : kSquarerForms)
+    if (variant_name(s.id) == v) return &s.form;
+  return nullptr;
+}
+}  // namespace
 
 SweepResult run_sweep(const SweepOptions& opt) {
   validate(opt.format);
@@ -172,13 +186,17 @@ SweepResult run_sweep(const SweepOptions& opt) {
   if (opt.n_lo > opt.n_hi)
     throw std::invalid_argument("empty n range " + std::to_string(opt.n_lo) + ".." + std::to_string(opt.n_hi));
   if (opt.variant == "cs16") return run_kernel(Cs16Kernel{opt.format, opt.cutoff}, opt);
+  if (const SquarerForm* form = form_named(opt.variant)) {
+    const Cs16Stages st = cs16_stages(opt.format, *form);
+    return run_kernel(Cs16Kernel{opt.format, opt.cutoff, &st}, opt);
+  }
   if (SchlickForm form; schlick_form(opt.variant, form)) return run_kernel(SchlickKernel{opt.format, form}, opt);
   if (const int e = table_variant_entries(opt.variant)) return run_kernel(TableKernel{opt.format, e}, opt);
   throw std::invalid_argument("unknown variant '" + opt.variant + "'");
 }
 
 double variant_golden(const std::string& variant, Cutoff cutoff, int n, double c) {
-  if (variant == "cs16")
+  if (variant == "cs16" || form_named(variant))
     return cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(c, n) : golden::cs16_sign_clamp(c, n);
   if (SchlickForm form; schlick_form(variant, form)) return golden::schlick(c, n);
   if (const int e = table_variant_entries(variant)) {

@@ -56,7 +56,8 @@ struct Cs16Trace {
   uint32_t d = 0;       // S0: 2^F − c (1 − cos θ), F+1 bits
   int64_t base = 0;     // S1: 2^(F+4) − n·d, signed, F+4 fraction bits (exact)
   bool cut = false;     // S1: cut-off decision
-  uint32_t x[5] = {};   // S1..S5: x0 = |base| aligned to W bits; x1..x4 the truncated squares
+  uint64_t x[5] = {};   // S1..S5: x0 = |base| aligned to W bits; x1..x4 the truncated squares
+                        // (cs16 forms, cs16_forms.hpp: x0 = base, x1..x3 per-stage widths, x4 = out)
   uint32_t out = 0;     // S6: x4 rounded half-up to F bits
 };
 

@@ -330,7 +330,7 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
       }
       x = std::clamp(x, 0.0, 1.0);
       if (ref == SpecRef::Exact) spec = golden::cos_pow(x, n);
-      else if (fs_.variant == VariantId::cs16)
+      else if (fs_.variant == VariantId::cs16 || squarer_form(fs_.variant))  // cs16 and its forms
         spec = fs_.cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(x, n) : golden::cs16_sign_clamp(x, n);
       else spec = golden::schlick(x, n);
       if (fs_.norm) spec *= v(r.mat_coef);

@@ -21,6 +21,7 @@
 
 #include "shadecore/coef.hpp"
 #include "shadecore/cs16.hpp"
+#include "shadecore/cs16_forms.hpp"
 #include "shadecore/format.hpp"
 #include "shadecore/schlick.hpp"
 #include "shadecore/table.hpp"
@@ -58,6 +59,10 @@ class Unit {
   Unit(VariantId variant, const Format& format, Cutoff cutoff)
       : variant_(variant), format_(format), cutoff_(cutoff) {
     validate(format_);
+    if (const SquarerForm* form = squarer_form(variant_)) {  // cs16 forms (cs16_forms.hpp)
+      stages_ = cs16_stages(format_, *form);
+      return;
+    }
     switch (variant_) {
       case VariantId::cs16:
       case VariantId::schlick_div:
@@ -65,6 +70,7 @@ class Unit {
       case VariantId::schlick_iter: return;
       case VariantId::table256:
       case VariantId::table1024: table_index_bits(table_entries(variant_)); return;
+      default: break;
     }
     throw std::invalid_argument("variant id " + std::to_string(static_cast<int>(variant)) +
                                 " has no model in shadecore/unit.hpp");
@@ -75,6 +81,11 @@ class Unit {
   [[nodiscard]] Cutoff cutoff() const { return cutoff_; }
   // Table variants: entries E of the table RAM (writes per material change); 0 for the other units.
   [[nodiscard]] int entries() const { return table_entries(variant_); }
+  // A cs16 form with folded truncated squarers (a variant with "squarer" in configs.json).
+  [[nodiscard]] bool is_cs16_form() const { return squarer_form(variant_) != nullptr; }
+  // The unit takes a CUTOFF parameter (cs16 and its forms).
+  [[nodiscard]] bool has_cutoff() const { return variant_ == VariantId::cs16 || is_cs16_form(); }
+  [[nodiscard]] const Cs16Stages& stages() const { return stages_; }
 
   // Chain the energy-normalisation stage (I = kCoefIntBits, F = format().frac). model < 0 picks the
   // model per material from n (kModels[n % 6], classical coefficient when (n / 6) is odd), so a
@@ -89,6 +100,7 @@ class Unit {
 
   // Pipeline latency in cycles: accepted at the rising edge ending cycle t -> out_valid_o in t+latency.
   [[nodiscard]] int latency() const {
+    if (is_cs16_form()) return 7 + (norm_ ? 2 : 0);  // rtl/sc_cs16.v FORM = 1: S0..S6, as cs16
     switch (variant_) {
       case VariantId::cs16: return 7 + (norm_ ? 2 : 0);  // rtl/sc_cs16.v: S0..S6 (+ sc_norm N1, N2)
       // Schlick units (docs/spec.md §6.5): div/iter S0, S1, Q0..Q(F+1); nr S0..S9.
@@ -97,6 +109,7 @@ class Unit {
       case VariantId::schlick_iter: return schlick_iter_latency(format_.frac) + (norm_ ? 2 : 0);
       case VariantId::table256:
       case VariantId::table1024: return kTableLatency + (norm_ ? 2 : 0);  // rtl/sc_table.v: S0..S2
+      default: break;
     }
     return -1;
   }
@@ -110,6 +123,10 @@ class Unit {
 
   // Material setup (docs/spec.md §3.1); throws std::invalid_argument for n outside [16, 1024].
   [[nodiscard]] UnitMaterial setup(long long n) const {
+    if (is_cs16_form()) {  // same material as cs16 (n, thr)
+      const Cs16Material m = cs16_setup(format_, n);
+      return with_coef(UnitMaterial{m.n, m.thr}, n);
+    }
     switch (variant_) {
       case VariantId::cs16: {
         const Cs16Material m = cs16_setup(format_, n);
@@ -126,12 +143,14 @@ class Unit {
         m.tab = std::make_shared<const std::vector<uint64_t>>(std::move(t.words));
         return with_coef(std::move(m), n);
       }
+      default: break;
     }
     return {};
   }
 
   // The per-fragment datapath, for the material values actually on the material ports.
   [[nodiscard]] uint32_t eval(const UnitMaterial& m, int64_t code) const {
+    if (is_cs16_form()) return normalise(m, cs16f_eval(format_, cutoff_, stages_, Cs16Material{m.n, m.thr}, code));
     switch (variant_) {
       case VariantId::cs16: return normalise(m, cs16_eval(format_, cutoff_, Cs16Material{m.n, m.thr}, code));
       case VariantId::schlick_div: return normalise(m, schlick_div_eval(format_, SchlickMaterial{m.n}, code));
@@ -142,6 +161,7 @@ class Unit {
         if (!m.tab || static_cast<int>(m.tab->size()) != entries())
           throw std::invalid_argument("table unit evaluated without its " + std::to_string(entries()) + "-entry table");
         return normalise(m, table_eval(format_, m.tab->data(), entries(), code));
+      default: break;
     }
     return 0;
   }
@@ -163,6 +183,7 @@ class Unit {
   VariantId variant_;
   Format format_;
   Cutoff cutoff_;
+  Cs16Stages stages_{};  // cs16 forms only
   bool norm_ = false;
   int norm_model_ = -1;
   CoefKind norm_kind_ = CoefKind::Fitted;
