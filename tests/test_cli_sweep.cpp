@@ -71,6 +71,6 @@ TEST(CliSweep, ParseErrorsAreOneLine) {
 }
 
 TEST(CliSweep, Cs16OnlyOptionsRejectedForSchlick) {
-  expect_one_line_error("sweep --variant schlick_div --cutoff sign_clamp --n 16 --no-progress", "cs16 variant only");
-  expect_one_line_error("sweep --variant schlick_nr --guard 6 --n 16 --no-progress", "cs16 variant only");
+  expect_one_line_error("sweep --variant schlick_div --cutoff sign_clamp --n 16 --no-progress", "apply to cs16 and its forms only");
+  expect_one_line_error("sweep --variant schlick_nr --guard 6 --n 16 --no-progress", "apply to cs16 and its forms only");
 }
