@@ -28,30 +28,13 @@ run() {  # name, handoff options...
   rm -rf "$b" "$b.tar.gz"
   s=$(date +%s)
   if "$exe" handoff "$@" $ice --seed 1 --out "$b" > "$out/$name.log" 2>&1; then
-    # one corrupted expected value must make both delivered simulator runs fail
-    rm -rf "$out/.corrupt" && cp -r "$b" "$out/.corrupt"
-    # the first non-zero expected word: EXPECTED of a unit vector (5 words), R of a lighting fragment
-    # record (10 words, kind 1); zeroed. Its index among the data lines is the vector the runs must name.
-    awk 'BEGIN{d=0; i=-1} $0 !~ /^\/\// {i++}
-         !d && $0 !~ /^\/\// && NF==5 && $5 !~ /^0+$/ {gsub(/./,"0",$5); d=1; print i > "/dev/stderr"}
-         !d && $0 !~ /^\/\// && NF==10 && $1=="1" && $8 !~ /^0+$/ {gsub(/./,"0",$8); d=1; print i > "/dev/stderr"}
-         {print}' \
-      "$b/vectors/random.hex" > "$out/.corrupt/vectors/random.hex" 2> "$out/.corrupt_idx"
-    idx=$(cat "$out/.corrupt_idx")
-    # each must exit non-zero AND name the corrupted vector (not fail for another reason)
-    "$out/.corrupt/run_icarus.sh" > "$out/.corrupt_i.log" 2>&1; ri=$?
-    "$out/.corrupt/run_verilator.sh" > "$out/.corrupt_v.log" 2>&1; rv=$?
-    if [ -z "$idx" ]; then
-      e="FAIL (no non-zero expected value to corrupt)"; fail=$((fail + 1))
-    elif [ $ri -eq 0 ] || ! grep -q "^FAIL vector $idx:" "$out/.corrupt_i.log"; then
-      e="FAIL (corrupted vector not detected by run_icarus.sh)"; fail=$((fail + 1))
-    elif [ $rv -eq 0 ] || ! grep -q "^FAIL vector $idx:" "$out/.corrupt_v.log"; then
-      e="FAIL (corrupted vector not detected by run_verilator.sh)"; fail=$((fail + 1))
+    # one corrupted expected value must make both delivered simulator runs fail, naming it
+    if ! scripts/handoff_corrupt_check.sh "$b" > "$out/$name.corrupt.log" 2>&1; then
+      e="FAIL ($(grep -m 1 'corrupt_check: FAIL' "$out/$name.corrupt.log"))"; fail=$((fail + 1))
     else
-      e="PASS  $(grep -o 'run_icarus.sh: PASS [0-9]* vectors' "$out/$name.log") / $(grep -o 'run_verilator.sh: PASS [0-9]* vectors' "$out/$name.log" | sed 's/run_verilator.sh: //'); corrupted vector $idx: both FAIL naming it; $(grep -o 'Yosys: .*' "$out/$name.log")"
+      e="PASS  $(grep -o 'run_icarus.sh: PASS [0-9]* vectors' "$out/$name.log") / $(grep -o 'run_verilator.sh: PASS [0-9]* vectors' "$out/$name.log" | sed 's/run_verilator.sh: //'); $(grep -o 'vector [0-9]* of' "$out/$name.corrupt.log" | head -n 1 | sed 's/ of//') corrupted: both FAIL naming it; $(grep -o 'Yosys: .*' "$out/$name.log")"
       pass=$((pass + 1))
     fi
-    rm -rf "$out/.corrupt" "$out/.corrupt_i.log" "$out/.corrupt_v.log" "$out/.corrupt_idx"
   else
     e="FAIL  $(tail -n 1 "$out/$name.log")"; fail=$((fail + 1))
   fi
