@@ -16,6 +16,10 @@
 #include <string>
 #include <vector>
 
+namespace shadecore {
+struct FeatureSet;
+}
+
 namespace shadecore::cli::handoff {
 
 namespace fs = std::filesystem;
@@ -90,6 +94,11 @@ struct Options {
 };
 // The lighting-core bundle (cli/handoff_light.cpp).
 void run_lighting(const Options& o);
+// A lighting-core vector file (format in its header; docs/handoff.md): mode "hard" (the directed hard
+// cases of the co-simulation) or "random" (`count` fragments from `seed`). Also `shadecore vectors
+// --core lighting`.
+std::string lighting_vectors(const FeatureSet& fset, const std::string& mode, uint64_t count, uint64_t seed,
+                             size_t* records = nullptr, size_t* fragments = nullptr);
 // The port table of sc_light from config/interface.json "light_ports" (symbolic widths).
 std::string light_port_table();
 

@@ -143,14 +143,14 @@ std::vector<Record> make_records(const LightCore& core, sim::LightMode mode, uin
   return v;
 }
 
-std::string format_records(const LightBundle& b, const std::string& what, const std::vector<Record>& v) {
-  const int F = b.fs.format().frac;
+std::string format_records(const FeatureSet& fset, const std::string& what, const std::vector<Record>& v) {
+  const int F = fset.format().frac;
   const int wn = (F + 2 + 3) / 4, wp = (F + 8 + 3) / 4, wc = (F + 1 + 3) / 4;
   const uint64_t nmask = mask_bits(F + 2), pmask = mask_bits(F + 8);
   size_t frags = 0;
   for (const auto& r : v) frags += !r.write;
   std::string s;
-  s += fmt::format("// shadecore lighting-core vectors: feature set '{}' ({})\n", b.fs.name, b.fs.summary());
+  s += fmt::format("// shadecore lighting-core vectors: feature set '{}' ({})\n", fset.name, fset.summary());
   s += "// " + what + fmt::format("; {} records: {} register writes, {} fragments\n", v.size(), v.size() - frags, frags);
   s += "// made by: " + command_line() + "\n";
   s += "// expected colours: the bit-exact C model (LightCore::eval, cmodel/include/shadecore/light.hpp), as the\n";
@@ -452,6 +452,26 @@ std::string light_port_table() {
   return s;
 }
 
+std::string lighting_vectors(const FeatureSet& fset, const std::string& mode, uint64_t count, uint64_t seed,
+                             size_t* records, size_t* fragments) {
+  const LightCore core(fset);
+  std::vector<Record> v;
+  std::string what;
+  if (mode == "hard") {
+    v = make_records(core, sim::LightMode::Directed, 0, seed);
+    what = "directed hard cases (sim/tb_light_stimulus.hpp, LightStimulus directed mode)";
+  } else if (mode == "random") {
+    v = make_records(core, sim::LightMode::Random, count, seed);
+    what = fmt::format("random (LightStimulus random mode), seed {}, {} fragments, write-burst rate {} per fragment",
+                       seed, count, kWriteRate);
+  } else {
+    throw std::invalid_argument("unknown mode '" + mode + "' for the lighting core (known: hard, random)");
+  }
+  if (records) *records = v.size();
+  if (fragments) *fragments = static_cast<size_t>(std::count_if(v.begin(), v.end(), [](const Record& r) { return !r.write; }));
+  return format_records(fset, what, v);
+}
+
 void run_lighting(const Options& o) {
   // ---- validate everything before doing anything
   if (o.features.empty()) throw std::invalid_argument("--core lighting needs --features NAME|FILE");
@@ -493,7 +513,8 @@ void run_lighting(const Options& o) {
                       ? fmt::format("{} lights: a flat synthesis takes too long for the handoff (use --synth hier or "
                                     "--synth flat, or run reports/yosys_synth.ys)", fs.num_lights())
                       : "";
-    if (synth != SynthMode::Flat) b.ice40_skip_why = "the generic synthesis is not flat (" + b.synth_why + ")";
+    if (synth != SynthMode::Flat)
+      b.ice40_skip_why = synth == SynthMode::Skipped ? "Yosys synthesis skipped" : "the synthesis is hierarchical";
     b.comb_paths = "out_ready_i -> in_ready_o, reg_we_i -> in_ready_o and rst_ni -> reg_ready_o";
     b.ports = light_ports(fs, o.tagw);
     b.latency = core.latency();
@@ -515,9 +536,9 @@ void run_lighting(const Options& o) {
     const auto hard = make_records(core, sim::LightMode::Directed, 0, seed);
     const auto rnd = make_records(core, sim::LightMode::Random, count, seed);
     write_text(dir / "vectors" / "hard.hex",
-               format_records(b, "directed hard cases (sim/tb_light_stimulus.hpp, LightStimulus directed mode)", hard));
+               format_records(fs, "directed hard cases (sim/tb_light_stimulus.hpp, LightStimulus directed mode)", hard));
     write_text(dir / "vectors" / "random.hex",
-               format_records(b, fmt::format("random (LightStimulus random mode), seed {}, {} fragments, write-burst rate "
+               format_records(fs, fmt::format("random (LightStimulus random mode), seed {}, {} fragments, write-burst rate "
                                              "{} per fragment", seed, count, kWriteRate), rnd));
     b.n_hard = hard.size();
     b.n_random = rnd.size();

@@ -266,6 +266,62 @@ TEST(VectorsCli, BadArgumentsAndOutputRules) {
   fs::remove_all(d);
 }
 
+// `vectors --core lighting`: the bundle's format; reproducible from the seed; every colour LightCore's.
+TEST(VectorsCli, LightingRecordsReplayThroughTheModel) {
+  const fs::path d = temp_dir("lvec");
+  auto make = [&](const std::string& name, const std::string& args) {
+    const CliRun r = run_cli("vectors --core lighting --features mono_spec " + args + " --out " + (d / name).string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    return slurp(d / name);
+  };
+  const std::string a = make("a.hex", "--mode random --count 80 --seed 21");
+  EXPECT_EQ(a.substr(a.find("\n0 ")), make("b.hex", "--mode random --count 80 --seed 21").substr(a.find("\n0 ")));
+  const std::string c = make("c.hex", "--mode random --count 80 --seed 22");
+  EXPECT_NE(a.substr(a.find("\n0 ")), c.substr(c.find("\n0 ")));
+  const std::string h = make("h.hex", "--mode hard");
+  EXPECT_NE(a.find("seed 21"), std::string::npos);
+  const shadecore::FeatureSet fset = shadecore::feature_set_named_or_file("mono_spec");
+  const shadecore::LightCore core(fset);
+  const int F = fset.format().frac;
+  for (const std::string* text : {&a, &h}) {
+    shadecore::LightRegs regs;
+    std::stringstream in(*text);
+    std::string line;
+    int frags = 0, lit = 0;
+    while (std::getline(in, line)) {
+      if (line.rfind("//", 0) == 0) continue;
+      std::stringstream ss(line);
+      std::vector<uint64_t> w(10);
+      for (auto& x : w) ss >> std::hex >> x;
+      ASSERT_FALSE(ss.fail()) << line;
+      if (w[0] == 0) {
+        regs.write(F, static_cast<uint32_t>(w[1]), static_cast<uint32_t>(w[2]));
+        continue;
+      }
+      shadecore::Fragment f;
+      for (int i = 0; i < 3; ++i) {
+        f.n[i] = shadecore::sign_extend(w[1 + i], F + 2);
+        f.p[i] = shadecore::sign_extend(w[4 + i], F + 8);
+      }
+      const shadecore::Colour col = core.eval(regs, f);
+      for (int i = 0; i < 3; ++i) EXPECT_EQ(w[7 + i], col.c[i]) << line;
+      EXPECT_EQ(w[8], 0u);  // mono
+      lit += w[7] != 0;
+      ++frags;
+    }
+    EXPECT_GT(frags, 50);
+    EXPECT_GT(lit, 5);  // not all black: the specular terms are exercised
+  }
+  expect_one_line_error("vectors --core lighting --features mono_spec --mode exhaustive --out " + (d / "x.hex").string(),
+                        "unknown mode");
+  expect_one_line_error("vectors --core lighting --mode hard --out " + (d / "x.hex").string(), "needs --features");
+  expect_one_line_error("vectors --core lighting --features mono_spec --variant cs16 --mode hard --out " + (d / "x.hex").string(),
+                        "--variant does not apply");
+  expect_one_line_error("vectors --features mono_spec --mode hard --out " + (d / "x.hex").string(), "--core lighting only");
+  EXPECT_FALSE(fs::exists(d / "x.hex"));
+  fs::remove_all(d);
+}
+
 // ---------------------------------------------------------------------------- handoff (arguments only)
 TEST(HandoffCli, BadArgumentsGiveOneLineErrorsAndWriteNothing) {
   const fs::path d = temp_dir("ho");
