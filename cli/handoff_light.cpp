@@ -220,13 +220,31 @@ std::string register_table(const FeatureSet& fs) {
     if (f == "att_coef") return fmt::format("unsigned {} bits, [0, 256) (point_att lights only)", F + 8);
     return std::string(f);
   };
-  std::string s = "| register | address | count | format |\n|---|---|---|---|\n";
+  // Which registers this feature set reads (the others exist in the map but are ignored here).
+  bool any_att = false;
+  for (auto k : fs.lights) any_att = any_att || k == LightKind::PointAtt;
+  auto used = [&](std::string_view name) -> std::string {
+    const bool mono = fs.channels == 1;
+    auto col = [&](bool on) { return on ? (mono ? "yes (r only: mono)" : "yes") : "no"; };
+    if (name == "global_ambient" || name == "mat_emission" || name == "mat_ambient" || name == "light_ambient")
+      return col(fs.ambient);
+    if (name == "mat_diffuse" || name == "light_diffuse") return col(fs.diffuse);
+    if (name == "mat_specular" || name == "light_specular") return col(fs.specular);
+    if (name == "mat_n") return fs.specular ? "yes" : "no";
+    if (name == "mat_thr") return fs.specular && fs.variant == VariantId::cs16 && fs.cutoff == Cutoff::ThetaCr ? "yes" : "no";
+    if (name == "mat_coef") return fs.norm ? "yes" : "no";
+    if (name == "light_kc" || name == "light_kl" || name == "light_kq") return any_att ? "point_att lights" : "no";
+    if (name == "light_position") return fs.diffuse || fs.specular || any_att ? "yes" : "no";
+    return "?";
+  };
+  std::string s = "| register | address | count | format | used by this core |\n|---|---|---|---|---|\n";
   for (const auto& r : kRegisters) {
     std::string addr = fmt::format("0x{:02x}", r.addr);
     if (r.count > 1) addr += fmt::format("..0x{:02x}", r.addr + r.count - 1);
     if (r.per_light) addr += fmt::format(" + 0x{:x}·j", kLightStride);
-    s += fmt::format("| `{}` | {} | {}{} | {} |\n", r.name, addr, r.count, r.count == 3 ? " (r, g, b / x, y, z)" : "",
-                     fmt_of(r.format));
+    s += fmt::format("| `{}` | {} | {}{} | {} | {} |\n", r.name, addr, r.count,
+                     r.count == 3 ? (r.format == "position" ? " (x, y, z)" : " (r, g, b)") : "", fmt_of(r.format),
+                     used(r.name));
   }
   return s;
 }
@@ -258,6 +276,34 @@ std::string unit_contract(const FeatureSet& fs) {
   }
   if (fs.norm) s += "; then × mat_coef, rounded half up (within 1 ulp of coef·u, docs/spec.md §7.3)";
   return s + ".";
+}
+
+// The bounds of the operators this feature set instantiates (docs/lighting.md §3).
+std::string operator_contract(const FeatureSet& fs) {
+  bool any_att = false, any_point = false;
+  for (auto k : fs.lights) {
+    any_att = any_att || k == LightKind::PointAtt;
+    any_point = any_point || k == LightKind::Point;
+  }
+  const bool need_n = fs.diffuse || fs.specular;
+  std::vector<std::string> v;
+  if (need_n && fs.normalize) v.push_back("N̂");
+  if (fs.specular && fs.local_viewer) v.push_back("V̂");
+  if (any_att || (need_n && any_point)) v.push_back("L̂ of the point lights");
+  if (fs.specular && fs.blinn) v.push_back("Ĥ");
+  std::string s;
+  if (!v.empty()) {
+    std::string list;
+    for (size_t i = 0; i < v.size(); ++i) list += (i ? ", " : "") + v[i];
+    s += "- Every normalisation (" + list + ") is a reciprocal square root by table + two Newton–Raphson steps:\n"
+         "  |u_i − 2^F·v_i/|v|| ≤ 0.55 ulp; v = 0 gives 0.\n";
+  } else {
+    s += "- No normalisation in this feature set (directional lights, normals used as given).\n";
+  }
+  if (any_att)
+    s += "- Attenuation 1/q by table + Newton–Raphson: |att − 2^(2F)/q| ≤ 1 ulp where not saturated; q < 2^(F−8)\n"
+         "  (including q = 0) saturates to 2^(F+8) − 1.\n";
+  return s;
 }
 
 std::string interface_md(const LightBundle& b) {
@@ -389,11 +435,7 @@ cmodel/include/shadecore/light.hpp: GL state in double → codes) for this featu
 
 The RTL equals the C model bit for bit (every vector here). Against exact arithmetic (docs/lighting.md §3, §7,
 docs/spec.md §8):
-- Every normalisation (N̂{lvtxt}, L̂ of point lights, Ĥ) is a reciprocal square root by table + two
-  Newton–Raphson steps: |u_i − 2^F·v_i/|v|| ≤ 0.55 ulp; v = 0 gives 0.
-- Attenuation 1/q by table + Newton–Raphson: |att − 2^(2F)/q| ≤ 1 ulp where not saturated; q < 2^(F−8)
-  (including q = 0) saturates to 2^(F+8) − 1.
-- Dot products are exact and truncated once; colour products truncate after each multiply; each term is
+{ops}- Dot products are exact and truncated once; colour products truncate after each multiply; each term is
   ≥ 0 and the sum saturates to 2^F (never wraps).
 - Specular unit: {unit}
 - Defined outputs of the hard cases: N = 0 → ambient terms only; light at the surface point → L̂ = 0,
@@ -435,7 +477,7 @@ input and output delays of 30 % of the period as stated assumptions.
       fmt::arg("gw", write_list(global_writes(core, ga))),
       fmt::arg("normex", fs.norm ? ", coefficient of the Phong model" : ""),
       fmt::arg("mw", write_list(material_writes(core, m))), fmt::arg("lights", lights),
-      fmt::arg("lvtxt", fs.specular && fs.local_viewer ? ", V̂" : ""), fmt::arg("unit", unit_contract(fs)),
+      fmt::arg("ops", operator_contract(fs)), fmt::arg("unit", unit_contract(fs)),
       fmt::arg("nhard", b.n_hard), fmt::arg("nhardf", b.n_hard_frag), fmt::arg("nrand", b.n_random),
       fmt::arg("nrandf", b.n_random_frag), fmt::arg("seed", b.seed));
 }
