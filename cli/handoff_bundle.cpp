@@ -374,6 +374,10 @@ void report_yosys(BundleBase& b, const fs::path& dir) {
 void report_ice40(BundleBase& b, const fs::path& dir, bool skip) {
   const fs::path log = dir / "reports" / "ice40.log";
   const bool have = on_path("nextpnr-ice40") && on_path("icetime");
+  if (b.ice40_max_cells > 0 && b.ice40_skip_why.empty() && !b.synth_cells.empty() &&
+      b.synth_cells.find_first_not_of("0123456789") == std::string::npos && std::stol(b.synth_cells) > b.ice40_max_cells)
+    b.ice40_skip_why = fmt::format("{} generic cells, far more than an iCE40 HX8K holds (7680 LUT4; limit {} cells)",
+                                   b.synth_cells, b.ice40_max_cells);
   if (skip || !have || !b.ice40_skip_why.empty()) {
     b.ice40_status = skip ? "not run (--no-ice40)"
                      : !b.ice40_skip_why.empty() ? "not run: " + b.ice40_skip_why

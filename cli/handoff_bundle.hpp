@@ -72,6 +72,7 @@ struct BundleBase {
   std::string synth_why;       // why this synthesis mode (recorded in the report)
   std::string comb_paths;      // the combinational input → output paths (constraints.sdc, interface.md)
   std::string ice40_skip_why;  // non-empty: iCE40 place and route not run, for this reason
+  long ice40_max_cells = 0;    // > 0: iCE40 not run when the flat generic synthesis has more cells
   // measured
   std::string lint_status, synth_cells = "—", synth_ffs = "—", synth_depth = "—", ice40_status, icarus_line,
       verilator_line;

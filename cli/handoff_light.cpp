@@ -557,6 +557,9 @@ void run_lighting(const Options& o) {
                       : "";
     if (synth != SynthMode::Flat)
       b.ice40_skip_why = synth == SynthMode::Skipped ? "Yosys synthesis skipped" : "the synthesis is hierarchical";
+    // No lighting set fits an HX8K: diffuse, the smallest, has 33,813 generic cells and maps to 13,536 LUT4
+    // (docs/handoff.md), and synth_ice40 of the larger sets takes many minutes. Tried only below this size.
+    b.ice40_max_cells = 20000;
     b.comb_paths = "out_ready_i -> in_ready_o, reg_we_i -> in_ready_o and rst_ni -> reg_ready_o";
     b.ports = light_ports(fs, o.tagw);
     b.latency = core.latency();
