@@ -367,8 +367,10 @@ void report_yosys(BundleBase& b, const fs::path& dir) {
                              flat ? " (longest path, flip-flops excluded)" : "") +
                  r.out + fmt::format("# exit status {}\n", r.status));
   if (r.status != 0)
-    throw std::runtime_error("Yosys synthesis of the bundle failed (reports/yosys_synth.log): " +
-                             last_line_with(r.out, "ERROR"));
+    throw std::runtime_error(fmt::format("Yosys synthesis of the bundle failed, exit status {}{}: {}", r.status,
+                                         r.status > 128 ? fmt::format(" (signal {})", r.status - 128) : "",
+                                         last_line_with(r.out, "ERROR").empty() ? "no ERROR line (killed?)"
+                                                                                : last_line_with(r.out, "ERROR")));
 }
 
 void report_ice40(BundleBase& b, const fs::path& dir, bool skip) {
