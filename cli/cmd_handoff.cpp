@@ -14,217 +14,25 @@
 //
 // Everything is built in a hidden staging directory beside DIR; both simulators run on it; only then
 // is it moved into place (a failed or interrupted run leaves nothing). A non-empty DIR needs --force.
-#include <fcntl.h>
-#include <signal.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <array>
-#include <atomic>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <regex>
-#include <sstream>
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "handoff_bundle.hpp"
 #include "output.hpp"
 #include "unit_spec.hpp"
-
-#ifndef SHADECORE_SOURCE_DIR
-#error "SHADECORE_SOURCE_DIR must be defined by the build"
-#endif
 
 namespace fs = std::filesystem;
 
 namespace shadecore::cli {
 namespace {
-
-// ---------------------------------------------------------------------------- small helpers
-std::string root_dir() {
-  const char* env = std::getenv("SHADECORE_ROOT");
-  return env && *env ? env : SHADECORE_SOURCE_DIR;
-}
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + p.string());
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-void write_text(const fs::path& p, const std::string& s, bool exec = false) {
-  fs::create_directories(p.parent_path());
-  std::ofstream out(p, std::ios::binary | std::ios::trunc);
-  out << s;
-  out.close();
-  if (!out) throw std::runtime_error("cannot write " + p.string());
-  if (exec) fs::permissions(p, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec, fs::perm_options::add);
-}
-
-bool on_path(const std::string& tool) {
-  const char* path = std::getenv("PATH");
-  std::stringstream ss(path ? path : "");
-  std::string dir;
-  while (std::getline(ss, dir, ':'))
-    if (!dir.empty() && ::access((fs::path(dir) / tool).c_str(), X_OK) == 0) return true;
-  return false;
-}
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
-  return buf;
-}
-
-std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
-
-// SHA-256 (FIPS 180-4), for MANIFEST.sha256 in `sha256sum` format.
-std::string sha256_hex(const std::string& data) {
-  static const uint32_t K[64] = {
-      0x428a2f98, 0x71374491, 0xb5c0fbcf, 0xe9b5dba5, 0x3956c25b, 0x59f111f1, 0x923f82a4, 0xab1c5ed5, 0xd807aa98,
-      0x12835b01, 0x243185be, 0x550c7dc3, 0x72be5d74, 0x80deb1fe, 0x9bdc06a7, 0xc19bf174, 0xe49b69c1, 0xefbe4786,
-      0x0fc19dc6, 0x240ca1cc, 0x2de92c6f, 0x4a7484aa, 0x5cb0a9dc, 0x76f988da, 0x983e5152, 0xa831c66d, 0xb00327c8,
-      0xbf597fc7, 0xc6e00bf3, 0xd5a79147, 0x06ca6351, 0x14292967, 0x27b70a85, 0x2e1b2138, 0x4d2c6dfc, 0x53380d13,
-      0x650a7354, 0x766a0abb, 0x81c2c92e, 0x92722c85, 0xa2bfe8a1, 0xa81a664b, 0xc24b8b70, 0xc76c51a3, 0xd192e819,
-      0xd6990624, 0xf40e3585, 0x106aa070, 0x19a4c116, 0x1e376c08, 0x2748774c, 0x34b0bcb5, 0x391c0cb3, 0x4ed8aa4a,
-      0x5b9cca4f, 0x682e6ff3, 0x748f82ee, 0x78a5636f, 0x84c87814, 0x8cc70208, 0x90befffa, 0xa4506ceb, 0xbef9a3f7,
-      0xc67178f2};
-  uint32_t h[8] = {0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a, 0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19};
-  std::string m = data;
-  const uint64_t bits = static_cast<uint64_t>(data.size()) * 8;
-  m += static_cast<char>(0x80);
-  while (m.size() % 64 != 56) m += '\0';
-  for (int i = 7; i >= 0; --i) m += static_cast<char>((bits >> (8 * i)) & 0xff);
-  auto rotr = [](uint32_t x, int r) { return (x >> r) | (x << (32 - r)); };
-  for (size_t off = 0; off < m.size(); off += 64) {
-    uint32_t w[64];
-    for (int i = 0; i < 16; ++i)
-      w[i] = (uint32_t(uint8_t(m[off + 4 * i])) << 24) | (uint32_t(uint8_t(m[off + 4 * i + 1])) << 16) |
-             (uint32_t(uint8_t(m[off + 4 * i + 2])) << 8) | uint32_t(uint8_t(m[off + 4 * i + 3]));
-    for (int i = 16; i < 64; ++i) {
-      const uint32_t s0 = rotr(w[i - 15], 7) ^ rotr(w[i - 15], 18) ^ (w[i - 15] >> 3);
-      const uint32_t s1 = rotr(w[i - 2], 17) ^ rotr(w[i - 2], 19) ^ (w[i - 2] >> 10);
-      w[i] = w[i - 16] + s0 + w[i - 7] + s1;
-    }
-    uint32_t a = h[0], b = h[1], c = h[2], d = h[3], e = h[4], f = h[5], g = h[6], hh = h[7];
-    for (int i = 0; i < 64; ++i) {
-      const uint32_t t1 = hh + (rotr(e, 6) ^ rotr(e, 11) ^ rotr(e, 25)) + ((e & f) ^ (~e & g)) + K[i] + w[i];
-      const uint32_t t2 = (rotr(a, 2) ^ rotr(a, 13) ^ rotr(a, 22)) + ((a & b) ^ (a & c) ^ (b & c));
-      hh = g; g = f; f = e; e = d + t1; d = c; c = b; b = a; a = t1 + t2;
-    }
-    h[0] += a; h[1] += b; h[2] += c; h[3] += d; h[4] += e; h[5] += f; h[6] += g; h[7] += hh;
-  }
-  std::string out;
-  for (uint32_t v : h) out += fmt::format("{:08x}", v);
-  return out;
-}
-
-// ---------------------------------------------------------------------------- child processes
-// Children run in their own process group so an interrupt can stop a whole tool tree (make, g++).
-std::atomic<pid_t> g_child{0};
-volatile sig_atomic_t g_signal = 0;
-
-extern "C" void on_handoff_signal(int sig) {
-  g_signal = sig;
-  const pid_t p = g_child.load();
-  if (p > 0) ::kill(-p, SIGTERM);
-}
-
-// Installs on_handoff_signal for the run; restore() puts the previous handlers back (idempotent).
-struct SignalGuard {
-  struct sigaction old[3];
-  const int sigs[3] = {SIGINT, SIGTERM, SIGHUP};
-  bool active = true;
-  SignalGuard() {
-    struct sigaction sa {};
-    sa.sa_handler = on_handoff_signal;
-    sigemptyset(&sa.sa_mask);
-    for (int i = 0; i < 3; ++i) ::sigaction(sigs[i], &sa, &old[i]);
-  }
-  void restore() {
-    if (!active) return;
-    for (int i = 0; i < 3; ++i) ::sigaction(sigs[i], &old[i], nullptr);
-    active = false;
-  }
-  ~SignalGuard() { restore(); }
-};
-
-struct Interrupted : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-void check_interrupt() {
-  if (g_signal) throw Interrupted(fmt::format("interrupted by signal {}", int(g_signal)));
-}
-
-struct Proc {
-  int status = -1;
-  std::string out;  // stdout and stderr, interleaved
-};
-
-Proc run_proc(const std::vector<std::string>& argv, const fs::path& cwd) {
-  check_interrupt();
-  int fds[2];
-  if (::pipe(fds) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
-  std::vector<char*> args;
-  std::vector<std::string> copy = argv;
-  for (auto& s : copy) args.push_back(s.data());
-  args.push_back(nullptr);
-  const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
-  if (pid == 0) {
-    ::setpgid(0, 0);
-    ::dup2(fds[1], 1);
-    ::dup2(fds[1], 2);
-    ::close(fds[0]);
-    ::close(fds[1]);
-    if (::chdir(cwd.c_str()) != 0) ::_exit(126);
-    ::execvp(args[0], args.data());
-    std::fprintf(stderr, "cannot run %s: %s\n", args[0], std::strerror(errno));
-    ::_exit(127);
-  }
-  ::setpgid(pid, pid);
-  g_child = pid;
-  ::close(fds[1]);
-  Proc r;
-  char buf[65536];
-  for (;;) {
-    const ssize_t k = ::read(fds[0], buf, sizeof buf);
-    if (k > 0) r.out.append(buf, static_cast<size_t>(k));
-    else if (k == 0 || errno != EINTR) break;
-  }
-  ::close(fds[0]);
-  int st = 0;
-  while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
-  }
-  g_child = 0;
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
-  check_interrupt();
-  return r;
-}
-
-std::string shell_join(const std::vector<std::string>& argv) {
-  std::string s;
-  for (const auto& a : argv) {
-    const bool plain = !a.empty() && a.find_first_not_of(
-        "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+=./:,@%") == std::string::npos;
-    s += (s.empty() ? "" : " ") + (plain ? a : "'" + a + "'");
-  }
-  return s;
-}
+using namespace handoff;
 
 // ---------------------------------------------------------------------------- the port table
 nlohmann::json load_ports() {
@@ -236,18 +44,6 @@ nlohmann::json load_ports() {
   }
 }
 
-struct Widths {
-  int frac, tagw, coefw;
-};
-
-int eval_width(const std::string& expr, const Widths& w) {
-  if (expr == "F+1") return w.frac + 1;
-  if (expr == "F+2") return w.frac + 2;
-  if (expr == "TAGW") return w.tagw;
-  if (expr == "COEFW") return w.coefw;
-  if (!expr.empty() && expr.find_first_not_of("0123456789") == std::string::npos) return std::stoi(expr);
-  throw std::runtime_error("config/interface.json: unknown width '" + expr + "'");
-}
 
 std::string sym_width(const std::string& expr) {
   return (expr == "TAGW" || expr == "COEFW") ? "`" + expr + "`" : expr;
@@ -260,12 +56,6 @@ bool port_present(const nlohmann::json& p, const UnitSpec& spec) {
   if (when == "table") return is_table_variant(spec.variant);
   return true;
 }
-
-struct Port {
-  std::string name, dir;
-  int width;
-  std::string meaning;
-};
 
 std::vector<Port> concrete_ports(const nlohmann::json& ports, const UnitSpec& spec, int tagw) {
   const Widths w{spec.format.frac, tagw, spec.coef_bits()};
@@ -292,63 +82,21 @@ std::string generic_port_table() {
   return s;
 }
 
-std::string concrete_port_table(const std::vector<Port>& ports) {
-  std::string s = "| port | dir | width | bits | meaning |\n|---|---|---|---|---|\n";
-  for (const auto& p : ports)
-    s += fmt::format("| `{}` | {} | {} | {} | {} |\n", p.name, p.dir, p.width,
-                     p.width == 1 ? "" : fmt::format("`[{}:0]`", p.width - 1), p.meaning);
-  return s;
-}
-
 // ---------------------------------------------------------------------------- bundle contents
 struct HandoffArgs {
   std::shared_ptr<UnitOptions> unit = std::make_shared<UnitOptions>();
-  std::string out;
-  bool force = false;
-  int tagw = 8;
-  uint64_t seed = 0;
-  uint64_t count = 2000;
-  std::string top = "shadecore_top";
-  bool no_ice40 = false;
+  Options light;  // --out, --force, --tagw, ... (shared by both cores)
   bool print_port_table = false;
   std::string core = "specular";
-  std::string features;
+  CLI::App* sub = nullptr;
 };
 
-struct Bundle {
+struct Bundle : BundleBase {
   UnitSpec spec;
-  int tagw;
-  std::string top;
-  uint64_t seed;
-  std::vector<Port> ports;
-  std::vector<std::string> rtl_files;  // relative to the bundle
-  int latency, latency_min;
+  int tagw = 8;
   size_t n_hard = 0, n_random = 0;
-  // measured
-  std::string lint_status, synth_cells, synth_ffs, synth_depth, ice40_status, icarus_line, verilator_line;
-  double fmax_mhz = 0.0;
-  std::string fmax_source;
 };
 
-std::vector<std::string> unit_files(const UnitSpec& s) {
-  std::vector<std::string> v = {"sc_specular.v"};
-  switch (s.variant) {
-    case VariantId::cs16: v.push_back("sc_cs16.v"); break;
-    case VariantId::schlick_div: v.push_back("sc_schlick_div.v"); break;
-    case VariantId::schlick_nr: v.push_back("sc_schlick_nr.v"); break;
-    case VariantId::schlick_iter: v.push_back("sc_schlick_iter.v"); break;
-    case VariantId::table256:
-    case VariantId::table1024: v.push_back("sc_table.v"); break;
-    default:
-      if (squarer_form(s.variant)) {  // cs16 forms: sc_cs16 FORM = 1 with the folded squarer
-        v.push_back("sc_cs16.v");
-        v.push_back("sc_square.v");
-      }
-      break;
-  }
-  if (s.norm) v.push_back("sc_norm.v");
-  return v;
-}
 
 std::string wrapper_v(const Bundle& b) {
   const UnitSpec& s = b.spec;
@@ -450,11 +198,6 @@ std::string tb_dut_vh(const Bundle& b) {
   return s;
 }
 
-std::string filelist(const Bundle& b) {
-  std::string s = "+incdir+rtl\n";
-  for (const auto& f : b.rtl_files) s += f + "\n";
-  return s;
-}
 
 // Fmax recorded by scripts/cost_report.py (docs/tradeoffs.json: iCE40 HX8K, icetime after nextpnr).
 void recorded_fmax(Bundle& b) {
@@ -473,43 +216,7 @@ void recorded_fmax(Bundle& b) {
   }
 }
 
-std::string sdc(const Bundle& b) {
-  double period = 20.0;
-  std::string why;
-  if (b.fmax_mhz > 0) {
-    period = std::ceil(10000.0 / b.fmax_mhz) / 10.0;  // rounded up to 0.1 ns
-    why = "# Target period from the measured Fmax: " + b.fmax_source + ".\n";
-  } else {
-    why = "# No measured Fmax for this configuration (it does not fit the iCE40 used for the measurements,\n"
-          "# or it was not measured): 20 ns is a placeholder. Set it for your technology.\n";
-  }
-  std::string ins, outs;
-  for (const auto& p : b.ports) {
-    if (p.name == "clk_i") continue;
-    std::string& dst = p.dir == "in" ? ins : outs;
-    dst += (dst.empty() ? "" : " ") + (p.width == 1 ? p.name : p.name + "[*]");
-  }
-  return fmt::format(
-      "# constraints.sdc — {top}: {desc}\n"
-      "# Generated by shadecore handoff. Every number here is an assumption to edit for your flow.\n"
-      "{why}"
-      "set CLK_PERIOD {period:.1f}\n"
-      "create_clock -name clk -period $CLK_PERIOD [get_ports clk_i]\n"
-      "\n"
-      "# Assumed environment: every input is launched by a flip-flop on the same clock outside the core and\n"
-      "# arrives 30 % of the period after the edge; every output must be valid 30 % of the period before the\n"
-      "# next edge at a flip-flop outside the core. rst_ni is synchronous: it is timed like any input.\n"
-      "set IO_FRACTION 0.3\n"
-      "set_input_delay  -clock clk [expr {{$IO_FRACTION * $CLK_PERIOD}}] [get_ports {{{ins}}}]\n"
-      "set_output_delay -clock clk [expr {{$IO_FRACTION * $CLK_PERIOD}}] [get_ports {{{outs}}}]\n"
-      "\n"
-      "# out_ready_i -> in_ready_o is a combinational path through the core (AXI-Stream allows ready to depend\n"
-      "# on ready): with the delays above it has (1 - 2 * IO_FRACTION) of the period. Every other path starts\n"
-      "# and ends at a flip-flop of the core. No multicycle or false paths: every register is a single-cycle\n"
-      "# path of the pipeline.\n",
-      fmt::arg("top", b.top), fmt::arg("desc", b.spec.describe()), fmt::arg("why", why), fmt::arg("period", period),
-      fmt::arg("ins", ins), fmt::arg("outs", outs));
-}
+
 
 std::string error_contract(const UnitSpec& s) {
   const int F = s.format.frac, G = s.format.guard;
@@ -732,305 +439,54 @@ stated assumptions. Every path is register to register except `out_ready_i` → 
                                         : "20 ns placeholder: no measured Fmax"));
 }
 
-std::string bundle_readme(const Bundle& b) {
-  return fmt::format(
-      "# shadecore handoff: `{top}` ({desc})\n\n"
-      "Made by `{cmd}` on {date}.\n\n"
-      "| path | what |\n|---|---|\n"
-      "| `rtl/` | the RTL: `{top}.v` (all parameters fixed) and the files it needs; `filelist.f` lists them |\n"
-      "| `interface.md` | ports, formats, handshake, reset, latency, programming sequence, error contract |\n"
-      "| `constraints.sdc` | clock and I/O delay assumptions |\n"
-      "| `vectors/` | test vectors from the bit-exact C model (hard cases, random) |\n"
-      "| `tb/` | plain Verilog-2005 self-checking testbench and its configuration |\n"
-      "| `run_icarus.sh`, `run_verilator.sh` | run the testbench on every vector file; exit 0 only on PASS |\n"
-      "| `reports/` | lint, synthesis and simulation results at generation time, each with its command |\n"
-      "| `MANIFEST.sha256` | `sha256sum -c MANIFEST.sha256` |\n\n"
-      "    ./run_icarus.sh       # {icarus}\n"
-      "    ./run_verilator.sh    # {verilator}\n",
-      fmt::arg("top", b.top), fmt::arg("desc", b.spec.describe()), fmt::arg("cmd", command_line()),
-      fmt::arg("date", utc_now()), fmt::arg("icarus", b.icarus_line), fmt::arg("verilator", b.verilator_line));
-}
-
-std::string last_line_with(const std::string& out, const std::string& needle) {
-  std::stringstream ss(out);
-  std::string line, found;
-  while (std::getline(ss, line))
-    if (line.find(needle) != std::string::npos) found = line;
-  return found;
-}
-
-std::string tool_version(const std::vector<std::string>& argv) {
-  try {
-    return first_line(run_proc(argv, ".").out);
-  } catch (const Interrupted&) {
-    throw;
-  } catch (const std::exception&) {
-    return "?";
-  }
-}
-
-std::string report_header(const std::string& what, const std::string& cmd, const std::string& version) {
-  return fmt::format("# {}\n# command (in the bundle directory): {}\n# tool: {}\n# date: {}\n\n", what, cmd, version,
-                     utc_now());
-}
-
-// ---------------------------------------------------------------------------- reports
-void report_lint(Bundle& b, const fs::path& dir) {
-  const std::vector<std::string> cmd = {"verilator", "--lint-only", "-Wall", "-f", "filelist.f", "--top-module", b.top};
-  const Proc r = run_proc(cmd, dir);
-  const bool warn = r.out.find("%Warning") != std::string::npos || r.out.find("%Error") != std::string::npos;
-  b.lint_status = r.status == 0 && !warn ? "clean (no warnings)" : "FAILED";
-  write_text(dir / "reports" / "verilator_lint.log",
-             report_header("Verilator lint, all warnings enabled", shell_join(cmd), tool_version({"verilator", "--version"})) +
-                 (r.out.empty() ? "(no output: no warnings)\n" : r.out) + fmt::format("# exit status {}\n", r.status));
-  if (r.status != 0 || warn)
-    throw std::runtime_error("Verilator lint of the bundle is not clean: " + first_line(r.out) + " (reports/verilator_lint.log)");
-}
-
-void report_yosys(Bundle& b, const fs::path& dir) {
-  std::string files;
-  for (const auto& f : b.rtl_files) files += " " + f;
-  const std::string script = fmt::format(
-      "# Yosys generic synthesis of the bundle (technology independent): cells, flip-flops, logic depth.\n"
-      "read_verilog -defer -Irtl{files}\n"
-      "hierarchy -check -top {top}\n"
-      "synth -flatten -top {top}\n"
-      "check -assert\n"
-      "dffunmap\n"
-      "tee -o /dev/stdout stat\n"
-      "tee -o /dev/stdout ltp -noff\n",
-      fmt::arg("files", files), fmt::arg("top", b.top));
-  write_text(dir / "reports" / "yosys_synth.ys", script);
-  const std::vector<std::string> cmd = {"yosys", "-q", "-s", "reports/yosys_synth.ys"};
-  const Proc r = run_proc(cmd, dir);
-  std::string cells = "?", depth = "?";
-  long ffs = 0;
-  {
-    static const std::regex re_cells(R"(Number of cells:\s+(\d+))"), re_ff(R"(\$_S?DFFE?_\w+\s+(\d+))"),
-        re_depth(R"(Longest topological path in \S+ \(length=(\d+)\))");
-    for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), re_cells); it != std::sregex_iterator(); ++it)
-      cells = (*it)[1];
-    for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), re_ff); it != std::sregex_iterator(); ++it)
-      ffs += std::stol((*it)[1]);
-    for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), re_depth); it != std::sregex_iterator(); ++it)
-      depth = (*it)[1];
-  }
-  b.synth_cells = cells;
-  b.synth_ffs = std::to_string(ffs);
-  b.synth_depth = depth;
-  write_text(dir / "reports" / "yosys_synth.log",
-             report_header("Yosys generic synthesis (synth -flatten; dffunmap; stat; ltp -noff)", shell_join(cmd),
-                           tool_version({"yosys", "-V"})) +
-                 fmt::format("# summary: {} cells, {} flip-flops, logic depth {} (longest path, flip-flops excluded)\n\n",
-                             cells, ffs, depth) +
-                 r.out + fmt::format("# exit status {}\n", r.status));
-  if (r.status != 0)
-    throw std::runtime_error("Yosys synthesis of the bundle failed (reports/yosys_synth.log): " +
-                             last_line_with(r.out, "ERROR"));
-}
-
-void report_ice40(Bundle& b, const fs::path& dir, bool skip) {
-  const fs::path log = dir / "reports" / "ice40.log";
-  const bool have = on_path("nextpnr-ice40") && on_path("icetime");
-  if (skip || !have) {
-    b.ice40_status = skip ? "not run (--no-ice40)" : "not run: nextpnr-ice40 / icetime not installed";
-    write_text(log, fmt::format("# iCE40 place and route: {}\n# (install: scripts/setup.sh nextpnr-ice40 fpga-icestorm fpga-icestorm-chipdb)\n"
-                                "# recorded measurement: {}\n",
-                                b.ice40_status, b.fmax_source.empty() ? "none for this configuration" : b.fmax_source));
-    return;
-  }
-  const fs::path tmp = fs::temp_directory_path() / fmt::format("shadecore_ice40_{}", ::getpid());
-  fs::create_directories(tmp);
-  struct Rm {
-    fs::path p;
-    ~Rm() {
-      std::error_code ec;
-      fs::remove_all(p, ec);
-    }
-  } rm{tmp};
-  std::string files;
-  for (const auto& f : b.rtl_files) files += " " + f;
-  const std::string js = (tmp / "ice40.json").string(), asc = (tmp / "ice40.asc").string();
-  const std::vector<std::string> syn = {"yosys", "-q", "-p",
-                                        fmt::format("read_verilog -defer -Irtl{}; synth_ice40 -top {} -json {}; tee -o /dev/stdout stat",
-                                                    files, b.top, js)};
-  std::string text = report_header("iCE40: synth_ice40, nextpnr-ice40 (HX8K ct256), icetime", shell_join(syn),
-                                   tool_version({"yosys", "-V"}));
-  Proc r = run_proc(syn, dir);
-  text += r.out;
-  std::smatch m;
-  static const std::regex re_lut(R"(SB_LUT4\s+(\d+))");
-  long luts = -1;
-  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), re_lut); it != std::sregex_iterator(); ++it)
-    luts = std::stol((*it)[1]);
-  if (r.status != 0 || luts < 0) {
-    b.ice40_status = "synth_ice40 failed";
-  } else if (luts > 7680) {
-    b.ice40_status = fmt::format("{} LUT4: does not fit an HX8K (7680); no place and route", luts);
-  } else {
-    const std::vector<std::string> pnr = {"nextpnr-ice40", "--hx8k", "--package", "ct256", "--json", js, "--asc", asc,
-                                          "--freq", "40", "--timing-allow-fail", "--pcf-allow-unconstrained", "--seed", "1"};
-    r = run_proc(pnr, dir);
-    text += "\n# " + shell_join(pnr) + "\n" + fmt::format("# exit status {}\n", r.status);
-    if (r.status == 0) {
-      const std::vector<std::string> tim = {"icetime", "-d", "hx8k", "-P", "ct256", "-m", "-t", asc};
-      r = run_proc(tim, dir);
-      text += "\n# " + shell_join(tim) + "\n" + r.out;
-      static const std::regex re_mhz(R"(\(([\d.]+) MHz\))");
-      if (std::regex_search(r.out, m, re_mhz)) {
-        b.fmax_mhz = std::stod(m[1]);
-        b.fmax_source = fmt::format("{:.2f} MHz on an iCE40 HX8K ct256 (icetime after nextpnr-ice40, this run, "
-                                    "reports/ice40.log)", b.fmax_mhz);
-        b.ice40_status = fmt::format("{} LUT4, Fmax {:.2f} MHz (icetime)", luts, b.fmax_mhz);
-      } else {
-        b.ice40_status = fmt::format("{} LUT4; icetime gave no Fmax", luts);
-      }
-    } else {
-      b.ice40_status = fmt::format("{} LUT4; nextpnr-ice40 failed", luts);
-    }
-  }
-  write_text(log, text + "\n# result: " + b.ice40_status + "\n");
-}
-
-// Runs one of the bundle's simulator scripts; returns its last line (PASS ...).
-std::string run_sim(const fs::path& dir, const std::string& script, const std::string& log) {
-  const std::vector<std::string> cmd = {"sh", "./" + script};
-  const Proc r = run_proc(cmd, dir);
-  write_text(dir / "reports" / log, report_header(script + " at generation time", "./" + script, "see the script") + r.out +
-                                        fmt::format("# exit status {}\n", r.status));
-  const std::string last = last_line_with(r.out, script + ":");
-  if (r.status != 0 || last.find(script + ": PASS") == std::string::npos)
-    throw std::runtime_error(script + " did not pass: " + (last.empty() ? first_line(r.out) : last) + " " +
-                             last_line_with(r.out, "FAIL"));
-  return last;
-}
-
-std::string summary_md(const Bundle& b) {
-  return fmt::format(
-      "# Reports: `{top}` ({desc})\n\n"
-      "Generated by `{cmd}` on {date}.\n\n"
-      "| check | result | log (with its command) |\n|---|---|---|\n"
-      "| Verilator lint `-Wall` | {lint} | `verilator_lint.log` |\n"
-      "| Yosys generic synthesis | {cells} cells, {ffs} flip-flops, logic depth {depth} | `yosys_synth.log` (`yosys -s yosys_synth.ys`) |\n"
-      "| iCE40 | {ice40} | `ice40.log` |\n"
-      "| Icarus simulation | {icarus} | `sim_icarus.log` |\n"
-      "| Verilator simulation | {verilator} | `sim_verilator.log` |\n\n"
-      "Clock target in `constraints.sdc`: {fmax}.\n",
-      fmt::arg("top", b.top), fmt::arg("desc", b.spec.describe()), fmt::arg("cmd", command_line()),
-      fmt::arg("date", utc_now()), fmt::arg("lint", b.lint_status), fmt::arg("cells", b.synth_cells),
-      fmt::arg("ffs", b.synth_ffs), fmt::arg("depth", b.synth_depth), fmt::arg("ice40", b.ice40_status),
-      fmt::arg("icarus", b.icarus_line), fmt::arg("verilator", b.verilator_line),
-      fmt::arg("fmax", b.fmax_source.empty() ? "no measured Fmax (20 ns placeholder)" : b.fmax_source));
-}
-
-std::string manifest(const fs::path& dir) {
-  std::vector<std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file()) {
-      const std::string rel = fs::relative(e.path(), dir).generic_string();
-      if (rel != "MANIFEST.sha256") files.push_back(rel);
-    }
-  std::sort(files.begin(), files.end());
-  std::string s;
-  for (const auto& f : files) s += sha256_hex(read_text(dir / f)) + "  " + f + "\n";
-  return s;
-}
 
 // ---------------------------------------------------------------------------- the command
-void run(HandoffArgs& a) {
-  if (a.print_port_table) {
-    fmt::print("{}", generic_port_table());
+void run(HandoffArgs& ha) {
+  Options& a = ha.light;
+  if (ha.print_port_table) {
+    fmt::print("{}", ha.core == "lighting" ? light_port_table() : generic_port_table());
     return;
   }
   // ---- validate everything before doing anything
-  if (a.core == "lighting")
-    throw std::invalid_argument("--core lighting is not available yet (the lighting core is not in this tree); use --core specular");
-  if (a.core != "specular") throw std::invalid_argument("unknown --core '" + a.core + "' (known: specular)");
+  if (ha.core == "lighting") {
+    // The feature set fixes the unit and the widths: the unit options do not apply.
+    for (const char* opt : {"--variant", "--config", "--frac", "--guard", "--cutoff", "--norm", "--coef"})
+      if (ha.sub->count(opt) > 0)
+        throw std::invalid_argument(std::string(opt) + " does not apply to --core lighting (the feature set fixes the "
+                                    "specular unit and the widths)");
+    a.top_given = ha.sub->count("--top") > 0;
+    a.count_given = ha.sub->count("--count") > 0;
+    run_lighting(a);
+    return;
+  }
+  if (ha.core != "specular") throw std::invalid_argument("unknown --core '" + ha.core + "' (known: specular, lighting)");
   if (!a.features.empty()) throw std::invalid_argument("--features applies to --core lighting only");
-  const UnitSpec spec = resolve_unit(*a.unit);
+  const UnitSpec spec = resolve_unit(*ha.unit);
   if (is_table_variant(spec.variant))
     throw std::invalid_argument("handoff does not support the table variant " + spec.variant_name +
                                 " yet (the bundle's testbench cannot load the table RAM); use shadecore cosim");
   if (a.out.empty()) throw std::invalid_argument("--out DIR is required");
   if (a.tagw < 1 || a.tagw > 32) throw std::invalid_argument("--tagw must be in 1..32");
   if (a.count < 1 || a.count > 1'000'000) throw std::invalid_argument("--count must be in 1..1000000");
-  static const std::regex ident(R"(^[A-Za-z_][A-Za-z0-9_]{0,62}$)");
-  if (!std::regex_match(a.top, ident)) throw std::invalid_argument("--top '" + a.top + "' is not a Verilog identifier");
-  if (a.top.rfind("sc_", 0) == 0 || a.top == "tb_shadecore")
-    throw std::invalid_argument("--top '" + a.top + "' clashes with the bundle's module names (sc_*, tb_shadecore)");
-  for (const char* tool : {"iverilog", "vvp", "verilator", "yosys", "tar", "gzip"})
-    if (!on_path(tool)) throw std::runtime_error(std::string("'") + tool + "' not found on PATH (scripts/setup.sh installs it)");
+  const SynthMode synth = parse_synth(a.synth, SynthMode::Flat);
+  const std::string top = ha.sub->count("--top") > 0 ? a.top : "shadecore_top";
+  check_top_name(top, "tb_shadecore");
+  require_tools();
   const fs::path root = root_dir();
   for (const char* f : {"handoff/tb/tb_shadecore.v", "handoff/run_icarus.sh", "handoff/run_verilator.sh", "rtl/sc_specular.v"})
     if (!fs::exists(root / f)) throw std::runtime_error("shadecore source file " + (root / f).string() + " not found (SHADECORE_ROOT)");
+  const uint64_t seed = checked_seed(a.seed);
 
-  // Destination: a symlink to a directory is followed (the link stays); a non-directory is refused.
-  std::string out_text = a.out;
-  while (out_text.size() > 1 && out_text.back() == '/') out_text.pop_back();
-  const fs::path given = fs::path(out_text).lexically_normal();
-  std::error_code ec;
-  fs::path dest = given;
-  if (fs::is_symlink(fs::symlink_status(given, ec))) {
-    dest = fs::canonical(given, ec);
-    if (ec || !fs::is_directory(dest)) throw std::runtime_error("--out " + a.out + " is a symlink that does not lead to a directory");
-  }
-  const bool dest_exists = fs::exists(fs::symlink_status(dest, ec));
-  if (dest_exists && !fs::is_directory(fs::symlink_status(dest, ec)))
-    throw std::runtime_error("--out " + a.out + " exists and is not a directory");
-  if (dest_exists && !fs::is_empty(dest, ec) && !a.force)
-    throw std::runtime_error("--out " + a.out + " is not empty (use --force to replace its contents)");
-  if (dest == fs::current_path().lexically_normal() || dest.filename().empty() || dest.filename() == "..")
-    throw std::runtime_error("--out " + a.out + " cannot be used as a bundle directory");
-  const std::string tar_path = given.string() + ".tar.gz";
-  if (fs::exists(fs::symlink_status(tar_path, ec))) {
-    if (!a.force) throw std::runtime_error(tar_path + " exists (use --force to replace it)");
-  }
-  fs::path parent = fs::absolute(dest).parent_path();
-  // Missing parents are created, and removed again if the run fails.
-  std::vector<fs::path> created;
-  for (fs::path p = parent; !p.empty() && !fs::exists(p); p = p.parent_path()) created.push_back(p);
-  std::reverse(created.begin(), created.end());
-
-  const uint64_t seed = a.seed != 0 ? a.seed : pick_seed();
-  if (seed > 0x7fffffffull) throw std::invalid_argument("--seed must be in 1..2147483647 (the testbench's +seed= is 32-bit)");
-
-  SignalGuard guard;
-  g_signal = 0;
-  fs::path staging;
-  bool committed = false;
-  auto cleanup = [&] {
-    std::error_code e2;
-    if (!staging.empty()) fs::remove_all(staging, e2);
-    if (!committed)
-      for (auto it = created.rbegin(); it != created.rend(); ++it) fs::remove(*it, e2);  // only if empty
-  };
-  try {
-    for (const auto& p : created) {
-      fs::create_directory(p, ec);
-      if (ec) throw std::runtime_error("cannot create directory " + p.string() + ": " + ec.message());
-    }
-    if (::access(parent.c_str(), W_OK) != 0)
-      throw std::runtime_error("cannot write to directory " + parent.string() + ": " + std::strerror(errno));
-    check_output_path(tar_path);
-    staging = parent / fmt::format(".{}.handoff-tmp.{}", dest.filename().string(), ::getpid());
-    fs::remove_all(staging, ec);
-    if (!fs::create_directory(staging, ec) || ec)
-      throw std::runtime_error("cannot create " + staging.string() + ": " + ec.message());
-    const std::string name = given.filename().string();
-    const fs::path dir = staging / name;
-    fs::create_directories(dir);
-    const auto t0 = std::chrono::steady_clock::now();
-    auto step = [&](const std::string& what) {
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      fmt::print("handoff: [{:5.1f} s] {}\n", s, what);
-      std::fflush(stdout);
-    };
-
+  make_bundle(a.out, a.force, [&](const fs::path& dir, const Step& step) {
     Bundle b;
     b.spec = spec;
+    b.desc = spec.describe();
+    b.tb = "tb_shadecore";
     b.tagw = a.tagw;
-    b.top = a.top;
+    b.top = top;
     b.seed = seed;
+    b.synth = synth;
+    b.synth_why = synth == SynthMode::Skipped ? "--synth skip" : synth == SynthMode::Hierarchical ? "--synth hier" : "";
     b.ports = concrete_ports(load_ports(), spec, a.tagw);
     const Unit unit = spec.unit();
     b.latency = unit.latency();
@@ -1039,7 +495,7 @@ void run(HandoffArgs& a) {
 
     // rtl/
     fs::create_directories(dir / "rtl");
-    for (const auto& f : unit_files(spec)) {
+    for (const auto& f : specular_files(spec.variant, spec.norm)) {
       fs::copy_file(root / "rtl" / f, dir / "rtl" / f, fs::copy_options::none);
       b.rtl_files.push_back("rtl/" + f);
     }
@@ -1068,74 +524,15 @@ void run(HandoffArgs& a) {
     fs::copy_file(root / "handoff" / "tb" / "tb_shadecore.v", dir / "tb" / "tb_shadecore.v");
     write_text(dir / "tb" / "tb_config.vh", tb_config_vh(b, std::max(vh.size(), vr.size())));
     write_text(dir / "tb" / "tb_dut.vh", tb_dut_vh(b));
-    write_text(dir / "run_icarus.sh", read_text(root / "handoff" / "run_icarus.sh"), true);
-    write_text(dir / "run_verilator.sh", read_text(root / "handoff" / "run_verilator.sh"), true);
+    write_run_scripts(b, dir);
 
     // reports/ and the measured Fmax, then the constraints that use it
     recorded_fmax(b);
-    report_lint(b, dir);
-    step("Verilator lint -Wall: " + b.lint_status);
-    report_yosys(b, dir);
-    step(fmt::format("Yosys: {} cells, {} flip-flops, depth {}", b.synth_cells, b.synth_ffs, b.synth_depth));
-    report_ice40(b, dir, a.no_ice40);
-    step("iCE40: " + b.ice40_status);
+    check_and_report(b, dir, a.no_ice40, step);
     write_text(dir / "constraints.sdc", sdc(b));
     write_text(dir / "interface.md", interface_md(b));
-
-    // Both simulators on the bundle as it will be delivered.
-    b.icarus_line = run_sim(dir, "run_icarus.sh", "sim_icarus.log");
-    step(b.icarus_line);
-    b.verilator_line = run_sim(dir, "run_verilator.sh", "sim_verilator.log");
-    step(b.verilator_line);
-    write_text(dir / "reports" / "summary.md", summary_md(b));
-    write_text(dir / "README.md", bundle_readme(b));
-    write_text(dir / "MANIFEST.sha256", manifest(dir));
-
-    // The tarball of the directory (top-level folder = the --out name).
-    const std::string tmp_tar = (staging / (name + ".tar.gz")).string();
-    const Proc t = run_proc({"tar", "-C", staging.string(), "--sort=name", "--owner=0", "--group=0", "--numeric-owner",
-                             "-czf", tmp_tar, name},
-                            staging);
-    if (t.status != 0) throw std::runtime_error("tar failed: " + first_line(t.out));
-    const std::string tar_bytes = read_text(tmp_tar);
-    check_interrupt();
-
-    // ---- commit: swap the directory into place, then the tarball; undo the swap if that fails.
-    const fs::path old = staging / ".old";
-    if (dest_exists) {
-      fs::rename(dest, old, ec);
-      if (ec) throw std::runtime_error("cannot replace " + dest.string() + ": " + ec.message());
-    }
-    fs::rename(dir, dest, ec);
-    if (ec) {
-      std::error_code e2;
-      if (dest_exists) fs::rename(old, dest, e2);
-      throw std::runtime_error("cannot move the bundle to " + dest.string() + ": " + ec.message());
-    }
-    try {
-      write_output_file(tar_path, tar_bytes);
-    } catch (...) {
-      std::error_code e2;
-      fs::rename(dest, staging / ".failed", e2);
-      if (dest_exists) fs::rename(old, dest, e2);
-      throw;
-    }
-    committed = true;
-    cleanup();
-    const std::string man = read_text(dest / "MANIFEST.sha256");
-    step(fmt::format("wrote {} and {} ({} files in MANIFEST.sha256)", given.string(), tar_path,
-                     std::count(man.begin(), man.end(), '\n')));
-  } catch (...) {
-    cleanup();
-    if (g_signal) {  // interrupted: nothing is left behind; end the way the signal would have
-      const int sig = g_signal;
-      guard.restore();
-      fmt::print(stderr, "shadecore: error: handoff interrupted by signal {}; nothing written\n", sig);
-      ::signal(sig, SIG_DFL);
-      ::raise(sig);
-    }
-    throw;
-  }
+    simulate_and_summarise(b, dir, step);
+  });
 }
 
 }  // namespace
@@ -1144,18 +541,24 @@ void add_handoff(CLI::App& app) {
   auto a = std::make_shared<HandoffArgs>();
   auto* sub = app.add_subcommand("handoff", "Write a self-contained RTL bundle (RTL, constraints, interface, vectors, "
                                             "testbench, run scripts, reports, manifest) and a tarball of it");
+  a->sub = sub;
   add_unit_options(sub, a->unit);
-  sub->add_option("--out", a->out, "Bundle directory (refused if not empty, unless --force); DIR.tar.gz beside it");
-  sub->add_flag("--force", a->force, "Replace the contents of a non-empty --out and an existing DIR.tar.gz");
-  sub->add_option("--tagw", a->tagw, "Tag width TAGW of the wrapper top (1..32, default 8)");
-  sub->add_option("--seed", a->seed, "Seed of the random vectors and of the testbench's gaps/backpressure (default: picked)");
-  sub->add_option("--count", a->count, "Random vectors (default 2000)");
-  sub->add_option("--top", a->top, "Module name of the wrapper top (default shadecore_top)");
-  sub->add_flag("--no-ice40", a->no_ice40, "Skip iCE40 place and route even where nextpnr-ice40/icetime are installed");
-  sub->add_option("--core", a->core, "Which core: specular (default); lighting is not available yet");
-  sub->add_option("--features", a->features, "Lighting core feature set (with --core lighting; not available yet)");
+  Options& l = a->light;
+  sub->add_option("--out", l.out, "Bundle directory (refused if not empty, unless --force); DIR.tar.gz beside it");
+  sub->add_flag("--force", l.force, "Replace the contents of a non-empty --out and an existing DIR.tar.gz");
+  sub->add_option("--tagw", l.tagw, "Tag width TAGW of the wrapper top (1..32, default 8)");
+  sub->add_option("--seed", l.seed, "Seed of the random vectors and of the testbench's gaps/backpressure (default: picked)");
+  sub->add_option("--count", l.count, "Random vectors (default 2000; lighting: random fragments, default 1000)");
+  sub->add_option("--top", l.top, "Module name of the wrapper top (default shadecore_top; lighting: shadecore_light_top)");
+  sub->add_flag("--no-ice40", l.no_ice40, "Skip iCE40 place and route even where nextpnr-ice40/icetime are installed");
+  sub->add_option("--synth", l.synth,
+                  "Yosys generic synthesis: flat | hier (hierarchical, no flatten) | skip | auto (default: flat for "
+                  "the specular unit; for the lighting core by size, docs/handoff.md)");
+  sub->add_option("--core", a->core, "Which core: specular (default) or lighting");
+  sub->add_option("--features", l.features, "Lighting core feature set: a name of config/configs.json \"feature_sets\" "
+                                            "or a JSON file (with --core lighting)");
   sub->add_flag("--print-port-table", a->print_port_table,
-                "Print the port table of sc_specular from config/interface.json (the README's table) and exit");
+                "Print the port table of sc_specular (with --core lighting: sc_light) from config/interface.json and exit");
   sub->callback([a] { run(*a); });
 }
 

@@ -10,13 +10,18 @@
 // N = mat_n_i (11 bits), THR = mat_thr_i (F+1 bits, 0 for units without a threshold), COEF =
 // mat_coef_i (COEFW bits, 0 without NORM), COS = in_cos_i (F+2-bit two's complement), EXPECTED =
 // out_spec_o (F+1 bits, COEFW with NORM). Lines starting with // are comments.
+//
+// The lighting core (--core lighting --features NAME|FILE, --mode hard|random): register writes,
+// fragments and expected colours, one record per line (format: docs/handoff.md, cli/handoff_light.cpp).
 #include <cinttypes>
 #include <random>
 
 #include <fmt/core.h>
 
 #include "commands.hpp"
+#include "handoff_bundle.hpp"
 #include "output.hpp"
+#include "shadecore/features.hpp"
 #include "shadecore/hard_cases.hpp"
 #include "unit_spec.hpp"
 
@@ -51,9 +56,37 @@ struct VectorsArgs {
   CLI::Option* count_opt = nullptr;
   CLI::Option* seed_opt = nullptr;
   CLI::Option* n_opt = nullptr;
+  std::string core = "specular", features;
+  CLI::App* sub = nullptr;
 };
 
+void run_lighting(VectorsArgs& a) {
+  for (const char* opt : {"--variant", "--config", "--frac", "--guard", "--cutoff", "--norm", "--coef", "--n"})
+    if (a.sub->count(opt) > 0)
+      throw std::invalid_argument(std::string(opt) + " does not apply to --core lighting (the feature set fixes the "
+                                  "specular unit and the widths)");
+  if (a.features.empty()) throw std::invalid_argument("--core lighting needs --features NAME|FILE");
+  const FeatureSet fset = feature_set_named_or_file(a.features);
+  VectorRequest req = a.req;
+  if (req.mode != "hard" && req.mode != "random")
+    throw std::invalid_argument("unknown mode '" + req.mode + "' for the lighting core (known: hard, random)");
+  if (req.mode != "random" && (a.count_opt->count() > 0 || a.seed_opt->count() > 0))
+    throw std::invalid_argument("--count and --seed apply to --mode random only");
+  if (req.mode == "random" && req.count == 0) throw std::invalid_argument("--count must be >= 1");
+  if (req.count > kMaxVectors) throw std::invalid_argument(fmt::format("--count {} is over the limit of {}", req.count, kMaxVectors));
+  if (req.mode == "random" && req.seed == 0) req.seed = pick_seed();
+  check_output_path(a.out);
+  size_t records = 0, fragments = 0;
+  const std::string text = handoff::lighting_vectors(fset, req.mode, req.count, req.seed, &records, &fragments);
+  write_output_file(a.out, text);
+  fmt::print("vectors: {} {} records ({} fragments) for the lighting core, feature set '{}'{} -> {}\n", records,
+             req.mode, fragments, fset.name, req.mode == "random" ? fmt::format(", seed {}", req.seed) : "", a.out);
+}
+
 void run(VectorsArgs& a) {
+  if (a.core == "lighting") return run_lighting(a);
+  if (a.core != "specular") throw std::invalid_argument("unknown --core '" + a.core + "' (known: specular, lighting)");
+  if (!a.features.empty()) throw std::invalid_argument("--features applies to --core lighting only");
   const UnitSpec spec = resolve_unit(*a.unit);
   VectorRequest req = a.req;
   if (req.mode != "hard" && req.mode != "random" && req.mode != "exhaustive")
@@ -178,7 +211,10 @@ std::string format_vectors(const UnitSpec& spec, const VectorRequest& req, const
 void add_vectors(CLI::App& app) {
   auto a = std::make_shared<VectorsArgs>();
   auto* sub = app.add_subcommand("vectors", "Write test vectors (stimulus + expected results from the C model) as hex");
+  a->sub = sub;
   add_unit_options(sub, a->unit);
+  sub->add_option("--core", a->core, "specular (default): the unit; lighting: register writes, fragments, colours");
+  sub->add_option("--features", a->features, "Lighting core feature set: a name of config/configs.json or a JSON file");
   sub->add_option("--mode", a->req.mode, "hard (the hard-case list) | random | exhaustive");
   a->count_opt = sub->add_option("--count", a->req.count, "Random: number of vectors (default 1000)");
   a->seed_opt = sub->add_option("--seed", a->req.seed, "Random: seed (default: picked and recorded in the file)");

@@ -1,6 +1,7 @@
 #!/bin/sh
 # run_icarus.sh — compile the bundle's RTL (filelist.f) and the self-checking testbench
-# (tb/tb_shadecore.v) with Icarus Verilog as plain Verilog-2005, then run it once per vector file in
+# (tb/$tb.v: tb_shadecore for the specular unit, tb_shadecore_light for the lighting core)
+# with Icarus Verilog as plain Verilog-2005, then run it once per vector file in
 # vectors/. Exit status 0 only if every run prints "PASS <n> vectors" for all of its n vectors.
 #
 #   ./run_icarus.sh                    the recorded seed (tb/tb_config.vh, TB_SEED)
@@ -10,6 +11,7 @@
 # Needs iverilog and vvp (Icarus Verilog 11 or newer). Works in a temporary directory; the bundle is
 # not modified.
 set -u
+tb=tb_shadecore   # the testbench module, tb/$tb.v (shadecore handoff sets it per core)
 cd "$(dirname "$0")" || exit 1
 for t in iverilog vvp; do
   command -v "$t" >/dev/null 2>&1 || { echo "run_icarus.sh: FAIL: $t not found (install Icarus Verilog)"; exit 1; }
@@ -24,8 +26,8 @@ plus=""
 [ -n "${OUT_STALL:-}" ] && plus="$plus +out_stall=$OUT_STALL"
 [ -n "${RESET_AT:-}" ] && plus="$plus +reset_at=$RESET_AT"
 
-echo "run_icarus.sh: iverilog -g2005 -Wall -I tb -f filelist.f -s tb_shadecore tb/tb_shadecore.v"
-if ! iverilog -g2005 -Wall -I tb -f filelist.f -s tb_shadecore -o "$work/tb.vvp" tb/tb_shadecore.v \
+echo "run_icarus.sh: iverilog -g2005 -Wall -I tb -f filelist.f -s $tb tb/$tb.v"
+if ! iverilog -g2005 -Wall -I tb -f filelist.f -s "$tb" -o "$work/tb.vvp" "tb/$tb.v" \
      >"$work/compile.log" 2>&1; then
   cat "$work/compile.log"
   echo "run_icarus.sh: FAIL: compilation failed"

@@ -1,6 +1,7 @@
 #!/bin/sh
 # run_verilator.sh — build the bundle's RTL (filelist.f) and the self-checking testbench
-# (tb/tb_shadecore.v) with Verilator (--binary: the testbench's own clock and timing, no C++ to
+# (tb/$tb.v: tb_shadecore for the specular unit, tb_shadecore_light for the lighting core)
+# with Verilator (--binary: the testbench's own clock and timing, no C++ to
 # write), then run it once per vector file in vectors/. Exit status 0 only if every run prints
 # "PASS <n> vectors" for all of its n vectors.
 #
@@ -12,6 +13,7 @@
 #                                      are older than it (default: a temporary directory)
 # Needs Verilator 5 (--binary, --timing) and a C++ compiler.
 set -u
+tb=tb_shadecore   # the testbench module, tb/$tb.v (shadecore handoff sets it per core)
 cd "$(dirname "$0")" || exit 1
 command -v verilator >/dev/null 2>&1 || { echo "run_verilator.sh: FAIL: verilator not found"; exit 1; }
 log=$(mktemp "${TMPDIR:-/tmp}/shadecore_verilator_log.XXXXXX") || exit 1
@@ -35,9 +37,9 @@ jobs=$(nproc 2>/dev/null || echo 2)
 if [ -x "$obj/Vtb" ] && [ -z "$(find rtl tb filelist.f -newer "$obj/Vtb" 2>/dev/null | head -n 1)" ]; then
   echo "run_verilator.sh: reusing $obj/Vtb (sources unchanged)"
 else
-  echo "run_verilator.sh: verilator --binary -Wall -Wno-fatal -I tb -f filelist.f --top-module tb_shadecore tb/tb_shadecore.v"
-  if ! verilator --binary -j "$jobs" -Wall -Wno-fatal -Itb -f filelist.f --top-module tb_shadecore \
-       -Mdir "$obj" -o Vtb tb/tb_shadecore.v >"$log" 2>&1; then
+  echo "run_verilator.sh: verilator --binary -Wall -Wno-fatal -I tb -f filelist.f --top-module $tb tb/$tb.v"
+  if ! verilator --binary -j "$jobs" -Wall -Wno-fatal -Itb -f filelist.f --top-module "$tb" \
+       -Mdir "$obj" -o Vtb "tb/$tb.v" >"$log" 2>&1; then
     tail -n 40 "$log"
     echo "run_verilator.sh: FAIL: build failed"
     exit 1

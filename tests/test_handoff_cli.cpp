@@ -17,13 +17,16 @@
 #include "cli_run.hpp"
 #include "shadecore/configs.hpp"
 #include "shadecore/golden.hpp"
+#include "shadecore/features.hpp"
 #include "shadecore/hard_cases.hpp"
+#include "shadecore/light.hpp"
 #include "shadecore/unit.hpp"
 
 namespace fs = std::filesystem;
 using shadecore::testing::CliRun;
 using shadecore::testing::expect_one_line_error;
 using shadecore::testing::run_cli;
+using shadecore::testing::run_shell;
 
 namespace {
 
@@ -64,6 +67,13 @@ std::vector<Line> read_vectors(const fs::path& p, std::string* header = nullptr)
     v.push_back(l);
   }
   return v;
+}
+
+std::string fmt_hex(unsigned long v, size_t digits) {
+  std::stringstream ss;
+  ss << std::hex << v;
+  std::string s = ss.str();
+  return s.size() < digits ? std::string(digits - s.size(), '0') + s : s;
 }
 
 int64_t sign_extend(uint32_t word, int bits) {
@@ -256,11 +266,69 @@ TEST(VectorsCli, BadArgumentsAndOutputRules) {
   fs::remove_all(d);
 }
 
+// `vectors --core lighting`: the bundle's format; reproducible from the seed; every colour LightCore's.
+TEST(VectorsCli, LightingRecordsReplayThroughTheModel) {
+  const fs::path d = temp_dir("lvec");
+  auto make = [&](const std::string& name, const std::string& args) {
+    const CliRun r = run_cli("vectors --core lighting --features mono_spec " + args + " --out " + (d / name).string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    return slurp(d / name);
+  };
+  const std::string a = make("a.hex", "--mode random --count 80 --seed 21");
+  EXPECT_EQ(a.substr(a.find("\n0 ")), make("b.hex", "--mode random --count 80 --seed 21").substr(a.find("\n0 ")));
+  const std::string c = make("c.hex", "--mode random --count 80 --seed 22");
+  EXPECT_NE(a.substr(a.find("\n0 ")), c.substr(c.find("\n0 ")));
+  const std::string h = make("h.hex", "--mode hard");
+  EXPECT_NE(a.find("seed 21"), std::string::npos);
+  const shadecore::FeatureSet fset = shadecore::feature_set_named_or_file("mono_spec");
+  const shadecore::LightCore core(fset);
+  const int F = fset.format().frac;
+  for (const std::string* text : {&a, &h}) {
+    shadecore::LightRegs regs;
+    std::stringstream in(*text);
+    std::string line;
+    int frags = 0, lit = 0;
+    while (std::getline(in, line)) {
+      if (line.rfind("//", 0) == 0) continue;
+      std::stringstream ss(line);
+      std::vector<uint64_t> w(10);
+      for (auto& x : w) ss >> std::hex >> x;
+      ASSERT_FALSE(ss.fail()) << line;
+      if (w[0] == 0) {
+        regs.write(F, static_cast<uint32_t>(w[1]), static_cast<uint32_t>(w[2]));
+        continue;
+      }
+      shadecore::Fragment f;
+      for (int i = 0; i < 3; ++i) {
+        f.n[i] = shadecore::sign_extend(w[1 + i], F + 2);
+        f.p[i] = shadecore::sign_extend(w[4 + i], F + 8);
+      }
+      const shadecore::Colour col = core.eval(regs, f);
+      for (int i = 0; i < 3; ++i) EXPECT_EQ(w[7 + i], col.c[i]) << line;
+      EXPECT_EQ(w[8], 0u);  // mono
+      lit += w[7] != 0;
+      ++frags;
+    }
+    EXPECT_GT(frags, 50);
+    EXPECT_GT(lit, 5);  // not all black: the specular terms are exercised
+  }
+  expect_one_line_error("vectors --core lighting --features mono_spec --mode exhaustive --out " + (d / "x.hex").string(),
+                        "unknown mode");
+  expect_one_line_error("vectors --core lighting --mode hard --out " + (d / "x.hex").string(), "needs --features");
+  expect_one_line_error("vectors --core lighting --features mono_spec --variant cs16 --mode hard --out " + (d / "x.hex").string(),
+                        "--variant does not apply");
+  expect_one_line_error("vectors --features mono_spec --mode hard --out " + (d / "x.hex").string(), "--core lighting only");
+  EXPECT_FALSE(fs::exists(d / "x.hex"));
+  fs::remove_all(d);
+}
+
 // ---------------------------------------------------------------------------- handoff (arguments only)
 TEST(HandoffCli, BadArgumentsGiveOneLineErrorsAndWriteNothing) {
   const fs::path d = temp_dir("ho");
   expect_one_line_error("handoff", "--out DIR is required");
-  expect_one_line_error("handoff --core lighting --out " + (d / "b").string(), "not available yet");
+  expect_one_line_error("handoff --core nosuch --out " + (d / "b").string(), "unknown --core");
+  expect_one_line_error("handoff --features diffuse --out " + (d / "b").string(), "applies to --core lighting only");
+  expect_one_line_error("handoff --synth sometimes --out " + (d / "b").string(), "unknown --synth");
   expect_one_line_error("handoff --tagw 0 --out " + (d / "b").string(), "--tagw");
   expect_one_line_error("handoff --top 9x --out " + (d / "b").string(), "not a Verilog identifier");
   expect_one_line_error("handoff --top sc_cs16 --out " + (d / "b").string(), "clashes");
@@ -277,23 +345,152 @@ TEST(HandoffCli, BadArgumentsGiveOneLineErrorsAndWriteNothing) {
   fs::remove_all(d);
 }
 
-// config/interface.json (the README table's and every interface.md's source) lists exactly the ports
-// of rtl/sc_specular.v, in order.
-TEST(HandoffCli, PortTableMatchesTheRtl) {
-  const CliRun r = run_cli("handoff --print-port-table");
-  ASSERT_EQ(r.status, 0) << r.err;
-  std::vector<std::string> table, rtl;
-  std::smatch m;
-  std::stringstream ts(r.out);
+// --core lighting: bad feature sets and the options that do not apply are one-line errors, nothing written.
+TEST(HandoffCli, LightingBadArgumentsGiveOneLineErrorsAndWriteNothing) {
+  const fs::path d = temp_dir("hol");
+  const std::string out = " --out " + (d / "b").string();
+  expect_one_line_error("handoff --core lighting" + out, "needs --features");
+  expect_one_line_error("handoff --core lighting --features nosuch" + out, "unknown feature set 'nosuch'");
+  std::ofstream(d / "bad.json") << "{ \"lights\": [\"directional\"], \"specular\": \"cs17\" }";
+  expect_one_line_error("handoff --core lighting --features " + (d / "bad.json").string() + out, "cs17");
+  std::ofstream(d / "broken.json") << "{ \"lights\": [";
+  expect_one_line_error("handoff --core lighting --features " + (d / "broken.json").string() + out, "malformed JSON");
+  for (const char* opt : {"--variant cs16", "--config narrow", "--frac 12", "--guard 5", "--cutoff sign_clamp",
+                          "--norm phong", "--coef classical"})
+    expect_one_line_error("handoff --core lighting --features diffuse " + std::string(opt) + out,
+                          std::string(opt).substr(0, std::string(opt).find(' ')) + " does not apply to --core lighting");
+  // diffuse: latency 4, up to 5 fragments in flight: TAGW 2 cannot tell them apart.
+  expect_one_line_error("handoff --core lighting --features diffuse --tagw 2" + out, "too narrow");
+  expect_one_line_error("handoff --core lighting --features diffuse --tagw 33" + out, "--tagw");
+  expect_one_line_error("handoff --core lighting --features diffuse --count 0" + out, "--count");
+  expect_one_line_error("handoff --core lighting --features diffuse --synth fast" + out, "unknown --synth");
+  expect_one_line_error("handoff --core lighting --features diffuse --top tb_shadecore_light" + out, "clashes");
+  expect_one_line_error("handoff --core lighting --features diffuse --out " + (d / "bad.json").string(), "not a directory");
+  EXPECT_FALSE(fs::exists(d / "b"));
+  EXPECT_FALSE(fs::exists(d / "b.tar.gz"));
+  fs::remove_all(d);
+}
+
+// The lighting core's bundle (diffuse: the smallest set; few random fragments, synthesis skipped — Yosys
+// on the named sets is the rtl.yosys.sc_light.* tests): handoff exits 0 only after both delivered
+// simulators passed; the vector files replay through the C model; one corrupted expected colour makes
+// run_icarus.sh and run_verilator.sh FAIL naming that vector, and breaks the manifest.
+TEST(HandoffLighting, DiffuseBundlePassesAndACorruptedCopyFails) {
+  const fs::path d = temp_dir("hld");
+  const fs::path b = d / "hl", vobj = d / "vobj";
+  const CliRun r = run_shell("VERILATOR_OBJ_DIR=" + vobj.string() + " " + SHADECORE_CLI +
+                             " handoff --core lighting --features diffuse --count 60 --seed 9 --synth skip --no-ice40 --out " +
+                             b.string());
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("run_icarus.sh: PASS"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("run_verilator.sh: PASS"), std::string::npos) << r.out;
+  for (const char* f : {"rtl/shadecore_light_top.v", "rtl/sc_light.v", "rtl/sc_delay.v", "rtl/sc_light_regs.vh",
+                        "filelist.f", "constraints.sdc", "interface.md", "tb/tb_shadecore_light.v", "tb/tb_config.vh",
+                        "tb/tb_dut.vh", "run_icarus.sh", "run_verilator.sh", "vectors/hard.hex", "vectors/random.hex",
+                        "reports/verilator_lint.log", "reports/yosys_synth.log", "reports/yosys_synth.ys",
+                        "reports/sim_icarus.log", "reports/sim_verilator.log", "MANIFEST.sha256"})
+    EXPECT_TRUE(fs::exists(b / f)) << f;
+  // diffuse has no specular unit, no normaliser, no reciprocal: none of their files.
+  for (const char* f : {"rtl/sc_specular.v", "rtl/sc_cs16.v", "rtl/sc_normalize.v", "rtl/sc_recip.v"})
+    EXPECT_FALSE(fs::exists(b / f)) << f;
+  EXPECT_TRUE(fs::exists(d / "hl.tar.gz"));
+  EXPECT_EQ(run_shell("sha256sum -c --quiet MANIFEST.sha256", b.string()).status, 0);
+  const std::string md = slurp(b / "interface.md");
+  EXPECT_NE(md.find("| `reg_ready_o` | out | 1 |"), std::string::npos);
+  EXPECT_NE(md.find("| `mat_diffuse` | 0x18..0x1a | 3"), std::string::npos) << md;
+  EXPECT_NE(md.find("**4 cycles**"), std::string::npos);
+
+  // Replay vectors/random.hex through the C model: every expected colour is LightCore::eval's.
+  const shadecore::FeatureSet fs = shadecore::feature_set_named_or_file("diffuse");
+  const shadecore::LightCore core(fs);
+  const int F = fs.format().frac;
+  shadecore::LightRegs regs;
+  std::ifstream in(b / "vectors" / "random.hex");
   std::string line;
-  while (std::getline(ts, line))
-    if (std::regex_search(line, m, std::regex("^\\| `(\\w+)` \\|"))) table.push_back(m[1]);
-  const fs::path src = fs::path(__FILE__).parent_path().parent_path() / "rtl" / "sc_specular.v";
-  std::stringstream rs(slurp(src));
-  while (std::getline(rs, line))
-    if (std::regex_search(line, m, std::regex("^\\s*(input|output)\\s+wire\\b.*?(\\w+)\\s*,?\\s*$"))) rtl.push_back(m[2]);
-  ASSERT_FALSE(rtl.empty());
-  EXPECT_EQ(table, rtl);
+  int records = 0, frags = 0, writes = 0;
+  while (std::getline(in, line)) {
+    if (line.rfind("//", 0) == 0) continue;
+    std::stringstream ss(line);
+    std::vector<uint64_t> w(10);
+    for (auto& x : w) ss >> std::hex >> x;
+    ASSERT_FALSE(ss.fail()) << line;
+    ++records;
+    if (w[0] == 0) {
+      regs.write(F, static_cast<uint32_t>(w[1]), static_cast<uint32_t>(w[2]));
+      ++writes;
+      continue;
+    }
+    ASSERT_EQ(w[0], 1u) << line;
+    shadecore::Fragment f;
+    for (int i = 0; i < 3; ++i) {
+      f.n[i] = shadecore::sign_extend(w[1 + i], F + 2);
+      f.p[i] = shadecore::sign_extend(w[4 + i], F + 8);
+    }
+    const shadecore::Colour c = core.eval(regs, f);
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(w[7 + i], c.c[i]) << line;
+    ++frags;
+  }
+  EXPECT_EQ(frags, 60);
+  EXPECT_GT(writes, 10);  // the program, at least
+  for (const char* log : {"sim_icarus.log", "sim_verilator.log"})
+    EXPECT_NE(slurp(b / "reports" / log).find("PASS " + std::to_string(records) + " vectors (60 fragments checked, " +
+                                              std::to_string(writes) + " register writes"),
+              std::string::npos)
+        << log;
+
+  // One corrupted expected colour: the first fragment record of hard.hex whose R is not 0 gets R + 1.
+  const fs::path c = d / "corrupt";
+  ASSERT_EQ(run_shell("cp -rp " + b.string() + " " + c.string()).status, 0);
+  std::ifstream hin(b / "vectors" / "hard.hex");
+  std::string text;
+  int rec = -1, bad = -1;
+  while (std::getline(hin, line)) {
+    if (line.rfind("//", 0) != 0) {
+      ++rec;
+      std::stringstream ss(line);
+      std::vector<std::string> w(10);
+      for (auto& x : w) ss >> x;
+      if (bad < 0 && w[0] == "1" && std::stoul(w[7], nullptr, 16) != 0) {
+        bad = rec;
+        w[7] = fmt_hex(std::stoul(w[7], nullptr, 16) + 1, w[7].size());
+        line = w[0];
+        for (int i = 1; i < 10; ++i) line += " " + w[i];
+      }
+    }
+    text += line + "\n";
+  }
+  ASSERT_GE(bad, 0);
+  std::ofstream(c / "vectors" / "hard.hex", std::ios::trunc) << text;
+  for (const char* script : {"run_icarus.sh", "run_verilator.sh"}) {
+    const CliRun f = run_shell("VERILATOR_OBJ_DIR=" + vobj.string() + " ./" + script, c.string());
+    EXPECT_NE(f.status, 0) << script << "\n" << f.out;
+    EXPECT_NE(f.out.find("FAIL vector " + std::to_string(bad) + ":"), std::string::npos) << script << "\n" << f.out;
+    EXPECT_NE(f.out.find(std::string(script) + ": FAIL"), std::string::npos) << f.out;
+  }
+  EXPECT_NE(run_shell("sha256sum -c --quiet MANIFEST.sha256", c.string()).status, 0);
+  fs::remove_all(d);
+}
+
+// config/interface.json (the README table's and every interface.md's source) lists exactly the ports
+// of rtl/sc_specular.v ("ports") and of rtl/sc_light.v ("light_ports"), in order, with their directions.
+TEST(HandoffCli, PortTableMatchesTheRtl) {
+  for (const auto& [args, file] : {std::pair<std::string, std::string>{"", "sc_specular.v"}, {" --core lighting", "sc_light.v"}}) {
+    const CliRun r = run_cli("handoff --print-port-table" + args);
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::vector<std::string> table, rtl;
+    std::smatch m;
+    std::stringstream ts(r.out);
+    std::string line;
+    while (std::getline(ts, line))
+      if (std::regex_search(line, m, std::regex("^\\| `(\\w+)` \\| (in|out) \\|"))) table.push_back(m[2].str() + " " + m[1].str());
+    const fs::path src = fs::path(__FILE__).parent_path().parent_path() / "rtl" / file;
+    std::stringstream rs(slurp(src));
+    while (std::getline(rs, line))
+      if (std::regex_search(line, m, std::regex("^\\s*(input|output)\\s+wire\\b.*?(\\w+)\\s*,?\\s*$")))
+        rtl.push_back((m[1] == "input" ? "in " : "out ") + m[2].str());
+    ASSERT_FALSE(rtl.empty()) << file;
+    EXPECT_EQ(table, rtl) << file;
+  }
 }
 
 // docs/spec.md states what an independent implementer needs (issue 11): its coefficient table (§7.0)
