@@ -50,6 +50,7 @@ struct CosimArgs {
   uint64_t count = 100000;
   uint64_t seed = 0;
   double in_stall = 0.0, out_stall = 0.0;
+  double mat_rate = -1.0;  // random mode: probability per cycle of a material change (< 0: the simulator's default)
   long long reset_at = -2;
   int shards = 0;
   std::string trace, json_path;
@@ -207,6 +208,8 @@ void run_cosim(const CosimArgs& a) {
     throw std::invalid_argument("unknown mode '" + a.mode + "' (known: exhaustive, random, directed)");
   if (a.mode == "directed" && a.n_given)
     throw std::invalid_argument("--n does not apply to --mode directed (the hard cases carry their own n)");
+  if (a.mode != "random" && a.mat_rate >= 0.0)
+    throw std::invalid_argument("--mat-rate applies to --mode random only");
   if (a.mode == "exhaustive" && a.count_given)
     throw std::invalid_argument("--count does not apply to --mode exhaustive (every code of every n)");
   if (a.shards_given && a.shards != 1 && (a.mode == "directed" || !a.trace.empty()))
@@ -269,6 +272,7 @@ void run_cosim(const CosimArgs& a) {
       const int hi = n_lo + static_cast<int>(static_cast<long long>(total) * (i + 1) / shards) - 1;
       v.insert(v.end(), {"--n", fmt::format("{}..{}", lo, hi), "--seed", std::to_string(seed)});
     } else if (a.mode == "random") {
+      if (a.mat_rate >= 0.0) v.insert(v.end(), {"--mat-rate", fmt::format("{}", a.mat_rate)});
       // Shard i runs transactions [first, first + c) of the one seeded run.
       const uint64_t base = a.count / shards, extra = a.count % shards, k = static_cast<uint64_t>(i);
       const uint64_t c = base + (k < extra ? 1 : 0);
@@ -425,6 +429,10 @@ void add_cosim(CLI::App& app) {
       ->check(Probability(false));
   sub->add_option("--out-stall", args->out_stall, "probability per cycle of out_ready low, in [0, 1)")
       ->check(Probability(false));
+  sub->add_option("--mat-rate", args->mat_rate,
+                  "random mode: probability per cycle of a material change, in [0, 1) (default 0.01; a table "
+                  "unit's change is a load of E cycles, drawn only when no load is pending)")
+      ->check(Probability(false));
   sub->add_option("--reset-at", args->reset_at,
                   "per shard: rst_ni pulse after this many accepted fragments (-1 none; default half way in random/directed)")
       ->check(ResetAt());
@@ -448,7 +456,7 @@ void add_cosim(CLI::App& app) {
   sub->callback([args, n_opt, count_opt, shards_opt, cm_opt, coef_opt, core, features, feat_opt, sub] {
     if (*core == "lighting") {
       for (const char* unit_only : {"--variant", "--config", "--cutoff", "--n", "--norm", "--coef-model", "--coef",
-                                    "--shards", "--trace", "--reset-at"})
+                                    "--shards", "--trace", "--reset-at", "--mat-rate"})
         if (sub->count(unit_only) > 0)
           throw std::invalid_argument(std::string(unit_only) + " does not apply to --core lighting (the feature set says it)");
       LightCosimArgs la;

@@ -19,7 +19,9 @@ out=${1:-out/handoff-matrix}
 [ -x "$exe" ] || { echo "handoff_matrix: $exe not built (scripts/build.sh)"; exit 1; }
 mkdir -p "$out" || exit 1
 ice=--no-ice40; [ "${ICE40:-0}" = 1 ] && ice=
-variants=$(/usr/bin/python3 -c 'import json; print(" ".join(v["name"] for v in json.load(open("config/configs.json"))["variants"]))')
+# The table units (contract "table") have no bundle yet: handoff refuses them (their testbench would need a
+# table-load phase); VARIANTS="a b" restricts the list.
+variants=${VARIANTS:-$(/usr/bin/python3 -c 'import json; print(" ".join(v["name"] for v in json.load(open("config/configs.json"))["variants"] if v.get("contract") != "table"))')}
 configs=$(/usr/bin/python3 -c 'import json; print(" ".join(c["name"] for c in json.load(open("config/configs.json"))["configs"]))')
 pass=0; fail=0; t0=$(date +%s)
 run() {  # name, handoff options...

@@ -86,7 +86,9 @@ class Driver : public sc_core::sc_module {
     // --- material
     bool we = false;
     UnitMaterial m;
-    if (random_mode_ && (!any_material_ || mat_gen_.stall())) {
+    // A material change is drawn only while none is pending or loading: a table load takes E edges, and
+    // changes drawn during it would queue up and starve the fragments (table1024 at --mat-rate 0.01).
+    if (random_mode_ && !pending_load_ && load_left_ == 0 && (!any_material_ || mat_gen_.stall())) {
       if (entries_ > 0) {
         pending_load_ = true;  // a table load waits until no raised fragment is held (below)
       } else {

@@ -96,6 +96,8 @@ TEST(CliHardening, BadArgumentsTable) {
       {"cosim --mode directed --n 16", "--n does not apply to --mode directed"},
       {"cosim --mode exhaustive --n 16 --count 5", "--count does not apply to --mode exhaustive"},
       {"cosim --mode directed --shards 2", "--shards applies to"},
+      {"cosim --mode directed --mat-rate 0.1", "--mat-rate applies to --mode random only"},
+      {"cosim --mode random --count 5 --mat-rate 1", "--mat-rate"},
       {"fit --lobe schlick --cutoff theta_cr", "--cutoff applies to --lobe cs16 only"},
       {"fit --lobe cos_pow --cutoff sign_clamp", "--cutoff applies to --lobe cs16 only"},
       {"energy --method cells --radial 50 --n 16 --angles 0", "--radial and --azimuth apply to --method grid only"},
