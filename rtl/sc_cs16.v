@@ -303,9 +303,21 @@ module sc_cs16 #(
         end
       end
       // S1: base = 2^(F+4) - n·d, cut where base <= 0 too (both CUTOFF forms): no |base| needed.
-      wire [BW-1:0] nd       = {{(BW-11){1'b0}}, s0_n_q} * {{(BW-F-1){1'b0}}, s0_d_q};  // < 2^(F+11)
-      wire          base_pos = ~|nd[BW-1:F+4];                 // n·d < 2^(F+4)  <=>  base > 0
-      wire [F+4:0]  base     = BASE_ONE[F+4:0] - nd[F+4:0];    // exact when base_pos
+      wire          base_pos;                                  // n·d < 2^(F+4)  <=>  base > 0
+      wire [F+4:0]  nd_lo;                                     // n·d mod 2^(F+5)
+      if (CUTOFF == 0) begin : g_nd_mod
+        // theta_cr: a shaded fragment has c >= thr(n) >= cos(6/sqrt(n))·2^F, so n·d <= n(1 - cos(6/sqrt(n)))·2^F
+        // <= 18·2^F < 2^(F+5): n·d mod 2^(F+5) (only the low F+5 product columns are built) decides base > 0
+        // exactly; a code below thr is cut whatever it gives (docs/spec.md §3.4).
+        wire [F+4:0] ndm = s0_n_q * s0_d_q;
+        assign base_pos = ~ndm[F+4];
+        assign nd_lo    = ndm;
+      end else begin : g_nd_full
+        wire [BW-1:0] nd = {{(BW-11){1'b0}}, s0_n_q} * {{(BW-F-1){1'b0}}, s0_d_q};  // < 2^(F+11)
+        assign base_pos = ~|nd[BW-1:F+4];
+        assign nd_lo    = nd[F+4:0];
+      end
+      wire [F+4:0]  base     = BASE_ONE[F+4:0] - nd_lo;        // exact when base_pos
       wire [F+4:0]  x0_d     = (base_pos && !s0_cthr_q) ? base : {(F+5){1'b0}};
       wire unused_nd = &{1'b0, BASE_ONE, HALF_G};
       reg [W0:0]     s1_x_q;
