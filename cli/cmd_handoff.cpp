@@ -473,7 +473,7 @@ void run(HandoffArgs& ha) {
   check_top_name(top, "tb_shadecore");
   require_tools();
   const fs::path root = root_dir();
-  for (const char* f : {"handoff/tb/tb_shadecore.v", "handoff/run_icarus.sh", "handoff/run_verilator.sh", "rtl/sc_specular.v"})
+  for (const char* f : {"handoff/tb/tb_shadecore.v", "handoff/tb/tb_common.vh", "handoff/run_icarus.sh", "handoff/run_verilator.sh", "rtl/sc_specular.v"})
     if (!fs::exists(root / f)) throw std::runtime_error("shadecore source file " + (root / f).string() + " not found (SHADECORE_ROOT)");
   const uint64_t seed = checked_seed(a.seed);
 
@@ -522,6 +522,7 @@ void run(HandoffArgs& ha) {
     // tb/, scripts
     fs::create_directories(dir / "tb");
     fs::copy_file(root / "handoff" / "tb" / "tb_shadecore.v", dir / "tb" / "tb_shadecore.v");
+    fs::copy_file(root / "handoff" / "tb" / "tb_common.vh", dir / "tb" / "tb_common.vh");
     write_text(dir / "tb" / "tb_config.vh", tb_config_vh(b, std::max(vh.size(), vr.size())));
     write_text(dir / "tb" / "tb_dut.vh", tb_dut_vh(b));
     write_run_scripts(b, dir);

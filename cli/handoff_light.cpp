@@ -529,7 +529,7 @@ void run_lighting(const Options& o) {
   check_top_name(top, "tb_shadecore_light");
   require_tools();
   const fs::path root = root_dir();
-  for (const char* f : {"handoff/tb/tb_shadecore_light.v", "handoff/run_icarus.sh", "handoff/run_verilator.sh",
+  for (const char* f : {"handoff/tb/tb_shadecore_light.v", "handoff/tb/tb_common.vh", "handoff/run_icarus.sh", "handoff/run_verilator.sh",
                         "rtl/sc_light.v", "rtl/sc_light_regs.vh"})
     if (!fs::exists(root / f)) throw std::runtime_error("shadecore source file " + (root / f).string() + " not found (SHADECORE_ROOT)");
   const uint64_t seed = checked_seed(o.seed);
@@ -588,6 +588,7 @@ void run_lighting(const Options& o) {
     // tb/, scripts
     fs::create_directories(dir / "tb");
     fs::copy_file(root / "handoff" / "tb" / "tb_shadecore_light.v", dir / "tb" / "tb_shadecore_light.v");
+    fs::copy_file(root / "handoff" / "tb" / "tb_common.vh", dir / "tb" / "tb_common.vh");
     write_text(dir / "tb" / "tb_config.vh", tb_config_vh(b, std::max(hard.size(), rnd.size())));
     write_text(dir / "tb" / "tb_dut.vh", tb_dut_vh(b));
     write_run_scripts(b, dir);

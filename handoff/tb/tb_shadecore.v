@@ -89,26 +89,7 @@ module tb_shadecore;
   reg [OUTW-1:0] held_spec;
   reg [31:0] exp_word;
 
-  // xorshift32: the same sequence on every simulator.
-  function [31:0] xs32;
-    input [31:0] x;
-    reg [31:0] y;
-    begin
-      y = x ^ (x << 13);
-      y = y ^ (y >> 17);
-      xs32 = y ^ (y << 5);
-    end
-  endfunction
-
-  task fail_exit;
-    begin
-`ifdef __ICARUS__
-      $finish_and_return(1);
-`else
-      $stop;
-`endif
-    end
-  endtask
+  `include "tb_common.vh"  // xs32 (xorshift32), fail_exit
 
   // Checks one result taken at this edge with `adv_at` advancing edges counted.
   task take_result;

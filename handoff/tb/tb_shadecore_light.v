@@ -100,26 +100,7 @@ module tb_shadecore_light;
   reg [3*FRAC+2:0] held_rgb;
   reg [31:0] er, eg, eb;
 
-  // xorshift32: the same sequence on every simulator.
-  function [31:0] xs32;
-    input [31:0] x;
-    reg [31:0] y;
-    begin
-      y = x ^ (x << 13);
-      y = y ^ (y >> 17);
-      xs32 = y ^ (y << 5);
-    end
-  endfunction
-
-  task fail_exit;
-    begin
-`ifdef __ICARUS__
-      $finish_and_return(1);
-`else
-      $stop;
-`endif
-    end
-  endtask
+  `include "tb_common.vh"  // xs32 (xorshift32), fail_exit
 
   // Checks one colour taken at this edge with `adv_at` advancing edges counted.
   task take_result;
