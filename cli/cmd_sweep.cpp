@@ -1,6 +1,7 @@
 // shadecore sweep — exhaustive error sweep of a variant over n × every input code.
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <memory>
@@ -10,6 +11,7 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include <fmt/core.h>
 #include <fmt/format.h>
@@ -20,6 +22,7 @@
 #include "output.hpp"
 #include "progress.hpp"
 #include "shadecore/configs.hpp"
+#include "shadecore/cs16_forms.hpp"
 #include "shadecore/golden.hpp"
 #include "shadecore/schlick.hpp"
 #include "shadecore/sweep.hpp"
@@ -48,6 +51,7 @@ struct SweepArgs {
   bool compare_cutoffs = false;
   bool cutoff_given = false, guard_given = false;  // cs16-only options given explicitly
   bool energy = false;
+  bool bases = false, n_given = false;
 };
 
 // A published claim and how it is checked.
@@ -217,7 +221,87 @@ nlohmann::json print_energy(const SweepArgs& a, const SweepOptions& opt) {
   return {{"rows", rows}, {"e1_ratio", {r1lo, r1hi}}, {"e2_ratio", {r2lo, r2hi}}};
 }
 
+// --bases: a cs16 form's squarings (S1..S5) on every x0 = base in [0, 2^(F+4)]. After the cut the output
+// depends on x0 alone, so this covers every fragment of every n (docs/spec.md §3.4) in 2^(F+4) + 1
+// evaluations: the contract check of the wide width (F = 24: 2.7·10^8) without the 10^9-code sweep.
+void run_bases(const SweepArgs& a) {
+  const SquarerForm* form = is_form(a.variant) ? squarer_form(parse_variant(a.variant)) : nullptr;
+  if (!form) {
+    std::string names;
+    for (const auto& s : kSquarerForms) names += (names.empty() ? "" : ", ") + std::string(variant_name(s.id));
+    throw std::invalid_argument("--bases applies to the cs16 forms only (" + names + "), not to '" + a.variant + "'");
+  }
+  if (a.n_given || a.cutoff_given || a.energy || a.compare_cutoffs || !a.csv_path.empty() || !a.plots_dir.empty())
+    throw std::invalid_argument("--bases takes no --n, --cutoff, --energy, --compare-cutoffs, --csv or --plots "
+                                "(every base of every n, both cut-offs)");
+  const Format f = resolve_format(a);
+  const Cs16Stages st = cs16_stages(f, *form);
+  const Cs16Contract c = cs16_contract(form->contract, f);
+  io::OutputSet outs;
+  const int json_out = a.json_path.empty() ? -1 : outs.file("--json", a.json_path);
+
+  const uint64_t top = uint64_t{1} << (f.frac + 4), total = top + 1, chunk = uint64_t{1} << 16;
+  const int threads = cliargs::resolve_parallel(a.threads);
+  struct Ext {
+    double lo = 1e300, hi = -1e300;
+    uint64_t lo_x = 0, hi_x = 0;
+  };
+  std::vector<Ext> ext(threads);
+  std::atomic<uint64_t> next{0};
+  io::Progress bar(total, a.progress.enabled());
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t)
+    pool.emplace_back([&, t] {
+      Ext e;
+      for (uint64_t b; (b = next.fetch_add(chunk)) < total;) {
+        const uint64_t end = std::min(total, b + chunk);
+        for (uint64_t x0 = b; x0 < end; ++x0) {
+          const long double y = powl(static_cast<long double>(x0) / top, 16) * static_cast<long double>(f.one());
+          const double err = double(static_cast<long double>(cs16f_squarings(f, st, x0)) - y);
+          if (err < e.lo) e = Ext{err, e.hi, x0, e.hi_x};
+          if (err > e.hi) e = Ext{e.lo, err, e.lo_x, x0};
+        }
+        bar.add(end - b);
+      }
+      ext[t] = e;
+    });
+  for (auto& th : pool) th.join();
+  bar.stop();
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  Ext e;
+  for (const auto& x : ext) {
+    if (x.lo < e.lo || (x.lo == e.lo && x.lo_x < e.lo_x)) { e.lo = x.lo; e.lo_x = x.lo_x; }
+    if (x.hi > e.hi || (x.hi == e.hi && x.hi_x < e.hi_x)) { e.hi = x.hi; e.hi_x = x.hi_x; }
+  }
+  const bool met = (c.lo_strict ? e.lo > c.lo : e.lo >= c.lo) && e.hi <= c.hi;
+  fmt::print("shadecore sweep --bases  variant={} F={} G={}  x0 = 0..2^{} ({} values, every fragment of every n)\n",
+             a.variant, f.frac, f.guard, f.frac + 4, total);
+  fmt::print("{} evaluations in {:.3f} s on {} threads\n", total, secs, threads);
+  fmt::print("quantisation  out − (x0/2^{})^16·2^{}:  max {:.5f} ulp at x0 = {}   min {:.5f} ulp at x0 = {}\n", f.frac + 4,
+             f.frac, e.hi, e.hi_x, e.lo, e.lo_x);
+  fmt::print("Contract '{}': {:.5f} {} quant <= {:.5f} ulp; measured [{:.5f}, {:.5f}] → {}\n", form->contract, c.lo,
+             c.lo_strict ? "<" : "<=", c.hi, e.lo, e.hi, met ? "MET" : "VIOLATED");
+  if (json_out >= 0) {
+    nlohmann::json j;
+    j["variant"] = a.variant;
+    j["mode"] = "bases";
+    j["format"] = {{"frac", f.frac}, {"guard", f.guard}};
+    j["evaluations"] = total;
+    j["seconds"] = secs;
+    j["threads"] = threads;
+    j["quant_ulp"] = {{"max", {{"value", e.hi}, {"x0", e.hi_x}}}, {"min", {{"value", e.lo}, {"x0", e.lo_x}}}};
+    j["contract"] = {{"name", form->contract}, {"lo", c.lo}, {"lo_strict", c.lo_strict}, {"hi", c.hi}, {"met", met}};
+    outs.set(json_out, j.dump(2) + "\n");
+  }
+  outs.commit();
+}
+
 void run(const SweepArgs& a) {
+  if (a.bases) {
+    run_bases(a);
+    return;
+  }
   SweepOptions opt;
   opt.variant = a.variant;
   bool known = false;
@@ -387,7 +471,7 @@ void add_sweep(CLI::App& app) {
       ->check(cliargs::NonEmpty("config name"));
   auto* frac_opt = sub->add_option("--frac", args->frac, "Fraction bits F (8..24), overrides --config");
   auto* guard_opt = sub->add_option("--guard", args->guard, "Guard bits G (4..8, F+G <= 31), overrides --config");
-  sub->add_option("--n", args->n_range, "Exponent range LO..HI or N (within 16..1024)");
+  auto* n_opt = sub->add_option("--n", args->n_range, "Exponent range LO..HI or N (within 16..1024)");
   sub->add_option("--threads", args->threads, "Worker threads (0 = all cores; at most 64)")
       ->check(cliargs::Int(0, cliargs::kMaxParallel));
   sub->add_option("--json", args->json_path, "Write the summary as JSON")->check(cliargs::NonEmpty("path"));
@@ -397,7 +481,10 @@ void add_sweep(CLI::App& app) {
   args->progress.add(sub);
   sub->add_flag("--energy", args->energy, "Also print the lobe energy relative to cos^n per n (docs/schlick.md)");
   sub->add_flag("--compare-cutoffs", args->compare_cutoffs, "Also count outputs where theta_cr and sign_clamp differ");
-  sub->callback([args, cutoff_opt, frac_opt, guard_opt] {
+  sub->add_flag("--bases", args->bases,
+                "cs16 forms: check the contract on every base x0 in [0, 2^(F+4)] instead (covers every fragment of every n)");
+  sub->callback([args, cutoff_opt, frac_opt, guard_opt, n_opt] {
+    args->n_given = n_opt->count() > 0;
     args->cutoff_given = cutoff_opt->count() > 0;
     args->frac_given = frac_opt->count() > 0;
     args->guard_given = guard_opt->count() > 0;

@@ -23,6 +23,7 @@
 #include "../sim/tb_light_stimulus.hpp"
 #include "handoff_bundle.hpp"
 #include "output.hpp"
+#include "shadecore/cs16_forms.hpp"
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
 #include "shadecore/light_ops.hpp"
@@ -265,6 +266,19 @@ std::string unit_contract(const FeatureSet& fs) {
     case VariantId::schlick_nr:
       s = fmt::format("Schlick by reciprocal table + Newton–Raphson, |error| ≤ {:.4f} ulp (docs/spec.md §6.4)",
                       schlick_nr_bound_ulp(F));
+      break;
+    case VariantId::cs16_faithful:
+    case VariantId::cs16_compact: {
+      const SquarerForm* form = squarer_form(fs.variant);
+      const Cs16Contract c = cs16_contract(form->contract, fs.format());
+      s = fmt::format("{} (folded truncated squarers, '{}' contract): {:.5f} {} out − 2^F·cs16(x) ≤ {:.5f} ulp against "
+                      "the double cs16 of the same input code (docs/spec.md §3.4)",
+                      variant_name(fs.variant), form->contract, c.lo, c.lo_strict ? "<" : "≤", c.hi);
+      break;
+    }
+    case VariantId::table256:
+    case VariantId::table1024:  // rejected by the lighting core (no table-load port)
+      s = fmt::format("{}: table and interpolation (docs/spec.md §9)", variant_name(fs.variant));
       break;
   }
   if (fs.norm) s += "; then × mat_coef, rounded half up (within 1 ulp of coef·u, docs/spec.md §7.3)";

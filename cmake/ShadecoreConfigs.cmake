@@ -92,17 +92,23 @@ foreach(i RANGE ${_lastv})
   string(JSON _sq ERROR_VARIABLE _nosq GET "${_cfg_json}" variants ${i} squarer)
   if(NOT _nosq)
     string(JSON _rg GET "${_cfg_json}" variants ${i} squarer rel_guard)
-    string(JSON _keep GET "${_cfg_json}" variants ${i} squarer keep)
     string(JSON _comp GET "${_cfg_json}" variants ${i} squarer compensate)
     string(JSON _contract GET "${_cfg_json}" variants ${i} contract)
     string(JSON _nsf LENGTH "${_cfg_json}" variants ${i} squarer stage_frac)
     if(NOT _nsf EQUAL 4)
       message(FATAL_ERROR "config/configs.json: variant ${_vname}: squarer.stage_frac must have 4 entries")
     endif()
+    string(JSON _nkp LENGTH "${_cfg_json}" variants ${i} squarer keep)
+    if(NOT _nkp EQUAL 4)
+      message(FATAL_ERROR "config/configs.json: variant ${_vname}: squarer.keep must have 4 entries (one per squaring)")
+    endif()
     set(_a "")
+    set(_kp "")
     foreach(k RANGE 3)
       string(JSON _ak GET "${_cfg_json}" variants ${i} squarer stage_frac ${k})
       list(APPEND _a ${_ak})
+      string(JSON _kk GET "${_cfg_json}" variants ${i} squarer keep ${k})
+      list(APPEND _kp ${_kk})
     endforeach()
     if(_rg)
       set(_rg 1)
@@ -118,9 +124,13 @@ foreach(i RANGE ${_lastv})
     list(GET _a 1 _a2)
     list(GET _a 2 _a3)
     list(GET _a 3 _a4)
+    list(GET _kp 0 _k1)
+    list(GET _kp 1 _k2)
+    list(GET _kp 2 _k3)
+    list(GET _kp 3 _k4)
     list(APPEND SHADECORE_SQUARER_VARIANTS "${_vname}")
-    string(APPEND _sqentries "    NamedSquarer{VariantId::${_vname}, SquarerForm{${_rg} != 0, {${_a1}, ${_a2}, ${_a3}, ${_a4}}, ${_keep}, ${_comp} != 0, \"${_contract}\"}},\n")
-    string(APPEND _sqcase "      VARIANT_${_vupper}: case (field) 0: cs16_sq_param = 1; 1: cs16_sq_param = ${_rg}; 2: cs16_sq_param = ${_a1}; 3: cs16_sq_param = ${_a2}; 4: cs16_sq_param = ${_a3}; 5: cs16_sq_param = ${_a4}; 6: cs16_sq_param = ${_keep}; 7: cs16_sq_param = ${_comp}; default: cs16_sq_param = 0; endcase\n")
+    string(APPEND _sqentries "    NamedSquarer{VariantId::${_vname}, SquarerForm{${_rg} != 0, {${_a1}, ${_a2}, ${_a3}, ${_a4}}, {${_k1}, ${_k2}, ${_k3}, ${_k4}}, ${_comp} != 0, \"${_contract}\"}},\n")
+    string(APPEND _sqcase "      VARIANT_${_vupper}: case (field) 0: cs16_sq_param = 1; 1: cs16_sq_param = ${_rg}; 2: cs16_sq_param = ${_a1}; 3: cs16_sq_param = ${_a2}; 4: cs16_sq_param = ${_a3}; 5: cs16_sq_param = ${_a4}; 6: cs16_sq_param = ${_k1}; 7: cs16_sq_param = ${_k2}; 8: cs16_sq_param = ${_k3}; 9: cs16_sq_param = ${_k4}; 10: cs16_sq_param = ${_comp}; default: cs16_sq_param = 0; endcase\n")
     math(EXPR _nsq "${_nsq} + 1")
   endif()
 endforeach()
@@ -142,7 +152,7 @@ ${_ventries}}};
 struct SquarerForm {
   bool rel_guard;     // stage widths relative to F+G (true) or F (false)
   int stage_frac[4];  // x_k has B + stage_frac[k-1] fraction bits (stage 4: truncation point only)
-  int keep;           // columns kept below each truncation point: ceil(log2 N) + keep
+  int keep[4];        // columns kept below squaring k's truncation point: ceil(log2 N) + keep[k-1]
   bool compensate;    // add round(E[dropped]) and round (not floor) each stage
   std::string_view contract;  // the variant's \"contract\" (faithful | compact; docs/spec.md §3.4)
 };
@@ -165,7 +175,7 @@ file(CONFIGURE OUTPUT "${SHADECORE_RTL_INCDIR}/sc_variants.vh" CONTENT
 // Values of the VARIANT parameter of rtl/sc_specular.v (included inside the module).
 ${_vvh}
 // cs16 squaring forms (\"squarer\" in configs.json; rtl/sc_cs16.v FORM = 1, docs/spec.md §3.4): field
-// 0 FORM, 1 SQ_REL_G, 2..5 SQ_A1..SQ_A4, 6 SQ_KEEP, 7 SQ_COMP of sc_cs16 for a VARIANT (0 for others).
+// 0 FORM, 1 SQ_REL_G, 2..5 SQ_A1..SQ_A4, 6..9 SQ_K1..SQ_K4, 10 SQ_COMP of sc_cs16 for a VARIANT (0 for others).
 function integer cs16_sq_param(input integer variant, input integer field);
   begin
     cs16_sq_param = 0;

@@ -10,14 +10,19 @@
 //   CUTOFF 0 = theta_cr (cut when clamped code c < thr(n), thr from mat_thr_i)
 //          1 = sign_clamp (cut when the base <= 0; mat_thr_i ignored)          (default 0)
 //   TAGW   width of the opaque tag that travels with each fragment, >= 1       (default 8)
+//   FORM   0 = reference datapath (below); 1 = folded truncated squarers (rtl/sc_square.v) with
+//          the stage widths SQ_A1..SQ_A4 (relative to F, or F+G with SQ_REL_G = 1), kept columns
+//          SQ_K1..SQ_K4 and compensation SQ_COMP (docs/spec.md §3.4). FORM = 1 has no S0 and no S6:
+//          clamp, n·d and the cut feed S1 combinationally, S5 is the output register (latency 5).
 //
 // Ports : docs/spec.md §4 (clk_i, rst_ni synchronous active-low, AXI-Stream style valid/ready).
 //
-// Latency   : LATENCY = 7 clock cycles. A fragment presented in cycle t and accepted at the
-//             rising edge that ends cycle t is presented on out_* (out_valid_o = 1) in cycle t+7,
-//             when out_ready_i is high throughout. In general the result appears after the 7th
-//             *advancing* edge counted from the accepting edge, where an edge advances the
-//             pipeline iff (!out_valid_o || out_ready_i) before it (one global enable).
+// Latency   : LATENCY = 7 clock cycles (FORM = 0; FORM = 1: 5, below). A fragment presented in
+//             cycle t and accepted at the rising edge that ends cycle t is presented on out_*
+//             (out_valid_o = 1) in cycle t+LATENCY, when out_ready_i is high throughout. In general
+//             the result appears after the LATENCY-th *advancing* edge counted from the accepting
+//             edge, where an edge advances the pipeline iff (!out_valid_o || out_ready_i) before it
+//             (one global enable).
 // Throughput: one fragment per clock while out_ready_i is high.
 // Handshake : in_ready_o = rst_ni && (!out_valid_o || out_ready_i). The path out_ready_i ->
 //             in_ready_o is combinational (allowed by AXI-Stream: ready may depend on ready;
@@ -73,7 +78,10 @@ module sc_cs16 #(
     parameter integer SQ_A2    = 0,
     parameter integer SQ_A3    = 0,
     parameter integer SQ_A4    = 0,
-    parameter integer SQ_KEEP  = 99,
+    parameter integer SQ_K1    = 99,
+    parameter integer SQ_K2    = 99,
+    parameter integer SQ_K3    = 99,
+    parameter integer SQ_K4    = 99,
     parameter integer SQ_COMP  = 0
 ) (
     input  wire              clk_i,
@@ -126,16 +134,18 @@ module sc_cs16 #(
 
   // ---------------------------------------------------------------------------- handshake
   // One global enable: every stage moves when the output stage is empty or being taken.
-  reg  [6:0] v_q;                          // valid bit of S0..S6
-  wire       adv = !v_q[6] || out_ready_i;
+  // LATENCY register stages: S0..S6 in the reference form, S1..S5 in FORM = 1 (no S0, no S6).
+  localparam integer LATENCY = (FORM == 0) ? 7 : 5;
+  reg  [LATENCY-1:0] v_q;                  // valid bit of each stage
+  wire               adv = !v_q[LATENCY-1] || out_ready_i;
   assign in_ready_o  = rst_ni && adv;
-  assign out_valid_o = v_q[6];
+  assign out_valid_o = v_q[LATENCY-1];
 
   always @(posedge clk_i) begin
     if (!rst_ni) begin
-      v_q <= 7'd0;
+      v_q <= {LATENCY{1'b0}};
     end else if (adv) begin
-      v_q <= {v_q[5:0], in_valid_i};
+      v_q <= {v_q[LATENCY-2:0], in_valid_i};
     end
   end
 
@@ -158,12 +168,12 @@ module sc_cs16 #(
       clog2 = r;
     end
   endfunction
-  // Columns a FORM = 1 squaring drops (docs/spec.md §3.4): those more than T = clog2(N) + SQ_KEEP
-  // below the stage's truncation point 2·Win - Wout, clamped to [0, shift].
-  function integer drop_cols(input integer shift, input integer win, input integer wout);
+  // Columns a FORM = 1 squaring drops (docs/spec.md §3.4): those more than T = clog2(N) + keep
+  // (keep = SQ_Kk of squaring k) below the stage's truncation point 2·Win - Wout, clamped to [0, shift].
+  function integer drop_cols(input integer shift, input integer win, input integer wout, input integer keep);
     integer d;
     begin
-      d = 2 * win - wout - (clog2(win) + SQ_KEEP);
+      d = 2 * win - wout - (clog2(win) + keep);
       if (d < 0) d = 0;
       if (d > shift) d = shift;
       drop_cols = d;
@@ -178,7 +188,8 @@ module sc_cs16 #(
   generate
     if (FORM == 0) begin : g_ref
       // Reference form: full products x·x, one truncation per squaring (the docs/spec.md §3.2 datapath).
-      wire unused_form = &{1'b0, SQ_REL_G[0], SQ_A1[0], SQ_A2[0], SQ_A3[0], SQ_A4[0], SQ_KEEP[0], SQ_COMP[0]};
+      wire unused_form = &{1'b0, SQ_REL_G[0], SQ_A1[0], SQ_A2[0], SQ_A3[0], SQ_A4[0], SQ_K1[0], SQ_K2[0], SQ_K3[0],
+                                  SQ_K4[0], SQ_COMP[0]};
       reg [F:0]      s0_c_q, s0_d_q, s0_thr_q;
       reg [10:0]     s0_n_q;
       reg [TAGW-1:0] s0_tag_q;
@@ -272,10 +283,10 @@ module sc_cs16 #(
       localparam integer W3 = WB + SQ_A3;
       localparam integer W4 = WB + SQ_A4;   // stage 4 rounds to F; W4 only places its truncation
       localparam integer S1 = 2 * W0 - W1, S2 = 2 * W1 - W2, S3 = 2 * W2 - W3, S4 = 2 * W3 - F;
-      localparam integer D1 = drop_cols(S1, W0, W1);
-      localparam integer D2 = drop_cols(S2, W1, W2);
-      localparam integer D3 = drop_cols(S3, W2, W3);
-      localparam integer D4 = drop_cols(S4, W3, W4);
+      localparam integer D1 = drop_cols(S1, W0, W1, SQ_K1);
+      localparam integer D2 = drop_cols(S2, W1, W2, SQ_K2);
+      localparam integer D3 = drop_cols(S3, W2, W3, SQ_K3);
+      localparam integer D4 = drop_cols(S4, W3, W4, SQ_K4);
       if (SQ_REL_G != 0 && SQ_REL_G != 1) begin : g_check_rel
         sc_cs16_error_illegal_SQ_REL_G_must_be_0_or_1 u_error ();
       end
@@ -285,47 +296,40 @@ module sc_cs16 #(
       if (W1 < F || W2 < F || W3 < F || W4 < F || W1 > 40 || W2 > 40 || W3 > 40) begin : g_check_w
         sc_cs16_error_illegal_SQ_A_stage_widths_must_be_F_to_40 u_error ();
       end
-      if (SQ_KEEP < -8 || SQ_KEEP > 99) begin : g_check_keep
-        sc_cs16_error_illegal_SQ_KEEP_legal_range_is_minus_8_to_99 u_error ();
+      if (SQ_K1 < -8 || SQ_K1 > 99 || SQ_K2 < -8 || SQ_K2 > 99 ||
+          SQ_K3 < -8 || SQ_K3 > 99 || SQ_K4 < -8 || SQ_K4 > 99) begin : g_check_keep
+        sc_cs16_error_illegal_SQ_K1_to_SQ_K4_legal_range_is_minus_8_to_99 u_error ();
       end
 
-      // S0: clamp, 1 - cos, and the theta_cr test here (one flop instead of c and thr).
-      reg [F:0]      s0_d_q;
-      reg [10:0]     s0_n_q;
-      reg            s0_cthr_q;
-      reg [TAGW-1:0] s0_tag_q;
-      always @(posedge clk_i) begin
-        if (adv) begin
-          s0_d_q    <= ONE - c_d;
-          s0_n_q    <= mat_n_q;
-          s0_cthr_q <= (CUTOFF == 0) && (c_d < mat_thr_q);
-          s0_tag_q  <= in_tag_i;
-        end
-      end
-      // S1: base = 2^(F+4) - n·d, cut where base <= 0 too (both CUTOFF forms): no |base| needed.
+      // Input stage (no S0 register): clamp, d = 1 - cos, the theta_cr test and n·d from the material
+      // registers, all combinational into S1. mat_n_q/mat_thr_q are read before the accepting edge, so a
+      // fragment accepted at a material-write edge uses the old material, as in the reference form.
+      wire [F:0]    d_d    = ONE - c_d;
+      wire          cthr_d = (CUTOFF == 0) && (c_d < mat_thr_q);
+      // base = 2^(F+4) - n·d, cut where base <= 0 too (both CUTOFF forms): no |base| needed.
       wire          base_pos;                                  // n·d < 2^(F+4)  <=>  base > 0
       wire [F+4:0]  nd_lo;                                     // n·d mod 2^(F+5)
       if (CUTOFF == 0) begin : g_nd_mod
         // theta_cr: a shaded fragment has c >= thr(n) >= cos(6/sqrt(n))·2^F, so n·d <= n(1 - cos(6/sqrt(n)))·2^F
         // <= 18·2^F < 2^(F+5): n·d mod 2^(F+5) (only the low F+5 product columns are built) decides base > 0
         // exactly; a code below thr is cut whatever it gives (docs/spec.md §3.4).
-        wire [F+4:0] ndm = s0_n_q * s0_d_q;
+        wire [F+4:0] ndm = mat_n_q * d_d;
         assign base_pos = ~ndm[F+4];
         assign nd_lo    = ndm;
       end else begin : g_nd_full
-        wire [BW-1:0] nd = {{(BW-11){1'b0}}, s0_n_q} * {{(BW-F-1){1'b0}}, s0_d_q};  // < 2^(F+11)
+        wire [BW-1:0] nd = {{(BW-11){1'b0}}, mat_n_q} * {{(BW-F-1){1'b0}}, d_d};  // < 2^(F+11)
         assign base_pos = ~|nd[BW-1:F+4];
         assign nd_lo    = nd[F+4:0];
       end
       wire [F+4:0]  base     = BASE_ONE[F+4:0] - nd_lo;        // exact when base_pos
-      wire [F+4:0]  x0_d     = (base_pos && !s0_cthr_q) ? base : {(F+5){1'b0}};
+      wire [F+4:0]  x0_d     = (base_pos && !cthr_d) ? base : {(F+5){1'b0}};
       wire unused_nd = &{1'b0, BASE_ONE, HALF_G};
       reg [W0:0]     s1_x_q;
       reg [TAGW-1:0] s1_tag_q;
       always @(posedge clk_i) begin
         if (adv) begin
           s1_x_q   <= x0_d;
-          s1_tag_q <= s0_tag_q;
+          s1_tag_q <= in_tag_i;
         end
       end
       // S2..S4: x_k = x_(k-1)^2 truncated to W_k fraction bits; S5: x3^2 rounded to F bits (= output).
@@ -358,17 +362,9 @@ module sc_cs16 #(
           s5_tag_q <= s4_tag_q;
         end
       end
-      // S6: output register (keeps the reference form's latency of 7).
-      reg  [F:0]      s6_out_q;
-      reg  [TAGW-1:0] s6_tag_q;
-      always @(posedge clk_i) begin
-        if (adv) begin
-          s6_out_q <= s5_x_q;
-          s6_tag_q <= s5_tag_q;
-        end
-      end
-      assign out_spec_o = s6_out_q;
-      assign out_tag_o  = s6_tag_q;
+      // S5 is the output register (latency 5).
+      assign out_spec_o = s5_x_q;
+      assign out_tag_o  = s5_tag_q;
     end
   endgenerate
 

@@ -75,7 +75,7 @@
 //               T_F  = max(1, NEED_N ? T_A+1 : 0, SPECULAR ? T_X : 0, ANY_ATT ? NL+3+RL : 0)
 //               NB   = 3 + ANY_ATT
 //               LATENCY = T_F + (SPECULAR ? L_unit : 0) + NB,  L_unit = Unit::latency(): cs16 7,
-//                         schlick_nr 10, schlick_div / schlick_iter F+4; +2 with NORM
+//                         cs16 forms (FORM = 1) 5, schlick_nr 10, schlick_div / schlick_iter F+4; +2 with NORM
 //             Named sets (config/configs.json): full 21+9+4 = 34, diffuse 1+3 = 4,
 //             gl_default 11+7+3 = 21, phong_point 20+10+4 = 34, mono_spec 12+14+3 = 29.
 //             Under backpressure: without SPECULAR the core is one global-enable pipeline (exactly
@@ -232,7 +232,7 @@ module sc_light #(
   localparam integer SPW   = (NORM != 0) ? FRAC + 8 : FRAC + 1;           // unit output width
   localparam integer SUMW  = imax(SPW + 2, FRAC + 3) + 2;                // per-light sum
   localparam integer TOTW  = FRAC + 5;                                    // <= 9 terms of <= 2^F
-  localparam integer LAT_UNIT = ((VARIANT == VARIANT_CS16 || cs16_sq_param(VARIANT, 0) == 1) ? 7 :
+  localparam integer LAT_UNIT = ((VARIANT == VARIANT_CS16) ? 7 : (cs16_sq_param(VARIANT, 0) == 1) ? 5 :
                                  (VARIANT == VARIANT_SCHLICK_NR) ? 10 :
                                  (VARIANT == VARIANT_SCHLICK_DIV || VARIANT == VARIANT_SCHLICK_ITER) ? FRAC + 4 : 0)
                                 + ((NORM != 0) ? 2 : 0);

@@ -12,7 +12,7 @@
 //              VARIANT_SCHLICK_NR (2): rtl/sc_schlick_nr.v, latency 10, one per clock
 //              VARIANT_SCHLICK_ITER (3): rtl/sc_schlick_iter.v, latency FRAC+4, one per FRAC+4 clocks
 //              VARIANT_CS16_FAITHFUL (4), VARIANT_CS16_COMPACT (5) — every variant with a "squarer"
-//                entry: rtl/sc_cs16.v FORM = 1 with rtl/sc_square.v (docs/spec.md §3.4), latency 7,
+//                entry: rtl/sc_cs16.v FORM = 1 with rtl/sc_square.v (docs/spec.md §3.4), latency 5,
 //                one per clock; the form's constants come from sc_variants.vh (cs16_sq_param)
 //              VARIANT_TABLE256 (6), VARIANT_TABLE1024 (7): rtl/sc_table.v with 256 / 1024 entries
 //                (VARIANT_<NAME>_ENTRIES), latency 3, one per clock; the table is loaded through the
@@ -179,8 +179,11 @@ module sc_specular #(
           .SQ_A2   (cs16_sq_param(VARIANT, 3)),
           .SQ_A3   (cs16_sq_param(VARIANT, 4)),
           .SQ_A4   (cs16_sq_param(VARIANT, 5)),
-          .SQ_KEEP (cs16_sq_param(VARIANT, 6)),
-          .SQ_COMP (cs16_sq_param(VARIANT, 7))
+          .SQ_K1   (cs16_sq_param(VARIANT, 6)),
+          .SQ_K2   (cs16_sq_param(VARIANT, 7)),
+          .SQ_K3   (cs16_sq_param(VARIANT, 8)),
+          .SQ_K4   (cs16_sq_param(VARIANT, 9)),
+          .SQ_COMP (cs16_sq_param(VARIANT, 10))
       ) u_unit (
           .clk_i      (clk_i),
           .rst_ni     (rst_ni),

@@ -12,13 +12,13 @@ localparam integer VARIANT_TABLE1024 = 7;
 localparam integer VARIANT_TABLE1024_ENTRIES = 1024;
 
 // cs16 squaring forms ("squarer" in configs.json; rtl/sc_cs16.v FORM = 1, docs/spec.md §3.4): field
-// 0 FORM, 1 SQ_REL_G, 2..5 SQ_A1..SQ_A4, 6 SQ_KEEP, 7 SQ_COMP of sc_cs16 for a VARIANT (0 for others).
+// 0 FORM, 1 SQ_REL_G, 2..5 SQ_A1..SQ_A4, 6..9 SQ_K1..SQ_K4, 10 SQ_COMP of sc_cs16 for a VARIANT (0 for others).
 function integer cs16_sq_param(input integer variant, input integer field);
   begin
     cs16_sq_param = 0;
     case (variant)
-      VARIANT_CS16_FAITHFUL: case (field) 0: cs16_sq_param = 1; 1: cs16_sq_param = 1; 2: cs16_sq_param = 2; 3: cs16_sq_param = 0; 4: cs16_sq_param = -1; 5: cs16_sq_param = -1; 6: cs16_sq_param = 0; 7: cs16_sq_param = 0; default: cs16_sq_param = 0; endcase
-      VARIANT_CS16_COMPACT: case (field) 0: cs16_sq_param = 1; 1: cs16_sq_param = 0; 2: cs16_sq_param = 5; 3: cs16_sq_param = 4; 4: cs16_sq_param = 3; 5: cs16_sq_param = 2; 6: cs16_sq_param = -1; 7: cs16_sq_param = 1; default: cs16_sq_param = 0; endcase
+      VARIANT_CS16_FAITHFUL: case (field) 0: cs16_sq_param = 1; 1: cs16_sq_param = 1; 2: cs16_sq_param = 3; 3: cs16_sq_param = 0; 4: cs16_sq_param = -1; 5: cs16_sq_param = -4; 6: cs16_sq_param = -2; 7: cs16_sq_param = -2; 8: cs16_sq_param = -1; 9: cs16_sq_param = 1; 10: cs16_sq_param = 0; default: cs16_sq_param = 0; endcase
+      VARIANT_CS16_COMPACT: case (field) 0: cs16_sq_param = 1; 1: cs16_sq_param = 0; 2: cs16_sq_param = 5; 3: cs16_sq_param = 4; 4: cs16_sq_param = 3; 5: cs16_sq_param = 2; 6: cs16_sq_param = -1; 7: cs16_sq_param = -1; 8: cs16_sq_param = -1; 9: cs16_sq_param = -1; 10: cs16_sq_param = 1; default: cs16_sq_param = 0; endcase
       default: cs16_sq_param = 0;
     endcase
   end

@@ -96,7 +96,7 @@ TEST(Square, TruncatedSumIsTheKeptColumns) {
 TEST(Cs16Forms, FoldedUntruncatedFormEqualsCs16) {
   // FORM = 1 with the reference widths (rel_guard, 0,0,0,0, nothing dropped, floor) is cs16 bit for bit,
   // including cutting where base <= 0 instead of squaring |base| (the negative-base sliver gives 0).
-  const SquarerForm exact{true, {0, 0, 0, 0}, 99, false, "faithful"};
+  const SquarerForm exact{true, {0, 0, 0, 0}, {99, 99, 99, 99}, false, "faithful"};
   for (const Format f : {Format{8, 5}, Format{16, 5}, Format{24, 7}}) {
     const Cs16Stages st = cs16_stages(f, exact);
     for (int k = 1; k <= 4; ++k) ASSERT_EQ(st.sq[k].drop, 0);
@@ -128,6 +128,35 @@ TEST(Cs16Forms, ContractSampleDefault) {
   for (const auto& s : kSquarerForms) EXPECT_EQ(check_contract(s.id, f, Cutoff::ThetaCr, ns).failures, 0);
 }
 
+TEST(Cs16Forms, ContractEveryBase) {
+  // After the cut everything depends on x0 = base alone (cs16f_squarings), so the 2^(F+4) + 1 values of
+  // x0 cover every fragment of every n: the contract on all of them at F = 8 and 16 (F = 24: 2^28 values,
+  // `shadecore sweep --bases`, docs/spec.md §3.4).
+  for (const char* cfg : {"narrow", "default"}) {
+    const Format f = config_named(cfg).format;
+    for (const auto& s : kSquarerForms) {
+      const Cs16Stages st = cs16_stages(f, s.form);
+      const Cs16Contract c = cs16_contract(s.form.contract, f);
+      const uint64_t top = uint64_t{1} << (f.frac + 4);
+      double lo = 1e9, hi = -1e9;
+      int failures = 0;
+      for (uint64_t x0 = 0; x0 <= top; ++x0) {
+        const uint32_t out = cs16f_squarings(f, st, x0);
+        const double e = double(static_cast<long double>(out) -
+                                powl(static_cast<long double>(x0) / top, 16) * (uint64_t{1} << f.frac));
+        lo = std::min(lo, e);
+        hi = std::max(hi, e);
+        if (!((c.lo_strict ? e > c.lo : e >= c.lo) && e <= c.hi) && ++failures <= 5)
+          ADD_FAILURE() << variant_name(s.id) << " " << cfg << " x0=" << x0 << " out=" << out << " err=" << e;
+      }
+      EXPECT_EQ(failures, 0) << variant_name(s.id) << " " << cfg << ": " << lo << " .. " << hi;
+      EXPECT_LT(lo, -0.25) << "the check sees real errors";
+      EXPECT_EQ(cs16f_squarings(f, st, top), uint32_t(f.one())) << "1.0^16 = 1.0 exactly";
+      EXPECT_EQ(cs16f_squarings(f, st, 0), 0u);
+    }
+  }
+}
+
 TEST(Cs16Forms, StagesFollowTheRule) {
   // The stage widths of docs/spec.md §3.4 for every named width (and that they are legal there).
   for (const auto& c : kConfigs)
@@ -143,5 +172,5 @@ TEST(Cs16Forms, StagesFollowTheRule) {
         EXPECT_LT(st.sq[k].comp, u128{1} << st.sq[k].shift) << "0 must square to 0";
       }
     }
-  EXPECT_THROW(cs16_stages(Format{16, 5}, SquarerForm{false, {-1, 0, 0, 0}, 0, false, "compact"}), std::invalid_argument);
+  EXPECT_THROW(cs16_stages(Format{16, 5}, SquarerForm{false, {-1, 0, 0, 0}, {0, 0, 0, 0}, false, "compact"}), std::invalid_argument);
 }

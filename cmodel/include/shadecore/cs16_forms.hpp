@@ -5,7 +5,7 @@
 // same rule as the localparams of rtl/sc_cs16.v:
 //   B = F + (rel_guard ? G : 0);  W0 = F+4;  W_k = B + stage_frac[k-1]  (k = 1..4)
 //   shift_k = 2·W_(k-1) − W_k (k = 1..3),  shift_4 = 2·W3 − F
-//   drop_k  = clamp(2·W_(k-1) − W_k − (ceil(log2 W_(k-1)) + keep), 0, shift_k)
+//   drop_k  = clamp(2·W_(k-1) − W_k − (ceil(log2 W_(k-1)) + keep[k-1]), 0, shift_k)
 //   C_k     = square_comp(N = W_(k-1), shift_k, drop_k, rnd = compensate (k < 4) / 1 (k = 4), compensate)
 #pragma once
 
@@ -22,6 +22,10 @@
 #include "shadecore/variants.hpp"
 
 namespace shadecore {
+
+// Pipeline latency of rtl/sc_cs16.v FORM = 1: registers S1 (x0) .. S4 (x3) and S5 (out); the input stage
+// (clamp, n·d, cut) is combinational into S1 (docs/spec.md §3.4). The reference form has S0..S6 (7).
+inline constexpr int kCs16FormLatency = 5;
 
 struct Cs16Stages {
   int w[5] = {};         // fraction bits of x0..x4 (w[4]: stage 4's truncation point only)
@@ -45,13 +49,15 @@ inline Cs16Stages cs16_stages(const Format& f, const SquarerForm& form) {
     if (s.w[k] < F || (k < 4 && s.w[k] > kSquareMaxN))
       throw std::invalid_argument("cs16 squarer form: stage width W" + std::to_string(k) + " = " +
                                   std::to_string(s.w[k]) + " outside [F, 40]");
-  if (form.keep < -8 || form.keep > 99) throw std::invalid_argument("cs16 squarer form: keep outside [-8, 99]");
+  for (int k = 0; k < 4; ++k)
+    if (form.keep[k] < -8 || form.keep[k] > 99)
+      throw std::invalid_argument("cs16 squarer form: keep[" + std::to_string(k) + "] outside [-8, 99]");
   for (int k = 1; k <= 4; ++k) {
     SquareStage& q = s.sq[k];
     q.n = s.w[k - 1];
     q.shift = (k < 4) ? 2 * s.w[k - 1] - s.w[k] : 2 * s.w[3] - F;
     q.ow = (k < 4) ? s.w[k] + 1 : F + 1;
-    q.drop = std::clamp(2 * s.w[k - 1] - s.w[k] - (ceil_log2(q.n) + form.keep), 0, q.shift);
+    q.drop = std::clamp(2 * s.w[k - 1] - s.w[k] - (ceil_log2(q.n) + form.keep[k - 1]), 0, q.shift);
     q.comp = square_comp(q.n, q.shift, q.drop, k < 4 ? form.compensate : true, form.compensate);
   }
   return s;
@@ -70,6 +76,24 @@ inline Cs16Contract cs16_contract(std::string_view name, const Format& f) {
   throw std::invalid_argument("unknown cs16 contract '" + std::string(name) + "' (known: faithful, compact)");
 }
 
+// S1..S5 of a form: x0 (F+4 fraction bits, 0 <= x0 <= 2^(F+4)) squared four times; the output code.
+// Everything after the cut depends on x0 alone, so the 2^(F+4) + 1 values of x0 cover every fragment.
+inline uint32_t cs16f_squarings(const Format& f, const Cs16Stages& s, uint64_t x, Cs16Trace* tr = nullptr) {
+  if (tr) tr->x[0] = x;
+  for (int k = 1; k <= 4; ++k) {
+    // The integer bit (x = 1.0 exactly) is passed on; the squarer sees the fraction bits.
+    const int win = s.w[k - 1];
+    const uint64_t top = x >> win;
+    const uint64_t lo = x & ((uint64_t{1} << win) - 1);
+    const int wout = (k < 4) ? s.w[k] : f.frac;
+    x = (top << wout) | square_eval(s.sq[k], lo);
+    if (tr && k < 4) tr->x[k] = x;
+  }
+  const uint32_t out = static_cast<uint32_t>(x);
+  if (tr) { tr->x[4] = out; tr->out = out; }
+  return out;
+}
+
 // The per-fragment datapath of a form (Cs16Trace: x[0..3] as the RTL's S1..S4 registers, x[4] = out).
 inline uint32_t cs16f_eval(const Format& f, Cutoff cut_mode, const Cs16Stages& s, const Cs16Material& m,
                            int64_t code, Cs16Trace* tr = nullptr) {
@@ -80,20 +104,9 @@ inline uint32_t cs16f_eval(const Format& f, Cutoff cut_mode, const Cs16Stages& s
   const int64_t base = (int64_t{1} << (F + 4)) - static_cast<int64_t>(m.n) * d;
   // Cut where base <= 0 in both forms (no |base|); theta_cr also cuts c < thr.
   const bool cut = base <= 0 || (cut_mode == Cutoff::ThetaCr && c < m.thr);
-  uint64_t x = cut ? 0 : static_cast<uint64_t>(base);  // <= 2^(F+4) = 1.0
-  if (tr) { tr->c = c; tr->d = d; tr->base = base; tr->cut = cut; tr->x[0] = x; }
-  for (int k = 1; k <= 4; ++k) {
-    // The integer bit (x = 1.0 exactly) is passed on; the squarer sees the fraction bits.
-    const int win = s.w[k - 1];
-    const uint64_t top = x >> win;
-    const uint64_t lo = x & ((uint64_t{1} << win) - 1);
-    const int wout = (k < 4) ? s.w[k] : F;
-    x = (top << wout) | square_eval(s.sq[k], lo);
-    if (tr && k < 4) tr->x[k] = x;
-  }
-  const uint32_t out = static_cast<uint32_t>(x);
-  if (tr) { tr->x[4] = out; tr->out = out; }
-  return out;
+  const uint64_t x0 = cut ? 0 : static_cast<uint64_t>(base);  // <= 2^(F+4) = 1.0
+  if (tr) { tr->c = c; tr->d = d; tr->base = base; tr->cut = cut; }
+  return cs16f_squarings(f, s, x0, tr);
 }
 
 }  // namespace shadecore

@@ -100,7 +100,7 @@ class Unit {
 
   // Pipeline latency in cycles: accepted at the rising edge ending cycle t -> out_valid_o in t+latency.
   [[nodiscard]] int latency() const {
-    if (is_cs16_form()) return 7 + (norm_ ? 2 : 0);  // rtl/sc_cs16.v FORM = 1: S0..S6, as cs16
+    if (is_cs16_form()) return kCs16FormLatency + (norm_ ? 2 : 0);  // rtl/sc_cs16.v FORM = 1: S1..S5
     switch (variant_) {
       case VariantId::cs16: return 7 + (norm_ ? 2 : 0);  // rtl/sc_cs16.v: S0..S6 (+ sc_norm N1, N2)
       // Schlick units (docs/spec.md §6.5): div/iter S0, S1, Q0..Q(F+1); nr S0..S9.
