@@ -301,29 +301,41 @@ module sc_cs16 #(
         sc_cs16_error_illegal_SQ_K1_to_SQ_K4_legal_range_is_minus_8_to_99 u_error ();
       end
 
-      // Input stage (no S0 register): clamp, d = 1 - cos, the theta_cr test and n·d from the material
-      // registers, all combinational into S1. mat_n_q/mat_thr_q are read before the accepting edge, so a
-      // fragment accepted at a material-write edge uses the old material, as in the reference form.
-      wire [F:0]    d_d    = ONE - c_d;
-      wire          cthr_d = (CUTOFF == 0) && (c_d < mat_thr_q);
-      // base = 2^(F+4) - n·d, cut where base <= 0 too (both CUTOFF forms): no |base| needed.
-      wire          base_pos;                                  // n·d < 2^(F+4)  <=>  base > 0
-      wire [F+4:0]  nd_lo;                                     // n·d mod 2^(F+5)
+      // Input stage (no S0 register): everything from the input port and the material registers straight
+      // into S1. mat_n_q/mat_thr_q are read before the accepting edge, so a fragment accepted at a
+      // material-write edge uses the old material, as in the reference form. No clamp or d = 2^F - c sits
+      // in front of the multiplier (docs/spec.md §3.4): with c < 2^F the raw code's low F bits are c and
+      //   base = 2^(F+4) - n·(2^F - c) = n·c + (16 - n)·2^F,
+      // one product plus a per-material constant (one adder tree, no subtractor after it); a negative code
+      // (c = 0: base = (16 - n)·2^F <= 0) is cut and a code >= 2^F (c = 2^F) gives x0 = 1.0 exactly.
+      wire          c_neg  = in_cos_i[F+1];
+      wire          c_ge1  = !c_neg && in_cos_i[F];                 // code >= 2^F: c = 2^F
+      wire [F-1:0]  c_lo   = in_cos_i[F-1:0];                       // c when !c_neg && !c_ge1
+      wire          thr_gt1 = mat_thr_q[F] && (|mat_thr_q[F-1:0]);  // thr > 2^F (not a legal thr(n))
+      wire          cthr_lo = (CUTOFF == 0) && ({1'b0, c_lo} < mat_thr_q);
+      wire          base_pos;                                       // base >= 0 (c < 2^F)
+      wire [F+4:0]  b_lo;                                           // base mod 2^(F+5)
       if (CUTOFF == 0) begin : g_nd_mod
-        // theta_cr: a shaded fragment has c >= thr(n) >= cos(6/sqrt(n))·2^F, so n·d <= n(1 - cos(6/sqrt(n)))·2^F
-        // <= 18·2^F < 2^(F+5): n·d mod 2^(F+5) (only the low F+5 product columns are built) decides base > 0
-        // exactly; a code below thr is cut whatever it gives (docs/spec.md §3.4).
-        wire [F+4:0] ndm = mat_n_q * d_d;
-        assign base_pos = ~ndm[F+4];
-        assign nd_lo    = ndm;
+        // theta_cr: a shaded fragment has c >= thr(n) >= cos(6/sqrt(n))·2^F, so n·d <= 18·2^F and
+        // -2^(F+1) <= base < 2^(F+4): base mod 2^(F+5) (only the low F+5 columns; of (16 - n)·2^F only
+        // (16 - n) mod 32 matters) decides base > 0 exactly; a code below thr is cut whatever it gives.
+        wire [4:0]   k_hi = 5'd16 - mat_n_q[4:0];
+        wire [F+4:0] bm   = mat_n_q * c_lo + {k_hi, {F{1'b0}}};
+        assign base_pos = ~bm[F+4];  // base = 0 passes bm = 0 = x0 of a cut: no zero test needed
+        assign b_lo     = bm;
+        wire unused_n = &{1'b0, mat_n_q[10:5]};
       end else begin : g_nd_full
-        wire [BW-1:0] nd = {{(BW-11){1'b0}}, mat_n_q} * {{(BW-F-1){1'b0}}, d_d};  // < 2^(F+11)
-        assign base_pos = ~|nd[BW-1:F+4];
-        assign nd_lo    = nd[F+4:0];
+        // sign_clamp: the whole signed base (|base| < 2^(F+11)).
+        wire [12:0]   kh = 13'd16 - {2'b00, mat_n_q};                // 16 - n, two's complement
+        wire [BW-1:0] kf = {kh, {F{1'b0}}};                             // BW = F + 13
+        wire [BW-1:0] bf = {{(BW-11){1'b0}}, mat_n_q} * {{(BW-F){1'b0}}, c_lo} + kf;
+        assign base_pos = ~bf[BW-1];  // base = 0: b_lo = 0, as a cut
+        assign b_lo     = bf[F+4:0];
       end
-      wire [F+4:0]  base     = BASE_ONE[F+4:0] - nd_lo;        // exact when base_pos
-      wire [F+4:0]  x0_d     = (base_pos && !cthr_d) ? base : {(F+5){1'b0}};
-      wire unused_nd = &{1'b0, BASE_ONE, HALF_G};
+      wire [F+4:0]  x0_d = c_neg ? {(F+5){1'b0}} :
+                           c_ge1 ? ((CUTOFF == 0 && thr_gt1) ? {(F+5){1'b0}} : BASE_ONE[F+4:0]) :
+                           ((base_pos && !cthr_lo) ? b_lo : {(F+5){1'b0}});
+      wire unused_nd = &{1'b0, BASE_ONE, HALF_G, c_d};
       reg [W0:0]     s1_x_q;
       reg [TAGW-1:0] s1_tag_q;
       always @(posedge clk_i) begin
