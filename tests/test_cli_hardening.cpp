@@ -121,6 +121,9 @@ TEST(CliHardening, BadArgumentsTable) {
       {"cosim --trace /sys/x.fst", "cannot write /sys/x.fst"},
       {"cosim --trace /dev/null", "must be a regular file"},
       {"cosim --json o.json --trace o.json", "--json and --trace name the same file"},
+      {"sweep --variant cs16 --bases --frac 8", "--bases applies to the cs16 forms only"},
+      {"sweep --variant cs16_compact --bases --frac 8 --n 16", "--bases takes no --n"},
+      {"sweep --variant cs16_faithful --bases --frac 8 --json /proc/x.json", "cannot write /proc/x.json"},
   };
   for (const auto& c : cases) expect_rejected(c);
 }

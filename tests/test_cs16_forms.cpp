@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "cli_run.hpp"
 #include "shadecore/configs.hpp"
 #include "shadecore/cs16.hpp"
 #include "shadecore/cs16_forms.hpp"
@@ -173,4 +174,27 @@ TEST(Cs16Forms, StagesFollowTheRule) {
       }
     }
   EXPECT_THROW(cs16_stages(Format{16, 5}, SquarerForm{false, {-1, 0, 0, 0}, {0, 0, 0, 0}, false, "compact"}), std::invalid_argument);
+}
+
+TEST(Cs16Forms, SweepBasesCliMatchesTheModel) {
+  // `shadecore sweep --bases` prints the extremes of cs16f_squarings over every x0 and the contract verdict.
+  const Format f = config_named("narrow").format;
+  for (const auto& s : kSquarerForms) {
+    const Cs16Stages st = cs16_stages(f, s.form);
+    const uint64_t top = uint64_t{1} << (f.frac + 4);
+    double lo = 1e9, hi = -1e9;
+    for (uint64_t x0 = 0; x0 <= top; ++x0) {
+      const double e = double(static_cast<long double>(cs16f_squarings(f, st, x0)) -
+                              powl(static_cast<long double>(x0) / top, 16) * (uint64_t{1} << f.frac));
+      lo = std::min(lo, e);
+      hi = std::max(hi, e);
+    }
+    const std::string v(variant_name(s.id));
+    const auto r = shadecore::testing::run_cli("sweep --variant " + v + " --config narrow --bases --no-progress");
+    ASSERT_EQ(r.status, 0) << r.err;
+    char want[96];
+    std::snprintf(want, sizeof want, "measured [%.5f, %.5f] → MET", lo, hi);
+    EXPECT_NE(r.out.find(want), std::string::npos) << v << ": expected '" << want << "' in\n" << r.out;
+    EXPECT_NE(r.out.find(std::to_string(top + 1) + " evaluations"), std::string::npos) << r.out;
+  }
 }
