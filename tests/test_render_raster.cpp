@@ -152,7 +152,9 @@ TEST(RenderRaster, PerspectiveCorrectInterpolation) {
   // Equal w: plain (affine) barycentric interpolation; a constant attribute is reproduced exactly.
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x)
-      if (r.at(x, y) == 0) EXPECT_EQ(shadecore::raster::interpolate(r.weights(0, x, y), std::array<int64_t, 3>{777, 777, 777}), 777);
+      if (r.at(x, y) == 0) {
+        EXPECT_EQ(shadecore::raster::interpolate(r.weights(0, x, y), std::array<int64_t, 3>{777, 777, 777}), 777);
+      }
 }
 
 // Two triangles sharing an edge that crosses the near plane: both clip it at the same point, so the
