@@ -801,7 +801,7 @@ def timing_note(rows):
 
 RERUN_NOTE = (
     "## Rerunning\n\n"
-    "`scripts/cost_report.py --n-for wide=1000..1024` (build first: `scripts/build.sh`; the iCE40 tools are "
+    "`scripts/cost_report.py --n-for wide=1016..1024` (the wide sweep's n range is a choice: every n at F = 24 is 1.7·10¹⁰ evaluations; build first: `scripts/build.sh`; the iCE40 tools are "
     "installed by `scripts/setup.sh nextpnr-ice40 fpga-icestorm fpga-icestorm-chipdb`). Every result is cached in "
     "docs/tradeoffs.cache.json: synthesis and place-and-route by a hash of the elaborated design of that row, "
     "sweep and co-simulation also by the SHA-256 of the shadecore binary (and of the co-simulator), so a rerun "
