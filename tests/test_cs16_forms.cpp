@@ -1,6 +1,7 @@
 // cs16 forms with folded, truncated squarers (docs/spec.md §3.4; rtl/sc_square.v, rtl/sc_cs16.v FORM = 1):
-// the squarer model against x·x and against its literal column sums, the forms' contracts
-// exhaustively at F = 8 and on a sample of n at F = 16, and the folded untruncated form against cs16.
+// the squarer model against x·x and against its literal column sums, the forms' contracts on every code
+// of every n at F = 8, on a sample of n at F = 16 and on every x0 = base at F = 8 and 16, the `sweep --bases`
+// output against the model, and the folded untruncated form against cs16.
 #include <gtest/gtest.h>
 
 #include <cmath>
