@@ -10,9 +10,13 @@
 //   rtl.png          (--rtl) the image through the Verilated core, checked pixel by pixel against cmodel.png
 //   diff_rtl.png     (--rtl) white where the RTL pixel differs from the C model's
 //   contact_sheet.png  where the scene asks for one: shading modes × exact / unit / difference
+//   .shadecore-render.json  the manifest: which files of DIR this render wrote (a later render into DIR removes
+//                    the ones it does not write again, so DIR never mixes two runs)
 // Every output is computed first and written at the end through io::OutputSet (docs/cli.md: checked before the
-// run, staged, renamed into place together; a failure or an interrupt leaves nothing behind). An RTL image
-// that differs from the C model's is written and the exit status is 2.
+// run, staged, renamed into place together; a failure or an interrupt leaves nothing behind). No output may name
+// an input (the scene, an OBJ file it loads). An RTL image that differs from the C model's is written and the exit
+// status is 2.
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -22,6 +26,8 @@
 #include <condition_variable>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <memory>
 #include <mutex>
 #include <regex>
@@ -32,6 +38,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "args.hpp"
 #include "commands.hpp"
 #include "output.hpp"
 #include "png.hpp"
@@ -50,13 +57,14 @@ using json = nlohmann::ordered_json;
 
 struct RenderArgs {
   std::string scene, out, json_path, size;
-  bool rtl = false, full_core = false;
+  bool rtl = false, full_core = false, json_given = false, size_given = false;
 };
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Progress for a step that may take more than a second: nothing if it ends sooner; otherwise a line on
-// stderr (updated in place on a terminal) and its time at the end.
+// stderr (updated in place on a terminal, with the detail the step sets, e.g. "cell 3/12") and its time at
+// the end.
 class Step {
  public:
   explicit Step(std::string label) : label_(std::move(label)), t0_(Clock::now()), tty_(::isatty(STDERR_FILENO)) {
@@ -65,6 +73,10 @@ class Step {
   Step(const Step&) = delete;
   Step& operator=(const Step&) = delete;
   ~Step() { finish(); }
+  void detail(std::string d) {
+    std::lock_guard<std::mutex> lk(mu_);
+    detail_ = std::move(d);
+  }
   void finish() {
     if (!th_.joinable()) return;
     {
@@ -75,6 +87,7 @@ class Step {
     th_.join();
     if (shown_) {
       if (tty_) std::fputs("\r\033[K", stderr);
+      io::set_progress_line(false);
       std::fprintf(stderr, "render: %s: %.1f s\n", label_.c_str(), seconds_since(t0_));
       std::fflush(stderr);
     }
@@ -90,12 +103,14 @@ class Step {
       std::fflush(stderr);
       return;
     }
+    io::set_progress_line(true);
     do {
-      std::fprintf(stderr, "\rrender: %s ... %.0f s\033[K", label_.c_str(), seconds_since(t0_));
+      std::fprintf(stderr, "\rrender: %s%s%s ... %.0f s\033[K", label_.c_str(), detail_.empty() ? "" : ": ",
+                   detail_.c_str(), seconds_since(t0_));
       std::fflush(stderr);
     } while (!cv_.wait_for(lk, std::chrono::milliseconds(500), [this] { return done_; }));
   }
-  std::string label_;
+  std::string label_, detail_;
   Clock::time_point t0_;
   bool tty_;
   std::mutex mu_;
@@ -104,6 +119,22 @@ class Step {
   std::thread th_;
 };
 
+// Wall time per phase of a render (the contact sheet's cells included), printed and in --json "phases".
+struct Phases {
+  double load = 0, tessellate = 0, rasterise = 0, light = 0, rtl = 0, write = 0;
+  json to_json(double total) const {
+    return {{"load_s", load},   {"tessellate_s", tessellate}, {"rasterise_s", rasterise}, {"light_s", light},
+            {"rtl_s", rtl},     {"write_s", write},           {"total_s", total}};
+  }
+  std::string text(double total, bool rtl_run) const {
+    return fmt::format("load {:.2f} s, tessellate {:.2f} s, rasterise {:.2f} s, light {:.2f} s{}, write {:.2f} s; total {:.2f} s",
+                       load, tessellate, rasterise, light, rtl_run ? fmt::format(", RTL {:.2f} s", rtl) : std::string(),
+                       write, total);
+  }
+};
+
+std::string plural(uint64_t n, const char* one, const char* many) { return fmt::format("{} {}", n, n == 1 ? one : many); }
+
 json stats_json(const render::ErrorStats& s) {
   json j;
   j["max_lsb"] = s.max_lsb;
@@ -111,8 +142,9 @@ json stats_json(const render::ErrorStats& s) {
   j["rms"] = s.rms;
   j["psnr_db"] = std::isfinite(s.psnr_db) ? json(s.psnr_db) : json(nullptr);
   j["identical"] = s.samples > 0 && s.max_lsb == 0;
-  j["samples"] = s.samples;
-  if (s.max_x >= 0) j["max_at"] = {s.max_x, s.max_y};
+  j["pixels"] = s.pixels;
+  j["samples"] = s.samples;  // pixels × 3 channels
+  if (s.max_x >= 0) j["max_at"] = {s.max_x, s.max_y};  // [x, y]: column from the left, row from the top
   return j;
 }
 
@@ -123,6 +155,7 @@ std::string stats_text(const render::ErrorStats& s) {
 }
 
 std::pair<int, int> parse_size(const std::string& s) {
+  if (s.empty()) throw std::invalid_argument("--size: empty value (expected WxH, e.g. 64x64)");
   static const std::regex re(R"(^\s*(\d{1,5})\s*[xX]\s*(\d{1,5})\s*$)");
   std::smatch m;
   if (!std::regex_match(s, m, re)) throw std::invalid_argument("--size: malformed '" + s + "' (expected WxH, e.g. 64x64)");
@@ -186,17 +219,25 @@ struct Rendered {
   render::Frame frame;
   render::Image image;
   render::RefImage exact, unit_double;
-  double seconds = 0;
+  double light_seconds = 0;
 };
 
-Rendered render_cmodel(const scene::Scene& sc, const std::vector<scene::Mesh>& meshes, const render::Settings& st,
-                       const std::string& what) {
+// Geometry and visibility (render::prepare), then the C model and both references over every fragment.
+Rendered render_cmodel(const scene::Scene& sc, render::MeshSource& meshes, const render::Settings& st,
+                       const std::string& what, Phases& ph, bool quiet = false) {
   Rendered r;
+  {
+    std::unique_ptr<Step> step;
+    if (!quiet) step = std::make_unique<Step>(fmt::format("geometry and visibility, {}", what));
+    r.frame = render::prepare(sc, meshes, st);
+  }
+  ph.tessellate += r.frame.tessellate_seconds;
+  ph.rasterise += r.frame.rasterise_seconds;
   const auto t0 = Clock::now();
-  r.frame = render::prepare(sc, meshes, st);
   size_t frags = 0;
   for (const auto& g : r.frame.groups) frags += g.dests.size();
-  Step step(fmt::format("C model and references, {}: {} fragments", what, frags));
+  std::unique_ptr<Step> step;
+  if (!quiet) step = std::make_unique<Step>(fmt::format("C model and references, {}: {} fragments", what, frags));
   std::vector<std::vector<Colour>> cols;
   std::vector<std::vector<std::array<double, 3>>> ex, ud;
   for (const auto& g : r.frame.groups) {
@@ -207,58 +248,116 @@ Rendered render_cmodel(const scene::Scene& sc, const std::vector<scene::Mesh>& m
   r.image = render::resolve(r.frame, cols);
   r.exact = render::resolve_reference(r.frame, ex);
   r.unit_double = render::resolve_reference(r.frame, ud);
-  r.seconds = seconds_since(t0);
+  r.light_seconds = seconds_since(t0);
+  ph.light += r.light_seconds;
   return r;
+}
+
+// The manifest of a render directory: the files the last render into it wrote.
+constexpr const char* kManifest = ".shadecore-render.json";
+const std::vector<std::string> kRenderNames = {"cmodel.png", "exact.png",   "diff_exact.png",
+                                               "rtl.png",    "diff_rtl.png", "contact_sheet.png"};
+
+// Files an earlier render wrote into `dir` (from its manifest); empty if there is none or it is not ours.
+std::vector<std::string> previous_render_files(const std::string& dir) {
+  const std::string p = dir + "/" + kManifest;
+  struct stat st {};
+  if (::lstat(p.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_size > (1 << 20)) return {};
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::vector<std::string> names;
+  try {
+    const json m = json::parse(ss.str());
+    if (!m.is_object() || m.value("written_by", "") != "shadecore render" || !m.contains("files") || !m["files"].is_array())
+      return {};
+    for (const auto& f : m["files"]) {
+      if (!f.is_string()) continue;
+      const std::string n = f.get<std::string>();
+      // Names directly inside DIR only (a manifest edited to point elsewhere removes nothing elsewhere).
+      if (n.empty() || n == "." || n == ".." || n == kManifest || n.find('/') != std::string::npos ||
+          n.find('\0') != std::string::npos)
+        continue;
+      names.push_back(n);
+    }
+  } catch (const json::exception&) {
+    return {};
+  }
+  return names;
 }
 
 std::string unit_name(VariantId v) { return std::string(variant_name(v)); }
 
 void run_render(const RenderArgs& a) {
   const auto t_start = Clock::now();
+  Phases ph;
   scene::Scene sc;
   try {
     sc = scene::load_scene(a.scene);
   } catch (const scene::SceneError& e) {
     throw std::runtime_error(e.what());
   }
+  ph.load = seconds_since(t_start);
   render::Settings st;
   st.full_core = a.full_core;
-  if (!a.size.empty()) std::tie(st.width, st.height) = parse_size(a.size);
+  if (a.size_given) std::tie(st.width, st.height) = parse_size(a.size);
   const bool sheet = sc.contact_sheet.has_value();
   std::vector<std::string> names = {"cmodel.png", "exact.png", "diff_exact.png"};
-  if (a.rtl) names.insert(names.end(), {"rtl.png", "diff_rtl.png"});
+  if (a.rtl) {
+    names.emplace_back("rtl.png");
+    names.emplace_back("diff_rtl.png");
+  }
   if (sheet) names.push_back("contact_sheet.png");
   // All outputs through io::OutputSet (docs/cli.md): checked now, written together at the end; a --json inside
   // --out is one more file of that directory.
   io::OutputSet outs;
   std::string json_member;
-  if (!a.json_path.empty() && !a.out.empty()) {
+  if (a.json_given && !a.out.empty()) {
     const fsys::path jp = fsys::absolute(a.json_path).lexically_normal(), dp = fsys::absolute(a.out).lexically_normal();
     if (jp.parent_path() == dp) {
       json_member = jp.filename().string();
-      if (std::find(names.begin(), names.end(), json_member) != names.end())
-        throw std::invalid_argument("--json " + a.json_path + " is one of the images written to --out");
+      if (std::find(names.begin(), names.end(), json_member) != names.end() || json_member == kManifest)
+        throw std::invalid_argument("--json " + a.json_path + " is one of the files written to --out");
     }
   }
   std::vector<std::string> dir_names = names;
   if (!json_member.empty()) dir_names.push_back(json_member);
+  dir_names.push_back(kManifest);
   const int dir_out = outs.dir("--out", a.out, dir_names);
-  const int json_out = a.json_path.empty() || !json_member.empty() ? -1 : outs.file("--json", a.json_path);
+  const int json_out = !a.json_given || !json_member.empty() ? -1 : outs.file("--json", a.json_path);
+  // No output may overwrite an input: the scene, or an OBJ file it loads.
+  outs.check_input(a.scene, "the scene file");
+  for (const auto& o : sc.objects)
+    if (o.type == scene::ObjectType::Mesh) outs.check_input(o.file_path, "the OBJ file of " + o.where);
+  // What an earlier render left in --out and this one does not write again is removed at the end (the
+  // manifest says which files were a render's); without a manifest, files of ours are only pointed out.
+  {
+    const auto previous = previous_render_files(a.out);
+    for (const auto& n : previous)
+      if (std::find(dir_names.begin(), dir_names.end(), n) == dir_names.end()) outs.remove_at_commit(dir_out, n);
+    struct stat mst {};
+    if (previous.empty() && ::lstat((a.out + "/" + kManifest).c_str(), &mst) != 0)
+      for (const auto& n : kRenderNames)
+        if (std::find(names.begin(), names.end(), n) == names.end() && ::lstat((a.out + "/" + n).c_str(), &mst) == 0)
+          fmt::print(stderr, "render: note: {}/{} is not from this run (no manifest says which render wrote it: left as it is)\n",
+                     a.out, n);
+  }
   std::vector<std::pair<std::string, std::string>> files;  // name in --out, content
 
-  std::vector<scene::Mesh> meshes;
+  render::MeshSource meshes(sc);
   Rendered main;
   try {
-    for (const auto& o : sc.objects) meshes.push_back(scene::build_mesh(o));
-    main = render_cmodel(sc, meshes, st, "image");
+    main = render_cmodel(sc, meshes, st, "image", ph);
   } catch (const scene::SceneError& e) {
     throw std::runtime_error(e.what());
   }
   const render::Frame& fr = main.frame;
 
   // What the scene needs, and the core(s) it is rendered with.
-  fmt::print("scene {}: {}x{}, {} objects, {} lights, {} materials\n", a.scene, fr.width, fr.height, sc.objects.size(),
-             sc.lights.size(), sc.materials.size());
+  fmt::print("scene {}: {}x{}, {}, {}, {}\n", a.scene, fr.width, fr.height, plural(sc.objects.size(), "object", "objects"),
+             plural(sc.lights.size(), "light", "lights"), plural(sc.materials.size(), "material", "materials"));
+  fmt::print("geometry: {} vertices, {} faces, {} triangles drawn; {} visible triangles kept\n", fr.drawn_vertices,
+             fr.drawn_faces, fr.drawn_triangles, fr.tri_object.size());
   json features = json::array();
   uint64_t total_frags = 0;
   for (size_t g = 0; g < fr.groups.size(); ++g) {
@@ -269,7 +368,8 @@ void run_render(const RenderArgs& a) {
       mats += (mats.empty() ? "" : ", ") + sc.materials[m].name;
       mj.push_back(sc.materials[m].name);
     }
-    fmt::print("core {}/{} (unit {}; materials {}):\n", g + 1, fr.groups.size(), grp.unit_label, mats);
+    fmt::print("core {}/{} (unit {}; {} {}):\n", g + 1, fr.groups.size(), grp.unit_label,
+               grp.materials.size() == 1 ? "material" : "materials", mats);
     fmt::print("  feature set: {}\n", set_line(grp.specialised));
     if (a.full_core) {
       std::string subs;
@@ -277,8 +377,12 @@ void run_render(const RenderArgs& a) {
       fmt::print("  rendered on the full core: {}{}\n", set_line(grp.fs),
                  subs.empty() ? std::string() : " — from the scene: " + subs);
     }
-    fmt::print("  fragments: {} ({} per pixel, {} per vertex, {} per face), {} register writes\n", grp.dests.size(),
-               grp.pixels, grp.vertices, grp.faces, grp.writes);
+    fmt::print("  fragments: {} ({} per pixel, {} per vertex, {} per face), {}\n", grp.dests.size(), grp.pixels,
+               grp.vertices, grp.faces, plural(grp.writes, "register write", "register writes"));
+    const auto ge = render::error_vs(main.image, main.exact, static_cast<int>(g));
+    const auto gu = render::error_vs(main.image, main.unit_double, static_cast<int>(g));
+    fmt::print("  error over its pixels: vs exact cos^n: {}; vs the unit's own double formula: {}\n", stats_text(ge),
+               stats_text(gu));
     total_frags += grp.dests.size();
     json fj;
     fj["core"] = g;
@@ -293,29 +397,31 @@ void run_render(const RenderArgs& a) {
     fj["full_substitutions"] = grp.full_substitutions;
     fj["fragments"] = {{"total", grp.dests.size()}, {"per_pixel", grp.pixels}, {"per_vertex", grp.vertices}, {"per_face", grp.faces}};
     fj["register_writes"] = grp.writes;
-    fj["error_vs_exact"] = stats_json(render::error_vs(main.image, main.exact, static_cast<int>(g)));
-    fj["error_vs_unit_double"] = stats_json(render::error_vs(main.image, main.unit_double, static_cast<int>(g)));
+    fj["error_vs_exact"] = stats_json(ge);
+    fj["error_vs_unit_double"] = stats_json(gu);
     features.push_back(fj);
   }
   const auto err_exact = render::error_vs(main.image, main.exact);
   const auto err_unit = render::error_vs(main.image, main.unit_double);
-  fmt::print("C model: {:.2f} s; vs exact cos^n: {}; vs the unit's own double formula: {}\n", main.seconds,
-             stats_text(err_exact), stats_text(err_unit));
+  fmt::print("C model, whole image: vs exact cos^n: {}; vs the unit's own double formula: {}\n", stats_text(err_exact),
+             stats_text(err_unit));
   json images = json::array();
   images.push_back({{"name", "cmodel"}, {"file", "cmodel.png"}, {"error_vs_exact", stats_json(err_exact)},
                     {"error_vs_unit_double", stats_json(err_unit)}});
-  files.emplace_back("cmodel.png", encode_png(fr.width, fr.height, render::to_rgb8(main.image)));
-  files.emplace_back("exact.png", encode_png(fr.width, fr.height, render::to_rgb8(main.exact)));
-  files.emplace_back("diff_exact.png", encode_png(fr.width, fr.height, render::diff_rgb8(main.image, main.exact)));
+  const render::Image main_image = main.image;
+  const render::RefImage main_exact = main.exact;
+  const int img_w = fr.width, img_h = fr.height;
 
   // RTL.
   json rtl_json = nullptr;
   uint64_t bad_pixels = 0;
   bool rtl_ok = true;
+  render::Image rimg;
   if (a.rtl) {
+    const auto t_rtl = Clock::now();
     RtlTotals tot;
     const auto cols = run_rtl(fr, tot);
-    const render::Image rimg = render::resolve(fr, cols);
+    rimg = render::resolve(fr, cols);
     bad_pixels = render::mismatching_pixels(main.image, rimg);
     rtl_ok = bad_pixels == 0 && tot.ok && tot.core_mismatches == 0;
     const auto err_rtl = render::error_vs(rimg, main.exact);
@@ -333,12 +439,13 @@ void run_render(const RenderArgs& a) {
                 {"cores", tot.cores}};
     images.push_back({{"name", "rtl"}, {"file", "rtl.png"}, {"error_vs_exact", stats_json(err_rtl)},
                       {"mismatching_pixels_vs_cmodel", bad_pixels}});
-    files.emplace_back("rtl.png", encode_png(fr.width, fr.height, render::to_rgb8(rimg)));
-    files.emplace_back("diff_rtl.png", encode_png(fr.width, fr.height, render::mismatch_rgb8(main.image, rimg)));
+    ph.rtl = seconds_since(t_rtl);
   }
+  main = Rendered();  // the frame's geometry is not needed any more (the images are kept)
 
   // Contact sheet: rows = shading modes, columns = exact cos^n, then per unit its image and |unit − exact|.
   json sheet_json = nullptr;
+  Canvas sheet_canvas(1, 1, 0);
   if (sheet) {
     const auto& cs = *sc.contact_sheet;
     render::Settings cst;
@@ -357,6 +464,9 @@ void run_render(const RenderArgs& a) {
     }
     for (int c = 0; c < ncols; ++c) cv.text(row_label_w + c * (cs.cell_width + pad), pad, col_names[c], 230, 230, 230);
     json rows = json::array();
+    const int ncells = nrows * static_cast<int>(cs.units.size());
+    Step step(fmt::format("contact sheet, {} cells of {}x{}", ncells, cs.cell_width, cs.cell_height));
+    int done = 0;
     for (int r = 0; r < nrows; ++r) {
       cst.mode = cs.modes[r];
       const std::string mode_name = cs.modes[r] ? scene::to_string(*cs.modes[r]) : "scene";
@@ -366,10 +476,11 @@ void run_render(const RenderArgs& a) {
       row["mode"] = mode_name;
       json cells = json::array();
       for (size_t u = 0; u < cs.units.size(); ++u) {
+        step.detail(fmt::format("cell {}/{} ({} / {})", ++done, ncells, mode_name, unit_name(cs.units[u])));
         cst.unit = cs.units[u];
         Rendered cell;
         try {
-          cell = render_cmodel(sc, meshes, cst, "contact sheet " + mode_name + "/" + unit_name(cs.units[u]));
+          cell = render_cmodel(sc, meshes, cst, "contact sheet " + mode_name + "/" + unit_name(cs.units[u]), ph, true);
         } catch (const scene::SceneError& e) {
           throw std::runtime_error(e.what());
         }
@@ -390,37 +501,66 @@ void run_render(const RenderArgs& a) {
       row["cells"] = cells;
       rows.push_back(row);
     }
-    files.emplace_back("contact_sheet.png", encode_png(cv.width, cv.height, cv.rgb));
+    step.finish();
+    sheet_canvas = std::move(cv);
     sheet_json = {{"file", "contact_sheet.png"}, {"columns", col_names}, {"rows", rows}, {"cell", {cs.cell_width, cs.cell_height}}, {"path", "C model"}};
   }
 
-  if (!a.json_path.empty()) {
+  // Write: encode every image, then commit everything together.
+  const auto t_write = Clock::now();
+  {
+    Step step("writing the images");
+    files.emplace_back("cmodel.png", encode_png(main_image.width, main_image.height, render::to_rgb8(main_image)));
+    files.emplace_back("exact.png", encode_png(main_exact.width, main_exact.height, render::to_rgb8(main_exact)));
+    files.emplace_back("diff_exact.png",
+                       encode_png(main_image.width, main_image.height, render::diff_rgb8(main_image, main_exact)));
+    if (a.rtl) {
+      files.emplace_back("rtl.png", encode_png(rimg.width, rimg.height, render::to_rgb8(rimg)));
+      files.emplace_back("diff_rtl.png", encode_png(rimg.width, rimg.height, render::mismatch_rgb8(main_image, rimg)));
+    }
+    if (sheet) files.emplace_back("contact_sheet.png", encode_png(sheet_canvas.width, sheet_canvas.height, sheet_canvas.rgb));
+  }
+  ph.write = seconds_since(t_write);  // the commit below is a few renames
+  const double total = seconds_since(t_start);
+  if (a.json_given) {
     json j;
     j["scene"] = a.scene;
     j["command"] = command_line();
-    j["width"] = fr.width;
-    j["height"] = fr.height;
+    j["width"] = img_w;
+    j["height"] = img_h;
     j["full_core"] = a.full_core;
     j["features"] = features;
     j["fragments"] = total_frags;
     j["error_vs_exact"] = stats_json(err_exact);
     j["error_vs_unit_double"] = stats_json(err_unit);
     j["images"] = images;
-    j["cmodel"] = {{"seconds", main.seconds}};
+    j["cmodel"] = {{"seconds", ph.light}};
     j["rtl"] = rtl_json;
     j["contact_sheet"] = sheet_json;
-    j["seconds"] = seconds_since(t_start);
+    j["phases"] = ph.to_json(total);
+    j["seconds"] = total;
     if (json_out >= 0) outs.set(json_out, j.dump(2) + "\n");
     else files.emplace_back(json_member, j.dump(2) + "\n");
+  }
+  {
+    json m;
+    m["written_by"] = "shadecore render";
+    m["scene"] = a.scene;
+    m["command"] = command_line();
+    json fl = json::array();
+    for (const auto& f : files) fl.push_back(f.first);
+    m["files"] = fl;
+    files.emplace_back(kManifest, m.dump(2) + "\n");
   }
   const std::string stage = outs.stage(dir_out);
   for (const auto& [name, content] : files) write_staged(stage + "/" + name, content);
   outs.commit();
+  fmt::print("time: {}\n", ph.text(total, a.rtl));
   fmt::print("wrote {}/{{{}}}{}\n", a.out, [&] {
     std::string s;
     for (const auto& n : names) s += (s.empty() ? "" : ",") + n;
     return s;
-  }(), a.json_path.empty() ? std::string() : " and " + a.json_path);
+  }(), a.json_given ? " and " + a.json_path : std::string());
   if (!rtl_ok)  // exit status 2: the check ran and failed; the images and the JSON are its record
     throw CheckFailed(fmt::format("RTL render FAILED: {} pixels differ from the C model (images written to {})",
                                   bad_pixels, a.out));
@@ -433,13 +573,18 @@ void add_render(CLI::App& app) {
   auto* sub = app.add_subcommand("render",
                                  "render a scene through the lighting core: C model, exact reference, and with --rtl the "
                                  "Verilated core specialised to the scene (docs/scenes.md)");
-  sub->add_option("scene", args->scene, "scene file (JSON, docs/scenes.md)")->required();
-  sub->add_option("--out", args->out, "output directory (created if needed)")->required();
+  sub->add_option("scene", args->scene, "scene file (JSON, docs/scenes.md)")->required()->check(cliargs::NonEmpty("scene path"));
+  sub->add_option("--out", args->out, "output directory (created if needed)")->required()->check(cliargs::NonEmpty("path"));
   sub->add_flag("--rtl", args->rtl, "also render through the Verilated core and check it pixel by pixel");
   sub->add_flag("--full-core", args->full_core, "use the 'full' feature set instead of the derived one");
-  sub->add_option("--json", args->json_path, "write a JSON report (atomically)");
-  sub->add_option("--size", args->size, "render at WxH instead of the scene's image size (e.g. 64x64)");
-  sub->callback([args] { run_render(*args); });
+  auto* json_opt = sub->add_option("--json", args->json_path, "write a JSON report (atomically)")->check(cliargs::NonEmpty("path"));
+  auto* size_opt = sub->add_option("--size", args->size, "render at WxH instead of the scene's image size (e.g. 64x64)")
+                       ->check(cliargs::NonEmpty("size (expected WxH, e.g. 64x64)"));
+  sub->callback([args, json_opt, size_opt] {
+    args->json_given = json_opt->count() > 0;
+    args->size_given = size_opt->count() > 0;
+    run_render(*args);
+  });
 }
 
 }  // namespace shadecore::cli

@@ -19,6 +19,7 @@
 #include <limits.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/statfs.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -156,10 +157,32 @@ inline std::string temp_name(const std::string& dir, const char* what) {
 
 // A file can be created in `dir` (this catches /proc, /sys, read-only file systems and permissions,
 // even for root, before the run).
+// A kernel file system (/proc, /sys, cgroups, debugfs...) holds no files of ours, whatever errno says.
+inline const char* kernel_fs(const std::string& dir) {
+  struct statfs fs {};
+  if (::statfs(dir.c_str(), &fs) != 0) return nullptr;
+  switch (static_cast<unsigned long>(fs.f_type)) {
+    case 0x9fa0UL: return "/proc";
+    case 0x62656572UL: return "/sys";
+    case 0x27e0ebUL: case 0x63677270UL: return "a cgroup file system";
+    case 0x64626720UL: return "debugfs";
+    case 0x74726163UL: return "tracefs";
+    case 0x42494e4dUL: return "binfmt_misc";
+    case 0xcafe4a11UL: return "bpffs";
+    case 0x73636673UL: return "securityfs";
+    default: return nullptr;
+  }
+}
+
 inline void probe_create(const std::string& dir, const std::string& shown) {
   const std::string t = temp_name(dir, "probe");
   const int fd = ::open(t.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
-  if (fd < 0) throw cannot_write(shown, std::strerror(errno));
+  if (fd < 0) {
+    const int e = errno;
+    if (const char* k = kernel_fs(dir))
+      throw cannot_write(shown, std::string("is in ") + k + ", a kernel file system where no output files can be created");
+    throw cannot_write(shown, std::strerror(e));
+  }
   ::close(fd);
   ::unlink(t.c_str());
 }
@@ -175,6 +198,40 @@ inline void write_all(int fd, const std::string& data, const std::string& shown)
     }
     p += k;
     left -= static_cast<size_t>(k);
+  }
+}
+
+// The identity of a path for "two outputs name one file" and "an output names an input": device and
+// inode when it exists, else the real path of its nearest existing ancestor plus the rest of the name.
+inline std::string path_key(const std::string& p) {
+  struct stat st {};
+  if (::stat(p.c_str(), &st) == 0) return std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino);
+  std::filesystem::path rest, cur = std::filesystem::absolute(p).lexically_normal();
+  while (!cur.empty() && cur.has_relative_path() && ::stat(cur.c_str(), &st) != 0) {
+    rest = rest.empty() ? cur.filename() : cur.filename() / rest;
+    cur = cur.parent_path();
+  }
+  char buf[PATH_MAX];
+  const std::string base = ::realpath(cur.c_str(), buf) ? std::string(buf) : cur.string();
+  return (std::filesystem::path(base) / rest).lexically_normal().string();
+}
+
+// Follows a chain of symbolic links whose last target does not exist: the name to create.
+inline std::string follow_dangling(const std::string& shown) {
+  std::string p = shown;
+  for (int depth = 0;; ++depth) {
+    if (depth > 40) throw cannot_write(shown, "too many levels of symbolic links");
+    struct stat lst {};
+    if (::lstat(p.c_str(), &lst) != 0) {
+      if (errno == ENOENT) return p;
+      throw cannot_write(shown, std::strerror(errno));
+    }
+    if (!S_ISLNK(lst.st_mode)) return p;
+    char buf[PATH_MAX];
+    const ssize_t k = ::readlink(p.c_str(), buf, sizeof buf - 1);
+    if (k < 0) throw cannot_write(shown, std::strerror(errno));
+    const std::string link(buf, static_cast<size_t>(k));
+    p = !link.empty() && link[0] == '/' ? link : parent_of(p) + "/" + link;
   }
 }
 
@@ -219,21 +276,7 @@ inline Target resolve_output(const std::string& shown, bool allow_stream = true)
   }
   if (errno != ENOENT) throw cannot_write(shown, std::strerror(errno));
   // A new file, possibly behind a dangling symlink: follow the links to the name to create.
-  std::string p = shown;
-  for (int depth = 0;; ++depth) {
-    if (depth > 40) throw cannot_write(shown, "too many levels of symbolic links");
-    struct stat lst {};
-    if (::lstat(p.c_str(), &lst) != 0) {
-      if (errno == ENOENT) break;
-      throw cannot_write(shown, std::strerror(errno));
-    }
-    if (!S_ISLNK(lst.st_mode)) break;
-    char buf[PATH_MAX];
-    const ssize_t k = ::readlink(p.c_str(), buf, sizeof buf - 1);
-    if (k < 0) throw cannot_write(shown, std::strerror(errno));
-    const std::string link(buf, static_cast<size_t>(k));
-    p = !link.empty() && link[0] == '/' ? link : parent_of(p) + "/" + link;
-  }
+  const std::string p = follow_dangling(shown);
   const fs::path fp(p);
   const std::string name = fp.filename().string();
   if (name.empty() || name == "." || name == "..") throw cannot_write(shown, "not a file name");
@@ -275,17 +318,19 @@ class OutputSet {
     Out o;
     o.option = option;
     o.is_dir = true;
-    o.dir = path;
     o.names = names;
     struct stat st {};
-    if (::stat(path.c_str(), &st) == 0) {
+    // A dangling symlink is followed: its target directory is created (the link stays).
+    o.dir = ::stat(path.c_str(), &st) == 0 ? path : follow_dangling(path);
+    o.shown_dir = path;
+    if (::stat(o.dir.c_str(), &st) == 0) {
       if (!S_ISDIR(st.st_mode)) throw std::runtime_error("cannot write to directory " + path + ": not a directory");
-      probe_create(path, path + "/");
-      for (const auto& n : names) o.members.push_back(resolve_output(path + "/" + n));
+      probe_create(o.dir, path + "/");
+      for (const auto& n : names) o.members.push_back(resolve_output(o.dir + "/" + n));
     } else {
       if (errno != ENOENT) throw std::runtime_error("cannot create directory " + path + ": " + std::strerror(errno));
       // The nearest existing ancestor must be a directory where we can create one.
-      std::string anc = path;
+      std::string anc = o.dir;
       for (;;) {
         anc = parent_of(anc);
         if (::stat(anc.c_str(), &st) == 0) break;
@@ -293,20 +338,46 @@ class OutputSet {
       }
       if (!S_ISDIR(st.st_mode)) throw std::runtime_error("cannot create directory " + path + ": " + anc + " is not a directory");
       const std::string t = temp_name(anc, "probe");
-      if (::mkdir(t.c_str(), 0700) != 0) throw std::runtime_error("cannot create directory " + path + ": " + std::strerror(errno));
+      if (::mkdir(t.c_str(), 0700) != 0) {
+        const int e = errno;
+        if (const char* k = kernel_fs(anc))
+          throw std::runtime_error("cannot create directory " + path + ": " + anc + " is in " + k +
+                                   ", a kernel file system where no output can be created");
+        throw std::runtime_error("cannot create directory " + path + ": " + std::strerror(e));
+      }
       ::rmdir(t.c_str());
       for (const auto& n : names) {
         Target m;
         m.shown = path + "/" + n;
-        m.path = m.shown;
-        m.key = std::filesystem::absolute(m.shown).lexically_normal().string();
+        m.path = o.dir + "/" + n;
+        m.key = path_key(m.path);
         o.members.push_back(m);
       }
     }
+    Target self;  // the directory itself: no file output may name it
+    self.shown = path;
+    self.key = path_key(o.dir);
+    add_key(self, option);
     for (const auto& m : o.members) add_key(m, option);
     outs_.push_back(std::move(o));
     return static_cast<int>(outs_.size()) - 1;
   }
+
+  // An input of the run (the scene, a mesh it loads): no output may name it. `what` says what it is
+  // ("the scene file"). Throws std::invalid_argument before anything runs.
+  void check_input(const std::string& path, const std::string& what) const {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return;  // not there: nothing to overwrite
+    const std::string key = std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino);
+    for (const auto& k : keys_)
+      if (k.key == key && !S_ISCHR(st.st_mode))
+        throw std::invalid_argument(k.option + " " + k.shown + " is " + what + " " + path +
+                                    ": an output must not overwrite an input");
+  }
+
+  // A file inside directory output `id` that an earlier run wrote and this one does not (render's
+  // manifest): removed at commit(), after everything else is in place, if it is still a regular file.
+  void remove_at_commit(int id, const std::string& name) { outs_.at(id).stale.push_back(name); }
 
   // The content of a file output, written at commit().
   void set(int id, std::string content) {
@@ -384,16 +455,29 @@ class OutputSet {
             if (::access((o.staging + "/" + n).c_str(), F_OK) != 0)
               throw std::runtime_error("cannot write " + o.dir + "/" + n + ": it was not produced");
       }
-      for (Out& o : outs_)
+      // Devices and FIFOs first (a full disk behind /dev/full, a reader that went away): they are the
+      // outputs that can still fail, so they fail before any regular file has been replaced.
+      for (Out& o : outs_) {
         if (!o.is_dir && o.target.stream && o.has_content) write_stream(o.target, o.content);
+        if (o.is_dir && !o.staging.empty())
+          for (size_t i = 0; i < o.names.size(); ++i)
+            if (o.members[i].stream) install(o.staging + "/" + o.names[i], o.members[i]);
+      }
       for (Out& o : outs_) {
         if (!o.temp.empty()) install(o.temp, o.target);
         if (!o.produced.empty()) install(o.produced, o.target);
         if (o.is_dir && !o.staging.empty()) {
-          for (size_t i = 0; i < o.names.size(); ++i) install(o.staging + "/" + o.names[i], o.members[i]);
+          for (size_t i = 0; i < o.names.size(); ++i)
+            if (!o.members[i].stream) install(o.staging + "/" + o.names[i], o.members[i]);
           ::rmdir(o.staging.c_str());
         }
       }
+      for (Out& o : outs_)
+        for (const auto& n : o.stale) {
+          const std::string p = o.dir + "/" + n;
+          struct stat lst {};
+          if (::lstat(p.c_str(), &lst) == 0 && S_ISREG(lst.st_mode)) ::unlink(p.c_str());
+        }
     } catch (...) {
       rollback();
       throw;
@@ -431,8 +515,8 @@ class OutputSet {
     std::string option;
     Target target;
     bool is_dir = false;
-    std::string dir, staging;
-    std::vector<std::string> names;
+    std::string dir, shown_dir, staging;
+    std::vector<std::string> names, stale;
     std::vector<Target> members;
     std::string content;
     bool has_content = false;
@@ -445,7 +529,7 @@ class OutputSet {
     for (const auto& k : keys_)
       if (k.key == t.key && !(k.chr && t.chr))
         throw std::invalid_argument(k.option + " and " + option + " name the same file " + t.shown);
-    keys_.push_back({t.key, option, t.chr});
+    keys_.push_back({t.key, option, t.shown, t.chr});
   }
 
   static void write_stream(const Target& t, const std::string& content) {
@@ -515,7 +599,7 @@ class OutputSet {
   }
 
   struct Key {
-    std::string key, option;
+    std::string key, option, shown;
     bool chr;
   };
   std::vector<Out> outs_;

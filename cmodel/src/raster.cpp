@@ -169,6 +169,23 @@ int Rasterizer::raster(const ScreenTri& t, int index) {
   return covered;
 }
 
+void Rasterizer::compact() {
+  std::vector<int32_t> remap(tris_.size(), -1);
+  for (int32_t id : id_)
+    if (id >= 0) remap[static_cast<size_t>(id)] = 0;
+  size_t k = 0;
+  for (size_t i = 0; i < tris_.size(); ++i) {
+    if (remap[i] < 0) continue;
+    remap[i] = static_cast<int32_t>(k);
+    if (k != i) tris_[k] = tris_[i];
+    ++k;
+  }
+  tris_.resize(k);
+  tris_.shrink_to_fit();
+  for (int32_t& id : id_)
+    if (id >= 0) id = remap[static_cast<size_t>(id)];
+}
+
 Weights Rasterizer::weights(int ti, int x, int y) const {
   const ScreenTri& t = tris_.at(static_cast<size_t>(ti));
   const int64_t half = int64_t{1} << (kSubBits - 1), one = int64_t{1} << kSubBits;

@@ -3,6 +3,7 @@
 #include "shadecore/render.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -315,9 +316,40 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
   return d;
 }
 
+// ---- meshes ------------------------------------------------------------------------------------------
+
+MeshSource::MeshSource(const Scene& sc, size_t keep_bytes) : sc_(&sc), keep_bytes_(keep_bytes), kept_(sc.objects.size()) {}
+MeshSource::MeshSource(const std::vector<scene::Mesh>& given) : given_(&given) {}
+
+size_t MeshSource::bytes(const scene::Mesh& m) {
+  size_t b = sizeof(m) + (m.pos.capacity() + m.nrm.capacity()) * sizeof(Vec3) + m.faces.capacity() * sizeof(m.faces[0]);
+  for (const auto& f : m.faces) b += f.capacity() * sizeof(int) + 16;  // + the allocator's header
+  return b;
+}
+
+std::shared_ptr<const scene::Mesh> MeshSource::get(int object) {
+  if (given_) return std::shared_ptr<const scene::Mesh>(std::shared_ptr<void>(), &given_->at(static_cast<size_t>(object)));
+  auto& slot = kept_.at(static_cast<size_t>(object));
+  if (slot) return slot;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto m = std::make_shared<const scene::Mesh>(scene::build_mesh(sc_->objects[static_cast<size_t>(object)]));
+  build_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const size_t b = bytes(*m);
+  if (kept_bytes_ + b <= keep_bytes_) {
+    kept_bytes_ += b;
+    slot = m;
+  }
+  return m;
+}
+
 // ---- prepare ----------------------------------------------------------------------------------------
 
 Frame prepare(const Scene& sc, const std::vector<scene::Mesh>& meshes, const Settings& s) {
+  MeshSource src(meshes);
+  return prepare(sc, src, s);
+}
+
+Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
   Frame fr;
   fr.scene = &sc;
   fr.width = s.width > 0 ? s.width : sc.width;
@@ -342,35 +374,38 @@ Frame prepare(const Scene& sc, const std::vector<scene::Mesh>& meshes, const Set
   }
   for (int c = 0; c < 3; ++c) fr.background[c] = colour_code(F, sc.background[c]);
 
-  // Geometry in eye space, codes for the core, clip coordinates for the rasteriser.
+  // Geometry, one object at a time: eye space, codes for the core, clip coordinates, and straight into the
+  // rasteriser; after each object the triangles no pixel shows are dropped, with the vertices and faces only
+  // they used (the survivors keep their drawing order, so the command streams are those of drawing
+  // everything first). Peak memory: the image, the survivors (at most a few per pixel) and one object.
   std::vector<bool> needs_normalize(sc.materials.size(), false);
-  std::vector<raster::ClipVertex> clip;
-  std::vector<int> face_object;
+  fr.raster = raster::Rasterizer(fr.width, fr.height, cam.near);
+  const size_t compact_at = std::max<size_t>(size_t{1} << 16, 4 * static_cast<size_t>(fr.width) * fr.height);
+  const double build0 = meshes.build_seconds();
+  const auto t_geom = std::chrono::steady_clock::now();
+  struct Pending {
+    uint32_t face;
+    std::array<uint32_t, 3> v;  // object-local vertex indices
+  };
+  std::vector<Pending> pending;
   for (int oi : drawn) {
     const auto& o = sc.objects[oi];
-    const auto& mesh = meshes.at(oi);
+    const std::shared_ptr<const scene::Mesh> mesh_ptr = meshes.get(oi);
+    const scene::Mesh& mesh = *mesh_ptr;
     const Mat4 mv = mul(view, model_matrix(o.transform));
     const auto nmat = normal_matrix(mv);
-    const uint32_t base = static_cast<uint32_t>(fr.vertex_frag.size());
     bool fixed = true;
     std::vector<Vec3> eye(mesh.pos.size());
-    for (size_t v = 0; v < mesh.pos.size(); ++v) {
-      const auto pe4 = apply(mv, {mesh.pos[v][0], mesh.pos[v][1], mesh.pos[v][2], 1.0});
-      const Vec3 pe{pe4[0], pe4[1], pe4[2]};
-      if (!pos_in_range(pe))
-        throw SceneError(sc.file + ": " + o.where + ": vertex " + std::to_string(v) + " at eye-space " + fmt3(pe) +
-                         " is outside the core's position range [-128, 128)");
-      eye[v] = pe;
+    std::vector<raster::ClipVertex> clip(mesh.pos.size());
+    auto vertex_fragment = [&](size_t v) {
       const Vec3 ne = unit(apply3(nmat, mesh.nrm[v]));
       Fragment f;
       const auto nc = normal_code(F, ne, &fixed);
-      const Fragment pf = make_fragment(F, ne.data(), pe.data());
+      const Fragment pf = make_fragment(F, ne.data(), eye[v].data());
       for (int i = 0; i < 3; ++i) f.n[i] = nc[i], f.p[i] = pf.p[i];
-      fr.vertex_frag.push_back(f);
-      const auto c4 = apply(proj, {pe[0], pe[1], pe[2], 1.0});
-      clip.push_back({c4[0], c4[1], c4[2], c4[3]});
-    }
-    for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
+      return f;
+    };
+    auto face_fragment = [&](size_t fi) {
       const auto& face = mesh.faces[fi];
       const Vec3 fn = unit(apply3(nmat, scene::polygon_normal(mesh.pos, face)));
       Vec3 cen{0, 0, 0};
@@ -380,20 +415,115 @@ Frame prepare(const Scene& sc, const std::vector<scene::Mesh>& meshes, const Set
       const auto nc = normal_code(F, fn, &fixed);
       const Fragment pf = make_fragment(F, fn.data(), cen.data());
       for (int i = 0; i < 3; ++i) f.n[i] = nc[i], f.p[i] = pf.p[i];
-      const int face_id = static_cast<int>(fr.face_frag.size());
-      fr.face_frag.push_back(f);
-      face_object.push_back(oi);
+      return f;
+    };
+    for (size_t v = 0; v < mesh.pos.size(); ++v) {
+      const auto pe4 = apply(mv, {mesh.pos[v][0], mesh.pos[v][1], mesh.pos[v][2], 1.0});
+      const Vec3 pe{pe4[0], pe4[1], pe4[2]};
+      if (!pos_in_range(pe))
+        throw SceneError(sc.file + ": " + o.where + ": vertex " + std::to_string(v) + " at eye-space " + fmt3(pe) +
+                         " is outside the core's position range [-128, 128)");
+      eye[v] = pe;
+      (void)vertex_fragment(v);  // every normal is checked to be a fixed point of the normaliser
+      const auto c4 = apply(proj, {pe[0], pe[1], pe[2], 1.0});
+      clip[v] = {c4[0], c4[1], c4[2], c4[3]};
+    }
+    const uint32_t src_base = static_cast<uint32_t>(fr.tri_object.size());
+    pending.clear();
+    for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
+      const auto& face = mesh.faces[fi];
+      (void)face_fragment(fi);
       for (size_t k = 1; k + 1 < face.size(); ++k) {
-        fr.tri_object.push_back(oi);
-        fr.tri_face.push_back(face_id);
-        fr.tri_vertices.push_back({base + static_cast<uint32_t>(face[0]), base + static_cast<uint32_t>(face[k]),
-                                   base + static_cast<uint32_t>(face[k + 1])});
+        const std::array<uint32_t, 3> tv{static_cast<uint32_t>(face[0]), static_cast<uint32_t>(face[k]),
+                                         static_cast<uint32_t>(face[k + 1])};
+        pending.push_back({static_cast<uint32_t>(fi), tv});
+        fr.raster.draw(static_cast<int>(src_base + pending.size() - 1), {clip[tv[0]], clip[tv[1]], clip[tv[2]]});
+        if (fr.raster.tris().size() > compact_at) fr.raster.compact();
       }
     }
+    fr.drawn_vertices += mesh.pos.size();
+    fr.drawn_faces += mesh.faces.size();
+    fr.drawn_triangles += pending.size();
     // Phong interpolates normals (not unit between vertices); a host normal that is not a fixed point of
     // the normaliser (never seen, but checked) also keeps GL_NORMALIZE on, so the full core agrees.
     if (fr.object_shading[oi] == Shading::Phong || !fixed) needs_normalize[o.material] = true;
+
+    // Keep what some pixel shows: triangles (earlier objects' and this one's), then their vertices and faces.
+    fr.raster.compact();
+    std::vector<char> tri_live(src_base + pending.size(), 0);
+    for (const auto& st : fr.raster.tris()) tri_live[static_cast<size_t>(st.source)] = 1;
+    std::vector<char> old_vert_live(fr.vertex_frag.size(), 0), old_face_live(fr.face_frag.size(), 0);
+    std::vector<char> new_vert_live(mesh.pos.size(), 0), new_face_live(mesh.faces.size(), 0);
+    for (uint32_t t = 0; t < src_base; ++t)
+      if (tri_live[t]) {
+        for (uint32_t v : fr.tri_vertices[t]) old_vert_live[v] = 1;
+        old_face_live[fr.tri_face[t]] = 1;
+      }
+    for (size_t t = 0; t < pending.size(); ++t)
+      if (tri_live[src_base + t]) {
+        for (uint32_t v : pending[t].v) new_vert_live[v] = 1;
+        new_face_live[pending[t].face] = 1;
+      }
+    auto keep = [](auto& vec, const std::vector<char>& live, std::vector<uint32_t>& remap) {
+      remap.assign(live.size(), ~0u);
+      size_t k = 0;
+      for (size_t i = 0; i < live.size(); ++i)
+        if (live[i]) {
+          remap[i] = static_cast<uint32_t>(k);
+          if (k != i) vec[k] = vec[i];
+          ++k;
+        }
+      vec.resize(k);
+    };
+    std::vector<uint32_t> vmap, fmap, tmap, nvmap(mesh.pos.size(), ~0u), nfmap(mesh.faces.size(), ~0u);
+    keep(fr.vertex_frag, old_vert_live, vmap);
+    {
+      std::vector<uint32_t> unused;
+      keep(fr.vertex_object, old_vert_live, unused);
+    }
+    keep(fr.face_frag, old_face_live, fmap);
+    {
+      std::vector<uint32_t> unused;
+      keep(fr.face_object, old_face_live, unused);
+    }
+    for (size_t v = 0; v < mesh.pos.size(); ++v)
+      if (new_vert_live[v]) {
+        nvmap[v] = static_cast<uint32_t>(fr.vertex_frag.size());
+        fr.vertex_frag.push_back(vertex_fragment(v));
+        fr.vertex_object.push_back(oi);
+      }
+    for (size_t fi = 0; fi < mesh.faces.size(); ++fi)
+      if (new_face_live[fi]) {
+        nfmap[fi] = static_cast<uint32_t>(fr.face_frag.size());
+        fr.face_frag.push_back(face_fragment(fi));
+        fr.face_object.push_back(oi);
+      }
+    tmap.assign(tri_live.size(), ~0u);
+    size_t k = 0;
+    for (uint32_t t = 0; t < src_base; ++t)
+      if (tri_live[t]) {
+        tmap[t] = static_cast<uint32_t>(k);
+        fr.tri_object[k] = fr.tri_object[t];
+        fr.tri_face[k] = static_cast<int>(fmap[fr.tri_face[t]]);
+        for (int q = 0; q < 3; ++q) fr.tri_vertices[k][q] = vmap[fr.tri_vertices[t][q]];
+        ++k;
+      }
+    fr.tri_object.resize(k);
+    fr.tri_face.resize(k);
+    fr.tri_vertices.resize(k);
+    for (size_t t = 0; t < pending.size(); ++t)
+      if (tri_live[src_base + t]) {
+        tmap[src_base + t] = static_cast<uint32_t>(fr.tri_object.size());
+        fr.tri_object.push_back(oi);
+        fr.tri_face.push_back(static_cast<int>(nfmap[pending[t].face]));
+        fr.tri_vertices.push_back({nvmap[pending[t].v[0]], nvmap[pending[t].v[1]], nvmap[pending[t].v[2]]});
+      }
+    fr.raster.relabel([&](int src) { return static_cast<int>(tmap[static_cast<size_t>(src)]); });
   }
+  pending = {};
+  fr.tessellate_seconds = meshes.build_seconds() - build0;
+  fr.rasterise_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_geom).count() - fr.tessellate_seconds;
 
   // Lights in eye space (glLight with the view matrix on the modelview stack).
   for (size_t j = 0; j < sc.lights.size(); ++j) {
@@ -411,12 +541,7 @@ Frame prepare(const Scene& sc, const std::vector<scene::Mesh>& meshes, const Set
   fr.groups = d.groups;
   for (int oi : drawn) fr.object_group[oi] = d.group_of_material[sc.objects[oi].material];
 
-  // Visibility.
-  fr.raster = raster::Rasterizer(fr.width, fr.height, cam.near);
-  for (size_t t = 0; t < fr.tri_vertices.size(); ++t) {
-    const auto& tv = fr.tri_vertices[t];
-    fr.raster.draw(static_cast<int>(t), {clip[tv[0]], clip[tv[1]], clip[tv[2]]});
-  }
+  // Visibility: what each pixel shows, per material.
   const size_t nmat = sc.materials.size();
   std::vector<std::vector<uint32_t>> mat_faces(nmat), mat_verts(nmat), mat_pixels(nmat);
   std::vector<char> face_vis(fr.face_frag.size(), 0), vert_need(fr.vertex_frag.size(), 0);
@@ -437,13 +562,9 @@ Frame prepare(const Scene& sc, const std::vector<scene::Mesh>& meshes, const Set
       }
     }
   for (size_t f = 0; f < face_vis.size(); ++f)
-    if (face_vis[f]) mat_faces[sc.objects[face_object[f]].material].push_back(static_cast<uint32_t>(f));
-  {
-    size_t v = 0;
-    for (int oi : drawn)
-      for (size_t k = 0; k < meshes.at(oi).pos.size(); ++k, ++v)
-        if (vert_need[v]) mat_verts[sc.objects[oi].material].push_back(static_cast<uint32_t>(v));
-  }
+    if (face_vis[f]) mat_faces[sc.objects[fr.face_object[f]].material].push_back(static_cast<uint32_t>(f));
+  for (size_t v = 0; v < vert_need.size(); ++v)
+    if (vert_need[v]) mat_verts[sc.objects[fr.vertex_object[v]].material].push_back(static_cast<uint32_t>(v));
 
   // Command streams.
   for (auto& g : fr.groups) {
@@ -697,6 +818,7 @@ ErrorStats error_vs(const Image& img, const RefImage& ref, int group) {
     for (int x = 0; x < img.width; ++x) {
       const size_t p = static_cast<size_t>(y) * img.width + x;
       if (!img.covered[p] || (group >= 0 && img.group[p] != group)) continue;
+      ++s.pixels;
       for (int c = 0; c < 3; ++c) {
         const double e = std::abs(static_cast<double>(img.code[p * 3 + c]) - scale * ref.value[p * 3 + c]);
         if (e > s.max_lsb) s.max_lsb = e, s.max_x = x, s.max_y = y;

@@ -78,6 +78,17 @@ class Rasterizer {
   // pixels covered. Depth test and ids as draw().
   int draw_screen(int source, const std::array<ScreenVertex, 3>& v);
 
+  // Drops the screen triangles that no pixel shows any more (overdrawn ones) and renumbers the others,
+  // keeping their order; at() and weights() are unchanged for every pixel. Memory for tris() is then
+  // bounded by the image (at most one triangle per pixel), however many triangles were drawn.
+  void compact();
+  // Replaces the `source` id of every screen triangle by f(source) (after the caller compacted its own
+  // per-source arrays).
+  template <typename F>
+  void relabel(F f) {
+    for (auto& t : tris_) t.source = f(t.source);
+  }
+
  private:
   int raster(const ScreenTri& t, int index);
   int w_, h_;

@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -80,15 +81,39 @@ Derivation derive_features(const scene::Scene& sc, const std::vector<int>& objec
 // taken from `spec`; each substitution is described in `subs`. Throws if 'full' lacks a unit `spec` needs.
 FeatureSet full_core_for(const FeatureSet& spec, std::vector<std::string>& subs);
 
+// The objects' geometry, tessellated (or read from its OBJ file) when prepare() reaches the object and
+// dropped after it, so a render's peak memory is bounded by the image and one object's geometry, not by the
+// scene. Meshes up to `keep_bytes` in all are kept for the next prepare() of the same scene (the contact
+// sheet renders it once per cell); bigger ones are built again.
+class MeshSource {
+ public:
+  explicit MeshSource(const scene::Scene& sc, size_t keep_bytes = size_t{256} << 20);
+  explicit MeshSource(const std::vector<scene::Mesh>& given);  // meshes built by the caller (not owned)
+  [[nodiscard]] std::shared_ptr<const scene::Mesh> get(int object);
+  [[nodiscard]] double build_seconds() const { return build_seconds_; }  // time spent in build_mesh
+  static size_t bytes(const scene::Mesh& m);                              // heap estimate of one mesh
+
+ private:
+  const scene::Scene* sc_ = nullptr;
+  const std::vector<scene::Mesh>* given_ = nullptr;
+  size_t keep_bytes_ = 0, kept_bytes_ = 0;
+  std::vector<std::shared_ptr<const scene::Mesh>> kept_;
+  double build_seconds_ = 0;
+};
+
 struct Frame {
   const scene::Scene* scene = nullptr;
   int width = 0, height = 0, F = 16;
   std::vector<CoreGroup> groups;
-  // Geometry (global numbering over the objects drawn).
+  // Geometry that some pixel shows (triangles no pixel shows are dropped object by object, with the
+  // vertices and faces only they used); numbering in drawing order (objects, then their vertices / faces).
   std::vector<Fragment> vertex_frag;          // per vertex: N̂ and P codes
   std::vector<Fragment> face_frag;            // per face: face normal and centroid codes
-  std::vector<int> tri_object, tri_face;      // per triangle given to the rasteriser
+  std::vector<int> vertex_object, face_object;  // per vertex / face: its scene object
+  std::vector<int> tri_object, tri_face;      // per triangle (the rasteriser's source id)
   std::vector<std::array<uint32_t, 3>> tri_vertices;
+  uint64_t drawn_vertices = 0, drawn_faces = 0, drawn_triangles = 0;  // before dropping the hidden ones
+  double tessellate_seconds = 0, rasterise_seconds = 0;  // prepare()'s phases (mesh building; the rest)
   std::vector<int> object_group;              // per scene object: its core group (−1 not drawn)
   std::vector<scene::Shading> object_shading; // per scene object (after overrides)
   std::vector<int> object_material;           // per scene object (after overrides)
@@ -96,6 +121,7 @@ struct Frame {
   std::array<uint32_t, 3> background{};       // codes
 };
 
+Frame prepare(const scene::Scene& sc, MeshSource& meshes, const Settings& s);
 Frame prepare(const scene::Scene& sc, const std::vector<scene::Mesh>& meshes, const Settings& s);
 
 // The C model over one core's command stream: one colour per fragment command, in order.
@@ -123,8 +149,9 @@ struct ErrorStats {
   double mean_lsb = 0;
   double rms = 0;           // root mean square of (code/2^F − ref)
   double psnr_db = 0;       // 10·log10(1 / mean square error); +inf when identical
-  uint64_t samples = 0;     // covered pixels × channels
-  int max_x = -1, max_y = -1;
+  uint64_t pixels = 0;      // covered pixels (of the group)
+  uint64_t samples = 0;     // covered pixels × 3 channels
+  int max_x = -1, max_y = -1;  // where max_lsb is: column from the left, row from the top
 };
 // Over the covered pixels (of one core group if group >= 0).
 ErrorStats error_vs(const Image& img, const RefImage& ref, int group = -1);
