@@ -317,7 +317,7 @@ void run_render(const RenderArgs& a) {
     if (jp.parent_path() == dp) {
       json_member = jp.filename().string();
       if (std::find(names.begin(), names.end(), json_member) != names.end() || json_member == kManifest)
-        throw std::invalid_argument("--json " + a.json_path + " is one of the files written to --out");
+        throw std::invalid_argument("--json " + a.json_path + " is one of the images (or the manifest) written to --out");
     }
   }
   std::vector<std::string> dir_names = names;

@@ -354,10 +354,16 @@ class OutputSet {
         o.members.push_back(m);
       }
     }
-    Target self;  // the directory itself: no file output may name it
-    self.shown = path;
-    self.key = path_key(o.dir);
-    add_key(self, option);
+    // The directory itself and the missing parents the run creates: no file output may name them.
+    for (std::string d = o.dir;;) {
+      Target self;
+      self.shown = d == o.dir ? path : d;
+      self.key = path_key(d);
+      add_key(self, option);
+      const std::string up = parent_of(d);
+      if (up == d || ::stat(up.c_str(), &st) == 0) break;
+      d = up;
+    }
     for (const auto& m : o.members) add_key(m, option);
     outs_.push_back(std::move(o));
     return static_cast<int>(outs_.size()) - 1;
