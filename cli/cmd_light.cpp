@@ -1,5 +1,5 @@
 // shadecore light-sweep — error of the lighting core against the double-precision reference of the
-// same equation (docs/lighting.md §8): per specular unit and channel, the total error against exact
+// same equation (docs/lighting.md §7): per specular unit and channel, the total error against exact
 // cos^n split, as `sweep` does for the unit, into the approximation part (double variant − exact) and
 // the quantisation part (fixed-point core − double variant, in output LSBs of 2^−F).
 // Inputs: random but realistic register programs (a material with random n, every light of the
@@ -158,7 +158,7 @@ void add_light_sweep(CLI::App& app) {
                  approx_lsb, st.quant_min, st.quant_max, st.abs_sum / st.samples, psnr);
       units.push_back({{"specular", name},
                        {"total_max_lsb", st.total_max},
-                       {"approx_max", st.approx_max},  // a value in [0, 1] (docs/lighting.md §8)
+                       {"approx_max", st.approx_max},  // a value in [0, 1] (docs/lighting.md §7)
                        {"approx_max_lsb", approx_lsb},
                        {"quant_min_lsb", st.quant_min},
                        {"quant_max_lsb", st.quant_max},
