@@ -60,7 +60,7 @@ std::string tick_text(double v) {
 
 Box text_box(int x, int y, const std::string& s, int scale) {
   const int w = Canvas::text_width(s, scale);
-  return Box{x, y, w > 0 ? w - scale : 0, 7 * scale};
+  return Box{x, y, w > 0 ? w - scale : 0, Canvas::kTextRows * scale};
 }
 
 std::vector<std::string> wrap_text(const std::string& text, int max_px, int scale) {
@@ -136,7 +136,7 @@ DiffLegend layout_diff_legend(int x, int y, int width, int F, int scale, const s
   DiffLegend L;
   L.F = F;
   L.scale = scale = std::max(1, scale);
-  const int s = scale, m = 4 * s, line = 7 * s, gap = 3 * s;
+  const int s = scale, m = 4 * s, line = Canvas::kTextRows * s, gap = 2 * s;
   const int inner_x = x + m, inner_w = std::max(1, width - 2 * m);
   int yc = y + m;
   for (const auto& ln : wrap_text(caption, inner_w, s)) {
@@ -262,11 +262,12 @@ SheetLayout layout_sheet(int cell_w, int cell_h, const std::vector<std::string>&
   L.caption = diff_caption(caption_what, F);
   const int small = std::min(cell_w, cell_h);
   const int s = L.scale = small < 192 ? 1 : small < 448 ? 2 : 3;
-  const int pad = L.pad = 6 * s, line = 7 * s, gap = 3 * s;
+  const int pad = L.pad = 6 * s, line = Canvas::kTextRows * s, gap = 2 * s;
   // Slot width: the cell, or the longest word of any header if that is wider (headers wrap at blanks).
+  // (a word plus one character, so that neighbouring headers keep a blank between them beyond the pad).
   int slot = cell_w;
   for (const auto& name : col_names)
-    for (const auto& word : words_of(name)) slot = std::max(slot, text_box(0, 0, word, s).w);
+    for (const auto& word : words_of(name)) slot = std::max(slot, text_box(0, 0, word, s).w + 6 * s);
   L.slot_w = slot;
   int row_w = 0;
   for (const auto& r : row_names) row_w = std::max(row_w, text_box(0, 0, r, s).w);

@@ -66,7 +66,7 @@ struct TextBox {
   int scale = 1;
 };
 
-// The box of `s` drawn by Canvas::text at (x, y): (6·chars − 1)·scale wide, 7·scale high.
+// The box of `s` drawn by Canvas::text at (x, y): (6·chars − 1)·scale wide, Canvas::kTextRows·scale high.
 Box text_box(int x, int y, const std::string& s, int scale);
 
 // Splits `text` at blanks into lines of at most `max_px` pixels at `scale`; a word longer than that is cut
@@ -125,7 +125,8 @@ Canvas with_diff_legend(int w, int h, const std::vector<uint8_t>& rgb, int F, co
 
 // ---- The contact sheet --------------------------------------------------------------------------------------
 
-// Columns are slots at least cell_w wide (wider when a header word needs it; the cell is centred in its slot),
+// Columns are slots at least cell_w wide (wider when a header word needs it, plus one character between
+// neighbouring headers; the cell is centred in its slot),
 // headers wrapped to the slot width, row labels as wide as the longest, one legend strip below the grid.
 struct SheetLayout {
   int width = 0, height = 0;  // the canvas

@@ -59,7 +59,7 @@ void Canvas::blit(int x, int y, int w, int h, const std::vector<uint8_t>& src) {
 }
 
 namespace {
-// 5×7 glyphs, one string of 7 rows × 5 columns ('#' = ink).
+// 5×7 glyphs, one string of 7 rows × 5 columns ('#' = ink); descenders have 9 rows (Canvas::kTextRows).
 struct Glyph {
   char32_t c;  // Unicode code point
   const char* rows;
@@ -113,24 +113,24 @@ constexpr Glyph kFont[] = {
     {'+', "       #    #  #####  #    #       "},
     {'|', "  #    #    #    #    #    #    #  "},
     {'_', "                              #####"},
-    // Lower case (x-height 5 rows; g, j, p, q, y sit their descender inside the 7 rows).
+    // Lower case (x-height 5 rows); g, j, p, q, y have 9 rows: their descenders go below the 7-row cell.
     {'a', "     " "     " " ### " "    #" " ####" "#   #" " ####"},
     {'b', "#    " "#    " "# ## " "##  #" "#   #" "#   #" "#### "},
     {'c', "     " "     " " ### " "#    " "#    " "#   #" " ### "},
     {'d', "    #" "    #" " ## #" "#  ##" "#   #" "#   #" " ####"},
     {'e', "     " "     " " ### " "#   #" "#####" "#    " " ### "},
     {'f', "  ## " " #  #" " #   " "###  " " #   " " #   " " #   "},
-    {'g', "     " " ####" "#   #" "#   #" " ####" "    #" " ### "},
+    {'g', "     " "     " " ####" "#   #" "#   #" "#   #" " ####" "    #" " ### "},
     {'h', "#    " "#    " "# ## " "##  #" "#   #" "#   #" "#   #"},
     {'i', "  #  " "     " " ##  " "  #  " "  #  " "  #  " " ### "},
-    {'j', "   # " "     " "  ## " "   # " "   # " "#  # " " ##  "},
+    {'j', "   # " "     " "  ## " "   # " "   # " "   # " "   # " "#  # " " ##  "},
     {'k', "#    " "#    " "#  # " "# #  " "##   " "# #  " "#  # "},
     {'l', " ##  " "  #  " "  #  " "  #  " "  #  " "  #  " " ### "},
     {'m', "     " "     " "## # " "# # #" "# # #" "#   #" "#   #"},
     {'n', "     " "     " "# ## " "##  #" "#   #" "#   #" "#   #"},
     {'o', "     " "     " " ### " "#   #" "#   #" "#   #" " ### "},
-    {'p', "     " "     " "#### " "#   #" "#### " "#    " "#    "},
-    {'q', "     " "     " " ## #" "#  ##" " ####" "    #" "    #"},
+    {'p', "     " "     " "#### " "#   #" "#   #" "#   #" "#### " "#    " "#    "},
+    {'q', "     " "     " " ####" "#   #" "#   #" "#   #" " ####" "    #" "    #"},
     {'r', "     " "     " "# ## " "##  #" "#    " "#    " "#    "},
     {'s', "     " "     " " ### " "#    " " ### " "    #" "#### "},
     {'t', " #   " " #   " "###  " " #   " " #   " " #  #" "  ## "},
@@ -138,7 +138,7 @@ constexpr Glyph kFont[] = {
     {'v', "     " "     " "#   #" "#   #" "#   #" " # # " "  #  "},
     {'w', "     " "     " "#   #" "#   #" "# # #" "# # #" " # # "},
     {'x', "     " "     " "#   #" " # # " "  #  " " # # " "#   #"},
-    {'y', "     " "     " "#   #" "#   #" " ####" "    #" " ### "},
+    {'y', "     " "     " "#   #" "#   #" "#   #" "#   #" " ####" "    #" " ### "},
     {'z', "     " "     " "#####" "   # " "  #  " " #   " "#####"},
     // More symbols.
     {'<', "   # " "  #  " " #   " "#    " " #   " "  #  " "   # "},
@@ -197,7 +197,7 @@ void Canvas::text(int x, int y, const std::string& s, uint8_t r, uint8_t g, uint
     const char* rows = glyph_rows(next_code_point(s, i));
     if (rows) {
       const size_t n = std::strlen(rows);
-      for (int j = 0; j < 7; ++j)
+      for (int j = 0; j < static_cast<int>(n / 5); ++j)
         for (int k = 0; k < 5; ++k) {
           const size_t at = static_cast<size_t>(j) * 5 + k;
           if (at >= n || rows[at] != '#') continue;

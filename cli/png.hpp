@@ -17,8 +17,10 @@ struct Canvas {
   Canvas(int w, int h, uint8_t grey);
   void blit(int x, int y, int w, int h, const std::vector<uint8_t>& src);
   // UTF-8 text in a 5×7 font (upper and lower case, digits, ASCII punctuation and − ≈ ± × · Δ θ …), `scale`
-  // pixels per font pixel; a character advances 6·scale pixels and the ink is 7·scale pixels high, starting at
-  // y. A character without a glyph leaves a blank.
+  // pixels per font pixel; a character advances 6·scale pixels; the ink lies in the kTextRows·scale pixels from
+  // y (capitals and digits in the first 7, the descenders of g j p q y below them). A character without a
+  // glyph leaves a blank.
+  static constexpr int kTextRows = 9;
   void text(int x, int y, const std::string& s, uint8_t r, uint8_t g, uint8_t b, int scale = 1);
   // Width of `s` in pixels: 6·scale per character (code point), the last column of the last one blank.
   static int text_width(const std::string& s, int scale = 1);
