@@ -137,9 +137,23 @@ def approx(d, unit, variant):
     return fig
 
 
+def fig3_n_of(a):
+    """Fig. 3's n: --fig3-n, else the n of the one fig3_n<N>.csv in --dir (the sweep wrote it), else 128."""
+    if a.fig3_n is not None:
+        return a.fig3_n
+    found = sorted(f for f in os.listdir(a.dir) if f.startswith("fig3_n") and f.endswith(".csv"))
+    if len(found) == 1:
+        try:
+            return int(found[0][len("fig3_n"):-len(".csv")])
+        except ValueError:
+            pass
+    return 128
+
+
 def build(a):
     """The four figures, by file name (not saved: the tests inspect them)."""
     unit = a.variant
+    a.fig3_n = fig3_n_of(a)
     return {
         fig3_name(a.fig3_n) + ".png": fig3(a.dir, unit, a.frac, a.fig3_n, a.n_range),
         "fig4_delta.png": fig4(a.dir, a.title, a.approx_max, a.approx_min),
@@ -155,7 +169,8 @@ def parser():
     ap.add_argument("--variant", default="cs16", help="the unit's name (legends, contract bounds)")
     ap.add_argument("--frac", type=int, default=16, help="fraction bits F")
     ap.add_argument("--guard", type=int, default=5, help="guard bits G (cs16)")
-    ap.add_argument("--fig3-n", type=int, default=128, help="n of Fig. 3 (fig3_n<N>.csv in --dir; default 128)")
+    ap.add_argument("--fig3-n", type=int, default=None,
+                    help="n of Fig. 3 (reads fig3_n<N>.csv in --dir; default: the one there, else 128)")
     ap.add_argument("--n-range", default=None, help="the swept range LO..HI (Fig. 3's title when n != 128)")
     ap.add_argument("--approx-max", type=float, default=None, help="max Δ over every input code (sweep)")
     ap.add_argument("--approx-min", type=float, default=None, help="min Δ over every input code (sweep)")

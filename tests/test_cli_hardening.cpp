@@ -421,7 +421,7 @@ TEST(CliHardening, UsageErrorsNameTheSubcommandsHelp) {
   const CliRun help = run_cli("--help");
   ASSERT_EQ(help.status, 0);
   std::vector<std::string> subs;
-  const auto at = help.out.find("SUBCOMMANDS:");
+  const auto at = help.out.find("Subcommands:");
   ASSERT_NE(at, std::string::npos) << help.out;
   std::istringstream in(help.out.substr(at));
   std::string line;

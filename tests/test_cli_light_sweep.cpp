@@ -22,9 +22,10 @@ using shadecore::testing::TempDir;
 namespace {
 const std::string kSmall = "light-sweep --features phong_point --specular all --programs 2 --per-program 10";
 
-// The result rows of the table (everything after the header line), without the seed line.
+// The table (its column header and rows), without the lines above it (the seed line).
 std::string table_of(const std::string& out) {
-  const auto h = out.find("specular ");
+  const auto t = out.find("total max");
+  const auto h = t == std::string::npos ? t : out.rfind('\n', t);
   return h == std::string::npos ? std::string() : out.substr(h);
 }
 }  // namespace
@@ -32,10 +33,10 @@ std::string table_of(const std::string& out) {
 TEST(LightSweep, HelpShowsDefaultsAndReadableRanges) {
   const CliRun r = run_cli("light-sweep --help");
   ASSERT_EQ(r.status, 0) << r.err;
-  for (const char* want : {"[full]", "[own]", "[200]", "[2000]", "1..1000000", "1..100000000", "pick one and print it"})
+  for (const char* want : {"=full", "=own", "=200", "=2000", "1..1000000", "1..100000000", "pick one and print it"})
     EXPECT_NE(r.out.find(want), std::string::npos) << "no '" << want << "' in\n" << r.out;
   EXPECT_EQ(r.out.find("18446744073709551615"), std::string::npos) << r.out;
-  EXPECT_EQ(r.out.find("UINT:UINT"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("UINT"), std::string::npos) << r.out;
 }
 
 TEST(LightSweep, SeedZeroOrAbsentPicksOneAndPrintsIt) {
@@ -108,6 +109,7 @@ TEST(LightSweep, BadValuesAreOneLineErrors) {
       {"light-sweep --json ''", "empty path"},
       {"light-sweep --features nosuch --programs 1 --per-program 1", "nosuch"},
       {"light-sweep --specular bogus --programs 1 --per-program 1", "unknown --specular 'bogus'"},
+      {"light-sweep --specular table256 --programs 1 --per-program 1", "the lighting core has no table units"},
       {"light-sweep --programs 1 --per-program 1 --json /proc/x.json", "cannot write /proc/x.json"},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
@@ -117,8 +119,9 @@ TEST(LightSweep, BadValuesAreOneLineErrors) {
     EXPECT_EQ(r.status, 1) << args << "\n" << r.err;
     EXPECT_EQ(lines(r.err), 1) << args << "\n" << r.err;
     EXPECT_NE(r.err.find(needle), std::string::npos) << args << "\n" << r.err;
-    if (i < 9)  // usage errors (not the unknown names or the unwritable output) name the subcommand's help
+    if (i < 9) {  // usage errors (not the unknown names or the unwritable output) name the subcommand's help
       EXPECT_NE(r.err.find("(see shadecore light-sweep --help)"), std::string::npos) << args << "\n" << r.err;
+    }
     EXPECT_TRUE(r.out.empty()) << args << "\n" << r.out;
     EXPECT_TRUE(d.entries().empty()) << args;
   }
