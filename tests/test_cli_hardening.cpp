@@ -222,7 +222,7 @@ TEST(CliHardening, FailureAfterTheRunLeavesNoOutput) {
     s << "import os, sys\n"
          "a = sys.argv\n"
          "d = a[a.index('--dir') + 1]\n"
-         "open(os.path.join(d, 'fig3_n128.png'), 'w').write('partial')\n"
+         "open(os.path.join(d, 'fig3_n17.png'), 'w').write('partial')\n"  // Fig. 3 at n = 17 for --n 16..17
          "sys.exit('plot_sweep.py: error: simulated failure')\n";
   }
   const CliRun r = run_shell("SHADECORE_SCRIPTS=" + scripts.str() + " " + SHADECORE_CLI +
@@ -262,7 +262,7 @@ TEST(CliHardening, InterruptDuringPlotsIsCleanAndLeavesNothing) {
     s << "import os, sys, time\n"
          "a = sys.argv\n"
          "d = a[a.index('--dir') + 1]\n"
-         "for name in ('fig3_n128.png', 'fig4_delta.png'):\n"
+         "for name in ('fig3_n17.png', 'fig4_delta.png'):\n"  // --n 16..17: Fig. 3 at n = 17
          "    open(os.path.join(d, name), 'w').write('partial')\n"
          "open('" << marker << "', 'w').write('x')\n"
          "time.sleep(30)\n";
