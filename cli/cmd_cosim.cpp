@@ -413,12 +413,12 @@ void add_cosim(CLI::App& app) {
   using namespace cliargs;
   auto* sub = app.add_subcommand(
       "cosim", "co-simulate the Verilated RTL against the C model, bit for bit (runs sim/shadecore_cosim_<config>)");
-  sub->add_option("--variant", args->variant, "unit (config/configs.json variants)");
+  sub->add_option("--variant", args->variant, "unit (config/configs.json variants)")->check(NonEmpty("unit name"));
   sub->add_option("--config", args->config, "named width configuration (narrow, default, wide)")
       ->check(NonEmpty("config name"));
-  sub->add_option("--cutoff", args->cutoff, "theta_cr | sign_clamp");
-  auto* n_opt = sub->add_option("--n", args->n_range, "exponent range LO..HI or N (default 16..1024; exhaustive, random)");
-  sub->add_option("--mode", args->mode, "exhaustive | random | directed (default directed)");
+  sub->add_option("--cutoff", args->cutoff, "theta_cr | sign_clamp")->check(NonEmpty("cut-off"));
+  auto* n_opt = sub->add_option("--n", args->n_range, "exponent range LO..HI or N (default 16..1024; exhaustive, random)")->check(NonEmpty("range"));
+  sub->add_option("--mode", args->mode, "exhaustive | random | directed (default directed)")->check(NonEmpty("mode"));
   auto* count_opt = sub->add_option("--count", args->count, "random: transactions in total; directed: minimum items")
                         ->check(UInt(1, 1000000000000ull));
   sub->add_option("--seed", args->seed,
@@ -442,8 +442,8 @@ void add_cosim(CLI::App& app) {
   sub->add_option("--json", args->json_path, "write the merged result as JSON (atomically)")->check(NonEmpty("path"));
   sub->add_flag("--norm", args->norm, "energy-normalised output: sc_specular NORM = 1 (cs16, theta_cr)");
   auto* cm_opt = sub->add_option("--coef-model", args->coef_model,
-                                 "with --norm: all (default) | phong | phong_mod | blinn | blinn_mod | blinn_ndf | blinn_hf");
-  auto* coef_opt = sub->add_option("--coef", args->coef_kind, "with --norm and one --coef-model: fitted | classical");
+                                 "with --norm: all (default) | phong | phong_mod | blinn | blinn_mod | blinn_ndf | blinn_hf")->check(NonEmpty("model"));
+  auto* coef_opt = sub->add_option("--coef", args->coef_kind, "with --norm and one --coef-model: fitted | classical")->check(NonEmpty("coefficient kind"));
   sub->add_option("--show", args->show, "mismatches printed in full")->check(Int(0, 1000));
   args->progress.add(sub);
   // The lighting core (docs/lighting.md): --core lighting --features NAME|FILE, built on demand per
@@ -452,7 +452,7 @@ void add_cosim(CLI::App& app) {
   auto features = std::make_shared<std::string>();
   sub->add_option("--core", *core, "unit (default: rtl/sc_specular.v) | lighting (rtl/sc_light.v)")
       ->check(CLI::IsMember({"unit", "lighting"}));
-  auto* feat_opt = sub->add_option("--features", *features, "--core lighting: a named feature set of config/configs.json or a JSON file");
+  auto* feat_opt = sub->add_option("--features", *features, "--core lighting: a named feature set of config/configs.json or a JSON file")->check(NonEmpty("feature set"));
   sub->callback([args, n_opt, count_opt, shards_opt, cm_opt, coef_opt, core, features, feat_opt, sub] {
     if (*core == "lighting") {
       for (const char* unit_only : {"--variant", "--config", "--cutoff", "--n", "--norm", "--coef-model", "--coef",

@@ -220,16 +220,16 @@ void run(const EnergyArgs& a) {
 void add_energy(CLI::App& app) {
   auto args = std::make_shared<EnergyArgs>();
   auto* sub = app.add_subcommand("energy", "Directional-hemispherical reflectance of the normalised BRDFs (bit-accurate)");
-  sub->add_option("--model", args->model, "all | phong | phong_mod | blinn | blinn_mod | blinn_ndf | blinn_hf");
-  sub->add_option("--n", args->n_range, "Exponent range LO..HI (within 16..1024)");
+  sub->add_option("--model", args->model, "all | phong | phong_mod | blinn | blinn_mod | blinn_ndf | blinn_hf")->check(cliargs::NonEmpty("model"));
+  sub->add_option("--n", args->n_range, "Exponent range LO..HI (within 16..1024)")->check(cliargs::NonEmpty("range"));
   sub->add_option("--n-step", args->n_step, "Stride over n (the last n is always included)")
       ->check(cliargs::Int(1, 1024));
-  sub->add_option("--angles", args->angles, "Incidence angles in degrees, comma-separated, each in [0, 90)");
-  sub->add_option("--coef", args->coef, "Coefficient: fitted (the paper's) | classical");
-  sub->add_option("--cutoff", args->cutoff, "cs16 cut-off: theta_cr | sign_clamp");
+  sub->add_option("--angles", args->angles, "Incidence angles in degrees, comma-separated, each in [0, 90)")->check(cliargs::NonEmpty("angle list"));
+  sub->add_option("--coef", args->coef, "Coefficient: fitted (the paper's) | classical")->check(cliargs::NonEmpty("coefficient kind"));
+  sub->add_option("--cutoff", args->cutoff, "cs16 cut-off: theta_cr | sign_clamp")->check(cliargs::NonEmpty("cut-off"));
   sub->add_option("--config", args->config, "Named width configuration from config/configs.json")
       ->check(cliargs::NonEmpty("config name"));
-  sub->add_option("--method", args->method, "cells (exact per input code, azimuth in closed form) | grid (2-D midpoint)");
+  sub->add_option("--method", args->method, "cells (exact per input code, azimuth in closed form) | grid (2-D midpoint)")->check(cliargs::NonEmpty("method"));
   auto* radial = sub->add_option("--radial", args->radial, "grid: midpoint cells in the polar angle around the lobe axis");
   auto* azimuth = sub->add_option("--azimuth", args->azimuth, "grid: quadrature cells in the azimuth over [0, pi]");
   sub->add_flag("--double", args->double_model, "Use the double-precision cs16 and coefficient instead of the fixed point");

@@ -249,9 +249,9 @@ void add_eval(CLI::App& app) {
   auto* sub = app.add_subcommand("eval", "Evaluate one input on the bit-exact C model, with every intermediate");
   add_unit_options(sub, a->unit);
   sub->add_option("--n", a->n, "Specular exponent n (16..1024)")->required();
-  a->code_opt = sub->add_option("--code", a->code_text, "Input code: signed integer, or 0x-hex (F+2)-bit word");
+  a->code_opt = sub->add_option("--code", a->code_text, "Input code: signed integer, or 0x-hex (F+2)-bit word")->check(cliargs::NonEmpty("code"));
   a->cos_opt = sub->add_option("--cos", a->cos, "Input cos θ as a real number (rounded to the nearest code)");
-  sub->add_option("--json", a->json_path, "Also write the result as JSON (- for stdout)");
+  sub->add_option("--json", a->json_path, "Also write the result as JSON (- for stdout)")->check(cliargs::NonEmpty("path"));
   sub->callback([a] { run(*a); });
 }
 

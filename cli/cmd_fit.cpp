@@ -300,11 +300,11 @@ void run(const FitArgs& a) {
 void add_fit(CLI::App& app) {
   auto args = std::make_shared<FitArgs>();
   auto* sub = app.add_subcommand("fit", "Re-derive the energy-normalisation coefficients coef(n) and check the published bounds");
-  sub->add_option("--lobe", args->lobe, "Highlight function: cs16 | cos_pow | schlick");
+  sub->add_option("--lobe", args->lobe, "Highlight function: cs16 | cos_pow | schlick")->check(cliargs::NonEmpty("lobe"));
   auto* cutoff = sub->add_option("--cutoff", args->cutoff,
-                                 "cs16 cut-off: both | theta_cr (6/sqrt n) | sign_clamp (exact zero of the base)");
-  sub->add_option("--model", args->model, "all | phong | phong_mod | blinn | blinn_mod | blinn_ndf | blinn_hf");
-  sub->add_option("--n", args->n_range, "Exponent range LO..HI (within 16..1024)");
+                                 "cs16 cut-off: both | theta_cr (6/sqrt n) | sign_clamp (exact zero of the base)")->check(cliargs::NonEmpty("cut-off"));
+  sub->add_option("--model", args->model, "all | phong | phong_mod | blinn | blinn_mod | blinn_ndf | blinn_hf")->check(cliargs::NonEmpty("model"));
+  sub->add_option("--n", args->n_range, "Exponent range LO..HI (within 16..1024)")->check(cliargs::NonEmpty("range"));
   sub->add_option("--tol", args->tol, "Relative tolerance of the adaptive quadrature");
   sub->add_option("--json", args->json_path, "Write all results as JSON (atomic)")->check(cliargs::NonEmpty("path"));
   sub->add_option("--plots", args->plots_dir, "Write PNG plots (and the CSV data) into this directory")

@@ -545,19 +545,19 @@ void add_handoff(CLI::App& app) {
   a->sub = sub;
   add_unit_options(sub, a->unit);
   Options& l = a->light;
-  sub->add_option("--out", l.out, "Bundle directory (refused if not empty, unless --force); DIR.tar.gz beside it");
+  sub->add_option("--out", l.out, "Bundle directory (refused if not empty, unless --force); DIR.tar.gz beside it")->check(cliargs::NonEmpty("path"));
   sub->add_flag("--force", l.force, "Replace the contents of a non-empty --out and an existing DIR.tar.gz");
   sub->add_option("--tagw", l.tagw, "Tag width TAGW of the wrapper top (1..32, default 8)");
   sub->add_option("--seed", l.seed, "Seed of the random vectors and of the testbench's gaps/backpressure (default: picked)");
   sub->add_option("--count", l.count, "Random vectors (default 2000; lighting: random fragments, default 1000)");
-  sub->add_option("--top", l.top, "Module name of the wrapper top (default shadecore_top; lighting: shadecore_light_top)");
+  sub->add_option("--top", l.top, "Module name of the wrapper top (default shadecore_top; lighting: shadecore_light_top)")->check(cliargs::NonEmpty("module name"));
   sub->add_flag("--no-ice40", l.no_ice40, "Skip iCE40 place and route even where nextpnr-ice40/icetime are installed");
   sub->add_option("--synth", l.synth,
                   "Yosys generic synthesis: flat | hier (hierarchical, no flatten) | skip | auto (default: flat for "
-                  "the specular unit; for the lighting core by size, docs/handoff.md)");
-  sub->add_option("--core", a->core, "Which core: specular (default) or lighting");
+                  "the specular unit; for the lighting core by size, docs/handoff.md)")->check(cliargs::NonEmpty("synthesis mode"));
+  sub->add_option("--core", a->core, "Which core: specular (default) or lighting")->check(cliargs::NonEmpty("core"));
   sub->add_option("--features", l.features, "Lighting core feature set: a name of config/configs.json \"feature_sets\" "
-                                            "or a JSON file (with --core lighting)");
+                                            "or a JSON file (with --core lighting)")->check(cliargs::NonEmpty("feature set"));
   sub->add_flag("--print-port-table", a->print_port_table,
                 "Print the port table of sc_specular (with --core lighting: sc_light) from config/interface.json and exit");
   sub->callback([a] { run(*a); });

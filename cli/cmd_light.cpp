@@ -1,5 +1,5 @@
 // shadecore light-sweep — error of the lighting core against the double-precision reference of the
-// same equation (docs/lighting.md §8): per specular unit and channel, the total error against exact
+// same equation (docs/lighting.md §7): per specular unit and channel, the total error against exact
 // cos^n split, as `sweep` does for the unit, into the approximation part (double variant − exact) and
 // the quantisation part (fixed-point core − double variant, in output LSBs of 2^−F).
 // Inputs: random but realistic register programs (a material with random n, every light of the
@@ -14,11 +14,13 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "args.hpp"
 #include "commands.hpp"
 #include "light_rtl.hpp"
 #include "output.hpp"
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
+#include "shadecore/table.hpp"
 
 namespace shadecore::cli {
 namespace {
@@ -85,20 +87,44 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
 }  // namespace
 
 void add_light_sweep(CLI::App& app) {
+  using namespace cliargs;
   auto* sub = app.add_subcommand("light-sweep", "error of the lighting core against the exact double reference");
   struct A {
     std::string features = "full", specular = "own", json;
-    uint64_t programs = 200, per_program = 2000, seed = 1;
+    uint64_t programs = 200, per_program = 2000, seed = 0;
   };
   auto a = std::make_shared<A>();
-  sub->add_option("--features", a->features, "named feature set of config/configs.json or a JSON file");
-  sub->add_option("--specular", a->specular, "own (the set's unit) | all (each unit in turn) | a variant name");
-  sub->add_option("--programs", a->programs, "random register programs")->check(CLI::Range(uint64_t{1}, uint64_t{1000000}));
-  sub->add_option("--per-program", a->per_program, "fragments per program")->check(CLI::Range(uint64_t{1}, uint64_t{100000000}));
-  sub->add_option("--seed", a->seed, "random seed")->check(CLI::Range(uint64_t{1}, ~uint64_t{0}));
-  sub->add_option("--json", a->json, "write the results as JSON");
+  sub->add_option("--features", a->features, "named feature set of config/configs.json or a JSON file")
+      ->check(NonEmpty("feature set"))
+      ->type_name("NAME|FILE")
+      ->capture_default_str();
+  sub->add_option("--specular", a->specular, "own (the set's unit) | all (each unit in turn but the table units) | a variant name")
+      ->check(NonEmpty("--specular"))
+      ->type_name("UNIT")
+      ->capture_default_str();
+  sub->add_option("--programs", a->programs, "random register programs, 1..1000000")
+      ->check(UInt(1, 1000000).description(""))
+      ->type_name("COUNT")
+      ->capture_default_str();
+  sub->add_option("--per-program", a->per_program, "fragments per program, 1..100000000")
+      ->check(UInt(1, 100000000).description(""))
+      ->type_name("COUNT")
+      ->capture_default_str();
+  sub->add_option("--seed", a->seed,
+                  "random seed, 0..2^64-1 (default or 0: pick one and print it); the same seed gives the same "
+                  "programs and fragments")
+      ->check(UInt(0).description(""))
+      ->type_name("SEED");
+  sub->add_option("--json", a->json, "write the results as JSON (atomically)")->check(NonEmpty("path"))->type_name("FILE");
   sub->callback([a]() {
     if (!a->json.empty()) check_writable_file(a->json);
+    // 0 or absent: pick a seed and print it (docs/cli.md), as cosim does.
+    const bool picked = a->seed == 0;
+    uint64_t seed = a->seed;
+    if (picked) {
+      seed = (static_cast<uint64_t>(std::random_device{}()) << 32) ^ std::random_device{}();
+      if (seed == 0) seed = 1;
+    }
     const FeatureSet base = feature_set_named_or_file(a->features);
     std::vector<FeatureSet> sets;
     if (a->specular == "own") {
@@ -107,6 +133,11 @@ void add_light_sweep(CLI::App& app) {
       if (!base.specular) throw std::invalid_argument("feature set '" + base.name + "' has no specular unit");
       for (const auto& v : kVariants) {
         if (a->specular != "all" && a->specular != v.name) continue;
+        // The lighting core has no table units (docs/table.md): `all` skips them, naming one is an error.
+        if (is_table_variant(v.id)) {
+          if (a->specular == "all") continue;
+          throw std::invalid_argument("--specular " + a->specular + ": the lighting core has no table units");
+        }
         FeatureSet s = base;
         s.variant = v.id;
         if (v.id != VariantId::cs16) s.cutoff = Cutoff::ThetaCr;
@@ -115,21 +146,26 @@ void add_light_sweep(CLI::App& app) {
       if (sets.empty()) throw std::invalid_argument("unknown --specular '" + a->specular + "' (own, all or a variant)");
     }
     const int F = base.format().frac;
-    fmt::print("light-sweep: feature set '{}': {}\n  {} programs x {} fragments, seed {}; errors in output LSBs (2^-{})\n",
-               base.name, base.summary(), a->programs, a->per_program, a->seed, F);
+    fmt::print("light-sweep: feature set '{}': {}\n  {} programs x {} fragments, seed {}{}; errors in output LSBs (2^-{})\n",
+               base.name, base.summary(), a->programs, a->per_program, seed,
+               picked ? fmt::format(" (picked; --seed {} reproduces this run)", seed) : std::string(), F);
     fmt::print("  {:<13} {:>12} {:>14} {:>12} {:>12} {:>12} {:>9}\n", "specular", "total max", "approx max",
                "quant min", "quant max", "mean |err|", "PSNR dB");
     nlohmann::json units = nlohmann::json::array();
     for (const auto& s : sets) {
-      const Stats st = sweep_one(s, a->programs, a->per_program, a->seed);
+      const Stats st = sweep_one(s, a->programs, a->per_program, seed);
       const double rms = std::sqrt(st.sq_sum / st.samples) * std::ldexp(1.0, -F);
       const double psnr = rms > 0 ? 20 * std::log10(1.0 / rms) : INFINITY;
       const std::string name = s.specular ? std::string(variant_name(s.variant)) : "none";
-      fmt::print("  {:<13} {:>12.2f} {:>14.6f} {:>12.2f} {:>12.2f} {:>12.3f} {:>9.1f}\n", name, st.total_max,
-                 st.approx_max, st.quant_min, st.quant_max, st.abs_sum / st.samples, psnr);
+      // Every column in output LSBs (2^-F) but PSNR: the approximation error too (approx_max is a value in
+      // [0, 1], the unit's double formula against exact cos^n).
+      const double approx_lsb = std::ldexp(st.approx_max, F);
+      fmt::print("  {:<13} {:>12.2f} {:>14.2f} {:>12.2f} {:>12.2f} {:>12.3f} {:>9.1f}\n", name, st.total_max,
+                 approx_lsb, st.quant_min, st.quant_max, st.abs_sum / st.samples, psnr);
       units.push_back({{"specular", name},
                        {"total_max_lsb", st.total_max},
-                       {"approx_max", st.approx_max},
+                       {"approx_max", st.approx_max},  // a value in [0, 1] (docs/lighting.md §7)
+                       {"approx_max_lsb", approx_lsb},
                        {"quant_min_lsb", st.quant_min},
                        {"quant_max_lsb", st.quant_max},
                        {"mean_abs_lsb", st.abs_sum / st.samples},
@@ -142,7 +178,8 @@ void add_light_sweep(CLI::App& app) {
                           {"frac", F},
                           {"programs", a->programs},
                           {"per_program", a->per_program},
-                          {"seed", a->seed},
+                          {"seed", seed},
+                          {"seed_picked", picked},
                           {"units", units}};
       write_file_atomic(a->json, j.dump(2) + "\n");
     }

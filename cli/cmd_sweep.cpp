@@ -104,12 +104,18 @@ std::string csv_rows(const SweepResult& r) {
   return o.str();
 }
 
-// Every file --plots DIR gets: the CSV data and the PNGs drawn from it by scripts/plot_sweep.py.
-const std::vector<std::string> kPlotFiles = {"fig3_n128.csv", "fig4_grid.csv", "per_n.csv",   "fig3_n128.png",
-                                             "fig4_delta.png", "quant_ulp.png", "approx_over_n.png"};
+// Fig. 3 is the paper's n = 128; drawn at an n the sweep covered: 128 when it is in LO..HI, else the end of
+// the range nearest to it (--n 100..120: n = 120). The n is in the file names (fig3_n<N>.png/.csv).
+int fig3_n(int lo, int hi) { return std::clamp(128, lo, hi); }
 
-// Data for the plots: Fig. 3 (n = 128 curves) and Fig. 4 (Δ over n and θ in [0, 1.5] rad, the paper's
-// 20θ in [0, 30]).
+// Every file --plots DIR gets: the CSV data and the PNGs drawn from it by scripts/plot_sweep.py.
+std::vector<std::string> plot_files(int n3) {
+  const std::string f3 = "fig3_n" + std::to_string(n3);
+  return {f3 + ".csv", "fig4_grid.csv", "per_n.csv", f3 + ".png", "fig4_delta.png", "quant_ulp.png", "approx_over_n.png"};
+}
+
+// Data for the plots: Fig. 3 (the curves at n = fig3_n) and Fig. 4 (Δ over n and θ in [0, 1.5] rad, the
+// paper's 20θ in [0, 30]).
 void write_plot_data(const SweepArgs& a, const SweepResult& r, const std::string& dir) {
   const Format f = r.options.format;
   const Cutoff cut = r.options.cutoff;
@@ -118,9 +124,9 @@ void write_plot_data(const SweepArgs& a, const SweepResult& r, const std::string
     // golden_at_code: the double function at the input code's own cos value (code / 2^F): fixed minus it
     // is the quantisation error the contract bounds (fixed minus golden also has the input rounding).
     o << "theta,cos_pow,golden,fixed,golden_at_code\n";
-    const int n = 128;
+    const int n = fig3_n(r.options.n_lo, r.options.n_hi);
     const Cs16Material m = cs16_setup(f, n);
-    // Table units: the bit-exact model through Unit (the table is set up once for n = 128).
+    // Table units: the bit-exact model through Unit (the table is set up once for this n).
     std::unique_ptr<Unit> table_unit;
     UnitMaterial table_n128;
     if (const VariantId vid = parse_variant(a.variant); is_table_variant(vid)) {
@@ -144,7 +150,7 @@ void write_plot_data(const SweepArgs& a, const SweepResult& r, const std::string
       o << fmt::format("{:.9f},{:.12e},{:.12e},{:.12e},{:.12e}\n", th, golden::cos_pow(c, n),
                        variant_golden(a.variant, cut, n, c), fixed, variant_golden(a.variant, cut, n, c_code));
     }
-    write_staged(dir + "/fig3_n128.csv", o.str());
+    write_staged(dir + "/fig3_n" + std::to_string(n) + ".csv", o.str());
   }
   {
     std::ostringstream o;
@@ -327,7 +333,7 @@ void run(const SweepArgs& a) {
   io::OutputSet outs;
   const int json_out = a.json_path.empty() ? -1 : outs.file("--json", a.json_path);
   const int csv_out = a.csv_path.empty() ? -1 : outs.file("--csv", a.csv_path);
-  const int plots_out = a.plots_dir.empty() ? -1 : outs.dir("--plots", a.plots_dir, kPlotFiles);
+  const int plots_out = a.plots_dir.empty() ? -1 : outs.dir("--plots", a.plots_dir, plot_files(fig3_n(lo, hi)));
 
   const uint64_t total = uint64_t(opt.format.one() + 1) * uint64_t(hi - lo + 1);
   io::Progress bar(total, a.progress.enabled());
@@ -453,11 +459,17 @@ void run(const SweepArgs& a) {
     std::fflush(stdout);
     run_python("plot_sweep.py",
                {"--dir", stage, "--title", label, "--variant", a.variant, "--frac", std::to_string(f.frac), "--guard",
-                std::to_string(f.guard), fmt::format("--approx-max={:.6e}", r.approx.max.value),
+                std::to_string(f.guard), "--fig3-n", std::to_string(fig3_n(lo, hi)), "--n-range",
+                fmt::format("{}..{}", lo, hi), fmt::format("--approx-max={:.6e}", r.approx.max.value),
                 fmt::format("--approx-min={:.6e}", r.approx.min.value), "--command", command_line()});
   }
   outs.commit();
-  if (plots_out >= 0) fmt::print("\nplots written to {}/\n", a.plots_dir);
+  if (plots_out >= 0) {
+    fmt::print("\nplots written to {}/\n", a.plots_dir);
+    if (fig3_n(lo, hi) != 128)
+      fmt::print("fig3_n{0}.png: Fig. 3 at n = {0}, the swept n nearest to the paper's 128 (outside {1}..{2})\n",
+                 fig3_n(lo, hi), lo, hi);
+  }
 }
 
 }  // namespace
@@ -465,13 +477,13 @@ void run(const SweepArgs& a) {
 void add_sweep(CLI::App& app) {
   auto args = std::make_shared<SweepArgs>();
   auto* sub = app.add_subcommand("sweep", "Exhaustive error sweep: every n × every input code");
-  sub->add_option("--variant", args->variant, "Specular variant (cs16, schlick_div, schlick_nr, schlick_iter, table256, table1024)");
-  auto* cutoff_opt = sub->add_option("--cutoff", args->cutoff, "cs16 cut-off form: theta_cr | sign_clamp");
+  sub->add_option("--variant", args->variant, "Specular variant (cs16, schlick_div, schlick_nr, schlick_iter, table256, table1024)")->check(cliargs::NonEmpty("unit name"));
+  auto* cutoff_opt = sub->add_option("--cutoff", args->cutoff, "cs16 cut-off form: theta_cr | sign_clamp")->check(cliargs::NonEmpty("cut-off"));
   sub->add_option("--config", args->config, "Named width configuration from config/configs.json")
       ->check(cliargs::NonEmpty("config name"));
   auto* frac_opt = sub->add_option("--frac", args->frac, "Fraction bits F (8..24), overrides --config");
   auto* guard_opt = sub->add_option("--guard", args->guard, "Guard bits G (4..8, F+G <= 31), overrides --config");
-  auto* n_opt = sub->add_option("--n", args->n_range, "Exponent range LO..HI or N (within 16..1024)");
+  auto* n_opt = sub->add_option("--n", args->n_range, "Exponent range LO..HI or N (within 16..1024)")->check(cliargs::NonEmpty("range"));
   sub->add_option("--threads", args->threads, "Worker threads (0 = all cores; at most 64)")
       ->check(cliargs::Int(0, cliargs::kMaxParallel));
   sub->add_option("--json", args->json_path, "Write the summary as JSON")->check(cliargs::NonEmpty("path"));

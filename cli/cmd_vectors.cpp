@@ -213,13 +213,13 @@ void add_vectors(CLI::App& app) {
   auto* sub = app.add_subcommand("vectors", "Write test vectors (stimulus + expected results from the C model) as hex");
   a->sub = sub;
   add_unit_options(sub, a->unit);
-  sub->add_option("--core", a->core, "specular (default): the unit; lighting: register writes, fragments, colours");
-  sub->add_option("--features", a->features, "Lighting core feature set: a name of config/configs.json or a JSON file");
-  sub->add_option("--mode", a->req.mode, "hard (the hard-case list) | random | exhaustive");
+  sub->add_option("--core", a->core, "specular (default): the unit; lighting: register writes, fragments, colours")->check(cliargs::NonEmpty("core"));
+  sub->add_option("--features", a->features, "Lighting core feature set: a name of config/configs.json or a JSON file")->check(cliargs::NonEmpty("feature set"));
+  sub->add_option("--mode", a->req.mode, "hard (the hard-case list) | random | exhaustive")->check(cliargs::NonEmpty("mode"));
   a->count_opt = sub->add_option("--count", a->req.count, "Random: number of vectors (default 1000)");
   a->seed_opt = sub->add_option("--seed", a->req.seed, "Random: seed (default: picked and recorded in the file)");
-  a->n_opt = sub->add_option("--n", a->n_range, "Random, exhaustive: exponent range LO..HI or N (default 16..1024)");
-  sub->add_option("--out", a->out, "Output file (written atomically)")->required();
+  a->n_opt = sub->add_option("--n", a->n_range, "Random, exhaustive: exponent range LO..HI or N (default 16..1024)")->check(cliargs::NonEmpty("range"));
+  sub->add_option("--out", a->out, "Output file (written atomically)")->required()->check(cliargs::NonEmpty("path"));
   sub->callback([a] { run(*a); });
 }
 

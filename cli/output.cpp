@@ -57,6 +57,9 @@ int run_app(CLI::App& app, int argc, char** argv) {
     fmt::print(stderr, "shadecore: error: unknown subcommand '{}' (known: {}; see shadecore --help)\n", argv[1], names);
     return kExitError;
   }
+  // Usage errors name the help that explains them: the subcommand's own (`shadecore eval --help`) once a
+  // subcommand was named, else the top level's.
+  const std::string help = known ? "shadecore " + std::string(argv[1]) + " --help" : "shadecore --help";
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -68,19 +71,23 @@ int run_app(CLI::App& app, int argc, char** argv) {
   } catch (const CLI::RequiredError& e) {
     // CLI11 says "A subcommand is required" without naming them.
     const std::string what = e.what();
-    if (what.find("subcommand") != std::string::npos)
+    if (what.find("subcommand") != std::string::npos && !known)
       fmt::print(stderr, "shadecore: error: a subcommand is required ({}; see shadecore --help)\n", names);
     else
-      fmt::print(stderr, "shadecore: error: {} (see shadecore --help)\n", one_line(what));
+      fmt::print(stderr, "shadecore: error: {} (see {})\n", one_line(what), help);
     return kExitError;
   } catch (const CLI::ParseError& e) {
     // One line, like every other error, and status 1 for every usage error (CLI11's own exit() prints
     // a second "Run with --help" line and uses 100+ statuses).
-    fmt::print(stderr, "shadecore: error: {} (see shadecore --help)\n", one_line(e.what()));
+    fmt::print(stderr, "shadecore: error: {} (see {})\n", one_line(e.what()), help);
     return kExitError;
   } catch (const CheckFailed& e) {
     fmt::print(stderr, "shadecore: {}\n", one_line(e.what()));
     return kExitCheckFailed;
+  } catch (const std::invalid_argument& e) {
+    // A bad value or combination found by the subcommand itself: a usage error too.
+    fmt::print(stderr, "shadecore: error: {} (see {})\n", one_line(e.what()), help);
+    return kExitError;
   } catch (const std::exception& e) {
     fmt::print(stderr, "shadecore: error: {}\n", one_line(e.what()));
     return kExitError;

@@ -3,6 +3,7 @@
 
 #include <png.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cstring>
 #include <stdexcept>
@@ -58,9 +59,9 @@ void Canvas::blit(int x, int y, int w, int h, const std::vector<uint8_t>& src) {
 }
 
 namespace {
-// 5×7 glyphs, one string of 7 rows × 5 columns ('#' = ink).
+// 5×7 glyphs, one string of 7 rows × 5 columns ('#' = ink); descenders have 9 rows (Canvas::kTextRows).
 struct Glyph {
-  char c;
+  char32_t c;  // Unicode code point
   const char* rows;
 };
 constexpr Glyph kFont[] = {
@@ -112,25 +113,97 @@ constexpr Glyph kFont[] = {
     {'+', "       #    #  #####  #    #       "},
     {'|', "  #    #    #    #    #    #    #  "},
     {'_', "                              #####"},
+    // Lower case (x-height 5 rows); g, j, p, q, y have 9 rows: their descenders go below the 7-row cell.
+    {'a', "     " "     " " ### " "    #" " ####" "#   #" " ####"},
+    {'b', "#    " "#    " "# ## " "##  #" "#   #" "#   #" "#### "},
+    {'c', "     " "     " " ### " "#    " "#    " "#   #" " ### "},
+    {'d', "    #" "    #" " ## #" "#  ##" "#   #" "#   #" " ####"},
+    {'e', "     " "     " " ### " "#   #" "#####" "#    " " ### "},
+    {'f', "  ## " " #  #" " #   " "###  " " #   " " #   " " #   "},
+    {'g', "     " "     " " ####" "#   #" "#   #" "#   #" " ####" "    #" " ### "},
+    {'h', "#    " "#    " "# ## " "##  #" "#   #" "#   #" "#   #"},
+    {'i', "  #  " "     " " ##  " "  #  " "  #  " "  #  " " ### "},
+    {'j', "   # " "     " "  ## " "   # " "   # " "   # " "   # " "#  # " " ##  "},
+    {'k', "#    " "#    " "#  # " "# #  " "##   " "# #  " "#  # "},
+    {'l', " ##  " "  #  " "  #  " "  #  " "  #  " "  #  " " ### "},
+    {'m', "     " "     " "## # " "# # #" "# # #" "#   #" "#   #"},
+    {'n', "     " "     " "# ## " "##  #" "#   #" "#   #" "#   #"},
+    {'o', "     " "     " " ### " "#   #" "#   #" "#   #" " ### "},
+    {'p', "     " "     " "#### " "#   #" "#   #" "#   #" "#### " "#    " "#    "},
+    {'q', "     " "     " " ####" "#   #" "#   #" "#   #" " ####" "    #" "    #"},
+    {'r', "     " "     " "# ## " "##  #" "#    " "#    " "#    "},
+    {'s', "     " "     " " ### " "#    " " ### " "    #" "#### "},
+    {'t', " #   " " #   " "###  " " #   " " #   " " #  #" "  ## "},
+    {'u', "     " "     " "#   #" "#   #" "#   #" "#  ##" " ## #"},
+    {'v', "     " "     " "#   #" "#   #" "#   #" " # # " "  #  "},
+    {'w', "     " "     " "#   #" "#   #" "# # #" "# # #" " # # "},
+    {'x', "     " "     " "#   #" " # # " "  #  " " # # " "#   #"},
+    {'y', "     " "     " "#   #" "#   #" "#   #" "#   #" " ####" "    #" " ### "},
+    {'z', "     " "     " "#####" "   # " "  #  " " #   " "#####"},
+    // More symbols.
+    {'<', "   # " "  #  " " #   " "#    " " #   " "  #  " "   # "},
+    {'>', " #   " "  #  " "   # " "    #" "   # " "  #  " " #   "},
+    {'%', "##   " "##  #" "   # " "  #  " " #   " "#  ##" "   ##"},
+    {'*', "     " "  #  " "# # #" " ### " "# # #" "  #  " "     "},
+    {'[', " ### " " #   " " #   " " #   " " #   " " #   " " ### "},
+    {']', " ### " "   # " "   # " "   # " "   # " "   # " " ### "},
+    {'!', "  #  " "  #  " "  #  " "  #  " "  #  " "     " "  #  "},
+    {'?', " ### " "#   #" "    #" "   # " "  #  " "     " "  #  "},
+    {'\'', "  #  " "  #  " " #   " "     " "     " "     " "     "},
+    {'"', " # # " " # # " "     " "     " "     " "     " "     "},
+    {';', "     " " ##  " " ##  " "     " " ##  " "  #  " " #   "},
+    {'#', " # # " " # # " "#####" " # # " "#####" " # # " " # # "},
+    {'&', " ##  " "#  # " "# #  " " #   " "# # #" "#  # " " ## #"},
+    {'~', "     " "     " " #   " "# # #" "   # " "     " "     "},
+    {U'\u2248', "     " " ## #" "#  # " "     " " ## #" "#  # " "     "},  // ≈
+    {U'\u2212', "     " "     " "     " "#####" "     " "     " "     "},  // − (minus sign)
+    {U'\u00B1', "  #  " "  #  " "#####" "  #  " "  #  " "     " "#####"},  // ±
+    {U'\u00D7', "     " "#   #" " # # " "  #  " " # # " "#   #" "     "},  // ×
+    {U'\u00B7', "     " "     " "     " "  #  " "     " "     " "     "},  // ·
+    {U'\u0394', "  #  " "  #  " " # # " " # # " "#   #" "#   #" "#####"},  // Δ
+    {U'\u03B8', " ### " "#   #" "#   #" "#####" "#   #" "#   #" " ### "},  // θ
+    {U'\u2026', "     " "     " "     " "     " "     " "     " "# # #"},  // …
 };
+}  // namespace
+
+namespace {
+// One code point of UTF-8 text (malformed bytes are taken one at a time as U+FFFD).
+char32_t next_code_point(const std::string& s, size_t& i) {
+  const auto b = static_cast<unsigned char>(s[i++]);
+  if (b < 0x80) return b;
+  const int extra = b >= 0xF0 ? 3 : b >= 0xE0 ? 2 : b >= 0xC0 ? 1 : -1;
+  if (extra < 0) return 0xFFFD;
+  char32_t cp = b & (0x3F >> extra);
+  for (int k = 0; k < extra; ++k) {
+    if (i >= s.size() || (static_cast<unsigned char>(s[i]) & 0xC0) != 0x80) return 0xFFFD;
+    cp = (cp << 6) | (static_cast<unsigned char>(s[i++]) & 0x3F);
+  }
+  return cp;
+}
+
+const char* glyph_rows(char32_t cp) {
+  for (const auto& gl : kFont)
+    if (gl.c == cp) return gl.rows;
+  if (cp < 0x80 && std::isalpha(static_cast<int>(cp)))  // no glyph of this case: the other one
+    for (const auto& gl : kFont)
+      if (gl.c == static_cast<char32_t>(std::toupper(static_cast<int>(cp)))) return gl.rows;
+  return nullptr;
+}
 }  // namespace
 
 void Canvas::text(int x, int y, const std::string& s, uint8_t r, uint8_t g, uint8_t b, int scale) {
   int cx = x;
-  for (char ch0 : s) {
-    const char ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch0)));
-    const char* rows = nullptr;
-    for (const auto& gl : kFont)
-      if (gl.c == ch) rows = gl.rows;
+  for (size_t i = 0; i < s.size();) {
+    const char* rows = glyph_rows(next_code_point(s, i));
     if (rows) {
       const size_t n = std::strlen(rows);
-      for (int j = 0; j < 7; ++j)
-        for (int i = 0; i < 5; ++i) {
-          const size_t k = static_cast<size_t>(j) * 5 + i;
-          if (k >= n || rows[k] != '#') continue;
+      for (int j = 0; j < static_cast<int>(n / 5); ++j)
+        for (int k = 0; k < 5; ++k) {
+          const size_t at = static_cast<size_t>(j) * 5 + k;
+          if (at >= n || rows[at] != '#') continue;
           for (int sy = 0; sy < scale; ++sy)
             for (int sx = 0; sx < scale; ++sx) {
-              const int X = cx + i * scale + sx, Y = y + j * scale + sy;
+              const int X = cx + k * scale + sx, Y = y + j * scale + sy;
               if (X < 0 || Y < 0 || X >= width || Y >= height) continue;
               uint8_t* px = &rgb[(static_cast<size_t>(Y) * width + X) * 3];
               px[0] = r, px[1] = g, px[2] = b;
@@ -139,6 +212,25 @@ void Canvas::text(int x, int y, const std::string& s, uint8_t r, uint8_t g, uint
     }
     cx += 6 * scale;
   }
+}
+
+int Canvas::text_width(const std::string& s, int scale) {
+  int n = 0;
+  for (size_t i = 0; i < s.size();) {
+    next_code_point(s, i);
+    ++n;
+  }
+  return n * 6 * scale;
+}
+
+bool Canvas::has_glyph(char32_t cp) { return cp == U' ' || glyph_rows(cp) != nullptr; }
+
+void Canvas::fill(int x, int y, int w, int h, uint8_t r, uint8_t g, uint8_t b) {
+  for (int Y = std::max(y, 0); Y < std::min(y + h, height); ++Y)
+    for (int X = std::max(x, 0); X < std::min(x + w, width); ++X) {
+      uint8_t* px = &rgb[(static_cast<size_t>(Y) * width + X) * 3];
+      px[0] = r, px[1] = g, px[2] = b;
+    }
 }
 
 }  // namespace shadecore::cli

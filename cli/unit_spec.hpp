@@ -22,6 +22,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "args.hpp"
 #include "output.hpp"
 #include "shadecore/coef.hpp"
 #include "shadecore/configs.hpp"
@@ -80,17 +81,17 @@ struct UnitSpec {
 };
 
 inline void add_unit_options(CLI::App* sub, const std::shared_ptr<UnitOptions>& o, bool allow_custom_width = true) {
-  sub->add_option("--variant", o->variant, "Unit: cs16, schlick_div, schlick_nr, schlick_iter, cs16_faithful, cs16_compact, table256, table1024 (config/configs.json variants)");
-  sub->add_option("--config", o->config, "Named width configuration (config/configs.json: narrow, default, wide)");
+  sub->add_option("--variant", o->variant, "Unit: cs16, schlick_div, schlick_nr, schlick_iter, cs16_faithful, cs16_compact, table256, table1024 (config/configs.json variants)")->check(cliargs::NonEmpty("unit name"));
+  sub->add_option("--config", o->config, "Named width configuration (config/configs.json: narrow, default, wide)")->check(cliargs::NonEmpty("config name"));
   if (allow_custom_width) {
     o->frac_opt = sub->add_option("--frac", o->frac, "Fraction bits F (8..24), overrides --config");
     o->guard_opt = sub->add_option("--guard", o->guard, "Guard bits G (4..8, F+G <= 31; cs16 only), overrides --config");
   }
-  o->cutoff_opt = sub->add_option("--cutoff", o->cutoff, "cs16 cut-off form: theta_cr | sign_clamp");
+  o->cutoff_opt = sub->add_option("--cutoff", o->cutoff, "cs16 cut-off form: theta_cr | sign_clamp")->check(cliargs::NonEmpty("cut-off"));
   sub->add_option("--norm", o->norm,
                   "Energy normalisation after the unit (NORM = 1): a model (phong, phong_mod, blinn, blinn_mod, "
-                  "blinn_ndf, blinn_hf) or 'all' (model and kind chosen per n, as the co-simulation)");
-  o->coef_opt = sub->add_option("--coef", o->coef, "Coefficient kind with --norm MODEL: fitted | classical");
+                  "blinn_ndf, blinn_hf) or 'all' (model and kind chosen per n, as the co-simulation)")->check(cliargs::NonEmpty("model"));
+  o->coef_opt = sub->add_option("--coef", o->coef, "Coefficient kind with --norm MODEL: fitted | classical")->check(cliargs::NonEmpty("coefficient kind"));
 }
 
 // Validates the options; throws std::invalid_argument (one line) on any bad value or combination.

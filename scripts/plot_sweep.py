@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Plots for `shadecore sweep --plots DIR`: reads the CSV files the sweep wrote into DIR and writes
 fig3_n128.png (cos^n θ and the unit at n = 128, the paper's Fig. 3, with the fixed-point error in a
-second panel), fig4_delta.png (Δ = cos^n θ − f over n and θ, the paper's Fig. 4, whose axis is 20·θ),
+second panel; when 128 is outside the swept range, fig3_n<N>.png at the swept N nearest to it, --fig3-n), fig4_delta.png (Δ = cos^n θ − f over n and θ, the paper's Fig. 4, whose axis is 20·θ),
 quant_ulp.png (quantisation error in output ulps per n against the contract's bounds) and
 approx_over_n.png (max/min approximation error per n).
 Each figure carries the command, machine and date in a footer. Files are written atomically."""
@@ -41,17 +41,25 @@ def quant_bounds(variant, frac, guard):
     return -0.5, 0.5, "−½", "+½"
 
 
-def fig3(d, unit, frac):
-    f3 = load(os.path.join(d, "fig3_n128.csv"))
+def fig3_name(n):
+    return f"fig3_n{n}"
+
+
+def fig3(d, unit, frac, n=128, n_range=None):
+    f3 = load(os.path.join(d, fig3_name(n) + ".csv"))
     fig, (ax, ax2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True, gridspec_kw={"height_ratios": [3, 1.4]})
-    ax.plot(f3["theta"], f3["cos_pow"], label=r"$\cos^{128}\theta$", lw=2)
+    ax.plot(f3["theta"], f3["cos_pow"], label=rf"$\cos^{{{n}}}\theta$", lw=2)
     ax.plot(f3["theta"], f3["golden"], "--", label=f"{unit} (double)", lw=1.5)
     has_fixed = not np.all(np.isnan(f3["fixed"]))
     if has_fixed:
         ax.plot(f3["theta"], f3["fixed"], ":", label=f"{unit} (fixed point, F = {frac})", lw=1.5)
     ax.set_xlim(0, 0.6)
     ax.set_ylabel("highlight")
-    ax.set_title(f"Fig. 3: n = 128 — {unit}")
+    title = f"Fig. 3: n = {n} — {unit}"
+    if n != 128:  # the paper's n = 128 was not swept: say so, not silently another figure
+        where = f" {n_range}" if n_range else ""
+        title += f"\n(the paper's n = 128 is outside the swept range{where}; n = {n} is the nearest swept n)"
+    ax.set_title(title)
     ax.legend()
     ax.grid(alpha=0.3)
     # The fixed-point and double curves coincide at this scale: their difference, in output ulps, against
@@ -129,11 +137,25 @@ def approx(d, unit, variant):
     return fig
 
 
+def fig3_n_of(a):
+    """Fig. 3's n: --fig3-n, else the n of the one fig3_n<N>.csv in --dir (the sweep wrote it), else 128."""
+    if a.fig3_n is not None:
+        return a.fig3_n
+    found = sorted(f for f in os.listdir(a.dir) if f.startswith("fig3_n") and f.endswith(".csv"))
+    if len(found) == 1:
+        try:
+            return int(found[0][len("fig3_n"):-len(".csv")])
+        except ValueError:
+            pass
+    return 128
+
+
 def build(a):
     """The four figures, by file name (not saved: the tests inspect them)."""
     unit = a.variant
+    a.fig3_n = fig3_n_of(a)
     return {
-        "fig3_n128.png": fig3(a.dir, unit, a.frac),
+        fig3_name(a.fig3_n) + ".png": fig3(a.dir, unit, a.frac, a.fig3_n, a.n_range),
         "fig4_delta.png": fig4(a.dir, a.title, a.approx_max, a.approx_min),
         "quant_ulp.png": quant(a.dir, a.title, a.variant, a.frac, a.guard),
         "approx_over_n.png": approx(a.dir, a.title, a.variant),
@@ -147,6 +169,9 @@ def parser():
     ap.add_argument("--variant", default="cs16", help="the unit's name (legends, contract bounds)")
     ap.add_argument("--frac", type=int, default=16, help="fraction bits F")
     ap.add_argument("--guard", type=int, default=5, help="guard bits G (cs16)")
+    ap.add_argument("--fig3-n", type=int, default=None,
+                    help="n of Fig. 3 (reads fig3_n<N>.csv in --dir; default: the one there, else 128)")
+    ap.add_argument("--n-range", default=None, help="the swept range LO..HI (Fig. 3's title when n != 128)")
     ap.add_argument("--approx-max", type=float, default=None, help="max Δ over every input code (sweep)")
     ap.add_argument("--approx-min", type=float, default=None, help="min Δ over every input code (sweep)")
     ap.add_argument("--command", default="shadecore sweep --plots DIR", help="command for the footer")

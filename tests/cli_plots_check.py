@@ -43,8 +43,11 @@ def check_sweep(sweep_dir, variant, frac, guard):
          "--guard", str(a.guard), "--approx-max=0.0169", "--approx-min=-1e-15"])
     figs = plot_sweep.build(args)
 
-    # fig3: the unit's name in the legend (not "variant"), and the fixed-point error in its own panel.
-    f3 = figs["fig3_n128.png"]
+    # fig3: the unit's name in the legend (not "variant"), and the fixed-point error in its own panel (at
+    # n = 128, or the swept n nearest to it: fig3_n<N>.png).
+    f3_names = [k for k in figs if k.startswith("fig3_n")]
+    check(len(f3_names) == 1, f"fig3: figures {sorted(figs)}")
+    f3 = figs[f3_names[0]]
     check(len(f3.axes) == 2, f"fig3: {len(f3.axes)} panels, want 2 (curves, fixed − double)")
     labels = [t.get_text() for t in f3.axes[0].get_legend().get_texts()]
     check(any(l.startswith(f"{a.variant} (double)") for l in labels), f"fig3 legend {labels} does not name the unit")

@@ -13,12 +13,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <future>
+#include <sstream>
 #include <regex>
 #include <string>
 #include <thread>
@@ -220,7 +222,7 @@ TEST(CliHardening, FailureAfterTheRunLeavesNoOutput) {
     s << "import os, sys\n"
          "a = sys.argv\n"
          "d = a[a.index('--dir') + 1]\n"
-         "open(os.path.join(d, 'fig3_n128.png'), 'w').write('partial')\n"
+         "open(os.path.join(d, 'fig3_n17.png'), 'w').write('partial')\n"  // Fig. 3 at n = 17 for --n 16..17
          "sys.exit('plot_sweep.py: error: simulated failure')\n";
   }
   const CliRun r = run_shell("SHADECORE_SCRIPTS=" + scripts.str() + " " + SHADECORE_CLI +
@@ -260,7 +262,7 @@ TEST(CliHardening, InterruptDuringPlotsIsCleanAndLeavesNothing) {
     s << "import os, sys, time\n"
          "a = sys.argv\n"
          "d = a[a.index('--dir') + 1]\n"
-         "for name in ('fig3_n128.png', 'fig4_delta.png'):\n"
+         "for name in ('fig3_n17.png', 'fig4_delta.png'):\n"  // --n 16..17: Fig. 3 at n = 17
          "    open(os.path.join(d, name), 'w').write('partial')\n"
          "open('" << marker << "', 'w').write('x')\n"
          "time.sleep(30)\n";
@@ -409,4 +411,98 @@ TEST(CliHardening, FitTableIsClean) {
   }
   EXPECT_GT(rows, 10);
   EXPECT_GT(capped, 0);
+}
+
+// Issue 23: a usage error of a subcommand points at that subcommand's help (`shadecore eval --help`, not
+// `shadecore --help`), for every subcommand `shadecore --help` lists: unknown options, bad values, missing
+// required options and bad combinations found by the subcommand itself. Errors before a subcommand is
+// named keep pointing at `shadecore --help`.
+TEST(CliHardening, UsageErrorsNameTheSubcommandsHelp) {
+  const CliRun help = run_cli("--help");
+  ASSERT_EQ(help.status, 0);
+  std::vector<std::string> subs;
+  const auto at = help.out.find("Subcommands:");
+  ASSERT_NE(at, std::string::npos) << help.out;
+  std::istringstream in(help.out.substr(at));
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    std::istringstream ls(line);
+    std::string name;
+    if (line.rfind("  ", 0) == 0 && (ls >> name)) subs.push_back(name);
+  }
+  for (const char* want : {"sweep", "eval", "light-sweep", "render", "cosim"})
+    EXPECT_NE(std::find(subs.begin(), subs.end(), want), subs.end()) << want << " not listed in\n" << help.out;
+  for (const auto& s : subs) {
+    const CliRun r = run_cli(s + " --no-such-option");
+    EXPECT_EQ(r.status, 1) << s;
+    EXPECT_EQ(lines(r.err), 1) << s << ": " << r.err;
+    EXPECT_NE(r.err.find("(see shadecore " + s + " --help)"), std::string::npos) << s << ": " << r.err;
+  }
+  const std::vector<BadCase> eval_cases = {
+      {"eval --code 5", "--n is required"},                  // a required option missing
+      {"eval --n 5 --code 1", "out of range"},               // a bad value, found by the subcommand
+      {"eval --n 64", "give exactly one of --code K and --cos X"},  // a combination
+      {"eval --n 64 --code 1 --cutoff nosuch", "nosuch"},
+      {"eval --n 64 --code 1 --json ''", "empty path"},
+  };
+  for (const auto& c : eval_cases) {
+    expect_rejected(c);
+    const CliRun r = run_cli(c.args);
+    EXPECT_NE(r.err.find("(see shadecore eval --help)"), std::string::npos) << c.args << ": " << r.err;
+  }
+  for (const char* top : {"--no-such-option", "frobnicate", ""}) {
+    const CliRun r = run_cli(top);
+    EXPECT_NE(r.err.find("see shadecore --help)"), std::string::npos) << top << ": " << r.err;
+  }
+}
+
+// Issue 23: names and paths given explicitly must not be empty (docs/cli.md) — in every subcommand but
+// render (its --json and --size are cli/cmd_render.cpp's). Before, e.g. `eval --json ''` wrote nothing
+// silently and `cosim --features ''` meant the full set.
+TEST(CliHardening, EmptyValuesAreErrorsEverywhere) {
+  const std::vector<BadCase> cases = {
+      {"eval --n 64 --code 1 --json ''", "--json: empty path"},
+      {"eval --n 64 --code ''", "--code: empty code"},
+      {"eval --n 64 --code 1 --variant ''", "--variant: empty unit name"},
+      {"eval --n 64 --code 1 --config ''", "--config: empty config name"},
+      {"eval --n 64 --code 1 --cutoff ''", "--cutoff: empty cut-off"},
+      {"eval --n 64 --code 1 --norm ''", "--norm: empty model"},
+      {"eval --n 64 --code 1 --coef ''", "--coef: empty coefficient kind"},
+      {"sweep --variant '' --n 16 --frac 8", "--variant: empty unit name"},
+      {"sweep --cutoff '' --n 16 --frac 8", "--cutoff: empty cut-off"},
+      {"sweep --n '' --frac 8", "--n: empty range"},
+      {"cosim --variant ''", "--variant: empty unit name"},
+      {"cosim --cutoff ''", "--cutoff: empty cut-off"},
+      {"cosim --n ''", "--n: empty range"},
+      {"cosim --mode ''", "--mode: empty mode"},
+      {"cosim --norm --coef-model ''", "--coef-model: empty model"},
+      {"cosim --norm --coef ''", "--coef: empty coefficient kind"},
+      {"cosim --core lighting --features ''", "--features: empty feature set"},
+      {"energy --model '' --n 16 --angles 0", "--model: empty model"},
+      {"energy --n '' --angles 0", "--n: empty range"},
+      {"energy --n 16 --angles ''", "--angles: empty angle list"},
+      {"energy --n 16 --angles 0 --coef ''", "--coef: empty coefficient kind"},
+      {"energy --n 16 --angles 0 --cutoff ''", "--cutoff: empty cut-off"},
+      {"energy --n 16 --angles 0 --method ''", "--method: empty method"},
+      {"fit --lobe ''", "--lobe: empty lobe"},
+      {"fit --cutoff ''", "--cutoff: empty cut-off"},
+      {"fit --model ''", "--model: empty model"},
+      {"fit --n ''", "--n: empty range"},
+      {"vectors --out ''", "--out: empty path"},
+      {"vectors --out v.txt --mode ''", "--mode: empty mode"},
+      {"vectors --out v.txt --core ''", "--core: empty core"},
+      {"vectors --out v.txt --core lighting --features ''", "--features: empty feature set"},
+      {"vectors --out v.txt --mode random --n ''", "--n: empty range"},
+      {"vectors --out v.txt --variant ''", "--variant: empty unit name"},
+      {"handoff --out ''", "--out: empty path"},
+      {"handoff --out b --top ''", "--top: empty module name"},
+      {"handoff --out b --synth ''", "--synth: empty synthesis mode"},
+      {"handoff --out b --core ''", "--core: empty core"},
+      {"handoff --out b --core lighting --features ''", "--features: empty feature set"},
+      {"handoff --out b --config ''", "--config: empty config name"},
+      {"light-sweep --features ''", "--features: empty feature set"},
+      {"light-sweep --json ''", "--json: empty path"},
+  };
+  for (const auto& c : cases) expect_rejected(c);
 }

@@ -4,7 +4,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cmath>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "cli_run.hpp"
@@ -88,6 +90,54 @@ TEST(CostReport, ReportIsAllOrNothingAndCreatesOut) {
   files.clear();
   for (const auto& e : fs::directory_iterator(d / "a/b")) files.insert(e.path().filename().string());
   EXPECT_EQ(files.size(), 3u);
+}
+
+// Issue 23: Fig. 3 is drawn at an n the sweep covered: n = 128 when it is inside --n (fig3_n128.png, as
+// the README says), else the swept n nearest to it, named in the file names, the title and on stdout.
+TEST(CliPlots, Fig3IsDrawnInsideTheSweptRange) {
+  const TempDir d;
+  struct Case {
+    std::string range;
+    int n;
+  };
+  for (const Case& c : {Case{"100..120", 120}, Case{"200..210", 200}, Case{"128", 128}}) {
+    const std::string dir = "p" + c.range;
+    const CliRun s = run_cli("sweep --n " + c.range + " --frac 8 --guard 5 --no-progress --plots " + dir, d.str());
+    ASSERT_EQ(s.status, 0) << s.err;
+    const std::string f3 = "fig3_n" + std::to_string(c.n);
+    std::set<std::string> files;
+    for (const auto& e : fs::directory_iterator(d / dir)) files.insert(e.path().filename().string());
+    EXPECT_EQ(files, (std::set<std::string>{"approx_over_n.png", f3 + ".csv", f3 + ".png", "fig4_delta.png",
+                                            "fig4_grid.csv", "per_n.csv", "quant_ulp.png"}))
+        << c.range;
+    // The CSV's cos^n column is cos(θ)^n at that n.
+    std::istringstream csv(slurp(d / (dir + "/" + f3 + ".csv")));
+    std::string line;
+    std::getline(csv, line);
+    int rows = 0;
+    double worst = 0;
+    while (std::getline(csv, line)) {
+      double th = 0, cp = 0;
+      char comma = 0;
+      std::istringstream ls(line);
+      ls >> th >> comma >> cp;
+      worst = std::max(worst, std::fabs(cp - std::pow(std::cos(th), c.n)));
+      ++rows;
+    }
+    EXPECT_GT(rows, 100);
+    EXPECT_LT(worst, 1e-6) << c.range << ": " << f3 << ".csv is not at n = " << c.n;
+    const bool note = s.out.find(f3 + ".png: Fig. 3 at n = " + std::to_string(c.n)) != std::string::npos;
+    EXPECT_EQ(note, c.n != 128) << s.out;
+    // The figure's title names the n, and says why when it is not the paper's 128.
+    const CliRun t = run_shell(kPython + " -c 'import sys; sys.path.insert(0, \"" + std::string(SHADECORE_SCRIPTS_DIR) +
+                               "\"); import plot_sweep as p; a = p.parser().parse_args([\"--dir\", sys.argv[1], "
+                               "\"--fig3-n\", sys.argv[2], \"--n-range\", sys.argv[3]]); "
+                               "print(p.build(a)[\"" + f3 + ".png\"].axes[0].get_title())' " +
+                               (d / dir) + " " + std::to_string(c.n) + " " + c.range);
+    ASSERT_EQ(t.status, 0) << t.err;
+    EXPECT_NE(t.out.find("Fig. 3: n = " + std::to_string(c.n)), std::string::npos) << t.out;
+    EXPECT_EQ(t.out.find("outside the swept range " + c.range) != std::string::npos, c.n != 128) << t.out;
+  }
 }
 
 #endif
