@@ -40,6 +40,7 @@
 
 #include "args.hpp"
 #include "commands.hpp"
+#include "legend.hpp"
 #include "output.hpp"
 #include "png.hpp"
 #include "shadecore/mesh.hpp"
@@ -453,25 +454,25 @@ void run_render(const RenderArgs& a) {
     cst.height = cs.cell_height;
     cst.camera = cs.camera;
     cst.objects = cs.objects;
-    const int pad = 6, label_h = 12, row_label_w = 64;
-    const int ncols = 1 + 2 * static_cast<int>(cs.units.size());
     const int nrows = static_cast<int>(cs.modes.size());
-    Canvas cv(row_label_w + ncols * (cs.cell_width + pad) + pad, label_h + pad + nrows * (cs.cell_height + pad) + pad, 24);
     std::vector<std::string> col_names = {"exact cos^n"};
     for (auto u : cs.units) {
       col_names.push_back(unit_name(u));
-      col_names.push_back(fmt::format("{} - exact (log)", unit_name(u)));
+      col_names.push_back(fmt::format("{} − exact", unit_name(u)));
     }
-    for (int c = 0; c < ncols; ++c) cv.text(row_label_w + c * (cs.cell_width + pad), pad, col_names[c], 230, 230, 230);
+    std::vector<std::string> row_names;
+    for (const auto& m : cs.modes) row_names.push_back(m ? scene::to_string(*m) : "scene");
+    const SheetLayout L = layout_sheet(cs.cell_width, cs.cell_height, col_names, row_names, fr.F);
+    Canvas cv = L.canvas();
+    L.draw_labels(cv);
+    L.draw_legend(cv);
     json rows = json::array();
     const int ncells = nrows * static_cast<int>(cs.units.size());
     Step step(fmt::format("contact sheet, {} cells of {}x{}", ncells, cs.cell_width, cs.cell_height));
     int done = 0;
     for (int r = 0; r < nrows; ++r) {
       cst.mode = cs.modes[r];
-      const std::string mode_name = cs.modes[r] ? scene::to_string(*cs.modes[r]) : "scene";
-      const int y = label_h + pad + r * (cs.cell_height + pad);
-      cv.text(pad, y + cs.cell_height / 2 - 3, mode_name, 230, 230, 230);
+      const std::string& mode_name = row_names[r];
       json row;
       row["mode"] = mode_name;
       json cells = json::array();
@@ -484,11 +485,9 @@ void run_render(const RenderArgs& a) {
         } catch (const scene::SceneError& e) {
           throw std::runtime_error(e.what());
         }
-        if (u == 0) cv.blit(row_label_w, y, cs.cell_width, cs.cell_height, render::to_rgb8(cell.exact));
-        const int x = row_label_w + (1 + 2 * static_cast<int>(u)) * (cs.cell_width + pad);
-        cv.blit(x, y, cs.cell_width, cs.cell_height, render::to_rgb8(cell.image));
-        cv.blit(x + cs.cell_width + pad, y, cs.cell_width, cs.cell_height,
-                render::diff_rgb8(cell.image, cell.exact));
+        if (u == 0) L.place(cv, r, 0, render::to_rgb8(cell.exact));
+        L.place(cv, r, 1 + 2 * static_cast<int>(u), render::to_rgb8(cell.image));
+        L.place(cv, r, 2 + 2 * static_cast<int>(u), render::diff_rgb8(cell.image, cell.exact));
         const auto e = render::error_vs(cell.image, cell.exact);
         std::string units;
         for (const auto& g : cell.frame.groups) units += (units.empty() ? "" : "+") + g.unit_label;
@@ -512,8 +511,10 @@ void run_render(const RenderArgs& a) {
     Step step("writing the images");
     files.emplace_back("cmodel.png", encode_png(main_image.width, main_image.height, render::to_rgb8(main_image)));
     files.emplace_back("exact.png", encode_png(main_exact.width, main_exact.height, render::to_rgb8(main_exact)));
-    files.emplace_back("diff_exact.png",
-                       encode_png(main_image.width, main_image.height, render::diff_rgb8(main_image, main_exact)));
+    // The difference with its colour bar below (the image at the top left: max_at's pixel is where it was).
+    const Canvas d = with_diff_legend(main_image.width, main_image.height, render::diff_rgb8(main_image, main_exact),
+                                      main_image.F);
+    files.emplace_back("diff_exact.png", encode_png(d.width, d.height, d.rgb));
     if (a.rtl) {
       files.emplace_back("rtl.png", encode_png(rimg.width, rimg.height, render::to_rgb8(rimg)));
       files.emplace_back("diff_rtl.png", encode_png(rimg.width, rimg.height, render::mismatch_rgb8(main_image, rimg)));
