@@ -83,6 +83,7 @@ TEST_F(RenderCli, BadScenesOneLineExit1NoOutput) {
   write("far_index.obj", tri + "f 1 2 4\n");
   write("neg_index.obj", tri + "f -1 -2 -4\n");
   write("not_int.obj", tri + "f 1 2 3.5\n");
+  write("big_coord.obj", tri + "v 0 1e300 0\nf 1 2 3\n");
   fs::create_directories(dir_ / "objdir.obj");
   const std::string fifo = (dir_ / "fifo.obj").string();
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
@@ -206,6 +207,14 @@ TEST_F(RenderCli, BadScenesOneLineExit1NoOutput) {
       {"integral but out of range", edit("\"shininess\": 32", "\"shininess\": 2048.0"), "materials.m.shininess: 2048 out of range 16..1024"},
       {"huge unsigned integer", edit("\"width\": 40", "\"width\": 18446744073709551615"),
        "image.width: 18446744073709551615 out of range 1..4096"},
+      {"more than 256 keys in one object (ordered_json's lookup is linear: a hang for a million)",
+       edit("\"m\": {", [] {
+         std::string k;
+         for (int i = 0; i < 300; ++i) k += "\"k" + std::to_string(i) + "\": {}, ";
+         return k;
+       }() + "\"m\": {"),
+       "scene.json: materials: more than 256 keys in one object"},
+      {"OBJ coordinate 1e300", with_mesh("big_coord.obj"), "big_coord.obj:4: '1e300' out of range [-1e6, 1e6]"},
       {"too many generated vertices", edit("\"slices\": 12, \"stacks\": 8}", "\"slices\": 1024, \"stacks\": 1024}, "
                                            "{\"type\": \"torus\", \"material\": \"m\", \"sides\": 1024, \"rings\": 1024}, "
                                            "{\"type\": \"torus\", \"material\": \"m\", \"sides\": 1024, \"rings\": 1024}, "

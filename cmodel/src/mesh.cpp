@@ -159,6 +159,8 @@ void prescan_obj(const Object& o, const std::string& text) {
           obj_fail_line(o, line, "'" + printable(tok, 60) + "' is not a number");
         if (!std::isfinite(x))
           obj_fail_line(o, line, "'" + printable(tok, 60) + "' is not a finite number (NaN, infinity or out of range)");
+        if (!(std::fabs(x) <= kMaxCoord))
+          obj_fail_line(o, line, "'" + printable(tok, 60) + "' out of range [-1e6, 1e6]");
       }
       ++count[v ? 0 : 2];
     } else if (vt) {

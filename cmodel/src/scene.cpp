@@ -677,7 +677,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
   PathTracker pt;
   json root;
   try {
-    json::parser_callback_t cb = [&pt](int, json::parse_event_t ev, json& parsed) {
+    json::parser_callback_t cb = [&pt, &name](int, json::parse_event_t ev, json& parsed) {
       using E = json::parse_event_t;
       switch (ev) {
         case E::object_start:
@@ -697,6 +697,13 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
           auto& top = pt.stack.back();
           top.key = k;
           if (!top.keys.insert(k).second && pt.dup_path.empty()) pt.dup_path = pt.path();
+          // ordered_json looks keys up linearly: a million keys in one object would take hours to parse.
+          if (top.keys.size() > static_cast<size_t>(kMaxMembers)) {
+            const std::string at = pt.path(), kp = printable(k, 60);  // the object's path: without ".key"
+            const std::string obj = at.size() > kp.size() ? at.substr(0, at.size() - kp.size() - 1) : std::string();
+            throw SceneError(printable(name, 0) + ": " + (obj.empty() ? "" : obj + ": ") + "more than " +
+                             std::to_string(kMaxMembers) + " keys in one object");
+          }
           break;
         }
         case E::value:
@@ -713,14 +720,16 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
     const auto p = msg.find(": syntax error");
     std::string detail = p != std::string::npos ? msg.substr(p + 2) : msg;
     // nlohmann repeats the position in its text; keep the part after it.
-    const auto q = detail.find(": ");
-    if (q != std::string::npos && detail.rfind("syntax error", 0) == 0) detail = detail.substr(q + 2);
+    // "syntax error while parsing value - invalid literal; last read: '…'": keep what is after " - ".
+    const auto q = detail.find(" - ");
+    if (q != std::string::npos && detail.rfind("syntax error", 0) == 0) detail = detail.substr(q + 3);
     // nlohmann quotes the token it stopped at ("last read: '…'"): that is user text, keep 60 characters of it.
     const auto lr = detail.find("last read: '");
     if (lr != std::string::npos) {
       const size_t b = lr + 12;
-      size_t e2 = detail.rfind('\'');
-      if (e2 == std::string::npos || e2 < b) e2 = detail.size();
+      size_t e2 = detail.find("'; expected ", b);  // nlohmann: "…; last read: 'TOKEN'[; expected …]"
+      if (e2 == std::string::npos) e2 = !detail.empty() && detail.back() == '\'' ? detail.size() - 1 : detail.size();
+      if (e2 < b) e2 = detail.size();
       detail = detail.substr(0, b) + printable(detail.substr(b, e2 - b), 60) + detail.substr(e2);
     }
     throw SceneError(printable(name, 0) + ":" + line_col(text, end) + ": malformed JSON: " + printable(detail, 0));

@@ -126,6 +126,7 @@ struct Scene {
 inline constexpr std::uint64_t kMaxSceneBytes = 16ull << 20;  // a scene file: at most 16 MiB
 inline constexpr std::uint64_t kMaxObjBytes = 256ull << 20;   // an OBJ file: at most 256 MiB
 inline constexpr int kMaxNesting = 64;                          // JSON arrays/objects nested at most 64 deep
+inline constexpr int kMaxMembers = 256;                         // keys of one JSON object (materials: 256 names)
 inline constexpr long long kMaxSceneVertices = 1ll << 22;      // generated (sphere/plane/torus) vertices in total
 inline constexpr double kMaxCoord = 1e6;                        // |x| of a position, direction, translation, angle
 inline constexpr double kMinLength = 1e-6;                      // smallest radius, size, |scale|
