@@ -84,6 +84,11 @@ TEST_F(RenderCli, BadScenesOneLineExit1NoOutput) {
   write("neg_index.obj", tri + "f -1 -2 -4\n");
   write("not_int.obj", tri + "f 1 2 3.5\n");
   write("big_coord.obj", tri + "v 0 1e300 0\nf 1 2 3\n");
+  write("face300.obj", tri + "f" + [] {  // tinyobjloader counts face vertices in an unsigned char
+    std::string f;
+    for (int i = 0; i < 300; ++i) f += " " + std::to_string(1 + i % 3);
+    return f;
+  }() + "\n");
   fs::create_directories(dir_ / "objdir.obj");
   const std::string fifo = (dir_ / "fifo.obj").string();
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
@@ -214,6 +219,7 @@ TEST_F(RenderCli, BadScenesOneLineExit1NoOutput) {
          return k;
        }() + "\"m\": {"),
        "scene.json: materials: more than 256 keys in one object"},
+      {"OBJ face with 300 vertices", with_mesh("face300.obj"), "face300.obj:4: a face with 300 vertices; at most 255"},
       {"OBJ coordinate 1e300", with_mesh("big_coord.obj"), "big_coord.obj:4: '1e300' out of range [-1e6, 1e6]"},
       {"too many generated vertices", edit("\"slices\": 12, \"stacks\": 8}", "\"slices\": 1024, \"stacks\": 1024}, "
                                            "{\"type\": \"torus\", \"material\": \"m\", \"sides\": 1024, \"rings\": 1024}, "
