@@ -341,7 +341,7 @@ void run_render(const RenderArgs& a) {
       for (const auto& n : kRenderNames)
         if (std::find(names.begin(), names.end(), n) == names.end() && ::lstat((a.out + "/" + n).c_str(), &mst) == 0)
           fmt::print(stderr, "render: note: {}/{} is not from this run (no manifest says which render wrote it: left as it is)\n",
-                     a.out, n);
+                     scene::printable(a.out, 0), n);
   }
   std::vector<std::pair<std::string, std::string>> files;  // name in --out, content
 
@@ -355,7 +355,7 @@ void run_render(const RenderArgs& a) {
   const render::Frame& fr = main.frame;
 
   // What the scene needs, and the core(s) it is rendered with.
-  fmt::print("scene {}: {}x{}, {}, {}, {}\n", a.scene, fr.width, fr.height, plural(sc.objects.size(), "object", "objects"),
+  fmt::print("scene {}: {}x{}, {}, {}, {}\n", scene::printable(a.scene, 0), fr.width, fr.height, plural(sc.objects.size(), "object", "objects"),
              plural(sc.lights.size(), "light", "lights"), plural(sc.materials.size(), "material", "materials"));
   fmt::print("geometry: {} vertices, {} faces, {} triangles drawn; {} visible triangles kept\n", fr.drawn_vertices,
              fr.drawn_faces, fr.drawn_triangles, fr.tri_object.size());
@@ -366,7 +366,7 @@ void run_render(const RenderArgs& a) {
     std::string mats;
     json mj = json::array();
     for (int m : grp.materials) {
-      mats += (mats.empty() ? "" : ", ") + sc.materials[m].name;
+      mats += (mats.empty() ? "" : ", ") + scene::printable(sc.materials[m].name);
       mj.push_back(sc.materials[m].name);
     }
     fmt::print("core {}/{} (unit {}; {} {}):\n", g + 1, fr.groups.size(), grp.unit_label,
@@ -557,11 +557,11 @@ void run_render(const RenderArgs& a) {
   for (const auto& [name, content] : files) write_staged(stage + "/" + name, content);
   outs.commit();
   fmt::print("time: {}\n", ph.text(total, a.rtl));
-  fmt::print("wrote {}/{{{}}}{}\n", a.out, [&] {
+  fmt::print("wrote {}/{{{}}}{}\n", scene::printable(a.out, 0), [&] {
     std::string s;
     for (const auto& n : names) s += (s.empty() ? "" : ",") + n;
     return s;
-  }(), a.json_given ? " and " + a.json_path : std::string());
+  }(), a.json_given ? " and " + scene::printable(a.json_path, 0) : std::string());
   if (!rtl_ok)  // exit status 2: the check ran and failed; the images and the JSON are its record
     throw CheckFailed(fmt::format("RTL render FAILED: {} pixels differ from the C model (images written to {})",
                                   bad_pixels, a.out));

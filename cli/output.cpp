@@ -1,4 +1,5 @@
 #include "output.hpp"
+#include "shadecore/scene.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -35,11 +36,13 @@ namespace shadecore::cli {
 namespace {
 
 // One line: a message never spans lines on stderr.
+// One line that cannot drive the terminal: line breaks become blanks, every other control character (in a
+// path or name the user gave, e.g. `cannot write /tmp/<ESC>[2J.json`) is shown escaped.
 std::string one_line(std::string s) {
   for (char& c : s)
     if (c == '\n' || c == '\r') c = ' ';
   while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
+  return scene::printable(s, 0);
 }
 
 }  // namespace

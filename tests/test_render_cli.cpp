@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <vector>
 
@@ -69,6 +70,32 @@ TEST_F(RenderCli, BadScenesOneLineExit1NoOutput) {
   write("bad_index.obj", cube_bad_index);
   write("collinear.obj", collinear);
   write("garbage.obj", "this is not an OBJ file\n");
+  // issue 23: OBJ numbers and indices tinyobjloader maps silently (nan -> 0, wrapping indices), and paths
+  // that are not regular files.
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  write("nan.obj", "v nan nan nan\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  write("nan2.obj", "v NaN 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  write("inf.obj", tri + "v inf 0 0\nf 1 2 3\n");
+  write("huge.obj", tri + "v 1e400 0 0\nf 1 2 3\n");
+  write("vn_nan.obj", tri + "vn 0 0 nan\nf 1//1 2//1 3//1\n");
+  write("wrap.obj", tri + "f 1 2 99999999999999999999\n");
+  write("zero_index.obj", tri + "f 0 1 2\n");
+  write("far_index.obj", tri + "f 1 2 4\n");
+  write("neg_index.obj", tri + "f -1 -2 -4\n");
+  write("not_int.obj", tri + "f 1 2 3.5\n");
+  write("big_coord.obj", tri + "v 0 1e300 0\nf 1 2 3\n");
+  write("face300.obj", tri + "f" + [] {  // tinyobjloader counts face vertices in an unsigned char
+    std::string f;
+    for (int i = 0; i < 300; ++i) f += " " + std::to_string(1 + i % 3);
+    return f;
+  }() + "\n");
+  fs::create_directories(dir_ / "objdir.obj");
+  const std::string fifo = (dir_ / "fifo.obj").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  fs::create_symlink("loop_b.obj", dir_ / "loop_a.obj");
+  fs::create_symlink("loop_a.obj", dir_ / "loop_b.obj");
+  auto with_rot = [&](const std::string& t) { return edit("\"stacks\": 8}", "\"stacks\": 8, \"transform\": " + t + "}"); };
+  const std::string deep = std::string(150000, '[') + std::string(150000, ']');
   const std::string mesh_obj = R"({"type": "mesh", "file": "%F", "material": "m"})";
   auto with_mesh = [&](const std::string& file) {
     std::string o = mesh_obj;
@@ -92,7 +119,7 @@ TEST_F(RenderCli, BadScenesOneLineExit1NoOutput) {
       {"negative attenuation", edit("[0, 1, 1, 0], \"specular\"", "[0, 1, 1, 1], \"linear_attenuation\": -1, \"specular\""),
        "lights[0].linear_attenuation: -1 out of range"},
       {"all attenuation zero", edit("[0, 1, 1, 0], \"specular\"", "[0, 1, 1, 1], \"constant_attenuation\": 0, \"specular\""),
-       "all 0"},
+       "all round to 0 in the core's 16-bit fraction format"},
       {"too many lights",
        edit("\"lights\": [{\"position\": [0, 1, 1, 0], \"specular\": [1, 1, 1]}]",
             "\"lights\": [" + [] {
@@ -115,6 +142,85 @@ TEST_F(RenderCli, BadScenesOneLineExit1NoOutput) {
       {"OBJ index out of range", with_mesh("bad_index.obj"), "bad_index.obj"},
       {"OBJ with no faces", with_mesh("garbage.obj"), "no faces"},
       {"degenerate triangle", with_mesh("collinear.obj"), "face 1 is degenerate"},
+      // issue 23
+      {"150000 nested [ in a _comment", edit("\"image\"", "\"_comment\": " + deep + ", \"image\""),
+       "scene.json:2:78: nesting deeper than 64 levels"},
+      {"65 nested arrays", edit("\"image\"", "\"_comment\": " + std::string(65, '[') + std::string(65, ']') + ", \"image\""),
+       "nesting deeper than 64 levels"},
+      {"OBJ is a directory", with_mesh("objdir.obj"), "objdir.obj: is a directory"},
+      {"OBJ is /dev/null", with_mesh("/dev/null"), "/dev/null: is a character device, not a regular file"},
+      {"OBJ is a FIFO", with_mesh("fifo.obj"), "fifo.obj: is a FIFO, not a regular file"},
+      {"OBJ symlink loop", with_mesh("loop_a.obj"), "loop_a.obj: too many levels of symbolic links"},
+      {"OBJ v nan", with_mesh("nan.obj"), "nan.obj:1: 'nan' is not a finite number"},
+      {"OBJ v NaN", with_mesh("nan2.obj"), "nan2.obj:1: 'NaN' is not a finite number"},
+      {"OBJ v inf", with_mesh("inf.obj"), "inf.obj:4: 'inf' is not a finite number"},
+      {"OBJ v 1e400", with_mesh("huge.obj"), "huge.obj:4: '1e400' is not a finite number"},
+      {"OBJ vn nan", with_mesh("vn_nan.obj"), "vn_nan.obj:4: 'nan' is not a finite number"},
+      {"OBJ index overflows", with_mesh("wrap.obj"), "wrap.obj:4: vertex index 99999999999999999999 overflows"},
+      {"OBJ index 0", with_mesh("zero_index.obj"), "zero_index.obj:4: vertex index 0"},
+      {"OBJ index past the end", with_mesh("far_index.obj"), "far_index.obj:4: vertex index 4 out of range (3 in the file)"},
+      {"OBJ relative index too far back", with_mesh("neg_index.obj"), "neg_index.obj:4: relative vertex index -4"},
+      {"OBJ index not an integer", with_mesh("not_int.obj"), "not_int.obj:4: face index '3.5' is not an integer"},
+      {"NUL in a file name", with_mesh("knot.obj\\u0000ignored"), "scene.json:7:49: \\u0000 (NUL) in a string"},
+      {"NUL in a key", edit("\"image\"", "\"a\\u0000b\": 1, \"image\""), "\\u0000 (NUL) in a string"},
+      {"NUL in a material name", edit("\"m\": {", "\"m\\u0000x\": {"), "scene.json:6:19: \\u0000 (NUL)"},
+      {"NUL in an object name", edit("\"type\": \"sphere\"", "\"name\": \"a\\u0000\", \"type\": \"sphere\""),
+       "\\u0000 (NUL) in a string"},
+      {"valid JSON, a NUL byte, garbage", std::string(kGood) + std::string(1, '\0') + "garbage",
+       "scene.json:8:2: NUL byte in the scene file"},
+      {"ESC[2J in a key is escaped", edit("\"image\"", "\"\\u001b[2J\": 1, \"image\""), "scene.json: \\x1b[2J: unknown key"},
+      {"newline, tab, DEL, C1 in a key", edit("\"image\"", "\"a\\nb\\tc\\u007fd\\u009be\": 1, \"image\""),
+       "a\\nb\\tc\\x7fd\\u009be: unknown key"},
+      {"control character in an unknown object type", edit("\"type\": \"sphere\"", "\"type\": \"sph\\u001b\""),
+       "unknown object type 'sph\\x1b'"},
+      {"long user text cut at 60 characters", edit("\"material\": \"m\"", "\"material\": \"" + std::string(500, 'x') + "\""),
+       "unknown material '" + std::string(60, 'x') + "\u2026'"},
+      {"1e999", edit("\"fovy\": 40", "\"fovy\": 1e999"), "scene.json:3:78: number out of range (overflows a double): 1e999"},
+      {"a million-digit number", edit("\"fovy\": 40", "\"fovy\": " + std::string(1000000, '9')),
+       "number out of range (overflows a double): " + std::string(60, '9') + "\u2026"},
+      {"specular_unit table256", edit("\"shininess\": 32", "\"shininess\": 32, \"specular_unit\": \"table256\""),
+       "materials.m.specular_unit: specular unit 'table256' is not a unit of the lighting core"},
+      {"specular_unit table1024", edit("\"shininess\": 32", "\"shininess\": 32, \"specular_unit\": \"table1024\""),
+       "the core takes cs16, schlick_div, schlick_nr, schlick_iter, cs16_faithful, cs16_compact"},
+      {"contact_sheet unit table256", edit("\"objects\"", "\"contact_sheet\": {\"units\": [\"cs16\", \"table256\"]}, \"objects\""),
+       "contact_sheet.units[1]: specular unit 'table256' is not a unit of the lighting core"},
+      {"unknown unit lists only core units", edit("\"shininess\": 32", "\"shininess\": 32, \"specular_unit\": \"x\""),
+       "unknown variant 'x' (known: cs16, schlick_div, schlick_nr, schlick_iter, cs16_faithful, cs16_compact)"},
+      {"rotation axis 1e-300", with_rot("{\"rotate\": [30, 1e-300, 0, 0]}"),
+       "objects[0].transform.rotate: rotation axis too short to normalise"},
+      {"rotation axis 1e-300 in a list", with_rot("{\"rotate\": [[30, 0, 1, 0], [30, 0, 0, 1e-300]]}"),
+       "objects[0].transform.rotate[1]: rotation axis too short to normalise"},
+      {"rotation angle 1e300", with_rot("{\"rotate\": [1e300, 0, 1, 0]}"), "objects[0].transform.rotate[0]: 1e+300 out of range"},
+      {"scale 1e-300", with_rot("{\"scale\": 1e-300}"), "objects[0].transform.scale: 1e-300 out of range: |scale| must be in [1e-6, 1e6]"},
+      {"scale 1e300", with_rot("{\"scale\": [1, 1e300, 1]}"), "objects[0].transform.scale[1]: 1e+300 out of range"},
+      {"translate 1e300", with_rot("{\"translate\": [1e300, 0, 0]}"), "objects[0].transform.translate[0]: 1e+300 out of range"},
+      {"radius 1e-300", edit("\"slices\": 12", "\"radius\": 1e-300, \"slices\": 12"), "objects[0].radius: 1e-300 out of range [1e-6, 1e4]"},
+      {"camera eye 1e300", edit("\"eye\": [0, 0, 6]", "\"eye\": [0, 0, 1e300]"), "camera.eye[2]: 1e+300 out of range"},
+      {"camera up 1e-300", edit("\"up\": [0, 1, 0]", "\"up\": [0, 1e-300, 0]"), "camera.up: degenerate camera: up is the zero vector"},
+      {"fovy 1e-300", edit("\"fovy\": 40", "\"fovy\": 1e-300"), "camera.fovy: 1e-300 out of range"},
+      {"light position 1e300", edit("[0, 1, 1, 0]", "[0, 1e300, 1, 0]"), "lights[0].position[1]: 1e+300 out of range"},
+      {"directional light 1e-300", edit("[0, 1, 1, 0]", "[0, 1e-300, 0, 0]"),
+       "lights[0].position: the direction of a directional light (w = 0) is too short to normalise"},
+      {"point light w 1e-300", edit("[0, 1, 1, 0]", "[0, 0, 0, 1e-300]"), "lights[0].position: w = 1e-300 is too close to 0"},
+      {"attenuation 1e-9", edit("[0, 1, 1, 0], \"specular\"",
+                                "[0, 1, 1, 1], \"constant_attenuation\": 1e-9, \"linear_attenuation\": 1e-9, "
+                                "\"quadratic_attenuation\": 1e-9, \"specular\""),
+       "lights[0]: constant, linear and quadratic attenuation all round to 0 in the core's 16-bit fraction format "
+       "(smallest representable 2^-16 \u2248 1.52588e-05"},
+      {"shininess 16.5", edit("\"shininess\": 32", "\"shininess\": 16.5"), "materials.m.shininess: must be an integer (16.5 is not)"},
+      {"slices 12.5", edit("\"slices\": 12", "\"slices\": 12.5"), "objects[0].slices: must be an integer"},
+      {"integral but out of range", edit("\"shininess\": 32", "\"shininess\": 2048.0"), "materials.m.shininess: 2048 out of range 16..1024"},
+      {"huge unsigned integer", edit("\"width\": 40", "\"width\": 18446744073709551615"),
+       "image.width: 18446744073709551615 out of range 1..4096"},
+      {"more than 256 keys in one object (ordered_json's lookup is linear: a hang for a million)",
+       edit("\"m\": {", [] {
+         std::string k;
+         for (int i = 0; i < 300; ++i) k += "\"k" + std::to_string(i) + "\": {}, ";
+         return k;
+       }() + "\"m\": {"),
+       "scene.json: materials: more than 256 keys in one object"},
+      {"OBJ face with 300 vertices", with_mesh("face300.obj"), "face300.obj:4: a face with 300 vertices; at most 255"},
+      {"OBJ coordinate 1e300", with_mesh("big_coord.obj"), "big_coord.obj:4: '1e300' out of range [-1e6, 1e6]"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.what);
@@ -125,6 +231,9 @@ TEST_F(RenderCli, BadScenesOneLineExit1NoOutput) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_NE(r.err.find(c.needle), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("scene.json"), std::string::npos) << r.err;  // names the file
+    EXPECT_LT(r.err.size(), 600u) << "message too long";
+    for (const char ch : r.err)  // user text is escaped: no control character but the final newline
+      EXPECT_TRUE(ch == '\n' || (static_cast<unsigned char>(ch) >= 0x20 && ch != 0x7f)) << r.err;
     EXPECT_FALSE(fs::exists(out)) << "output directory left behind";
     EXPECT_FALSE(fs::exists(js)) << "JSON left behind";
   }
@@ -220,6 +329,97 @@ TEST_F(RenderCli, FullCoreSameImage) {
     return ss.str();
   };
   EXPECT_EQ(slurp(dir_ / "a" / "cmodel.png"), slurp(dir_ / "b" / "cmodel.png"));
+}
+
+// issue 23: the scene file itself must be a regular file of at most 16 MiB; nothing is read from a device and a
+// FIFO is never opened (`timeout`: a blocking open would hang the test, not pass it).
+TEST_F(RenderCli, SceneFileNotRegularOrTooLarge) {
+  const std::string fifo = (dir_ / "fifo.json").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  fs::create_directories(dir_ / "adir.json");
+  const fs::path big = dir_ / "big.json";
+  std::ofstream(big) << "{}";
+  fs::resize_file(big, (16u << 20) + 1);
+  fs::create_symlink("loop_b.json", dir_ / "loop_a.json");
+  fs::create_symlink("loop_a.json", dir_ / "loop_b.json");
+  for (const auto& [path, needle] : std::vector<std::pair<std::string, std::string>>{
+           {"/dev/zero", "/dev/zero: is a character device, not a regular file"},
+           {fifo, "fifo.json: is a FIFO, not a regular file"},
+           {(dir_ / "adir.json").string(), "adir.json: is a directory, not a scene file"},
+           {big.string(), "big.json: is 16777217 bytes; the limit is 16 MiB"},
+           {(dir_ / "loop_a.json").string(), "too many levels of symbolic links"},
+           {(dir_ / "none.json").string(), "none.json: cannot read the scene file (no such file)"},
+       }) {
+    SCOPED_TRACE(path);
+    const fs::path out = dir_ / "out", js = dir_ / "r.json";
+    const auto r = shadecore::testing::run_shell("timeout 20 " + std::string(SHADECORE_CLI) + " render " + path +
+                                                 " --out " + out.string() + " --json " + js.string());
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_FALSE(fs::exists(js));
+  }
+}
+
+std::string slurp_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Renders `scene` into dir/name and returns cmodel.png (empty on failure, with the error in the test log).
+#define RENDER_PNG(scene_text, name)                                                               \
+  [&]() {                                                                                          \
+    const std::string sp = write(std::string(name) + ".json", scene_text);                         \
+    const auto rr = run_cli("render " + sp + " --out " + (dir_ / (name)).string());               \
+    EXPECT_EQ(rr.status, 0) << name << ": " << rr.err;                                            \
+    return rr.status == 0 ? slurp_file(dir_ / (name) / "cmodel.png") : std::string();             \
+  }()
+
+// issue 23: an integral JSON number is an integer for every integer field (16.0, 1.6e1), and renders the same.
+TEST_F(RenderCli, IntegralNumbersAreIntegers) {
+  const std::string ref = RENDER_PNG(kGood, "ref");
+  ASSERT_FALSE(ref.empty());
+  std::string s = edit("\"shininess\": 32", "\"shininess\": 3.2e1");
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"\"width\": 40", "\"width\": 40.0"}, {"\"height\": 30", "\"height\": 3e1"},
+           {"\"slices\": 12", "\"slices\": 12.0"}, {"\"stacks\": 8", "\"stacks\": 0.8e1"}}) {
+    s.replace(s.find(from), from.size(), to);
+  }
+  EXPECT_EQ(RENDER_PNG(s, "float_ints"), ref);
+}
+
+// issue 23: a scene without "camera" has the documented default camera (docs/scenes.md §3).
+TEST_F(RenderCli, MissingCameraIsTheDefaultCamera) {
+  const std::string cam = R"("camera": {"eye": [0, 0, 6], "center": [0, 0, 0], "up": [0, 1, 0], "fovy": 40, "near": 1, "far": 20},)";
+  const std::string with_default = edit(cam, R"("camera": {"eye": [0, 0, 5], "center": [0, 0, 0], "up": [0, 1, 0], "fovy": 45, "near": 1, "far": 100},)");
+  const std::string empty_camera = edit(cam, R"("camera": {},)");
+  const std::string no_camera = edit(cam, "");
+  const std::string a = RENDER_PNG(with_default, "explicit");
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(RENDER_PNG(no_camera, "none"), a);
+  EXPECT_EQ(RENDER_PNG(empty_camera, "empty"), a);
+}
+
+// issue 23: relative (negative) OBJ indices stay legal and give the same mesh as the absolute ones; the cs16 forms
+// are accepted specular units.
+TEST_F(RenderCli, ObjRelativeIndicesAndCs16Forms) {
+  const std::string quad = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvn 0 0 1\n";
+  write("abs.obj", quad + "f 1//1 2//1 3//1 4//1\n");
+  write("rel.obj", quad + "f -4//-1 -3//-1 -2//-1 -1//-1\n");
+  auto mesh = [&](const std::string& f) {
+    return edit(R"({"type": "sphere", "material": "m", "shading": "phong", "slices": 12, "stacks": 8})",
+                R"({"type": "mesh", "file": ")" + f + R"(", "material": "m"})");
+  };
+  const std::string a = RENDER_PNG(mesh("abs.obj"), "abs");
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(RENDER_PNG(mesh("rel.obj"), "rel"), a);
+  for (const char* u : {"cs16_faithful", "cs16_compact", "schlick_iter"}) {
+    SCOPED_TRACE(u);
+    EXPECT_FALSE(RENDER_PNG(edit("\"shininess\": 32", std::string("\"shininess\": 32, \"specular_unit\": \"") + u + "\""), u).empty());
+  }
 }
 
 }  // namespace

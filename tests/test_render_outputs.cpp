@@ -207,4 +207,22 @@ TEST(RenderOutputs, ReportsPhasesAndPerCoreErrors) {
   EXPECT_EQ(j["features"][0]["error_vs_exact"]["pixels"], e["pixels"]);
 }
 
+// A material name or a path with control characters never reaches the terminal raw (stdout or stderr).
+TEST(RenderOutputs, UserTextIsEscapedOnStdoutAndStderr) {
+  const TempDir d;
+  std::string text = scene_text(false);
+  text.replace(text.find("\"m\": {\"diffuse\""), 4, "\"m\\u001b[2J\":");
+  text.replace(text.find("\"material\": \"m\""), 15, "\"material\": \"m\\u001b[2J\"");
+  const std::string scene = write(d, "esc.json", text);
+  auto r = run_cli("render " + scene + " --out " + (d / "o"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("m\\x1b[2J"), std::string::npos) << r.out;
+  r = run_cli("render " + scene + " --out " + (d / "o") + " --json \"" + (d / "no\x1b[2Jdir/r.json") + "\"");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no\\x1b[2Jdir"), std::string::npos) << r.err;
+}
+
 }  // namespace

@@ -2,10 +2,13 @@
 #include "shadecore/mesh.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <climits>
 #include <cmath>
-#include <filesystem>
+#include <cstdlib>
 #include <map>
 #include <string>
+#include <vector>
 
 #include <tiny_obj_loader.h>
 
@@ -94,7 +97,114 @@ Mesh torus(const Object& o) {
 }
 
 [[noreturn]] void obj_fail(const Object& o, const std::string& what) {
-  throw SceneError(o.scene_file + ": " + o.where + ".file: " + o.file_path + ": " + what);
+  throw SceneError(printable(o.scene_file + ": " + o.where + ".file: " + printable(o.file_path, 200) + ": " + what, 0));
+}
+[[noreturn]] void obj_fail_line(const Object& o, size_t line, const std::string& what) {
+  throw SceneError(printable(o.scene_file + ": " + o.where + ".file: " + printable(o.file_path, 200) + ":" +
+                                 std::to_string(line) + ": " + what,
+                             0));
+}
+
+// The lines tinyobjloader reads as vertex data and faces, checked first (it maps nan / inf to 0 and wraps
+// overflowing indices): every number of a `v` / `vn` line finite and parsable, every index of an `f` line a
+// non-zero integer that fits and refers to an element that exists (positive: 1..count in the file;
+// negative, relative: at most as many back as there are before the line), at most kMaxFaceVertices per face.
+void prescan_obj(const Object& o, const std::string& text) {
+  struct FaceRef {
+    size_t line;
+    long long idx[3];  // v, vt, vn; 0 = absent
+  };
+  std::vector<FaceRef> refs;
+  long long count[3] = {0, 0, 0};  // v, vt, vn so far
+  size_t line = 0;
+  size_t pos = 0;
+  auto is_space = [](char c) { return c == ' ' || c == '\t'; };
+  const char* kind_name[3] = {"vertex", "texture coordinate", "normal"};
+  while (pos < text.size()) {
+    ++line;
+    size_t eol = text.find('\n', pos);
+    if (eol == std::string::npos) eol = text.size();
+    std::string ln = text.substr(pos, eol - pos);
+    pos = eol + 1;
+    if (!ln.empty() && ln.back() == '\r') ln.pop_back();
+    size_t b = 0;
+    while (b < ln.size() && is_space(ln[b])) ++b;
+    // tokens after the keyword, up to a '#'
+    auto tokens = [&](size_t from) {
+      std::vector<std::string> t;
+      size_t k = from;
+      while (k < ln.size()) {
+        while (k < ln.size() && is_space(ln[k])) ++k;
+        if (k >= ln.size() || ln[k] == '#') break;
+        size_t e = k;
+        while (e < ln.size() && !is_space(ln[e])) ++e;
+        t.push_back(ln.substr(k, e - k));
+        k = e;
+      }
+      return t;
+    };
+    const bool v = ln.size() > b + 1 && ln[b] == 'v' && is_space(ln[b + 1]);
+    const bool vn = ln.size() > b + 2 && ln[b] == 'v' && ln[b + 1] == 'n' && is_space(ln[b + 2]);
+    const bool vt = ln.size() > b + 2 && ln[b] == 'v' && ln[b + 1] == 't' && is_space(ln[b + 2]);
+    const bool f = ln.size() > b + 1 && ln[b] == 'f' && is_space(ln[b + 1]);
+    if (v || vn) {
+      const auto t = tokens(b + (v ? 2 : 3));
+      if (t.size() < 3) obj_fail_line(o, line, std::string(v ? "v" : "vn") + " needs 3 coordinates");
+      for (const auto& tok : t) {
+        char* end = nullptr;
+        errno = 0;
+        const double x = std::strtod(tok.c_str(), &end);
+        const bool plain = tok.find_first_not_of("0123456789+-.eE") == std::string::npos;  // no hex, no "nan"
+        if (end != tok.c_str() + tok.size() || (!plain && std::isfinite(x)))
+          obj_fail_line(o, line, "'" + printable(tok, 60) + "' is not a number");
+        if (!std::isfinite(x))
+          obj_fail_line(o, line, "'" + printable(tok, 60) + "' is not a finite number (NaN, infinity or out of range)");
+        if (!(std::fabs(x) <= kMaxCoord))
+          obj_fail_line(o, line, "'" + printable(tok, 60) + "' out of range [-1e6, 1e6]");
+      }
+      ++count[v ? 0 : 2];
+    } else if (vt) {
+      ++count[1];
+    } else if (f) {
+      const auto t = tokens(b + 2);
+      if (t.size() > static_cast<size_t>(kMaxFaceVertices))
+        obj_fail_line(o, line, "a face with " + std::to_string(t.size()) + " vertices; at most " +
+                                   std::to_string(kMaxFaceVertices));
+      for (const auto& tok : t) {
+        FaceRef r{line, {0, 0, 0}};
+        size_t k = 0;
+        for (int c = 0; c < 3 && k <= tok.size(); ++c) {
+          size_t e = tok.find('/', k);
+          if (e == std::string::npos) e = tok.size();
+          const std::string part = tok.substr(k, e - k);
+          k = e + 1;
+          if (part.empty()) {
+            if (c == 0) obj_fail_line(o, line, "face vertex '" + printable(tok, 60) + "' has no vertex index");
+            continue;
+          }
+          char* end = nullptr;
+          errno = 0;
+          const long long x = std::strtoll(part.c_str(), &end, 10);
+          if (end != part.c_str() + part.size())
+            obj_fail_line(o, line, "face index '" + printable(part, 60) + "' is not an integer");
+          if (errno == ERANGE || x > INT_MAX || x < -static_cast<long long>(INT_MAX))
+            obj_fail_line(o, line, std::string(kind_name[c]) + " index " + printable(part, 60) + " overflows");
+          if (x == 0) obj_fail_line(o, line, std::string(kind_name[c]) + " index 0 (OBJ indices start at 1)");
+          if (x < 0 && -x > count[c])
+            obj_fail_line(o, line, "relative " + std::string(kind_name[c]) + " index " + std::to_string(x) + " but only " +
+                                       std::to_string(count[c]) + " before this line");
+          r.idx[c] = x;
+        }
+        if (k <= tok.size()) obj_fail_line(o, line, "face vertex '" + printable(tok, 60) + "' has more than v/vt/vn");
+        refs.push_back(r);
+      }
+    }
+  }
+  for (const auto& r : refs)
+    for (int c = 0; c < 3; ++c)
+      if (r.idx[c] > count[c])
+        obj_fail_line(o, r.line, std::string(kind_name[c]) + " index " + std::to_string(r.idx[c]) + " out of range (" +
+                                     std::to_string(count[c]) + " in the file)");
 }
 
 // Degenerate faces: zero area relative to the face's size (also catches repeated vertices).
@@ -116,13 +226,16 @@ void check_faces(const Object& o, const Mesh& m) {
 }
 
 Mesh obj_mesh(const Object& o) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(o.file_path, ec)) obj_fail(o, "no such OBJ file");
+  // A regular file of at most kMaxObjBytes, read without blocking; then checked (prescan_obj) and parsed from
+  // memory: tinyobjloader never opens anything itself (not even an mtllib: OBJ materials are not used).
+  std::string text, why;
+  if (!read_regular_file(o.file_path, kMaxObjBytes, text, why)) obj_fail(o, why == "no such file" ? "no such OBJ file" : why);
+  prescan_obj(o, text);
   tinyobj::ObjReaderConfig cfg;
   cfg.triangulate = false;
   cfg.vertex_color = false;
   tinyobj::ObjReader rd;
-  if (!rd.ParseFromFile(o.file_path, cfg)) {
+  if (!rd.ParseFromString(text, std::string(), cfg)) {
     std::string e = rd.Error();
     while (!e.empty() && (e.back() == '\n' || e.back() == '\r')) e.pop_back();
     const auto nl = e.find('\n');

@@ -12,9 +12,11 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "shadecore/coef.hpp"
@@ -119,6 +121,28 @@ struct Scene {
   std::vector<Object> objects;
   std::optional<ContactSheet> contact_sheet;
 };
+
+// Limits of the input (docs/scenes.md "Limits").
+inline constexpr std::uint64_t kMaxSceneBytes = 16ull << 20;  // a scene file: at most 16 MiB
+inline constexpr std::uint64_t kMaxObjBytes = 256ull << 20;   // an OBJ file: at most 256 MiB
+inline constexpr int kMaxNesting = 64;                          // JSON arrays/objects nested at most 64 deep
+inline constexpr int kMaxMembers = 256;                         // keys of one JSON object (materials: 256 names)
+inline constexpr double kMaxCoord = 1e6;                        // |x| of a position, direction, translation, angle
+inline constexpr double kMinLength = 1e-6;                      // smallest radius, size, |scale|
+inline constexpr double kMaxLength = 1e4;                       // largest radius, size (|scale| up to kMaxCoord)
+inline constexpr int kMaxFaceVertices = 255;                    // vertices of one OBJ face
+
+// User text for a message: control characters (C0, DEL, C1) and bytes that are not UTF-8 shown as escapes
+// (\n, \t, \r, \xNN, \u009b), at most `max_chars` characters (0: no limit) with "…" when cut. Every message that
+// quotes a key, a name, a value or a file name goes through it, so a message stays one line and never
+// drives the terminal.
+std::string printable(std::string_view s, std::size_t max_chars = 60);
+
+// Reads a regular file of at most `max_bytes` without ever blocking (a FIFO is refused before it is opened and
+// opened O_NONBLOCK). On failure returns false and sets `why`: "no such file", "is a directory", "is a FIFO, not a
+// regular file", "is a character device, not a regular file", "too many levels of symbolic links", "is N bytes,
+// more than the limit of M MiB", ...
+bool read_regular_file(const std::string& path, std::uint64_t max_bytes, std::string& text, std::string& why);
 
 // Reads and checks a scene file. Throws SceneError (one line) on anything wrong.
 Scene load_scene(const std::string& path);
