@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Table 5.2 of seed 000 (time of 10^9 BRDF evaluations) on this machine, beside the project's units.
 //
 // The thesis's method (§5.4): the only inputs of one evaluation are the direction of incidence, the
@@ -9,7 +10,7 @@
 //
 // Project units (same run, same inputs): the highlight alone for cos δ = N·Θh of the same directions and
 // an exponent n in 16..1024 — std::pow (exact), cs16 in double, Schlick's t/(n − n t + t) in double
-// (shadecore/golden.hpp), the bit-accurate fixed-point cs16 (shadecore/cs16.hpp, default width) — and
+// (shadecore/analysis/golden.hpp), the bit-accurate fixed-point cs16 (shadecore/units/cs16.hpp, default width) — and
 // Blinn-Phong (2.10) with the fixed-point cs16 unit in place of cos^n δ.
 // Figures: docs/brdf.md (command, machine, date).
 #include <benchmark/benchmark.h>
@@ -19,10 +20,10 @@
 #include <random>
 #include <vector>
 
-#include "shadecore/brdf.hpp"
+#include "shadecore/analysis/brdf.hpp"
 #include "shadecore/configs.hpp"
-#include "shadecore/cs16.hpp"
-#include "shadecore/golden.hpp"
+#include "shadecore/units/cs16.hpp"
+#include "shadecore/analysis/golden.hpp"
 
 using namespace shadecore;
 using namespace shadecore::brdf;

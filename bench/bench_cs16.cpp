@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Evaluation rate of the bit-accurate cs16 model against the double references, one core,
 // and wall time of the full default sweep (all n × all input codes, both cores).
 // Figures are recorded in docs/performance.md (command, machine, date).
@@ -8,9 +9,9 @@
 #include <vector>
 
 #include "shadecore/configs.hpp"
-#include "shadecore/cs16.hpp"
-#include "shadecore/golden.hpp"
-#include "shadecore/sweep.hpp"
+#include "shadecore/units/cs16.hpp"
+#include "shadecore/analysis/golden.hpp"
+#include "shadecore/analysis/sweep.hpp"
 
 using namespace shadecore;
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // brdf_tool — not a benchmark: the measurement and picture side of docs/brdf.md.
 //
 //   brdf_tool table51 [MODEL]        table 5.1 measured: per parameter set the worst reciprocity error
@@ -16,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "shadecore/brdf.hpp"
+#include "shadecore/analysis/brdf.hpp"
 
 using namespace shadecore::brdf;
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore cosim — co-simulate the RTL (rtl/sc_specular.v, Verilated + SystemC) against the C model.
 //
 // The CLI cannot link SystemC (libsystemc defines main()), so it runs the per-configuration
@@ -28,14 +29,14 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
-#include "args.hpp"
+#include "shadecore/common/args.hpp"
 #include "commands.hpp"
 #include "light_rtl.hpp"
 #include "output.hpp"
-#include "progress.hpp"
-#include "shadecore/coef.hpp"
+#include "shadecore/common/progress.hpp"
+#include "shadecore/units/coef.hpp"
 #include "shadecore/configs.hpp"
-#include "shadecore/hard_cases.hpp"
+#include "shadecore/units/hard_cases.hpp"
 #include "shadecore/unit.hpp"
 
 namespace shadecore::cli {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore energy — directional-hemispherical reflectance R(θi) of each normalised BRDF, with the
 // fixed-point unit output and the fixed-point coefficient (bit-accurate), over the hemisphere.
 #include <algorithm>
@@ -13,13 +14,13 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "args.hpp"
+#include "shadecore/common/args.hpp"
 #include "commands.hpp"
 #include "output.hpp"
-#include "progress.hpp"
-#include "shadecore/coef.hpp"
+#include "shadecore/common/progress.hpp"
+#include "shadecore/units/coef.hpp"
 #include "shadecore/configs.hpp"
-#include "shadecore/energy.hpp"
+#include "shadecore/analysis/energy.hpp"
 
 namespace shadecore::cli {
 namespace {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore eval — one input through the bit-exact C model, with every named intermediate (the
 // model's trace structs Cs16Trace / SchlickTrace, stage names as in the RTL), the output code and
 // value, and the double-precision references (docs/spec.md §5).
@@ -13,7 +14,7 @@
 
 #include "commands.hpp"
 #include "output.hpp"
-#include "shadecore/golden.hpp"
+#include "shadecore/analysis/golden.hpp"
 #include "unit_spec.hpp"
 
 namespace shadecore::cli {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore fit — re-derives the paper's energy-normalisation coefficients coef(n) = (a·n + b)/(k·π):
 // Int(n) by adaptive quadrature and in closed form, least-squares and minimax fits, res(n) of the
 // published and re-derived coefficients, and a verdict per published bound.
@@ -10,11 +11,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "args.hpp"
+#include "shadecore/common/args.hpp"
 #include "commands.hpp"
 #include "output.hpp"
-#include "shadecore/coef.hpp"
-#include "shadecore/fit.hpp"
+#include "shadecore/units/coef.hpp"
+#include "shadecore/analysis/fit.hpp"
 
 namespace shadecore::cli {
 namespace {

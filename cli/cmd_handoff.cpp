@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore handoff — a self-contained, simulator-independent RTL bundle for an implementation team
 // (issue 11). One configuration of rtl/sc_specular.v with every parameter fixed in a wrapper top:
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore light-sweep — error of the lighting core against the double-precision reference of the
 // same equation (docs/lighting.md §7): per specular unit and channel, the total error against exact
 // cos^n split, as `sweep` does for the unit, into the approximation part (double variant − exact) and
@@ -14,13 +15,13 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
-#include "args.hpp"
+#include "shadecore/common/args.hpp"
 #include "commands.hpp"
 #include "light_rtl.hpp"
 #include "output.hpp"
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
-#include "shadecore/table.hpp"
+#include "shadecore/units/table.hpp"
 
 namespace shadecore::cli {
 namespace {

@@ -1,9 +1,10 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore render — a scene through the lighting core (docs/scenes.md).
 //
 //   shadecore render SCENE --out DIR [--rtl] [--full-core] [--json FILE] [--size WxH]
 //
 // Derives the smallest feature set(s) that render the scene exactly (one core per specular unit in use),
-// prints them, rasterises on the host (shadecore/raster.hpp: host software, not RTL), and writes into DIR:
+// prints them, rasterises on the host (shadecore/render/raster.hpp: host software, not RTL), and writes into DIR:
 //   cmodel.png       the image through the bit-accurate C model
 //   exact.png        the same fragments through the double reference with exact cos^n
 //   diff_exact.png   cmodel − exact, signed, log scale (red brighter, blue darker; render::diff_rgb8)
@@ -38,14 +39,14 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
-#include "args.hpp"
+#include "shadecore/common/args.hpp"
 #include "commands.hpp"
 #include "legend.hpp"
 #include "output.hpp"
 #include "png.hpp"
-#include "shadecore/mesh.hpp"
-#include "shadecore/render.hpp"
-#include "shadecore/scene.hpp"
+#include "shadecore/render/mesh.hpp"
+#include "shadecore/render/render.hpp"
+#include "shadecore/render/scene.hpp"
 
 #include "light_rtl.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore sweep — exhaustive error sweep of a variant over n × every input code.
 #include <unistd.h>
 
@@ -17,15 +18,15 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "args.hpp"
+#include "shadecore/common/args.hpp"
 #include "commands.hpp"
 #include "output.hpp"
-#include "progress.hpp"
+#include "shadecore/common/progress.hpp"
 #include "shadecore/configs.hpp"
-#include "shadecore/cs16_forms.hpp"
-#include "shadecore/golden.hpp"
-#include "shadecore/schlick.hpp"
-#include "shadecore/sweep.hpp"
+#include "shadecore/units/cs16_forms.hpp"
+#include "shadecore/analysis/golden.hpp"
+#include "shadecore/units/schlick.hpp"
+#include "shadecore/analysis/sweep.hpp"
 #include "shadecore/unit.hpp"
 
 namespace shadecore::cli {

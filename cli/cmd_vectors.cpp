@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore vectors — stimulus and expected results from the bit-exact C model (shadecore::Unit,
 // the model the co-simulation scoreboard uses), as a hex file any simulator can read with $readmemh.
 //
@@ -22,7 +23,7 @@
 #include "handoff_bundle.hpp"
 #include "output.hpp"
 #include "shadecore/features.hpp"
-#include "shadecore/hard_cases.hpp"
+#include "shadecore/units/hard_cases.hpp"
 #include "unit_spec.hpp"
 
 namespace shadecore::cli {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore CLI — each subcommand registers itself on the app from its own file (cmd_*.cpp).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore handoff — the parts every bundle shares (cli/handoff_bundle.hpp).
 #include "handoff_bundle.hpp"
 

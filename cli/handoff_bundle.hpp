@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore handoff — what every bundle has in common, whichever core it delivers (cli/cmd_handoff.cpp:
 // the specular unit; cli/handoff_light.cpp: the lighting core):
 //   * the destination rules and the transaction: --out DIR refused when not empty unless --force, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore handoff --core lighting --features NAME|FILE — the lighting core's bundle (docs/handoff.md).
 // Everything a bundle shares with the specular unit's (destination rules, staging, manifest, tarball,
 // lint/Yosys/iCE40 reports, run scripts, constraints) is cli/handoff_bundle.cpp; this file makes what
@@ -9,7 +10,7 @@
 //   interface.md    ports (config/interface.json "light_ports"), register map (config/configs.json
 //                   "light", the source of rtl/sc_light_regs.vh), programming sequence with the C
 //                   model's register words, formats, latency (LightCore::latency), error contract
-//   vectors/        hard.hex: the directed hard cases of the co-simulation (sim/tb_light_stimulus.hpp);
+//   vectors/        hard.hex: the directed hard cases of the co-simulation (stimulus/include/shadecore/stimulus/light_stimulus.hpp);
 //                   random.hex: its random mode, seeded; expected colours from LightCore::eval
 //   tb/             tb_shadecore_light.v (template handoff/tb/) + tb_config.vh + tb_dut.vh
 #include <algorithm>
@@ -20,14 +21,15 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
-#include "../sim/tb_light_stimulus.hpp"
+#include "shadecore/stimulus/light_stimulus.hpp"
 #include "handoff_bundle.hpp"
 #include "output.hpp"
-#include "shadecore/cs16_forms.hpp"
+#include "shadecore/units/cs16_forms.hpp"
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
-#include "shadecore/light_ops.hpp"
-#include "shadecore/schlick.hpp"
+#include "shadecore/units/normalize.hpp"
+#include "shadecore/units/recip.hpp"
+#include "shadecore/units/schlick.hpp"
 
 namespace shadecore::cli::handoff {
 namespace {
@@ -120,7 +122,7 @@ struct Record {
   Colour c;
 };
 
-// The co-simulation's stimulus (sim/tb_light_stimulus.hpp) replayed through the C model: every
+// The co-simulation's stimulus (stimulus/include/shadecore/stimulus/light_stimulus.hpp) replayed through the C model: every
 // register write goes into a LightRegs, every fragment is shaded with the registers written before it.
 std::vector<Record> make_records(const LightCore& core, sim::LightMode mode, uint64_t count, uint64_t seed) {
   sim::LightStimulus stim(core, mode, count, seed, kWriteRate);
@@ -508,7 +510,7 @@ std::string lighting_vectors(const FeatureSet& fset, const std::string& mode, ui
   std::string what;
   if (mode == "hard") {
     v = make_records(core, sim::LightMode::Directed, 0, seed);
-    what = "directed hard cases (sim/tb_light_stimulus.hpp, LightStimulus directed mode)";
+    what = "directed hard cases (stimulus/include/shadecore/stimulus/light_stimulus.hpp, LightStimulus directed mode)";
   } else if (mode == "random") {
     v = make_records(core, sim::LightMode::Random, count, seed);
     what = fmt::format("random (LightStimulus random mode), seed {}, {} fragments, write-burst rate {} per fragment",
@@ -588,7 +590,7 @@ void run_lighting(const Options& o) {
     const auto hard = make_records(core, sim::LightMode::Directed, 0, seed);
     const auto rnd = make_records(core, sim::LightMode::Random, count, seed);
     write_text(dir / "vectors" / "hard.hex",
-               format_records(fs, "directed hard cases (sim/tb_light_stimulus.hpp, LightStimulus directed mode)", hard));
+               format_records(fs, "directed hard cases (stimulus/include/shadecore/stimulus/light_stimulus.hpp, LightStimulus directed mode)", hard));
     write_text(dir / "vectors" / "random.hex",
                format_records(fs, fmt::format("random (LightStimulus random mode), seed {}, {} fragments, write-burst rate "
                                              "{} per fragment", seed, count, kWriteRate), rnd));

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore CLI — the difference legend and the contact sheet's layout (cli/legend.hpp).
 #include "legend.hpp"
 

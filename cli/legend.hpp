@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore CLI — legends and layout for the render images (issue 23): the colour bar of the signed log-scale
 // difference images (render::diff_rgb8) and the contact sheet's layout (cells, column headers, row labels and
 // one legend strip), drawn with cli/png.hpp's Canvas and its 5×7 font.

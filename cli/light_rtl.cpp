@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore CLI — on-demand builds of the lighting core per feature set, and runs of a command stream
 // through it (cli/light_rtl.hpp). The build is keyed on FeatureSet::key() and stamped with a hash of
 // every source it is made of (RTL, testbench, C model headers, generated headers), so an edited source
@@ -38,8 +39,9 @@ std::string read_all(const fs::path& p) {
 std::string sources_hash() {
   const fs::path src = SHADECORE_SOURCE_DIR, gen = SHADECORE_GENERATED_DIR;
   std::vector<fs::path> files;
-  for (const auto& dir : {src / "rtl", src / "sim", src / "cmodel/include/shadecore", gen / "shadecore"})
-    for (const auto& e : fs::directory_iterator(dir)) {
+  for (const auto& dir : {src / "rtl", src / "sim", src / "cmodel/include/shadecore", src / "stimulus/include/shadecore",
+                          gen / "shadecore"})
+    for (const auto& e : fs::recursive_directory_iterator(dir)) {
       const auto ext = e.path().extension();
       if (ext == ".v" || ext == ".vh" || ext == ".hpp" || e.path().filename() == "light_main.cpp")
         files.push_back(e.path());
@@ -53,7 +55,7 @@ std::string sources_hash() {
     }
   };
   for (const auto& f : files) {
-    mix(f.filename().string());
+    mix(f.lexically_relative(src).string());
     mix(read_all(f));
   }
   return fmt::format("{:016x}", h);
@@ -135,6 +137,7 @@ CoreBuild ensure_core(const FeatureSet& feat, bool quiet) {
   for (const auto& p : feat.verilog_params(32)) cmd += " -G" + p;
   const std::string cflags = "-std=c++17 -O2 -I" + (src / "cmodel/include").string() + " -I" +
                              std::string(SHADECORE_GENERATED_DIR) + " -I" + (src / "sim").string() + " -I" +
+                             (src / "stimulus/include").string() + " -I" +
                              dir.string();
   cmd += " -CFLAGS " + quote(cflags);
   std::vector<std::string> rtl;

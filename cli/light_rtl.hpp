@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore CLI — the lighting core in RTL, built on demand for one feature set and cached by its key
 // (docs/lighting.md §6). Like Mesa's program cache keyed on the fixed-function state: the first use of a
 // feature set Verilates rtl/sc_light.v with exactly that set's parameters together with the SystemC
@@ -10,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "../sim/light_stream.hpp"
+#include "shadecore/stimulus/light_stream.hpp"
 #include "shadecore/features.hpp"
 
 namespace shadecore::cli {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore — command-line entry point. Errors are one line on stderr and a non-zero exit.
 #include "commands.hpp"
 #include "output.hpp"

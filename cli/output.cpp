@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "output.hpp"
-#include "shadecore/scene.hpp"
+#include "shadecore/render/scene.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -16,8 +17,9 @@
 
 #include <fmt/core.h>
 
-#include "output_files.hpp"
-#include "progress.hpp"
+#include "shadecore/common/output_files.hpp"
+#include "shadecore/common/progress.hpp"
+#include "shadecore/common/subprocess.hpp"
 
 #ifndef SHADECORE_SOURCE_DIR
 #error "SHADECORE_SOURCE_DIR must be defined by the build"
@@ -142,68 +144,15 @@ std::pair<int, int> parse_range(const std::string& text) {
 namespace {
 std::string g_command_line = "shadecore";
 
-// fork/exec argv with stderr captured; SIGINT is ignored in the child (the parent's handler stops it
-// with SIGTERM and cleans up, so no Python traceback reaches the terminal).
+// Runs a plotting script through the one subprocess runner; on failure its last stderr line is the message.
 void run_child(const std::vector<std::string>& argv, const std::string& what) {
-  int errp[2];
-  if (::pipe2(errp, O_CLOEXEC) != 0) throw std::runtime_error(what + ": pipe: " + std::strerror(errno));
-  std::vector<char*> args;
-  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  sigset_t all, old;
-  sigfillset(&all);
-  ::pthread_sigmask(SIG_BLOCK, &all, &old);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::signal(SIGINT, SIG_IGN);
-    ::signal(SIGTERM, SIG_DFL);
-    ::signal(SIGHUP, SIG_DFL);
-    ::signal(SIGPIPE, SIG_DFL);
-    ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
-    ::dup2(errp[1], 2);
-    ::execv(args[0], args.data());
-    const char* m = "cannot run the interpreter\n";
-    ssize_t r = ::write(2, m, std::strlen(m));
-    (void)r;
-    ::_exit(127);
-  }
-  if (pid > 0) io::track_child(pid);
-  ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
-  ::close(errp[1]);
-  if (pid < 0) {
-    ::close(errp[0]);
-    throw std::runtime_error(what + ": fork: " + std::strerror(errno));
-  }
-  std::string err;
-  char buf[4096];
-  for (;;) {
-    const ssize_t k = ::read(errp[0], buf, sizeof buf);
-    if (k > 0) err.append(buf, static_cast<size_t>(k));
-    else if (k == 0 || errno != EINTR) break;
-  }
-  ::close(errp[0]);
-  int st = 0;
-  while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
-  }
-  io::untrack_child(pid);
-  if (WIFEXITED(st) && WEXITSTATUS(st) == 0) return;
-  // The last non-empty line says what went wrong (a Python traceback ends with the exception).
-  std::string last;
-  size_t end = err.size();
-  while (end > 0) {
-    const size_t b = err.rfind('\n', end - 1);
-    const size_t s = b == std::string::npos ? 0 : b + 1;
-    const std::string line = err.substr(s, end - s);
-    if (line.find_first_not_of(" \t\r") != std::string::npos) {
-      last = line;
-      break;
-    }
-    if (b == std::string::npos) break;
-    end = b;
-  }
-  if (last.empty())
-    last = WIFSIGNALED(st) ? "killed by signal " + std::to_string(WTERMSIG(st)) : "exit status " + std::to_string(WEXITSTATUS(st));
-  throw std::runtime_error(what + " failed: " + one_line(last));
+  proc::Options o;
+  o.capture_stdout = false;
+  const proc::Result r = proc::run(argv, o);
+  if (r.ok()) return;
+  if (r.status == 127 && r.err.find("cannot run") != std::string::npos)
+    throw std::runtime_error(what + " failed: cannot run the interpreter " + argv[0]);
+  throw std::runtime_error(what + " failed: " + one_line(r.last_line()));
 }
 
 std::string scripts_dir() {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore CLI — output helpers: all-or-nothing file outputs, the command line, the plotting hand-off,
 // and the exit-status convention (docs/cli.md).
 #pragma once
@@ -9,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "output_files.hpp"
+#include "shadecore/common/output_files.hpp"
 
 namespace shadecore::cli {
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore CLI — PNG encoding through libpng and the contact sheet's canvas.
 #include "png.hpp"
 

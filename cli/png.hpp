@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore CLI — PNG output (libpng, 8-bit RGB, written to memory so the file goes out atomically) and a
 // small RGB canvas with a 5×7 bitmap font for the contact sheet's labels and the legends (cli/legend.hpp).
 #pragma once

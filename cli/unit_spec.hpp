@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore CLI — what `eval`, `vectors` and `handoff` share (issue 11):
 //   * the unit options (--variant, --config | --frac/--guard, --cutoff, --norm MODEL|all, --coef)
 //     and their resolution into a UnitSpec + the C model's shadecore::Unit (never a second model);
@@ -22,9 +23,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "args.hpp"
+#include "shadecore/common/args.hpp"
 #include "output.hpp"
-#include "shadecore/coef.hpp"
+#include "shadecore/units/coef.hpp"
 #include "shadecore/configs.hpp"
 #include "shadecore/unit.hpp"
 

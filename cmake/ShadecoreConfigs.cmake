@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Reads config/configs.json — the single source of truth for the fixed-point widths — and
 #   * generates ${CMAKE_BINARY_DIR}/generated/shadecore/configs.hpp for the C++ side,
 #   * sets SHADECORE_CONFIG_NAMES and, per name, SHADECORE_CONFIG_<name>_FRAC / _GUARD for the
@@ -24,7 +25,8 @@ if(NOT SHADECORE_DEFAULT_CONFIG IN_LIST SHADECORE_CONFIG_NAMES)
 endif()
 set(SHADECORE_GENERATED_DIR "${CMAKE_BINARY_DIR}/generated")
 file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/configs.hpp" CONTENT
-"// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
+"// SPDX-License-Identifier: Apache-2.0
+// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
 #pragma once
 #include <array>
 #include <stdexcept>
@@ -135,7 +137,8 @@ foreach(i RANGE ${_lastv})
   endif()
 endforeach()
 file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/variants.hpp" CONTENT
-"// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
+"// SPDX-License-Identifier: Apache-2.0
+// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
 #pragma once
 #include <array>
 #include <string_view>
@@ -171,7 +174,8 @@ inline constexpr const SquarerForm* squarer_form(VariantId v) {
 # hand-off and plain `-Irtl` tools; configure rewrites it only when configs.json changes it.
 set(SHADECORE_RTL_INCDIR "${CMAKE_SOURCE_DIR}/rtl")
 file(CONFIGURE OUTPUT "${SHADECORE_RTL_INCDIR}/sc_variants.vh" CONTENT
-"// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
+"// SPDX-License-Identifier: Apache-2.0
+// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
 // Values of the VARIANT parameter of rtl/sc_specular.v (included inside the module).
 ${_vvh}
 // cs16 squaring forms (\"squarer\" in configs.json; rtl/sc_cs16.v FORM = 1, docs/spec.md §3.4): field
@@ -230,7 +234,8 @@ foreach(i RANGE ${_lastr})
   string(APPEND _rtab "    RegInfo{\"${_rname}\", ${_raddr}, ${_rcount}, \"${_rfmt}\", ${_rperc}},\n")
 endforeach()
 file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/light_regs.hpp" CONTENT
-"// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
+"// SPDX-License-Identifier: Apache-2.0
+// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
 // Register map of the lighting core rtl/sc_light.v (docs/lighting.md §4).
 #pragma once
 #include <array>
@@ -248,13 +253,15 @@ ${_kenum}}};
 }  // namespace shadecore
 " @ONLY)
 file(CONFIGURE OUTPUT "${SHADECORE_RTL_INCDIR}/sc_light_regs.vh" CONTENT
-"// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
+"// SPDX-License-Identifier: Apache-2.0
+// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
 // Register map and light kinds of rtl/sc_light.v (included inside the module; docs/lighting.md §4).
 localparam integer MAX_LIGHTS = ${_lmax};
 localparam integer LIGHT_STRIDE = ${_lstride};
 ${_kvh}${_rvh}" @ONLY)
 file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/configs_json.hpp" CONTENT
-"// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
+"// SPDX-License-Identifier: Apache-2.0
+// generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
 #pragma once
 namespace shadecore {
 inline constexpr const char* kConfigsJson = R\"shadecore_json(${_cfg_json})shadecore_json\";

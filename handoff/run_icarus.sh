@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # run_icarus.sh — compile the bundle's RTL (filelist.f) and the self-checking testbench
 # (tb/$tb.v: tb_shadecore for the specular unit, tb_shadecore_light for the lighting core)
 # with Icarus Verilog as plain Verilog-2005, then run it once per vector file in

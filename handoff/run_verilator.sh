@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: Apache-2.0
 # run_verilator.sh — build the bundle's RTL (filelist.f) and the self-checking testbench
 # (tb/$tb.v: tb_shadecore for the specular unit, tb_shadecore_light for the lighting core)
 # with Verilator (--binary: the testbench's own clock and timing, no C++ to

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # ctest driver for `shadecore handoff` (rtl/CMakeLists.txt, label icarus;handoff):
 #
 #   handoff/test_bundle.sh SHADECORE WORKDIR [--verilator-corrupt] [--failed-run] -- HANDOFF-ARGS...

@@ -1,8 +1,9 @@
+// SPDX-License-Identifier: Apache-2.0
 // ============================================================================================
 // Filename : rtl/sc_cs16.v
 // Purpose  : cs16 specular unit — out = ((n/16)(cos θ − 1) + 1)^16, cut to 0 past the cut-off,
 //            in fixed point exactly as docs/spec.md §3 (bit-accurate C model:
-//            cmodel/include/shadecore/cs16.hpp, cs16_eval(); same stage names as Cs16Trace).
+//            cmodel/include/shadecore/units/cs16.hpp, cs16_eval(); same stage names as Cs16Trace).
 //
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
 //   FRAC   F, fraction bits of cos θ and of the output     8 <= F <= 24        (default 16)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ============================================================================================
 // Filename : rtl/sc_delay.v
 // Purpose  : delay line with a clock enable, for aligning operands inside a global-enable

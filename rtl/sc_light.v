@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ============================================================================================
 // Filename : rtl/sc_light.v
 // Purpose  : lighting core — OpenGL 1.x fixed-function lighting per fragment, division-free, bit

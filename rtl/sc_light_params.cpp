@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // sc_light_params — the parameters of rtl/sc_light.v for a feature set, exactly as
 // FeatureSet::verilog_params() (cmodel/include/shadecore/features.hpp) gives them: the one source
 // for the RTL checks of rtl/CMakeLists.txt (no copied parameter lists).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
 // Register map and light kinds of rtl/sc_light.v (included inside the module; docs/lighting.md §4).
 localparam integer MAX_LIGHTS = 8;

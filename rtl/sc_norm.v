@@ -1,8 +1,9 @@
+// SPDX-License-Identifier: Apache-2.0
 // ============================================================================================
 // Filename : rtl/sc_norm.v
 // Purpose  : energy-normalisation output stage — multiplies the specular unit's output by the
 //            per-material coefficient coef(n) and rounds, exactly as docs/spec.md §7
-//            (bit-accurate C model: cmodel/include/shadecore/coef.hpp, norm_eval(); stage names
+//            (bit-accurate C model: cmodel/include/shadecore/units/coef.hpp, norm_eval(); stage names
 //            N1/N2 as there).
 //
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):

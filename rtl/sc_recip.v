@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: Apache-2.0
 // ============================================================================================
 // Filename : rtl/sc_recip.v
 // Purpose  : attenuation reciprocal att = 1/q of the lighting core, division-free: leading-one
 //            normalisation of q, the 64-entry table and the Newton–Raphson step of the Schlick NR
 //            unit (same integer rule as schlick_nr_table() / schlick_nr_step(), computed here by
 //            a constant function; rtl/sc_schlick_nr.v is not touched), a rounding shift and
-//            saturation. Bit-accurate C model: recip_att() in cmodel/include/shadecore/light_ops.hpp
+//            saturation. Bit-accurate C model: recip_att() in cmodel/include/shadecore/units/normalize.hpp and units/recip.hpp
 //            (same names as RecipTrace).
 //            A pipeline stage with an enable and no handshake of its own: it is embedded in the
 //            global-enable pipeline of rtl/sc_light.v (en_i = that pipeline's enable).

@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: Apache-2.0
 // ============================================================================================
 // Filename : rtl/sc_schlick_div.v
 // Purpose  : Schlick-divide specular unit, pipelined restoring divider —
 //              out = 2^F · c / Dc  rounded half up,   Dc = n·(2^F − c) + c  (exact),
 //            i.e. Schlick's S(t, n) = t / (n − (n−1)·t) with t = c/2^F, correctly rounded to F
 //            fraction bits (docs/spec.md §6; bit-accurate C model: schlick_div_eval() in
-//            cmodel/include/shadecore/schlick.hpp, same stage names as SchlickTrace).
+//            cmodel/include/shadecore/units/schlick.hpp, same stage names as SchlickTrace).
 //
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
 //   FRAC   F, fraction bits of cos θ and of the output     8 <= F <= 24   (default 16)

@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: Apache-2.0
 // ============================================================================================
 // Filename : rtl/sc_schlick_iter.v
 // Purpose  : Schlick-divide specular unit, iterative (small) form — the same restoring division
 //            as rtl/sc_schlick_div.v, one quotient bit per clock in ONE subtract/compare stage:
 //              out = 2^F · c / Dc  rounded half up,   Dc = n·(2^F − c) + c  (exact).
 //            Bit-identical to sc_schlick_div (C model: schlick_iter_eval() == schlick_div_eval()
-//            in cmodel/include/shadecore/schlick.hpp).
+//            in cmodel/include/shadecore/units/schlick.hpp).
 //
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
 //   FRAC   F, fraction bits of cos θ and of the output     8 <= F <= 24   (default 16)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ============================================================================================
 // Filename : rtl/sc_schlick_nr.v
 // Purpose  : Schlick-divide specular unit, reciprocal form —
@@ -6,7 +7,7 @@
 //            Newton–Raphson iterations, one multiply and a rounding shift. Faithful: the output
 //            is within 1 ulp of the exact quotient (bound 0.5 + 2^F·(ε1² + 3·2^−R) ulp,
 //            0.547 at F = 16; docs/spec.md §6.4). Bit-accurate C model: schlick_nr_eval() in
-//            cmodel/include/shadecore/schlick.hpp (same stage names as SchlickTrace).
+//            cmodel/include/shadecore/units/schlick.hpp (same stage names as SchlickTrace).
 //
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
 //   FRAC   F, fraction bits of cos θ and of the output     8 <= F <= 24   (default 16)

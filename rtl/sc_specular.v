@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ============================================================================================
 // Filename : rtl/sc_specular.v
 // Purpose  : top level of the specular shading core: selects one hardware unit by VARIANT and

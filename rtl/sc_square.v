@@ -1,9 +1,10 @@
+// SPDX-License-Identifier: Apache-2.0
 // ============================================================================================
 // Filename : rtl/sc_square.v
 // Purpose  : folded (and optionally truncated) squarer, combinational:
 //              sq_o = (S + C) >> SHIFT,  OW bits,
 //            S = the sum of the kept partial-product bits of x_i·x_i, C a constant (below).
-//            Bit-accurate C model: cmodel/include/shadecore/square.hpp (square_trunc()); used by
+//            Bit-accurate C model: cmodel/include/shadecore/units/square.hpp (square_trunc()); used by
 //            rtl/sc_cs16.v (FORM = 1), docs/spec.md §3.4.
 //
 // Folding: x² = Σ_i x_i·2^(2i) + Σ_{i<j} x_i·x_j·2^(i+j+1). Each off-diagonal product x_i·x_j is

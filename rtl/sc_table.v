@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: Apache-2.0
 // ============================================================================================
 // Filename : rtl/sc_table.v
 // Purpose  : table-and-interpolate specular unit — the fixed-function GPUs' shine table (Mesa:
 //            256 entries tab[i] = (i/255)^n, f = 255·cos θ, linear interpolation):
 //              f = (E−1)·c,  i = ⌊f⌋,  out = V[i] + round(frac(f)·D[i])
 //            with a per-material table RAM of E = 2^K words {D[i], V[i]} written by the host
-//            (docs/spec.md §9; bit-accurate C model: cmodel/include/shadecore/table.hpp,
+//            (docs/spec.md §9; bit-accurate C model: cmodel/include/shadecore/units/table.hpp,
 //            table_eval(), same stage names as TableTrace; contents: table_setup()).
 //
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):

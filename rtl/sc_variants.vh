@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
 // Values of the VARIANT parameter of rtl/sc_specular.v (included inside the module).
 localparam integer VARIANT_CS16 = 0;

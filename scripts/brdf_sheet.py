@@ -1,6 +1,7 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Contact sheet of seed 000's lighting models: one sphere per model, rendered by the double-precision
-references of cmodel/include/shadecore/brdf.hpp through `brdf_tool render` (software path: orthographic
+references of cmodel/include/shadecore/analysis/brdf.hpp through `brdf_tool render` (software path: orthographic
 camera, one directional light), drawn here with matplotlib.
 
     scripts/brdf_sheet.py [--tool build/bench/brdf_tool] [--size 160] [--out docs/brdf/contact_sheet.png]

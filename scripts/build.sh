@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Configures and builds shadecore into ${BUILD_DIR:-build} (Release, Ninja).
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # The long co-simulation runs (not part of ctest): builds, then
 #   1. full exhaustive co-simulation at the default width: every n 16..1024 x every code in [0, 2^F]
 #      (+ 4 out-of-range codes per n), both cut-off forms;

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """The fair cost report: every unit (variant) x width (config) of config/configs.json measured the same way.
 
 Per (variant, config) row, each metric is one cached job:

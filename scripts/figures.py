@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Shared helpers of shadecore's plotting scripts: the import check, the machine line and the atomic
 figure save with a footer naming the command, machine and date."""
 import datetime

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # One corrupted expected value must make both of a bundle's delivered simulator runs FAIL naming it
 # (docs/handoff.md). Works on a copy; the bundle is not modified.
 #

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # The full handoff matrix (issue 11): `shadecore handoff` for every variant at every named width, each
 # also with energy normalisation (--norm all), and cs16 with the sign_clamp cut-off — each bundle is
 # simulated by its own testbench on Icarus and Verilator before the command succeeds; then one expected

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Plots for `shadecore fit --plots DIR` and `shadecore energy --plots DIR`.
 
 --fit    reads DIR/fit_res.csv and writes fig5_res.png: res(n) = |2π·coef(n)·Int(n) − 1| per model

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Plots for `shadecore sweep --plots DIR`: reads the CSV files the sweep wrote into DIR and writes
 fig3_n128.png (cos^n θ and the unit at n = 128, the paper's Fig. 3, with the fixed-point error in a
 second panel; when 128 is outside the swept range, fig3_n<N>.png at the swept N nearest to it, --fig3-n), fig4_delta.png (Δ = cos^n θ − f over n and θ, the paper's Fig. 4, whose axis is 20·θ),

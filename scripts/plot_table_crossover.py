@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Max |total error| against cos^n per n for the table units and cs16 (docs/table.md).
 
 Reads the `per_n` rows of `shadecore sweep --json` files (total = cos^n − fixed/2^F, exhaustive over

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # The main job: install what is missing, build, then the default exhaustive sweep (cs16, default
 # width, n = 16..1024, every input code) with its table, JSON, CSV and plots under out/.
 set -euo pipefail

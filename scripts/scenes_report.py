@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Renders every example scene for docs/scenes.md and measures what the specialisation saves.
 
     scripts/scenes_report.py [--shadecore build/cli/shadecore] [--runs 5] [--yosys] [--scenes diffuse,spheres]

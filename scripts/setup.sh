@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Installs the Debian packages shadecore needs, if any are missing. Idempotent and quiet when
 # everything is present. Needs root (or sudo) only when something must be installed.
 # Extra package names given as arguments are installed too (scripts/cost_report.py asks for the

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # README.md's port table of rtl/sc_specular.v is generated from config/interface.json — the source
 # every handoff bundle's interface.md is rendered from (`shadecore handoff --print-port-table` prints
 # it). This script rewrites the table between the two markers in README.md:

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Synthesis sanity check of an RTL top with Yosys (generic cells, technology independent).
 #
 #   scripts/yosys_check.sh --top MODULE [-I DIR]... [-P NAME=VALUE]... [--log FILE] FILE.v...

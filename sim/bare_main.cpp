@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore sim — speed reference: the same sc_specular (cs16, default config, CUTOFF 0) Verilated
 // WITHOUT SystemC, driven by a plain C++ loop (no scheduler, no signals): one eval per clock edge,
 // in_valid_i and out_ready_i always high, exhaustive codes for an n range. With --check each output
@@ -17,8 +18,8 @@
 #include <string>
 
 #include "Vbare_cs16.h"
-#include "args.hpp"
-#include "progress.hpp"
+#include "shadecore/common/args.hpp"
+#include "shadecore/common/progress.hpp"
 #include "shadecore/configs.hpp"
 #include "shadecore/unit.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore sim — co-simulation of rtl/sc_specular.v (Verilated with --sc) against the C model.
 // One executable per configuration of config/configs.json (shadecore_cosim_<config>); it holds a
 // Verilated model per (variant, CUTOFF) and elaborates the one asked for. `shadecore cosim` runs
@@ -28,10 +29,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "args.hpp"
-#include "output_files.hpp"
-#include "progress.hpp"
-#include "shadecore/coef.hpp"
+#include "shadecore/common/args.hpp"
+#include "shadecore/common/output_files.hpp"
+#include "shadecore/common/progress.hpp"
+#include "shadecore/units/coef.hpp"
 #include "shadecore/configs.hpp"
 #include "shadecore/unit.hpp"
 #include "sim_models.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore sim — co-simulation of the lighting core rtl/sc_light.v (Verilated with --sc for ONE
 // feature set) against the C model LightCore. Built on demand per feature set by `shadecore cosim
 // --core lighting` / `shadecore render --rtl` (cli/light_rtl.cpp), which generate light_features.hpp
@@ -26,12 +27,12 @@
 
 #include "Vlight.h"
 #include "light_features.hpp"
-#include "light_stream.hpp"
+#include "shadecore/stimulus/light_stream.hpp"
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
 #include "tb_light_driver.hpp"
 #include "tb_light_pins.hpp"
-#include "tb_light_stimulus.hpp"
+#include "shadecore/stimulus/light_stimulus.hpp"
 #include "tb_monitor.hpp"
 
 namespace shadecore::sim {
@@ -164,7 +165,7 @@ int main_impl(int argc, char** argv) {
   app.add_option("--reset-at", o.reset_at, "pulse rst_ni low after this many accepted fragments (-1 none)")
       ->check(CLI::Range(int64_t{-1}, int64_t{1} << 40));
   app.add_option("--reset-cycles", o.reset_cycles, "length of each reset pulse")->check(CLI::Range(1, 1000));
-  app.add_option("--in", o.in_file, "stream: command file (sim/light_stream.hpp)");
+  app.add_option("--in", o.in_file, "stream: command file (stimulus/include/shadecore/stimulus/light_stream.hpp)");
   app.add_option("--out", o.out_file, "stream: write the RTL's colours here");
   app.add_option("--show", o.show, "errors printed in full per kind")->check(CLI::Range(0, 1000000));
   app.add_option("--inject", o.inject, "self-test: corrupt one observed output (value | drop | dup); the run must FAIL")

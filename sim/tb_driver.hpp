@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore sim — driver: owns every input pin of the unit. One SC_METHOD per rising clock edge:
 // it first sees whether the fragment it presented was taken at that edge (in_valid & in_ready,
 // pre-edge values), then sets the pins for the next edge:
@@ -23,7 +24,7 @@
 #include "shadecore/unit.hpp"
 #include "tb_options.hpp"
 #include "tb_pins.hpp"
-#include "tb_rng.hpp"
+#include "shadecore/stimulus/rng.hpp"
 #include "tb_stimulus.hpp"
 
 namespace shadecore::sim {

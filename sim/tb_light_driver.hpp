@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore sim — lighting-core driver: owns every input pin of rtl/sc_light.v. One SC_METHOD per
 // rising clock edge: it first sees what was taken at that edge (pre-edge values), then sets the pins
 // for the next edge. The same rules as the unit's driver (tb_driver.hpp):
@@ -14,8 +15,8 @@
 #include <cstdint>
 
 #include "tb_light_pins.hpp"
-#include "tb_light_stimulus.hpp"
-#include "tb_rng.hpp"
+#include "shadecore/stimulus/light_stimulus.hpp"
+#include "shadecore/stimulus/rng.hpp"
 
 namespace shadecore::sim {
 

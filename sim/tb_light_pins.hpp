@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore sim — the signals between the testbench and the lighting core rtl/sc_light.v (README port
 // table, docs/lighting.md §4), and its adapter for MonitorT / ScoreboardT (tb_monitor.hpp,
 // tb_scoreboard.hpp). Every port is at most 32 bits wide for F <= 16 (no slow sc_bv).

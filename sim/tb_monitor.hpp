@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore sim — monitor: passive; one SC_METHOD per rising edge samples the pre-edge values of
 // every port and turns handshakes into transactions for the scoreboard, in this order per edge:
 //   output taken (out_valid & out_ready) -> input taken (in_valid & in_ready) -> state write

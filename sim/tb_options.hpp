@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore sim — options of one co-simulation run (the simulator executable's command line).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore sim — the signals between the testbench and the unit (docs/spec.md §4 port table).
 // Every port of sc_specular is at most 32 bits wide in every configuration, so the Verilated
 // --sc model uses bool / uint32_t ports (no slow sc_bv).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore sim — scoreboard: the reference side of the co-simulation. No SystemC in here.
 //
 // ScoreboardT<Model> is the transaction checker every testbench of this project uses (the specular

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore sim — what the driver feeds the unit, by mode:
 //   exhaustive: for every n in [n_lo, n_hi]: every code in [0, 2^F], then the out-of-range codes
 //               in_min, -1, 2^F+1, in_max (the clamp must saturate, never wrap);
@@ -16,10 +17,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "shadecore/hard_cases.hpp"
+#include "shadecore/units/hard_cases.hpp"
 #include "shadecore/unit.hpp"
 #include "tb_options.hpp"
-#include "tb_rng.hpp"
+#include "shadecore/stimulus/rng.hpp"
 
 namespace shadecore::sim {
 

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Checks what the plotting scripts draw (issue 10), on the CSV data a real `shadecore sweep --plots` and
 `shadecore fit --plots` wrote: run by tests/test_cli_plots.cpp. Prints every failed check, exit 1 if any."""
 import argparse

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Test helper shared by the CLI tests: run the shadecore executable (or any command), capture its status,
 // stdout and stderr, temporary directories, and the one-line-error rule for bad input.
 #pragma once

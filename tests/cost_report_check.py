@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Checks of scripts/cost_report.py's parsing and pure helpers on captured tool output (tests/data/cost_report/:
 Yosys 0.23 `stat -json [-tech cmos]`, `ltp -noff`, `dump t:$mem_v2`, nextpnr-ice40 0.4 log lines, icetime
 reports). Seconds; no synthesis is run. ctest: scripts.cost_report_parsing."""

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore — scene-input fuzzer for `shadecore render` (issue 23; docs/scenes.md "Limits", "Fuzzing").
 //
 // From a seed and for a bounded time (or number of iterations) it mutates the example scenes scenes/*.json and

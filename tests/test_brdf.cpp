@@ -1,4 +1,5 @@
-// Seed 000's lighting models (cmodel/include/shadecore/brdf.hpp): building blocks against independent
+// SPDX-License-Identifier: Apache-2.0
+// Seed 000's lighting models (cmodel/include/shadecore/analysis/brdf.hpp): building blocks against independent
 // formulas and closed forms, and table 5.1 — reciprocity and energy conservation (directional albedo by
 // the project's Gauss-Kronrod quadrature) computed for every model over its parameter grid. Models that
 // measure physically correct must pass; for those that do not (classical Phong and Strauss as the thesis
@@ -12,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "shadecore/brdf.hpp"
-#include "shadecore/quadrature.hpp"
+#include "shadecore/analysis/brdf.hpp"
+#include "shadecore/analysis/quadrature.hpp"
 
 using namespace shadecore;
 using namespace shadecore::brdf;

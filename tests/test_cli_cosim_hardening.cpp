@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Issue 10, co-simulation side: the simulator executables reject bad arguments with one line and status 1
 // (no SystemC banner, not even for --help), a run that checked nothing is not a pass, the watchdog is
 // named as the cause, the "reproduce with" line reproduces, the same --seed gives the same stimulus

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Issue 10, "Hardening the command line and outputs": every finding pinned by a test.
 //   * a table of bad arguments: exit status 1, one line on stderr naming the problem, and nothing left in
 //     the working directory (no output, no temporary file);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Issue 23: `shadecore light-sweep` follows docs/cli.md — defaults shown in --help, readable ranges, --seed 0
 // or absent picks a seed and prints it (the printed seed reproduces the run), every column in the unit its
 // header states (output LSBs of 2^-F), empty values and out-of-range counts rejected in one line.

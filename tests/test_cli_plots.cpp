@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Issue 10, plots and scripts: what the figures show (checked on real CLI output by
 // tests/cli_plots_check.py), and scripts/cost_report.py's import check and all-or-nothing report.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The sweep CLI: bad input gets a one-line error and a non-zero exit, outputs are complete.
 #include <gtest/gtest.h>
 #include <sys/wait.h>

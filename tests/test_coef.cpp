@@ -1,12 +1,13 @@
+// SPDX-License-Identifier: Apache-2.0
 // Energy-normalisation coefficients and the fixed-point normalisation stage (docs/spec.md §7).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "shadecore/coef.hpp"
-#include "shadecore/cs16.hpp"
-#include "shadecore/fit.hpp"
+#include "shadecore/units/coef.hpp"
+#include "shadecore/units/cs16.hpp"
+#include "shadecore/analysis/fit.hpp"
 
 using namespace shadecore;
 

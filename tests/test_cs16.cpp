@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Hard cases and exhaustive properties of the bit-accurate cs16 model (docs/spec.md §2–3).
 #include <gtest/gtest.h>
 
@@ -7,9 +8,9 @@
 #include <string>
 
 #include "shadecore/configs.hpp"
-#include "shadecore/cs16.hpp"
-#include "shadecore/golden.hpp"
-#include "shadecore/hard_cases.hpp"
+#include "shadecore/units/cs16.hpp"
+#include "shadecore/analysis/golden.hpp"
+#include "shadecore/units/hard_cases.hpp"
 
 using namespace shadecore;
 

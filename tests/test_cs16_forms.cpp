@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // cs16 forms with folded, truncated squarers (docs/spec.md §3.4; rtl/sc_square.v, rtl/sc_cs16.v FORM = 1):
 // the squarer model against x·x and against its literal column sums, the forms' contracts on every code
 // of every n at F = 8, on a sample of n at F = 16 and on every x0 = base at F = 8 and 16, the `sweep --bases`
@@ -9,10 +10,10 @@
 
 #include "cli_run.hpp"
 #include "shadecore/configs.hpp"
-#include "shadecore/cs16.hpp"
-#include "shadecore/cs16_forms.hpp"
-#include "shadecore/golden.hpp"
-#include "shadecore/square.hpp"
+#include "shadecore/units/cs16.hpp"
+#include "shadecore/units/cs16_forms.hpp"
+#include "shadecore/analysis/golden.hpp"
+#include "shadecore/units/square.hpp"
 #include "shadecore/unit.hpp"
 
 using namespace shadecore;

@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: Apache-2.0
 // The 2-D reflectance check R(θi) = ∫ f_r cos θo dωo of the normalised BRDFs (energy.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "shadecore/energy.hpp"
-#include "shadecore/fit.hpp"
+#include "shadecore/analysis/energy.hpp"
+#include "shadecore/analysis/fit.hpp"
 
 using namespace shadecore;
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Int(n): adaptive quadrature against the closed forms; the least-squares and minimax fits;
 // the published Phong bound against its analytic value; the fit CLI's errors and outputs.
 #include <gtest/gtest.h>
@@ -10,8 +11,8 @@
 #include <random>
 #include <sstream>
 
-#include "shadecore/fit.hpp"
-#include "shadecore/quadrature.hpp"
+#include "shadecore/analysis/fit.hpp"
+#include "shadecore/analysis/quadrature.hpp"
 
 #include "cli_run.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `shadecore eval`, `shadecore vectors` and the argument checks of `shadecore handoff` (issue 11).
 // The bundles themselves are simulated by the ctest tests handoff.* (handoff/test_bundle.sh).
 #include <gtest/gtest.h>
@@ -16,9 +17,9 @@
 
 #include "cli_run.hpp"
 #include "shadecore/configs.hpp"
-#include "shadecore/golden.hpp"
+#include "shadecore/analysis/golden.hpp"
 #include "shadecore/features.hpp"
-#include "shadecore/hard_cases.hpp"
+#include "shadecore/units/hard_cases.hpp"
 #include "shadecore/light.hpp"
 #include "shadecore/unit.hpp"
 

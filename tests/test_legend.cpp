@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Issue 23: the legend of the signed log-scale difference images and the contact sheet's layout
 // (cli/legend.hpp). The layout is checked on its boxes and on the pixels drawn: no two labels overlap, every
 // label lies inside the canvas and outside every cell, for every cell size, unit count and mode count the
@@ -11,7 +12,7 @@
 
 #include "legend.hpp"
 #include "png.hpp"
-#include "shadecore/render.hpp"
+#include "shadecore/render/render.hpp"
 
 using namespace shadecore::cli;
 namespace render = shadecore::render;

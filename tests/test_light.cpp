@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Lighting core C model (docs/lighting.md): the division-free operators against their stated bounds
 // (exhaustive where the input space allows), the hard cases of issue 8 with their documented outputs,
 // the feature-set parser and the host-side setup checks.
@@ -8,7 +9,8 @@
 
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
-#include "shadecore/light_ops.hpp"
+#include "shadecore/units/normalize.hpp"
+#include "shadecore/units/recip.hpp"
 
 using namespace shadecore;
 

@@ -1,4 +1,5 @@
-// shadecore — tests of `shadecore render`'s library (shadecore/render.hpp) on the C model: the derived
+// SPDX-License-Identifier: Apache-2.0
+// shadecore — tests of `shadecore render`'s library (shadecore/render/render.hpp) on the C model: the derived
 // feature sets are the smallest that render the scene, and the full core reproduces the specialised
 // core's image bit for bit (for every example scene and for scenes built to hit every substitution).
 #include <gtest/gtest.h>
@@ -6,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "shadecore/mesh.hpp"
-#include "shadecore/render.hpp"
-#include "shadecore/scene.hpp"
+#include "shadecore/render/mesh.hpp"
+#include "shadecore/render/render.hpp"
+#include "shadecore/render/scene.hpp"
 
 #ifndef SHADECORE_SOURCE_DIR
 #error "SHADECORE_SOURCE_DIR must point at the source tree"

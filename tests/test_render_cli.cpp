@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore — `shadecore render` from the command line: bad scenes are one line on stderr, exit status 1
 // and no output at all; a good scene writes its images and a JSON report with the documented fields.
 #include <gtest/gtest.h>

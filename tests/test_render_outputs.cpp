@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore — `shadecore render`'s outputs are the user's (issue 23, docs/scenes.md §2, docs/cli.md):
 // no output may name an input, all-or-nothing even when a device in --out fails, a directory never mixes
 // two runs (the manifest), a dangling --out symlink is followed, and the report says where the time went.

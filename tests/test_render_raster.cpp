@@ -1,4 +1,5 @@
-// shadecore — tests of the host rasteriser (shadecore/raster.hpp): top-left fill rule (shared edges and
+// SPDX-License-Identifier: Apache-2.0
+// shadecore — tests of the host rasteriser (shadecore/render/raster.hpp): top-left fill rule (shared edges and
 // vertices covered exactly once), z-buffer, perspective-correct interpolation, near-plane clipping.
 #include <gtest/gtest.h>
 
@@ -6,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "shadecore/raster.hpp"
+#include "shadecore/render/raster.hpp"
 
 namespace {
 

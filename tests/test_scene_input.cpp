@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore — scene input hardening (issue 23) at the library level: parse_scene / printable directly.
 // The CLI side (one line, exit 1, nothing written) is tests/test_render_cli.cpp's bad-scene table.
 #include <gtest/gtest.h>
@@ -6,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "shadecore/scene.hpp"
+#include "shadecore/render/scene.hpp"
 
 namespace {
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Hard cases and exhaustive properties of the bit-accurate Schlick-divide models (docs/spec.md §6).
 //   S(t, n) = t / (n − (n−1)·t);  out = 2^F·c/Dc,  Dc = n·(2^F − c) + c
 #include <gtest/gtest.h>
@@ -7,10 +8,10 @@
 #include <string>
 
 #include "shadecore/configs.hpp"
-#include "shadecore/golden.hpp"
-#include "shadecore/hard_cases.hpp"
-#include "shadecore/schlick.hpp"
-#include "shadecore/sweep.hpp"
+#include "shadecore/analysis/golden.hpp"
+#include "shadecore/units/hard_cases.hpp"
+#include "shadecore/units/schlick.hpp"
+#include "shadecore/analysis/sweep.hpp"
 
 using namespace shadecore;
 

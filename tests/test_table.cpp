@@ -1,4 +1,5 @@
-// The table-and-interpolate units (docs/spec.md §9; cmodel/include/shadecore/table.hpp): table contents,
+// SPDX-License-Identifier: Apache-2.0
+// The table-and-interpolate units (docs/spec.md §9; cmodel/include/shadecore/units/table.hpp): table contents,
 // index/fraction split, clamps, every entry boundary, the quantisation bound against the double table
 // lerp, monotonicity, the Unit hooks, and the consumers that must reject a table unit.
 #include <gtest/gtest.h>
@@ -11,8 +12,8 @@
 
 #include "shadecore/configs.hpp"
 #include "shadecore/features.hpp"
-#include "shadecore/sweep.hpp"
-#include "shadecore/table.hpp"
+#include "shadecore/analysis/sweep.hpp"
+#include "shadecore/units/table.hpp"
 #include "shadecore/unit.hpp"
 
 using namespace shadecore;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // handoff/tb/tb_common.vh — shared by the bundles' testbenches (tb/tb_shadecore.v, tb/tb_shadecore_light.v),
 // included inside the module body. Plain Verilog-2005.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ============================================================================================
 // Filename : tb/tb_shadecore.v  (shadecore handoff bundle; template handoff/tb/tb_shadecore.v)
 // Purpose  : self-checking testbench in plain Verilog-2005 for the bundle's wrapper top. It reads

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ============================================================================================
 // Filename : tb/tb_shadecore_light.v  (shadecore handoff bundle of the lighting core; template
 //            handoff/tb/tb_shadecore_light.v)

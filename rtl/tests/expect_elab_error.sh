@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Runs a tool that must refuse to elaborate an illegal parameter setting:
 #
 #   rtl/tests/expect_elab_error.sh MESSAGE TOOL [ARGS...]

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Negative fixture for scripts/yosys_check.sh: an incomplete combinational assignment infers a
 // latch. The ctest `rtl.yosys_check_rejects_latch` passes only if the check REJECTS this file.
 `default_nettype none

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Negative fixture for scripts/yosys_check.sh: a combinational loop (a -> b -> a).
 // The ctest `rtl.yosys_check_rejects_loop` passes only if the check REJECTS this file.
 `default_nettype none

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Writes scenes/meshes/knot.obj: a trefoil knot as a tube (positions and faces only; shadecore computes
 area-weighted vertex normals). Deterministic: python3 scenes/meshes/make_knot.py > scenes/meshes/knot.obj"""
 import math

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore — the feature set of the lighting core: which units exist (docs/lighting.md §2).
 //
 // One value, three consumers (Mesa keys its fixed-function programs on `struct state_key` the same way):
@@ -21,7 +22,7 @@
 
 #include "shadecore/configs.hpp"
 #include "shadecore/configs_json.hpp"
-#include "shadecore/cs16.hpp"
+#include "shadecore/units/cs16.hpp"
 #include "shadecore/light_regs.hpp"
 #include "shadecore/unit.hpp"
 

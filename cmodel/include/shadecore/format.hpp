@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore — fixed-point formats of the specular unit (see docs/spec.md §2).
 //
 // One Format describes every width of the per-fragment datapath:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore — bit-accurate model of the lighting core rtl/sc_light.v (docs/lighting.md).
 //
 // Per fragment (normal N, eye-space position P) and colour channel c, OpenGL 1.x fixed-function
@@ -27,10 +28,11 @@
 #include <string>
 #include <vector>
 
-#include "shadecore/coef.hpp"
+#include "shadecore/units/coef.hpp"
 #include "shadecore/features.hpp"
-#include "shadecore/golden.hpp"
-#include "shadecore/light_ops.hpp"
+#include "shadecore/analysis/golden.hpp"
+#include "shadecore/units/normalize.hpp"
+#include "shadecore/units/recip.hpp"
 #include "shadecore/light_regs.hpp"
 #include "shadecore/unit.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // shadecore — the narrow interface through which the co-simulation (sim/) and the CLI see a
 // hardware unit's bit-accurate model: variant id + Format + cut-off form in, then
 //   setup(n)        -> the values the material ports of rtl/sc_specular.v get (mat_n_i, mat_thr_i)
@@ -19,12 +20,12 @@
 #include <string>
 #include <string_view>
 
-#include "shadecore/coef.hpp"
-#include "shadecore/cs16.hpp"
-#include "shadecore/cs16_forms.hpp"
+#include "shadecore/units/coef.hpp"
+#include "shadecore/units/cs16.hpp"
+#include "shadecore/units/cs16_forms.hpp"
 #include "shadecore/format.hpp"
-#include "shadecore/schlick.hpp"
-#include "shadecore/table.hpp"
+#include "shadecore/units/schlick.hpp"
+#include "shadecore/units/table.hpp"
 #include "shadecore/variants.hpp"
 
 namespace shadecore {

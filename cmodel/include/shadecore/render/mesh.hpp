@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: Apache-2.0
+// shadecore — object geometry for `shadecore render`: tessellated sphere / plane / torus and OBJ meshes
+// (tinyobjloader), as polygons with per-vertex normals in object space. Host software.
+#pragma once
+
+#include <vector>
+
+#include "shadecore/render/scene.hpp"
+
+namespace shadecore::scene {
+
+struct Mesh {
+  std::vector<Vec3> pos;                 // object-space positions
+  std::vector<Vec3> nrm;                 // unit vertex normals (analytic, from the OBJ, or area-weighted)
+  std::vector<std::vector<int>> faces;   // polygons, counter-clockwise seen from outside (front faces)
+};
+
+// Builds the geometry of `o`. Throws SceneError (one line) for a missing or malformed OBJ file,
+// a face index out of range, a degenerate (zero-area) face or a zero normal.
+Mesh build_mesh(const Object& o);
+
+// Newell's polygon normal (not normalised; length = 2 × area for a planar polygon).
+Vec3 polygon_normal(const std::vector<Vec3>& pos, const std::vector<int>& face);
+
+}  // namespace shadecore::scene

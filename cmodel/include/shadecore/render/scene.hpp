@@ -1,0 +1,153 @@
+// SPDX-License-Identifier: Apache-2.0
+// shadecore — scene files for `shadecore render` (docs/scenes.md).
+//
+// A scene is OpenGL 1.x fixed-function state written as JSON: a gluLookAt/gluPerspective camera, the
+// light model (glLightModel), up to 8 lights (glLight), named materials (glMaterial plus which specular
+// unit of the core shades them), and objects (tessellated sphere, plane, torus, OBJ mesh) with a
+// transform (glTranslate · glRotate · glScale), a material and a shading mode (flat / Gouraud / Phong).
+//
+// Parsing is strict: malformed JSON (with line and column), unknown or duplicate keys, wrong types and
+// out-of-range values, a missing or malformed OBJ file and degenerate faces are all a SceneError whose
+// message is one line "FILE: JSON.PATH: what".
+// Host software: nothing here is hardware.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "shadecore/units/coef.hpp"
+#include "shadecore/units/cs16.hpp"
+#include "shadecore/unit.hpp"
+
+namespace shadecore::scene {
+
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+using Vec3 = std::array<double, 3>;
+using Vec4 = std::array<double, 4>;
+
+enum class Shading { Flat, Gouraud, Phong };
+const char* to_string(Shading s);
+Shading parse_shading(const std::string& s);  // throws std::invalid_argument
+
+struct Camera {            // gluLookAt(eye, center, up) + gluPerspective(fovy, aspect = width/height, near, far)
+  Vec3 eye{0, 0, 5}, center{0, 0, 0}, up{0, 1, 0};
+  double fovy = 45.0;      // degrees, (0, 180)
+  double near = 1.0, far = 100.0;
+};
+
+struct Light {             // glLightfv(GL_LIGHTi, ...), specified with the view matrix on the modelview stack
+  Vec4 position{0, 0, 1, 0};  // world coordinates; w = 0 directional (towards the light), else point
+  Vec3 ambient{0, 0, 0}, diffuse{1, 1, 1}, specular{1, 1, 1};
+  double kc = 1, kl = 0, kq = 0;  // GL_CONSTANT/LINEAR/QUADRATIC_ATTENUATION
+};
+
+struct Normalization {     // optional energy normalisation of the specular term (rtl/sc_norm.v)
+  Model model = Model::Blinn;
+  CoefKind kind = CoefKind::Fitted;
+};
+
+struct Material {          // glMaterialfv(GL_FRONT_AND_BACK, ...)
+  std::string name;
+  Vec3 emission{0, 0, 0}, ambient{0.2, 0.2, 0.2}, diffuse{0.8, 0.8, 0.8}, specular{0, 0, 0};
+  int shininess = 16;      // n, 16..1024
+  VariantId unit = VariantId::cs16;
+  Cutoff cutoff = Cutoff::ThetaCr;
+  std::optional<Normalization> normalization;
+  [[nodiscard]] bool has_specular() const { return specular[0] > 0 || specular[1] > 0 || specular[2] > 0; }
+};
+
+struct Rotation {          // glRotated(angle, x, y, z)
+  double angle = 0;
+  Vec3 axis{0, 0, 1};
+};
+struct Transform {         // modelview = view · T · R1 · R2 · … · S (the order of the GL calls)
+  Vec3 translate{0, 0, 0};
+  std::vector<Rotation> rotate;
+  Vec3 scale{1, 1, 1};
+};
+
+enum class ObjectType { Sphere, Plane, Torus, Mesh };
+
+struct Object {
+  std::string name;        // for messages and the JSON report ("objects[i]" if not given)
+  ObjectType type = ObjectType::Sphere;
+  // sphere (gluSphere: poles on ±z)
+  double radius = 1.0;
+  int slices = 16, stacks = 8;
+  // plane (the xy square [-w/2, w/2] × [-h/2, h/2], normal +z)
+  double width = 2.0, height = 2.0;
+  int subdivisions = 1;
+  // torus (glutSolidTorus: around the z axis)
+  double inner_radius = 0.25, outer_radius = 1.0;
+  int sides = 12, rings = 24;
+  // mesh (OBJ through tinyobjloader)
+  std::string file;        // as written in the scene
+  std::string file_path;   // resolved against the scene's directory
+  Transform transform;
+  int material = 0;        // index into Scene::materials
+  Shading shading = Shading::Phong;
+  std::string where;       // "objects[i]" for messages
+  std::string scene_file;  // the scene file it comes from (messages)
+};
+
+struct ContactSheet {
+  std::vector<std::optional<Shading>> modes;  // rows; nullopt = as in the scene
+  std::vector<VariantId> units;               // columns after "exact" (each: image, difference)
+  int cell_width = 160, cell_height = 160;
+  std::optional<Camera> camera;
+  std::vector<int> objects;                   // object indices shown (empty: all)
+};
+
+struct Scene {
+  std::string file;        // the path it was read from (messages)
+  std::string dir;         // its directory (OBJ paths are relative to it)
+  int width = 256, height = 256;
+  Vec3 background{0, 0, 0};
+  Camera camera;
+  Vec3 global_ambient{0.2, 0.2, 0.2};  // GL_LIGHT_MODEL_AMBIENT
+  bool local_viewer = false;           // GL_LIGHT_MODEL_LOCAL_VIEWER
+  bool blinn = true;                   // reflection: blinn (N·H, what GL does) or phong (R·V)
+  std::string config = "default";      // the core's width (configs.json, frac <= 16)
+  std::vector<Light> lights;
+  std::vector<Material> materials;
+  std::vector<Object> objects;
+  std::optional<ContactSheet> contact_sheet;
+};
+
+// Limits of the input (docs/scenes.md "Limits").
+inline constexpr std::uint64_t kMaxSceneBytes = 16ull << 20;  // a scene file: at most 16 MiB
+inline constexpr std::uint64_t kMaxObjBytes = 256ull << 20;   // an OBJ file: at most 256 MiB
+inline constexpr int kMaxNesting = 64;                          // JSON arrays/objects nested at most 64 deep
+inline constexpr int kMaxMembers = 256;                         // keys of one JSON object (materials: 256 names)
+inline constexpr double kMaxCoord = 1e6;                        // |x| of a position, direction, translation, angle
+inline constexpr double kMinLength = 1e-6;                      // smallest radius, size, |scale|
+inline constexpr double kMaxLength = 1e4;                       // largest radius, size (|scale| up to kMaxCoord)
+inline constexpr int kMaxFaceVertices = 255;                    // vertices of one OBJ face
+
+// User text for a message: control characters (C0, DEL, C1) and bytes that are not UTF-8 shown as escapes
+// (\n, \t, \r, \xNN, \u009b), at most `max_chars` characters (0: no limit) with "…" when cut. Every message that
+// quotes a key, a name, a value or a file name goes through it, so a message stays one line and never
+// drives the terminal.
+std::string printable(std::string_view s, std::size_t max_chars = 60);
+
+// Reads a regular file of at most `max_bytes` without ever blocking (a FIFO is refused before it is opened and
+// opened O_NONBLOCK). On failure returns false and sets `why`: "no such file", "is a directory", "is a FIFO, not a
+// regular file", "is a character device, not a regular file", "too many levels of symbolic links", "is N bytes,
+// more than the limit of M MiB", ...
+bool read_regular_file(const std::string& path, std::uint64_t max_bytes, std::string& text, std::string& why);
+
+// Reads and checks a scene file. Throws SceneError (one line) on anything wrong.
+Scene load_scene(const std::string& path);
+// The same for a JSON text (`name` is used in messages and `dir` for OBJ paths).
+Scene parse_scene(const std::string& text, const std::string& name, const std::string& dir);
+
+}  // namespace shadecore::scene

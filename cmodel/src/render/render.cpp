@@ -1,0 +1,894 @@
+// SPDX-License-Identifier: Apache-2.0
+// shadecore — scenes through the lighting core: geometry, feature-set derivation, command streams,
+// image resolve and error statistics (see shadecore/render/render.hpp and docs/scenes.md).
+#include "shadecore/render/render.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+
+namespace shadecore::render {
+
+using scene::Camera;
+using scene::Scene;
+using scene::SceneError;
+using scene::Shading;
+using scene::Vec3;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+using Mat4 = std::array<double, 16>;  // row-major
+
+Mat4 identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }
+Mat4 mul(const Mat4& a, const Mat4& b) {
+  Mat4 r{};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      double s = 0;
+      for (int k = 0; k < 4; ++k) s += a[i * 4 + k] * b[k * 4 + j];
+      r[i * 4 + j] = s;
+    }
+  return r;
+}
+std::array<double, 4> apply(const Mat4& m, const std::array<double, 4>& v) {
+  std::array<double, 4> r{};
+  for (int i = 0; i < 4; ++i) r[i] = m[i * 4] * v[0] + m[i * 4 + 1] * v[1] + m[i * 4 + 2] * v[2] + m[i * 4 + 3] * v[3];
+  return r;
+}
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double norm(const Vec3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+Vec3 unit(const Vec3& v) {
+  const double l = norm(v);
+  return {v[0] / l, v[1] / l, v[2] / l};
+}
+
+// gluLookAt
+Mat4 look_at(const Camera& c) {
+  const Vec3 f = unit({c.center[0] - c.eye[0], c.center[1] - c.eye[1], c.center[2] - c.eye[2]});
+  const Vec3 s = unit(cross(f, c.up));
+  const Vec3 u = cross(s, f);
+  Mat4 m = {s[0], s[1], s[2], 0, u[0], u[1], u[2], 0, -f[0], -f[1], -f[2], 0, 0, 0, 0, 1};
+  Mat4 t = identity();
+  t[3] = -c.eye[0], t[7] = -c.eye[1], t[11] = -c.eye[2];
+  return mul(m, t);
+}
+// gluPerspective
+Mat4 perspective(const Camera& c, double aspect) {
+  const double f = 1.0 / std::tan(c.fovy * kPi / 360.0);
+  Mat4 m{};
+  m[0] = f / aspect;
+  m[5] = f;
+  m[10] = (c.far + c.near) / (c.near - c.far);
+  m[11] = 2 * c.far * c.near / (c.near - c.far);
+  m[14] = -1;
+  return m;
+}
+// glTranslated · glRotated… · glScaled
+Mat4 model_matrix(const scene::Transform& t) {
+  Mat4 m = identity();
+  m[3] = t.translate[0], m[7] = t.translate[1], m[11] = t.translate[2];
+  for (const auto& r : t.rotate) {
+    const Vec3 a = unit(r.axis);
+    const double th = r.angle * kPi / 180.0, c = std::cos(th), s = std::sin(th), k = 1 - c;
+    const Mat4 R = {a[0] * a[0] * k + c,        a[0] * a[1] * k - a[2] * s, a[0] * a[2] * k + a[1] * s, 0,
+                    a[1] * a[0] * k + a[2] * s, a[1] * a[1] * k + c,        a[1] * a[2] * k - a[0] * s, 0,
+                    a[2] * a[0] * k - a[1] * s, a[2] * a[1] * k + a[0] * s, a[2] * a[2] * k + c,        0,
+                    0,                          0,                          0,                          1};
+    m = mul(m, R);
+  }
+  Mat4 S = identity();
+  S[0] = t.scale[0], S[5] = t.scale[1], S[10] = t.scale[2];
+  return mul(m, S);
+}
+// Inverse transpose of the upper 3×3 (normals), via the cofactor matrix (scale does not matter: normals are
+// normalised after).
+std::array<double, 9> normal_matrix(const Mat4& m) {
+  const double a = m[0], b = m[1], c = m[2], d = m[4], e = m[5], f = m[6], g = m[8], h = m[9], i = m[10];
+  return {e * i - f * h, -(d * i - f * g), d * h - e * g,
+          -(b * i - c * h), a * i - c * g, -(a * h - b * g),
+          b * f - c * e, -(a * f - c * d), a * e - b * d};
+}
+Vec3 apply3(const std::array<double, 9>& m, const Vec3& v) {
+  return {m[0] * v[0] + m[1] * v[1] + m[2] * v[2], m[3] * v[0] + m[4] * v[1] + m[5] * v[2],
+          m[6] * v[0] + m[7] * v[1] + m[8] * v[2]};
+}
+
+uint32_t colour_code(int F, double x) {
+  return static_cast<uint32_t>(std::min(std::llround(std::ldexp(x, F)), (1ll << (F + 1)) - 1));
+}
+uint32_t attc_code(int F, double x) {
+  return static_cast<uint32_t>(std::min(std::llround(std::ldexp(x, F)), (1ll << (F + kAttIntBits)) - 1));
+}
+
+std::string fmt3(const Vec3& v) {
+  std::ostringstream ss;
+  ss.precision(6);
+  ss << "(" << v[0] << ", " << v[1] << ", " << v[2] << ")";
+  return ss.str();
+}
+
+// Normal codes the host sends: the unit normal rounded to the core's F+2-bit format, then passed through
+// the core's own normaliser once. Its outputs are fixed points of it (checked), so a core with GL_NORMALIZE
+// (the full core) computes the same N̂ as a core without.
+std::array<int64_t, 3> normal_code(int F, const Vec3& n, bool* fixed_point) {
+  const int64_t lim = int64_t{1} << (F + 1);
+  int64_t c[3], u[3], w[3];
+  for (int i = 0; i < 3; ++i) c[i] = std::clamp<int64_t>(std::llround(std::ldexp(n[i], F)), -lim, lim - 1);
+  normalize3(F, c, u);
+  normalize3(F, u, w);
+  if (w[0] != u[0] || w[1] != u[1] || w[2] != u[2]) *fixed_point = false;
+  return {u[0], u[1], u[2]};
+}
+
+bool pos_in_range(const Vec3& p) {
+  for (double x : p)
+    if (!(x >= -128.0 && x < 128.0)) return false;
+  return true;
+}
+
+}  // namespace
+
+// ---- feature sets ---------------------------------------------------------------------------------
+
+FeatureSet full_core_for(const FeatureSet& spec, std::vector<std::string>& subs) {
+  FeatureSet f = feature_set_named_or_file("full");
+  auto need = [&](bool ok, const std::string& what) {
+    if (!ok) throw std::runtime_error("the 'full' feature set of config/configs.json lacks " + what + " this scene needs");
+  };
+  need(f.num_lights() >= spec.num_lights(), std::to_string(spec.num_lights()) + " lights");
+  need(!spec.ambient || f.ambient, "the ambient/emission term");
+  need(!spec.diffuse || f.diffuse, "the diffuse term");
+  need(!spec.specular || f.specular, "a specular unit");
+  need(!spec.norm || f.norm, "energy normalisation");
+  need(spec.channels <= f.channels, "RGB");
+  if (f.config != spec.config) {
+    subs.push_back("config " + spec.config);
+    f.config = spec.config;
+  }
+  for (int j = 0; j < spec.num_lights(); ++j) {
+    const LightKind s = spec.lights[j], k = f.lights[j];
+    // A point light (kc = 1, kl = kq = 0) on a point_att slot: q = 1, att = recip_att(2^F) = 2^F exactly.
+    if (s == k || (s == LightKind::Point && k == LightKind::PointAtt)) continue;
+    subs.push_back("light " + std::to_string(j) + " " + to_string(s));
+    f.lights[j] = s;
+  }
+  if (spec.normalize && !f.normalize) {
+    subs.push_back("normalize");
+    f.normalize = true;
+  }
+  if (spec.specular) {
+    if (f.variant != spec.variant || (spec.variant == VariantId::cs16 && f.cutoff != spec.cutoff)) {
+      subs.push_back(std::string("unit ") + std::string(variant_name(spec.variant)) +
+                     (spec.variant == VariantId::cs16 ? std::string("/") + to_string(spec.cutoff) : std::string()));
+      f.variant = spec.variant;
+      f.cutoff = spec.variant == VariantId::cs16 ? spec.cutoff : Cutoff::ThetaCr;
+    }
+    if (f.blinn != spec.blinn) {
+      subs.push_back(std::string("reflection ") + (spec.blinn ? "blinn" : "phong"));
+      f.blinn = spec.blinn;
+    }
+    if (f.local_viewer != spec.local_viewer) {
+      subs.push_back(spec.local_viewer ? "local viewer" : "infinite viewer");
+      f.local_viewer = spec.local_viewer;
+    }
+  }
+  if (subs.empty()) f.name = "full";
+  else f.name = "full+scene-modes";
+  return f;
+}
+
+Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used,
+                           const std::vector<bool>& needs_normalize, bool full_core,
+                           std::optional<VariantId> unit_override) {
+  const int F = config_named(sc.config).format.frac;
+  const size_t nm = sc.materials.size();
+  std::vector<bool> used(nm, false);
+  for (int o : objects_used) used[sc.objects[o].material] = true;
+
+  auto nz = [F](const Vec3& c, int ch) { return colour_code(F, c[ch]) != 0; };
+  auto light_spec = [&](int ch) {
+    for (const auto& l : sc.lights)
+      if (nz(l.specular, ch)) return true;
+    return false;
+  };
+  // Effective specular term and unit of each material.
+  std::vector<bool> spec(nm, false);
+  std::vector<std::string> unit_key(nm);
+  std::vector<VariantId> unit_var(nm, VariantId::cs16);
+  std::vector<Cutoff> unit_cut(nm, Cutoff::ThetaCr);
+  for (size_t m = 0; m < nm; ++m) {
+    const auto& M = sc.materials[m];
+    for (int ch = 0; ch < 3; ++ch) spec[m] = spec[m] || (nz(M.specular, ch) && light_spec(ch));
+    unit_var[m] = unit_override ? *unit_override : M.unit;
+    unit_cut[m] = unit_var[m] == VariantId::cs16 && M.unit == VariantId::cs16 ? M.cutoff : Cutoff::ThetaCr;
+    unit_key[m] = std::string(variant_name(unit_var[m])) +
+                  (unit_var[m] == VariantId::cs16 ? std::string("/") + to_string(unit_cut[m]) : std::string());
+  }
+  Derivation d;
+  d.group_of_material.assign(nm, -1);
+  std::map<std::string, int> gid;
+  for (size_t m = 0; m < nm; ++m) {
+    if (!used[m] || !spec[m]) continue;
+    auto it = gid.find(unit_key[m]);
+    if (it == gid.end()) {
+      it = gid.emplace(unit_key[m], static_cast<int>(d.groups.size())).first;
+      d.groups.emplace_back();
+      d.groups.back().unit_label = unit_key[m];
+    }
+    d.group_of_material[m] = it->second;
+    d.groups[it->second].materials.push_back(static_cast<int>(m));
+  }
+  for (size_t m = 0; m < nm; ++m) {
+    if (!used[m] || spec[m]) continue;
+    if (d.groups.empty()) {
+      d.groups.emplace_back();
+      d.groups.back().unit_label = "none";
+    }
+    d.group_of_material[m] = 0;
+    d.groups[0].materials.push_back(static_cast<int>(m));
+  }
+  if (!d.groups.empty()) std::sort(d.groups[0].materials.begin(), d.groups[0].materials.end());
+
+  for (auto& g : d.groups) {
+    FeatureSet fs;
+    fs.name = "scene";
+    fs.config = sc.config;
+    const bool has_unit = g.unit_label != "none";
+    const int m0 = g.materials.front();
+    auto any_mat = [&](auto pred) {
+      for (int m : g.materials)
+        for (int ch = 0; ch < 3; ++ch)
+          if (pred(sc.materials[m], ch)) return true;
+      return false;
+    };
+    // Which lights contribute to any material of this core.
+    fs.lights.clear();
+    g.light_slot.clear();
+    for (size_t j = 0; j < sc.lights.size(); ++j) {
+      const auto& L = sc.lights[j];
+      const bool contributes = any_mat([&](const scene::Material& M, int ch) {
+        return (nz(M.ambient, ch) && nz(L.ambient, ch)) || (nz(M.diffuse, ch) && nz(L.diffuse, ch)) ||
+               (has_unit && nz(M.specular, ch) && nz(L.specular, ch));
+      });
+      if (!contributes) continue;
+      LightKind k = LightKind::PointAtt;
+      if (L.position[3] == 0.0) k = LightKind::Directional;
+      else if (attc_code(F, L.kc) == (1u << F) && attc_code(F, L.kl) == 0 && attc_code(F, L.kq) == 0)
+        k = LightKind::Point;
+      fs.lights.push_back(k);
+      g.light_slot.push_back(static_cast<int>(j));
+    }
+    fs.ambient = any_mat([&](const scene::Material& M, int ch) {
+      if (nz(M.emission, ch)) return true;
+      if (!nz(M.ambient, ch)) return false;
+      if (nz(sc.global_ambient, ch)) return true;
+      for (int j : g.light_slot)
+        if (nz(sc.lights[j].ambient, ch)) return true;
+      return false;
+    });
+    fs.diffuse = any_mat([&](const scene::Material& M, int ch) {
+      for (int j : g.light_slot)
+        if (nz(M.diffuse, ch) && nz(sc.lights[j].diffuse, ch)) return true;
+      return false;
+    });
+    fs.specular = has_unit && any_mat([&](const scene::Material& M, int ch) {
+      for (int j : g.light_slot)
+        if (nz(M.specular, ch) && nz(sc.lights[j].specular, ch)) return true;
+      return false;
+    });
+    if (fs.lights.empty()) {  // nothing lit by any light: one directional light with zero colours
+      fs.lights.push_back(LightKind::Directional);
+      g.light_slot.push_back(-1);
+    }
+    if (!fs.ambient && !fs.diffuse && !fs.specular) fs.ambient = true;  // a black object still needs a term
+    fs.variant = fs.specular ? unit_var[m0] : VariantId::cs16;
+    fs.cutoff = fs.specular && fs.variant == VariantId::cs16 ? unit_cut[m0] : Cutoff::ThetaCr;
+    fs.norm = false;
+    if (fs.specular)
+      for (int m : g.materials) fs.norm = fs.norm || sc.materials[m].normalization.has_value();
+    fs.blinn = fs.specular ? sc.blinn : true;
+    fs.local_viewer = fs.specular && sc.local_viewer;
+    fs.normalize = false;
+    for (int m : g.materials) fs.normalize = fs.normalize || needs_normalize[m];
+    // Mono when every colour that reaches the core is grey.
+    bool grey = true;
+    auto is_grey = [F](const Vec3& c) {
+      return colour_code(F, c[0]) == colour_code(F, c[1]) && colour_code(F, c[1]) == colour_code(F, c[2]);
+    };
+    if (fs.ambient) grey = grey && is_grey(sc.global_ambient);
+    for (int m : g.materials) {
+      const auto& M = sc.materials[m];
+      grey = grey && is_grey(M.emission) && is_grey(M.ambient) && is_grey(M.diffuse) && is_grey(M.specular);
+    }
+    for (int j : g.light_slot)
+      if (j >= 0) grey = grey && is_grey(sc.lights[j].ambient) && is_grey(sc.lights[j].diffuse) && is_grey(sc.lights[j].specular);
+    fs.channels = grey ? 1 : 3;
+    if (!fs.specular) g.unit_label = "none";
+    g.specialised = fs;
+    g.fs = full_core ? full_core_for(fs, g.full_substitutions) : fs;
+  }
+  return d;
+}
+
+// ---- meshes ------------------------------------------------------------------------------------------
+
+MeshSource::MeshSource(const Scene& sc, size_t keep_bytes) : sc_(&sc), keep_bytes_(keep_bytes), kept_(sc.objects.size()) {}
+MeshSource::MeshSource(const std::vector<scene::Mesh>& given) : given_(&given) {}
+
+size_t MeshSource::bytes(const scene::Mesh& m) {
+  size_t b = sizeof(m) + (m.pos.capacity() + m.nrm.capacity()) * sizeof(Vec3) + m.faces.capacity() * sizeof(m.faces[0]);
+  for (const auto& f : m.faces) b += f.capacity() * sizeof(int) + 16;  // + the allocator's header
+  return b;
+}
+
+std::shared_ptr<const scene::Mesh> MeshSource::get(int object) {
+  if (given_) return std::shared_ptr<const scene::Mesh>(std::shared_ptr<void>(), &given_->at(static_cast<size_t>(object)));
+  auto& slot = kept_.at(static_cast<size_t>(object));
+  if (slot) return slot;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto m = std::make_shared<const scene::Mesh>(scene::build_mesh(sc_->objects[static_cast<size_t>(object)]));
+  build_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const size_t b = bytes(*m);
+  if (kept_bytes_ + b <= keep_bytes_) {
+    kept_bytes_ += b;
+    slot = m;
+  }
+  return m;
+}
+
+// ---- prepare ----------------------------------------------------------------------------------------
+
+Frame prepare(const Scene& sc, const std::vector<scene::Mesh>& meshes, const Settings& s) {
+  MeshSource src(meshes);
+  return prepare(sc, src, s);
+}
+
+Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
+  Frame fr;
+  fr.scene = &sc;
+  fr.width = s.width > 0 ? s.width : sc.width;
+  fr.height = s.height > 0 ? s.height : sc.height;
+  fr.F = config_named(sc.config).format.frac;
+  const int F = fr.F;
+  const Camera cam = s.camera ? *s.camera : sc.camera;
+  const Mat4 view = look_at(cam);
+  const Mat4 proj = perspective(cam, static_cast<double>(fr.width) / fr.height);
+  const size_t no = sc.objects.size();
+  std::vector<int> drawn;
+  if (s.objects.empty())
+    for (size_t i = 0; i < no; ++i) drawn.push_back(static_cast<int>(i));
+  else
+    drawn = s.objects;
+  fr.object_group.assign(no, -1);
+  fr.object_shading.resize(no);
+  fr.object_material.resize(no);
+  for (size_t i = 0; i < no; ++i) {
+    fr.object_shading[i] = s.mode ? *s.mode : sc.objects[i].shading;
+    fr.object_material[i] = sc.objects[i].material;
+  }
+  for (int c = 0; c < 3; ++c) fr.background[c] = colour_code(F, sc.background[c]);
+
+  // Geometry, one object at a time: eye space, codes for the core, clip coordinates, and straight into the
+  // rasteriser; after each object the triangles no pixel shows are dropped, with the vertices and faces only
+  // they used (the survivors keep their drawing order, so the command streams are those of drawing
+  // everything first). Peak memory: the image, the survivors (at most a few per pixel) and one object.
+  std::vector<bool> needs_normalize(sc.materials.size(), false);
+  fr.raster = raster::Rasterizer(fr.width, fr.height, cam.near);
+  const size_t compact_at = std::max<size_t>(size_t{1} << 16, 4 * static_cast<size_t>(fr.width) * fr.height);
+  const double build0 = meshes.build_seconds();
+  const auto t_geom = std::chrono::steady_clock::now();
+  struct Pending {
+    uint32_t face;
+    std::array<uint32_t, 3> v;  // object-local vertex indices
+  };
+  std::vector<Pending> pending;
+  for (int oi : drawn) {
+    const auto& o = sc.objects[oi];
+    const std::shared_ptr<const scene::Mesh> mesh_ptr = meshes.get(oi);
+    const scene::Mesh& mesh = *mesh_ptr;
+    const Mat4 mv = mul(view, model_matrix(o.transform));
+    const auto nmat = normal_matrix(mv);
+    bool fixed = true;
+    std::vector<Vec3> eye(mesh.pos.size());
+    std::vector<raster::ClipVertex> clip(mesh.pos.size());
+    auto vertex_fragment = [&](size_t v) {
+      const Vec3 ne = unit(apply3(nmat, mesh.nrm[v]));
+      Fragment f;
+      const auto nc = normal_code(F, ne, &fixed);
+      const Fragment pf = make_fragment(F, ne.data(), eye[v].data());
+      for (int i = 0; i < 3; ++i) f.n[i] = nc[i], f.p[i] = pf.p[i];
+      return f;
+    };
+    auto face_fragment = [&](size_t fi) {
+      const auto& face = mesh.faces[fi];
+      const Vec3 fn = unit(apply3(nmat, scene::polygon_normal(mesh.pos, face)));
+      Vec3 cen{0, 0, 0};
+      for (int v : face)
+        for (int i = 0; i < 3; ++i) cen[i] += eye[v][i] / static_cast<double>(face.size());
+      Fragment f;
+      const auto nc = normal_code(F, fn, &fixed);
+      const Fragment pf = make_fragment(F, fn.data(), cen.data());
+      for (int i = 0; i < 3; ++i) f.n[i] = nc[i], f.p[i] = pf.p[i];
+      return f;
+    };
+    for (size_t v = 0; v < mesh.pos.size(); ++v) {
+      const auto pe4 = apply(mv, {mesh.pos[v][0], mesh.pos[v][1], mesh.pos[v][2], 1.0});
+      const Vec3 pe{pe4[0], pe4[1], pe4[2]};
+      if (!pos_in_range(pe))
+        throw SceneError(sc.file + ": " + o.where + ": vertex " + std::to_string(v) + " at eye-space " + fmt3(pe) +
+                         " is outside the core's position range [-128, 128)");
+      eye[v] = pe;
+      (void)vertex_fragment(v);  // every normal is checked to be a fixed point of the normaliser
+      const auto c4 = apply(proj, {pe[0], pe[1], pe[2], 1.0});
+      clip[v] = {c4[0], c4[1], c4[2], c4[3]};
+    }
+    const uint32_t src_base = static_cast<uint32_t>(fr.tri_object.size());
+    pending.clear();
+    for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
+      const auto& face = mesh.faces[fi];
+      (void)face_fragment(fi);
+      for (size_t k = 1; k + 1 < face.size(); ++k) {
+        const std::array<uint32_t, 3> tv{static_cast<uint32_t>(face[0]), static_cast<uint32_t>(face[k]),
+                                         static_cast<uint32_t>(face[k + 1])};
+        pending.push_back({static_cast<uint32_t>(fi), tv});
+        fr.raster.draw(static_cast<int>(src_base + pending.size() - 1), {clip[tv[0]], clip[tv[1]], clip[tv[2]]});
+        if (fr.raster.tris().size() > compact_at) fr.raster.compact();
+      }
+    }
+    fr.drawn_vertices += mesh.pos.size();
+    fr.drawn_faces += mesh.faces.size();
+    fr.drawn_triangles += pending.size();
+    // Phong interpolates normals (not unit between vertices); a host normal that is not a fixed point of
+    // the normaliser (never seen, but checked) also keeps GL_NORMALIZE on, so the full core agrees.
+    if (fr.object_shading[oi] == Shading::Phong || !fixed) needs_normalize[o.material] = true;
+
+    // Keep what some pixel shows: triangles (earlier objects' and this one's), then their vertices and faces.
+    fr.raster.compact();
+    std::vector<char> tri_live(src_base + pending.size(), 0);
+    for (const auto& st : fr.raster.tris()) tri_live[static_cast<size_t>(st.source)] = 1;
+    std::vector<char> old_vert_live(fr.vertex_frag.size(), 0), old_face_live(fr.face_frag.size(), 0);
+    std::vector<char> new_vert_live(mesh.pos.size(), 0), new_face_live(mesh.faces.size(), 0);
+    for (uint32_t t = 0; t < src_base; ++t)
+      if (tri_live[t]) {
+        for (uint32_t v : fr.tri_vertices[t]) old_vert_live[v] = 1;
+        old_face_live[fr.tri_face[t]] = 1;
+      }
+    for (size_t t = 0; t < pending.size(); ++t)
+      if (tri_live[src_base + t]) {
+        for (uint32_t v : pending[t].v) new_vert_live[v] = 1;
+        new_face_live[pending[t].face] = 1;
+      }
+    auto keep = [](auto& vec, const std::vector<char>& live, std::vector<uint32_t>& remap) {
+      remap.assign(live.size(), ~0u);
+      size_t k = 0;
+      for (size_t i = 0; i < live.size(); ++i)
+        if (live[i]) {
+          remap[i] = static_cast<uint32_t>(k);
+          if (k != i) vec[k] = vec[i];
+          ++k;
+        }
+      vec.resize(k);
+    };
+    std::vector<uint32_t> vmap, fmap, tmap, nvmap(mesh.pos.size(), ~0u), nfmap(mesh.faces.size(), ~0u);
+    keep(fr.vertex_frag, old_vert_live, vmap);
+    {
+      std::vector<uint32_t> unused;
+      keep(fr.vertex_object, old_vert_live, unused);
+    }
+    keep(fr.face_frag, old_face_live, fmap);
+    {
+      std::vector<uint32_t> unused;
+      keep(fr.face_object, old_face_live, unused);
+    }
+    for (size_t v = 0; v < mesh.pos.size(); ++v)
+      if (new_vert_live[v]) {
+        nvmap[v] = static_cast<uint32_t>(fr.vertex_frag.size());
+        fr.vertex_frag.push_back(vertex_fragment(v));
+        fr.vertex_object.push_back(oi);
+      }
+    for (size_t fi = 0; fi < mesh.faces.size(); ++fi)
+      if (new_face_live[fi]) {
+        nfmap[fi] = static_cast<uint32_t>(fr.face_frag.size());
+        fr.face_frag.push_back(face_fragment(fi));
+        fr.face_object.push_back(oi);
+      }
+    tmap.assign(tri_live.size(), ~0u);
+    size_t k = 0;
+    for (uint32_t t = 0; t < src_base; ++t)
+      if (tri_live[t]) {
+        tmap[t] = static_cast<uint32_t>(k);
+        fr.tri_object[k] = fr.tri_object[t];
+        fr.tri_face[k] = static_cast<int>(fmap[fr.tri_face[t]]);
+        for (int q = 0; q < 3; ++q) fr.tri_vertices[k][q] = vmap[fr.tri_vertices[t][q]];
+        ++k;
+      }
+    fr.tri_object.resize(k);
+    fr.tri_face.resize(k);
+    fr.tri_vertices.resize(k);
+    for (size_t t = 0; t < pending.size(); ++t)
+      if (tri_live[src_base + t]) {
+        tmap[src_base + t] = static_cast<uint32_t>(fr.tri_object.size());
+        fr.tri_object.push_back(oi);
+        fr.tri_face.push_back(static_cast<int>(nfmap[pending[t].face]));
+        fr.tri_vertices.push_back({nvmap[pending[t].v[0]], nvmap[pending[t].v[1]], nvmap[pending[t].v[2]]});
+      }
+    fr.raster.relabel([&](int src) { return static_cast<int>(tmap[static_cast<size_t>(src)]); });
+  }
+  pending = {};
+  fr.tessellate_seconds = meshes.build_seconds() - build0;
+  fr.rasterise_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_geom).count() - fr.tessellate_seconds;
+
+  // Lights in eye space (glLight with the view matrix on the modelview stack).
+  for (size_t j = 0; j < sc.lights.size(); ++j) {
+    const auto& L = sc.lights[j];
+    if (L.position[3] != 0.0) {
+      const auto pe = apply(view, L.position);
+      const Vec3 p{pe[0] / pe[3], pe[1] / pe[3], pe[2] / pe[3]};
+      if (!pos_in_range(p))
+        throw SceneError(sc.file + ": lights[" + std::to_string(j) + "].position: eye-space position " + fmt3(p) +
+                         " is outside the core's position range [-128, 128)");
+    }
+  }
+
+  const Derivation d = derive_features(sc, drawn, needs_normalize, s.full_core, s.unit);
+  fr.groups = d.groups;
+  for (int oi : drawn) fr.object_group[oi] = d.group_of_material[sc.objects[oi].material];
+
+  // Visibility: what each pixel shows, per material.
+  const size_t nmat = sc.materials.size();
+  std::vector<std::vector<uint32_t>> mat_faces(nmat), mat_verts(nmat), mat_pixels(nmat);
+  std::vector<char> face_vis(fr.face_frag.size(), 0), vert_need(fr.vertex_frag.size(), 0);
+  for (int y = 0; y < fr.height; ++y)
+    for (int x = 0; x < fr.width; ++x) {
+      const int32_t id = fr.raster.at(x, y);
+      if (id < 0) continue;
+      const int src = fr.raster.tris()[id].source;
+      const int oi = fr.tri_object[src];
+      switch (fr.object_shading[oi]) {
+        case Shading::Flat: face_vis[fr.tri_face[src]] = 1; break;
+        case Shading::Gouraud:
+          for (uint32_t v : fr.tri_vertices[src]) vert_need[v] = 1;
+          break;
+        case Shading::Phong:
+          mat_pixels[sc.objects[oi].material].push_back(static_cast<uint32_t>(y * fr.width + x));
+          break;
+      }
+    }
+  for (size_t f = 0; f < face_vis.size(); ++f)
+    if (face_vis[f]) mat_faces[sc.objects[fr.face_object[f]].material].push_back(static_cast<uint32_t>(f));
+  for (size_t v = 0; v < vert_need.size(); ++v)
+    if (vert_need[v]) mat_verts[sc.objects[fr.vertex_object[v]].material].push_back(static_cast<uint32_t>(v));
+
+  // Command streams.
+  for (auto& g : fr.groups) {
+    const LightCore core(g.fs);
+    auto add_writes = [&g](const std::vector<RegWrite>& ws) {
+      for (const auto& w : ws) {
+        CoreCmd c;
+        c.is_write = true;
+        c.w = w;
+        g.cmds.push_back(c);
+        ++g.writes;
+      }
+    };
+    add_writes(global_writes(core, sc.global_ambient.data()));
+    for (int j = 0; j < g.fs.num_lights(); ++j) {
+      LightParams lp;
+      const int sj = j < static_cast<int>(g.light_slot.size()) ? g.light_slot[j] : -1;
+      const LightKind kind = g.fs.lights[j];
+      if (sj >= 0) {
+        const auto& L = sc.lights[sj];
+        const auto pe = apply(view, L.position);
+        for (int i = 0; i < 4; ++i) lp.position[i] = pe[i];
+        if (L.position[3] != 0.0) {
+          for (int i = 0; i < 3; ++i) lp.position[i] = pe[i] / pe[3];
+          lp.position[3] = 1.0;
+        }
+        for (int c = 0; c < 3; ++c) {
+          lp.ambient[c] = L.ambient[c];
+          lp.diffuse[c] = L.diffuse[c];
+          lp.specular[c] = L.specular[c];
+        }
+        lp.kc = L.kc, lp.kl = L.kl, lp.kq = L.kq;
+      } else {  // a slot the scene does not use: zero colours contribute exactly 0
+        lp.position[0] = lp.position[1] = 0;
+        lp.position[2] = 1;
+        lp.position[3] = kind == LightKind::Directional ? 0.0 : 1.0;
+        if (kind != LightKind::Directional) lp.position[2] = 0;
+        for (int c = 0; c < 3; ++c) lp.ambient[c] = lp.diffuse[c] = lp.specular[c] = 0;
+        lp.kc = 1, lp.kl = 0, lp.kq = 0;
+      }
+      add_writes(light_writes(core, j, lp));
+    }
+    for (int m : g.materials) {
+      if (mat_faces[m].empty() && mat_verts[m].empty() && mat_pixels[m].empty()) continue;
+      const auto& M = sc.materials[m];
+      MaterialParams mp;
+      for (int c = 0; c < 3; ++c) {
+        mp.emission[c] = M.emission[c];
+        mp.ambient[c] = M.ambient[c];
+        mp.diffuse[c] = M.diffuse[c];
+        mp.specular[c] = M.specular[c];
+      }
+      mp.shininess = M.shininess;
+      if (M.normalization) {
+        mp.norm_model = static_cast<int>(M.normalization->model);
+        mp.norm_kind = M.normalization->kind;
+      }
+      auto ws = material_writes(core, mp);
+      if (g.fs.norm && !(M.normalization && g.fs.specular))
+        for (auto& w : ws)
+          if (w.addr == kReg_mat_coef) w.data = 1u << F;  // coefficient 1.0: sc_norm passes spec unchanged
+      add_writes(ws);
+      auto frag = [&g](const Fragment& f, DestKind k, uint32_t idx) {
+        CoreCmd c;
+        c.f = f;
+        g.cmds.push_back(c);
+        g.dests.push_back({k, idx});
+      };
+      for (uint32_t f : mat_faces[m]) frag(fr.face_frag[f], DestKind::Face, f), ++g.faces;
+      for (uint32_t v : mat_verts[m]) frag(fr.vertex_frag[v], DestKind::Vertex, v), ++g.vertices;
+      for (uint32_t p : mat_pixels[m]) {
+        const int x = static_cast<int>(p % fr.width), y = static_cast<int>(p / fr.width);
+        const int32_t id = fr.raster.at(x, y);
+        const auto& st = fr.raster.tris()[id];
+        const auto& tv = fr.tri_vertices[st.source];
+        const raster::Weights w = fr.raster.weights(id, x, y);
+        Fragment f;
+        for (int i = 0; i < 3; ++i) {
+          std::array<int64_t, 3> n{}, pp{};
+          for (int k = 0; k < 3; ++k) {
+            double sn = 0, sp = 0;
+            for (int q = 0; q < 3; ++q) {
+              sn += st.v[k].b[q] * static_cast<double>(fr.vertex_frag[tv[q]].n[i]);
+              sp += st.v[k].b[q] * static_cast<double>(fr.vertex_frag[tv[q]].p[i]);
+            }
+            n[k] = std::llround(sn);
+            pp[k] = std::llround(sp);
+          }
+          f.n[i] = raster::interpolate(w, n);
+          f.p[i] = raster::interpolate(w, pp);
+        }
+        frag(f, DestKind::Pixel, p);
+        ++g.pixels;
+      }
+    }
+  }
+  return fr;
+}
+
+// ---- the C model and the reference ------------------------------------------------------------------
+
+std::vector<Colour> run_cmodel(const CoreGroup& g) {
+  const LightCore core(g.fs);
+  const int F = core.format().frac;
+  LightRegs regs;
+  std::vector<Colour> out;
+  out.reserve(g.dests.size());
+  for (const auto& c : g.cmds) {
+    if (c.is_write) regs.write(F, c.w.addr, c.w.data);
+    else out.push_back(core.eval(regs, c.f));
+  }
+  return out;
+}
+
+std::vector<std::array<double, 3>> run_reference(const CoreGroup& g, LightCore::SpecRef ref) {
+  const LightCore core(g.fs);
+  const int F = core.format().frac;
+  LightRegs regs;
+  std::vector<std::array<double, 3>> out;
+  out.reserve(g.dests.size());
+  for (const auto& c : g.cmds) {
+    if (c.is_write) regs.write(F, c.w.addr, c.w.data);
+    else out.push_back(core.eval_double(regs, c.f, ref));
+  }
+  return out;
+}
+
+// ---- resolve ----------------------------------------------------------------------------------------
+
+namespace {
+
+template <typename T, typename Interp, typename VertexValue, typename Store>
+void resolve_pixels(const Frame& fr, const std::vector<T>& face_v, const std::vector<T>& vert_v,
+                    const std::vector<T>& pix_v, Interp interp, VertexValue vertex_value, Store store) {
+  for (int y = 0; y < fr.height; ++y)
+    for (int x = 0; x < fr.width; ++x) {
+      const size_t p = static_cast<size_t>(y) * fr.width + x;
+      const int32_t id = fr.raster.at(x, y);
+      if (id < 0) continue;
+      const auto& st = fr.raster.tris()[id];
+      const int src = st.source;
+      const int oi = fr.tri_object[src];
+      switch (fr.object_shading[oi]) {
+        case Shading::Flat: store(p, oi, face_v[fr.tri_face[src]]); break;
+        case Shading::Phong: store(p, oi, pix_v[p]); break;
+        case Shading::Gouraud: {
+          const auto& tv = fr.tri_vertices[src];
+          std::array<T, 3> sv{};
+          for (int k = 0; k < 3; ++k) sv[k] = vertex_value(st.v[k].b, vert_v[tv[0]], vert_v[tv[1]], vert_v[tv[2]]);
+          store(p, oi, interp(fr.raster.weights(id, x, y), sv));
+          break;
+        }
+      }
+    }
+}
+
+}  // namespace
+
+Image resolve(const Frame& fr, const std::vector<std::vector<Colour>>& colours) {
+  Image img;
+  img.width = fr.width, img.height = fr.height, img.F = fr.F;
+  const size_t np = static_cast<size_t>(fr.width) * fr.height;
+  img.code.resize(np * 3);
+  img.covered.assign(np, 0);
+  img.group.assign(np, -1);
+  for (size_t p = 0; p < np; ++p)
+    for (int c = 0; c < 3; ++c) img.code[p * 3 + c] = fr.background[c];
+  std::vector<Colour> face_c(fr.face_frag.size()), vert_c(fr.vertex_frag.size()), pix_c(np);
+  for (size_t g = 0; g < fr.groups.size(); ++g) {
+    const auto& grp = fr.groups[g];
+    const auto& cols = colours.at(g);
+    if (cols.size() != grp.dests.size())
+      throw std::runtime_error("core " + std::to_string(g) + " returned " + std::to_string(cols.size()) +
+                               " colours for " + std::to_string(grp.dests.size()) + " fragments");
+    const bool mono = grp.specialised.channels == 1;
+    for (size_t i = 0; i < cols.size(); ++i) {
+      Colour c = cols[i];
+      if (mono) c.c[1] = c.c[2] = c.c[0];
+      const Dest& d = grp.dests[i];
+      (d.kind == DestKind::Face ? face_c : d.kind == DestKind::Vertex ? vert_c : pix_c)[d.index] = c;
+    }
+  }
+  resolve_pixels<Colour>(
+      fr, face_c, vert_c, pix_c,
+      [](const raster::Weights& w, const std::array<Colour, 3>& sv) {
+        Colour c;
+        for (int ch = 0; ch < 3; ++ch)
+          c.c[ch] = static_cast<uint32_t>(raster::interpolate(
+              w, std::array<int64_t, 3>{sv[0].c[ch], sv[1].c[ch], sv[2].c[ch]}));
+        return c;
+      },
+      [](const std::array<double, 3>& b, const Colour& a, const Colour& bb, const Colour& cc) {
+        Colour r;
+        for (int ch = 0; ch < 3; ++ch)
+          r.c[ch] = static_cast<uint32_t>(std::llround(b[0] * a.c[ch] + b[1] * bb.c[ch] + b[2] * cc.c[ch]));
+        return r;
+      },
+      [&](size_t p, int oi, const Colour& c) {
+        for (int ch = 0; ch < 3; ++ch) img.code[p * 3 + ch] = c.c[ch];
+        img.covered[p] = 1;
+        img.group[p] = static_cast<int8_t>(fr.object_group[oi]);
+      });
+  return img;
+}
+
+RefImage resolve_reference(const Frame& fr, const std::vector<std::vector<std::array<double, 3>>>& values) {
+  using V = std::array<double, 3>;
+  RefImage ref;
+  ref.width = fr.width, ref.height = fr.height;
+  const size_t np = static_cast<size_t>(fr.width) * fr.height;
+  ref.value.resize(np * 3);
+  for (size_t p = 0; p < np; ++p)
+    for (int c = 0; c < 3; ++c) ref.value[p * 3 + c] = std::ldexp(static_cast<double>(fr.background[c]), -fr.F);
+  std::vector<V> face_v(fr.face_frag.size()), vert_v(fr.vertex_frag.size()), pix_v(np);
+  for (size_t g = 0; g < fr.groups.size(); ++g) {
+    const auto& grp = fr.groups[g];
+    const auto& vals = values.at(g);
+    const bool mono = grp.specialised.channels == 1;
+    for (size_t i = 0; i < vals.size(); ++i) {
+      V v = vals[i];
+      if (mono) v[1] = v[2] = v[0];
+      const Dest& d = grp.dests[i];
+      (d.kind == DestKind::Face ? face_v : d.kind == DestKind::Vertex ? vert_v : pix_v)[d.index] = v;
+    }
+  }
+  resolve_pixels<V>(
+      fr, face_v, vert_v, pix_v,
+      [](const raster::Weights& w, const std::array<V, 3>& sv) {
+        V r;
+        for (int ch = 0; ch < 3; ++ch) r[ch] = raster::interpolate(w, std::array<double, 3>{sv[0][ch], sv[1][ch], sv[2][ch]});
+        return r;
+      },
+      [](const std::array<double, 3>& b, const V& a, const V& bb, const V& cc) {
+        V r;
+        for (int ch = 0; ch < 3; ++ch) r[ch] = b[0] * a[ch] + b[1] * bb[ch] + b[2] * cc[ch];
+        return r;
+      },
+      [&](size_t p, int, const V& v) {
+        for (int ch = 0; ch < 3; ++ch) ref.value[p * 3 + ch] = v[ch];
+      });
+  return ref;
+}
+
+// ---- statistics and 8-bit views ----------------------------------------------------------------------
+
+ErrorStats error_vs(const Image& img, const RefImage& ref, int group) {
+  ErrorStats s;
+  const double scale = std::ldexp(1.0, img.F);
+  double sum = 0, sq = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const size_t p = static_cast<size_t>(y) * img.width + x;
+      if (!img.covered[p] || (group >= 0 && img.group[p] != group)) continue;
+      ++s.pixels;
+      for (int c = 0; c < 3; ++c) {
+        const double e = std::abs(static_cast<double>(img.code[p * 3 + c]) - scale * ref.value[p * 3 + c]);
+        if (e > s.max_lsb) s.max_lsb = e, s.max_x = x, s.max_y = y;
+        sum += e;
+        sq += (e / scale) * (e / scale);
+        ++s.samples;
+      }
+    }
+  if (s.samples) {
+    s.mean_lsb = sum / static_cast<double>(s.samples);
+    const double mse = sq / static_cast<double>(s.samples);
+    s.rms = std::sqrt(mse);
+    s.psnr_db = mse > 0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
+  } else {
+    s.psnr_db = std::numeric_limits<double>::infinity();
+  }
+  return s;
+}
+
+uint64_t mismatching_pixels(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height) throw std::invalid_argument("images of different sizes");
+  uint64_t n = 0;
+  for (size_t p = 0; p < a.covered.size(); ++p)
+    if (a.code[p * 3] != b.code[p * 3] || a.code[p * 3 + 1] != b.code[p * 3 + 1] || a.code[p * 3 + 2] != b.code[p * 3 + 2] ||
+        a.covered[p] != b.covered[p])
+      ++n;
+  return n;
+}
+
+std::vector<uint8_t> to_rgb8(const Image& img) {
+  std::vector<uint8_t> out(img.code.size());
+  const uint64_t half = uint64_t{1} << (img.F - 1);
+  for (size_t i = 0; i < img.code.size(); ++i)
+    out[i] = static_cast<uint8_t>(std::min<uint64_t>(255, (uint64_t{img.code[i]} * 255 + half) >> img.F));
+  return out;
+}
+
+std::vector<uint8_t> to_rgb8(const RefImage& ref) {
+  std::vector<uint8_t> out(ref.value.size());
+  for (size_t i = 0; i < ref.value.size(); ++i)
+    out[i] = static_cast<uint8_t>(std::clamp(std::lround(ref.value[i] * 255.0), 0L, 255L));
+  return out;
+}
+
+std::vector<uint8_t> diff_rgb8(const Image& img, const RefImage& ref) {
+  std::vector<uint8_t> out(img.code.size(), 0);
+  const double scale = std::ldexp(1.0, img.F);
+  const double full = std::log2(1.0 + scale);
+  for (size_t p = 0; p < img.covered.size(); ++p) {
+    double d = 0;  // the channel with the largest |Δ|, in LSBs, with its sign
+    for (int c = 0; c < 3; ++c) {
+      const double e = static_cast<double>(img.code[p * 3 + c]) - scale * ref.value[p * 3 + c];
+      if (std::abs(e) > std::abs(d)) d = e;
+    }
+    const auto v = static_cast<uint8_t>(std::clamp(std::lround(255.0 * std::log2(1.0 + std::abs(d)) / full), 0L, 255L));
+    out[p * 3 + (d > 0 ? 0 : 2)] = v;
+  }
+  return out;
+}
+
+std::vector<uint8_t> mismatch_rgb8(const Image& a, const Image& b) {
+  std::vector<uint8_t> out(a.code.size(), 0);
+  for (size_t p = 0; p < a.covered.size(); ++p) {
+    const bool diff = a.code[p * 3] != b.code[p * 3] || a.code[p * 3 + 1] != b.code[p * 3 + 1] ||
+                      a.code[p * 3 + 2] != b.code[p * 3 + 2] || a.covered[p] != b.covered[p];
+    const uint8_t v = diff ? 255 : (a.covered[p] ? 40 : 0);
+    out[p * 3] = out[p * 3 + 1] = out[p * 3 + 2] = v;
+  }
+  return out;
+}
+
+}  // namespace shadecore::render

@@ -1,0 +1,378 @@
+// SPDX-License-Identifier: Apache-2.0
+// shadecore sim — what the driver feeds the lighting core, one CoreCommand (register write or
+// fragment) at a time, by mode:
+//   random:   a random but realistic register program first (global ambient, a material with random n,
+//             every light of the feature set with random colours, positions and attenuation), then
+//             `count` fragments: 45 % realistic (random eye-space positions, normals of random length),
+//             20 % raw random codes over the whole input words, 35 % hard cases built on the current
+//             registers (see hard_fragment()). With probability `write_rate` per fragment a burst of
+//             register writes comes first: a new material, a new light, raw random data to colour,
+//             position or attenuation registers (extremes included), or a write to a non-register address.
+//   directed: the hard-case programs and fragments of docs/lighting.md §7, each at least once, repeated
+//             until `count` fragments.
+//   stream:   a command file (stimulus/include/shadecore/stimulus/light_stream.hpp), e.g. a scene's fragments from `shadecore render`.
+// Deterministic from the seed: the whole sequence is a function of (seed, feature set, count).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <vector>
+
+#include "shadecore/stimulus/light_stream.hpp"
+#include "shadecore/light.hpp"
+#include "shadecore/stimulus/rng.hpp"
+
+namespace shadecore::sim {
+
+enum class LightMode { Random, Directed, Stream };
+
+class LightStimulus {
+ public:
+  LightStimulus(const LightCore& core, LightMode mode, uint64_t count, uint64_t seed, double write_rate,
+                std::vector<CoreCommand> stream = {})
+      : core_(core), f_(core.format()), F_(f_.frac), mode_(mode), count_(count), write_rate_(write_rate),
+        rng_(seed ^ 0x11647c0deull), stream_(std::move(stream)) {
+    if (mode_ == LightMode::Stream) {
+      for (const auto& c : stream_)
+        if (!c.is_write) ++planned_;
+    } else if (mode_ == LightMode::Directed) {
+      build_directed();
+      planned_ = count_ > directed_frags_ ? count_ : directed_frags_;
+    } else {
+      planned_ = count_;
+      program_random();
+    }
+  }
+
+  [[nodiscard]] uint64_t planned() const { return planned_; }
+
+  bool next(CoreCommand& c) {
+    if (mode_ == LightMode::Stream) {
+      if (pos_ >= stream_.size()) return false;
+      c = stream_[pos_++];
+      return true;
+    }
+    if (!pending_.empty()) {
+      c = pending_.front();
+      pending_.pop_front();
+      return true;
+    }
+    if (mode_ == LightMode::Directed) {
+      if (frags_ >= planned_) return false;
+      if (pos_ == directed_.size()) pos_ = 0;
+      c = directed_[pos_++];
+      if (!c.is_write) ++frags_;
+      return true;
+    }
+    if (frags_ >= count_) return false;
+    if (u01() < write_rate_) {
+      random_writes();  // may come out empty (every raw pick was a unit-contract register)
+      if (!pending_.empty()) {
+        c = pending_.front();
+        pending_.pop_front();
+        return true;
+      }
+    }
+    c.is_write = false;
+    c.f = random_fragment();
+    ++frags_;
+    return true;
+  }
+
+ private:
+  double u01() { return static_cast<double>(rng_.next() >> 11) * 0x1.0p-53; }
+  double u(double lo, double hi) { return lo + (hi - lo) * u01(); }
+
+  void push(const std::vector<RegWrite>& ws) {
+    for (const auto& w : ws) {
+      CoreCommand c;
+      c.is_write = true;
+      c.w = w;
+      pending_.push_back(c);
+      shadow_.write(F_, w.addr, w.data);
+    }
+  }
+  std::vector<RegWrite> random_material() {
+    MaterialParams m;
+    for (int c = 0; c < 3; ++c) {
+      m.emission[c] = u01() < 0.7 ? 0.0 : u(0, 0.5);
+      m.ambient[c] = u(0, 1);
+      m.diffuse[c] = u(0, 1);
+      m.specular[c] = u(0, 1.5);
+    }
+    m.shininess = static_cast<int>(rng_.uniform(kNMin, kNMax));
+    m.norm_model = static_cast<int>(rng_.uniform(0, kNumModels - 1));
+    m.norm_kind = rng_.next() & 1 ? CoefKind::Classical : CoefKind::Fitted;
+    return material_writes(core_, m);
+  }
+  std::vector<RegWrite> random_light(int j) {
+    LightParams lp;
+    const LightKind kind = core_.features().lights[j];
+    if (kind == LightKind::Directional) {
+      double d[3];
+      do {
+        for (double& x : d) x = u(-1, 1);
+      } while (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < 1e-3);
+      for (int i = 0; i < 3; ++i) lp.position[i] = d[i];
+      lp.position[3] = 0;
+    } else {
+      for (int i = 0; i < 3; ++i) lp.position[i] = u(-40, 40);
+      lp.position[3] = 1;
+    }
+    for (int c = 0; c < 3; ++c) {
+      lp.ambient[c] = u(0, 0.3);
+      lp.diffuse[c] = u(0, 1.2);
+      lp.specular[c] = u(0, 1.2);
+    }
+    lp.kc = u(0, 2);
+    lp.kl = u01() < 0.5 ? 0.0 : u(0, 0.2);
+    lp.kq = u01() < 0.5 ? 0.0 : u(0, 0.05);
+    if (lp.kc < 0.01 && lp.kl == 0 && lp.kq == 0) lp.kc = 1;
+    return light_writes(core_, j, lp);
+  }
+  void program_random() {
+    double ga[3] = {u(0, 0.4), u(0, 0.4), u(0, 0.4)};
+    push(global_writes(core_, ga));
+    push(random_material());
+    for (int j = 0; j < core_.features().num_lights(); ++j) push(random_light(j));
+  }
+  // Raw register data: every register of the map, random bits or an extreme of its width.
+  void random_writes() {
+    const int nl = core_.features().num_lights();
+    switch (rng_.next() % 5) {
+      case 0: push(random_material()); break;
+      case 1: push(random_light(static_cast<int>(rng_.uniform(0, nl - 1)))); break;
+      case 2: {  // raw colour / position / attenuation data, extremes included
+        const int k = static_cast<int>(rng_.uniform(1, 6));
+        std::vector<RegWrite> ws;
+        for (int i = 0; i < k; ++i) {
+          const auto& reg = kRegisters[rng_.next() % kRegisters.size()];
+          if (reg.format == "n" || reg.format == "thr" || reg.format == "coef") continue;  // unit contract
+          uint32_t addr = reg.addr + static_cast<uint32_t>(rng_.uniform(0, reg.count - 1));
+          if (reg.per_light) addr += kLightStride * static_cast<uint32_t>(rng_.uniform(0, nl - 1));
+          uint32_t data;
+          switch (rng_.next() % 4) {
+            case 0: data = 0; break;
+            case 1: data = 0xFFFFFFFFu; break;
+            default: data = static_cast<uint32_t>(rng_.next());
+          }
+          ws.push_back({addr, data});
+        }
+        push(ws);
+        break;
+      }
+      case 3: push({{static_cast<uint32_t>(0xF0 + rng_.uniform(0, 15)), static_cast<uint32_t>(rng_.next())}}); break;
+      default: {  // global ambient
+        double ga[3] = {u(0, 1.9), u(0, 1.9), u(0, 1.9)};
+        push(global_writes(core_, ga));
+      }
+    }
+  }
+
+  Fragment random_fragment() {
+    const uint64_t r = rng_.next() % 100;
+    if (r < 45) {  // realistic
+      double n[3], p[3];
+      for (double& x : n) x = u(-1, 1);
+      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      const double scale = (rng_.next() & 1) ? 1.0 : u(0.3, 1.9);
+      for (double& x : n) x = len > 0 ? x / len * scale : 0.0;
+      for (int i = 0; i < 2; ++i) p[i] = u(-30, 30);
+      p[2] = u(-100, 5);
+      return make_fragment(F_, n, p);
+    }
+    if (r < 65) {  // raw codes over the whole words
+      Fragment f;
+      for (int i = 0; i < 3; ++i) {
+        f.n[i] = sign_extend(rng_.next(), light_normal_bits(F_));
+        f.p[i] = sign_extend(rng_.next(), light_pos_bits(F_));
+      }
+      return f;
+    }
+    return hard_fragment(rng_.next() % 10);
+  }
+
+  // Hard cases on the current registers: N = 0, tiny N, P exactly at a light, P far from a light,
+  // N·L = 0 exactly / ±1 code, back-facing, H = 0 (L = −V), maximal normal components.
+  Fragment hard_fragment(uint64_t k) {
+    const int64_t one = int64_t{1} << F_;
+    const int64_t nmax = (int64_t{1} << (F_ + 1)) - 1, pmax = (int64_t{1} << (F_ + 7)) - 1;
+    const int nl = core_.features().num_lights();
+    const auto& L = shadow_.light[static_cast<size_t>(rng_.uniform(0, nl - 1))];
+    Fragment f;
+    for (int i = 0; i < 3; ++i) f.p[i] = rng_.uniform(-(int64_t{20} << F_), int64_t{20} << F_);
+    switch (k) {
+      case 0: f.n[0] = f.n[1] = f.n[2] = 0; break;
+      case 1: f.n[0] = rng_.uniform(-1, 1), f.n[1] = rng_.uniform(-1, 1), f.n[2] = rng_.uniform(-1, 1); break;
+      case 2:
+        std::copy(L.pos, L.pos + 3, f.p);  // at the light (d = 0) — for a directional light a plain position
+        f.n[2] = one;
+        break;
+      case 3:
+        for (int i = 0; i < 3; ++i) f.p[i] = L.pos[i] >= 0 ? -pmax - 1 : pmax;  // farthest corner
+        f.n[0] = one;
+        break;
+      case 4: case 5: case 6: {  // N ⊥ L (+ −1, 0, +1 code along L): N·L = 0 exactly, just below, just above
+        int64_t l[3];
+        const int64_t pl[3] = {L.pos[0] - f.p[0], L.pos[1] - f.p[1], L.pos[2] - f.p[2]};
+        normalize3(F_, pl, l);
+        // N = L × e (a perpendicular), then nudged along L
+        const int64_t e[3] = {std::abs(l[0]) < std::abs(l[1]) ? one : 0, std::abs(l[0]) < std::abs(l[1]) ? 0 : one, 0};
+        int64_t n[3] = {(l[1] * e[2] - l[2] * e[1]) >> F_, (l[2] * e[0] - l[0] * e[2]) >> F_,
+                        (l[0] * e[1] - l[1] * e[0]) >> F_};
+        const int64_t dlt = static_cast<int64_t>(k) - 5;
+        for (int i = 0; i < 3; ++i) f.n[i] = std::clamp<int64_t>(n[i] + dlt * (l[i] >> (F_ - 2)), -nmax - 1, nmax);
+        break;
+      }
+      case 7: {  // back-facing: N = −(direction to the light)
+        const int64_t pl[3] = {L.pos[0] - f.p[0], L.pos[1] - f.p[1], L.pos[2] - f.p[2]};
+        int64_t l[3];
+        normalize3(F_, pl, l);
+        for (int i = 0; i < 3; ++i) f.n[i] = -l[i];
+        break;
+      }
+      case 8:  // maximal components
+        for (int i = 0; i < 3; ++i) f.n[i] = (rng_.next() & 1) ? nmax : -nmax - 1;
+        break;
+      default:  // N along the viewer, P on the axis: H = 0 when L = −V
+        f.n[0] = f.n[1] = 0;
+        f.n[2] = one;
+        f.p[0] = f.p[1] = 0;
+        f.p[2] = -rng_.uniform(1, 100) << F_;
+    }
+    return f;
+  }
+
+  // Directed programs (docs/lighting.md §7): each a register program followed by the hard fragments.
+  void add_frag(const Fragment& f) {
+    CoreCommand c;
+    c.f = f;
+    directed_.push_back(c);
+    ++directed_frags_;
+  }
+  void add_writes(const std::vector<RegWrite>& ws) {
+    for (const auto& w : ws) {
+      CoreCommand c;
+      c.is_write = true;
+      c.w = w;
+      directed_.push_back(c);
+      shadow_.write(F_, w.addr, w.data);
+    }
+  }
+  void build_directed() {
+    const int nl = core_.features().num_lights();
+    const int64_t one = int64_t{1} << F_;
+    // 1. a plain program; every hard fragment kind, several times
+    double ga[3] = {0.2, 0.2, 0.2};
+    add_writes(global_writes(core_, ga));
+    MaterialParams m;
+    m.specular[0] = m.specular[1] = m.specular[2] = 0.8;
+    m.shininess = 128;
+    add_writes(material_writes(core_, m));
+    for (int j = 0; j < nl; ++j) {
+      LightParams lp;
+      if (core_.features().lights[j] == LightKind::Directional) {
+        lp.position[0] = 0.3 * j, lp.position[1] = 0.5, lp.position[2] = 1, lp.position[3] = 0;
+      } else {
+        lp.position[0] = 4.0 * j - 10, lp.position[1] = 5, lp.position[2] = 2, lp.position[3] = 1;
+        lp.kc = 1, lp.kl = 0.1, lp.kq = 0.02;
+      }
+      add_writes(light_writes(core_, j, lp));
+    }
+    for (int rep = 0; rep < 8; ++rep)
+      for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
+    // 2. H = 0: a light exactly opposite the viewer (directional L = (0, 0, −1); point light behind P)
+    for (int j = 0; j < nl; ++j) {
+      LightParams lp;
+      if (core_.features().lights[j] == LightKind::Directional) {
+        lp.position[2] = -1, lp.position[3] = 0;
+      } else {
+        lp.position[2] = -120, lp.position[3] = 1;
+        lp.kc = 0, lp.kl = 1, lp.kq = 0;  // seed 001's 1/(d + K) with K = 0: 1/d
+      }
+      add_writes(light_writes(core_, j, lp));
+    }
+    for (int z = 1; z < 60; z += 7) {
+      Fragment f;
+      f.n[2] = one;
+      f.p[2] = -(int64_t{z} << F_);
+      add_frag(f);
+      f.n[2] = -one;  // back-facing too
+      add_frag(f);
+    }
+    // 2b. N·L exactly 0, one code below, one code above: L̂ = (0, 0, 1) exactly (directional (0, 0, 1);
+    //     point light at (0, 0, 10) seen from P = 0), N = (1, 0, δ·2^−F)
+    for (int j = 0; j < nl; ++j) {
+      LightParams lp;
+      lp.position[2] = core_.features().lights[j] == LightKind::Directional ? 1 : 10;
+      lp.position[3] = core_.features().lights[j] == LightKind::Directional ? 0 : 1;
+      add_writes(light_writes(core_, j, lp));
+    }
+    for (int64_t d = -2; d <= 2; ++d) {
+      Fragment f;
+      f.n[0] = one;
+      f.n[2] = d;
+      add_frag(f);
+    }
+    // 3. colour sums far above 1: every colour at its maximum, attenuation at its maximum (tiny kc)
+    std::vector<RegWrite> ws;
+    const uint32_t cmax = (1u << (F_ + 1)) - 1;
+    for (uint32_t c = 0; c < 3; ++c)
+      for (uint32_t a : {kReg_global_ambient, kReg_mat_emission, kReg_mat_ambient, kReg_mat_diffuse, kReg_mat_specular})
+        ws.push_back({a + c, cmax});
+    for (int j = 0; j < nl; ++j) {
+      const uint32_t b = static_cast<uint32_t>(j) * kLightStride;
+      for (uint32_t c = 0; c < 3; ++c)
+        for (uint32_t a : {kReg_light_ambient, kReg_light_diffuse, kReg_light_specular}) ws.push_back({b + a + c, cmax});
+      ws.push_back({b + kReg_light_kc, 1});  // kc = 2^-F: 1/q saturates
+      ws.push_back({b + kReg_light_kl, 0});
+      ws.push_back({b + kReg_light_kq, 0});
+    }
+    add_writes(ws);
+    for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
+    // 4. q = 0 in hardware (kc = kl = kq = 0 written raw; the host setup would reject it): att saturates
+    ws.clear();
+    for (int j = 0; j < nl; ++j) {
+      const uint32_t b = static_cast<uint32_t>(j) * kLightStride;
+      ws.push_back({b + kReg_light_kc, 0});
+      ws.push_back({b + kReg_light_kl, 0});
+      ws.push_back({b + kReg_light_kq, 0});
+    }
+    add_writes(ws);
+    for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
+    // 5. every light off (all light colours 0): only emission + a·A remain
+    ws.clear();
+    for (int j = 0; j < nl; ++j) {
+      const uint32_t b = static_cast<uint32_t>(j) * kLightStride;
+      for (uint32_t c = 0; c < 3; ++c)
+        for (uint32_t a : {kReg_light_ambient, kReg_light_diffuse, kReg_light_specular}) ws.push_back({b + a + c, 0});
+    }
+    add_writes(ws);
+    for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
+    // 6. writes to addresses that are no register (ignored) and extremes of n
+    add_writes({{0xFE, 0xFFFFFFFFu}, {0x07, 0x12345678u}, {0x0F, 0xFFFFFFFFu}});
+    for (int n : {kNMin, kNMax}) {
+      m.shininess = n;
+      add_writes(material_writes(core_, m));
+      for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
+    }
+  }
+
+  const LightCore& core_;
+  Format f_;
+  int F_;
+  LightMode mode_;
+  uint64_t count_;
+  double write_rate_;
+  Rng rng_;
+  std::vector<CoreCommand> stream_;
+  std::vector<CoreCommand> directed_;
+  uint64_t directed_frags_ = 0;
+  std::deque<CoreCommand> pending_;
+  LightRegs shadow_{};
+  size_t pos_ = 0;
+  uint64_t frags_ = 0, planned_ = 0;
+};
+
+}  // namespace shadecore::sim
