@@ -26,6 +26,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -96,9 +97,16 @@ class Step {
   }
 
  private:
+  // A step is shown after 1 s (SHADECORE_PROGRESS_DELAY_MS overrides it, for tests of the progress lines).
+  static std::chrono::milliseconds delay() {
+    const char* e = std::getenv("SHADECORE_PROGRESS_DELAY_MS");
+    uint64_t ms = 1000;
+    if (e && cliargs::parse_u64(e, ms)) return std::chrono::milliseconds(std::min<uint64_t>(ms, 3600000));
+    return std::chrono::milliseconds(1000);
+  }
   void loop() {
     std::unique_lock<std::mutex> lk(mu_);
-    if (cv_.wait_for(lk, std::chrono::seconds(1), [this] { return done_; })) return;
+    if (cv_.wait_for(lk, delay(), [this] { return done_; })) return;
     shown_ = true;
     if (!tty_) {
       std::fprintf(stderr, "render: %s ...\n", label_.c_str());

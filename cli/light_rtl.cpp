@@ -150,6 +150,7 @@ CoreBuild ensure_core(const FeatureSet& feat, bool quiet) {
   const fs::path log = dir / "build.log";
   cmd += " > " + quote(log.string()) + " 2>&1";
   fs::remove(dir / "stamp", ec);
+  fs::remove_all(dir / "obj", ec);  // a rebuild starts clean: stale dependency files name moved headers
   const auto t0 = std::chrono::steady_clock::now();
   int rc;
   {

@@ -319,7 +319,7 @@ bool has_temp_left(const fs::path& dir) {
   for (auto it = fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied, ec);
        it != fs::recursive_directory_iterator(); it.increment(ec)) {
     if (ec) break;
-    if (it->path().filename().string().rfind(".shadecore", 0) == 0) return true;
+    if (it->path().filename().string().rfind(".shadecore.", 0) == 0) return true;
     if (it->is_symlink(ec) || it->is_fifo(ec)) it.disable_recursion_pending();
   }
   return false;

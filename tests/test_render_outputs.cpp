@@ -226,4 +226,19 @@ TEST(RenderOutputs, UserTextIsEscapedOnStdoutAndStderr) {
   EXPECT_NE(r.err.find("no\\x1b[2Jdir"), std::string::npos) << r.err;
 }
 
+// Every step longer than the progress delay (1 s; SHADECORE_PROGRESS_DELAY_MS=0 here) is shown on stderr,
+// the contact sheet with its cell count, and its time at the end; stdout stays clean.
+TEST(RenderOutputs, ProgressForEveryLongStep) {
+  const TempDir d;
+  const std::string scene = write(d, "s.json", scene_text(true));
+  const auto r = shadecore::testing::run_shell("SHADECORE_PROGRESS_DELAY_MS=0 " + std::string(SHADECORE_CLI) + " render " +
+                                               scene + " --out " + (d / "o"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* step : {"render: geometry and visibility, image", "render: C model and references, image",
+                           "render: contact sheet, 2 cells of 16x16", "render: writing the images"})
+    EXPECT_NE(r.err.find(step), std::string::npos) << step << "\n" << r.err;
+  EXPECT_NE(r.err.find("render: contact sheet, 2 cells of 16x16: "), std::string::npos) << r.err;  // its time
+  EXPECT_EQ(r.out.find("render: "), std::string::npos) << r.out;
+}
+
 }  // namespace
