@@ -26,6 +26,7 @@
 #include "commands.hpp"
 #include "handoff_bundle.hpp"
 #include "output.hpp"
+#include "rtl_files.hpp"
 #include "unit_spec.hpp"
 
 namespace fs = std::filesystem;
@@ -495,11 +496,11 @@ void run(HandoffArgs& ha) {
 
     // rtl/
     fs::create_directories(dir / "rtl");
-    for (const auto& f : specular_files(spec.variant, spec.norm)) {
+    for (const auto& f : rtl::specular_files(spec.variant, spec.norm)) {
       fs::copy_file(root / "rtl" / f, dir / "rtl" / f, fs::copy_options::none);
       b.rtl_files.push_back("rtl/" + f);
     }
-    fs::copy_file(root / "rtl" / "sc_variants.vh", dir / "rtl" / "sc_variants.vh");
+    for (const auto& inc : rtl::specular_includes()) fs::copy_file(root / "rtl" / inc, dir / "rtl" / inc);
     write_text(dir / "rtl" / (b.top + ".v"), wrapper_v(b));
     b.rtl_files.push_back("rtl/" + b.top + ".v");
     write_text(dir / "filelist.f", filelist(b));
