@@ -144,6 +144,14 @@ CoreBuild ensure_core(const FeatureSet& feat, bool quiet) {
   const std::vector<std::string> build = {SHADECORE_CMAKE_COMMAND, "--build", dir.string(), "-j", "2"};
   const fs::path log = dir / "build.log";
   fs::remove(dir / "stamp", ec);
+  // A cache shared between source trees ($SHADECORE_CORE_CACHE): CMake refuses a binary directory
+  // configured from another source directory, so such a configuration starts afresh.
+  if (fs::exists(dir / "CMakeCache.txt") &&
+      read_all(dir / "CMakeCache.txt").find("CMAKE_HOME_DIRECTORY:INTERNAL=" + (src / "sim/light_core").string() + "\n") ==
+          std::string::npos) {
+    fs::remove(dir / "CMakeCache.txt", ec);
+    fs::remove_all(dir / "CMakeFiles", ec);
+  }
   const auto t0 = std::chrono::steady_clock::now();
   int rc;
   std::string out;
