@@ -27,6 +27,7 @@
 #include "commands.hpp"
 #include "handoff_bundle.hpp"
 #include "output.hpp"
+#include "rtl_files.hpp"
 #include "unit_spec.hpp"
 
 namespace fs = std::filesystem;
@@ -474,7 +475,7 @@ void run(HandoffArgs& ha) {
   check_top_name(top, "tb_shadecore");
   require_tools();
   const fs::path root = root_dir();
-  for (const char* f : {"handoff/tb/tb_shadecore.v", "handoff/tb/tb_common.vh", "handoff/run_icarus.sh", "handoff/run_verilator.sh", "rtl/sc_specular.v"})
+  for (const char* f : {"handoff/tb/tb_shadecore.v", "handoff/tb/tb_common.vh", "handoff/run_icarus.sh", "handoff/run_verilator.sh", "LICENSE", "rtl/sc_specular.v"})
     if (!fs::exists(root / f)) throw std::runtime_error("shadecore source file " + (root / f).string() + " not found (SHADECORE_ROOT)");
   const uint64_t seed = checked_seed(a.seed);
 
@@ -496,11 +497,11 @@ void run(HandoffArgs& ha) {
 
     // rtl/
     fs::create_directories(dir / "rtl");
-    for (const auto& f : specular_files(spec.variant, spec.norm)) {
+    for (const auto& f : rtl::specular_files(spec.variant, spec.norm)) {
       fs::copy_file(root / "rtl" / f, dir / "rtl" / f, fs::copy_options::none);
       b.rtl_files.push_back("rtl/" + f);
     }
-    fs::copy_file(root / "rtl" / "sc_variants.vh", dir / "rtl" / "sc_variants.vh");
+    for (const auto& inc : rtl::specular_includes()) fs::copy_file(root / "rtl" / inc, dir / "rtl" / inc);
     write_text(dir / "rtl" / (b.top + ".v"), wrapper_v(b));
     b.rtl_files.push_back("rtl/" + b.top + ".v");
     write_text(dir / "filelist.f", filelist(b));
@@ -524,6 +525,7 @@ void run(HandoffArgs& ha) {
     fs::create_directories(dir / "tb");
     fs::copy_file(root / "handoff" / "tb" / "tb_shadecore.v", dir / "tb" / "tb_shadecore.v");
     fs::copy_file(root / "handoff" / "tb" / "tb_common.vh", dir / "tb" / "tb_common.vh");
+    fs::copy_file(root / "LICENSE", dir / "LICENSE");  // Apache-2.0: every file of the bundle carries its SPDX line
     write_text(dir / "tb" / "tb_config.vh", tb_config_vh(b, std::max(vh.size(), vr.size())));
     write_text(dir / "tb" / "tb_dut.vh", tb_dut_vh(b));
     write_run_scripts(b, dir);

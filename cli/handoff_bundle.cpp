@@ -31,26 +31,6 @@
 
 namespace shadecore::cli::handoff {
 
-std::vector<std::string> specular_files(VariantId variant, bool norm) {
-  std::vector<std::string> v = {"sc_specular.v"};
-  switch (variant) {
-    case VariantId::cs16: v.push_back("sc_cs16.v"); break;
-    case VariantId::schlick_div: v.push_back("sc_schlick_div.v"); break;
-    case VariantId::schlick_nr: v.push_back("sc_schlick_nr.v"); break;
-    case VariantId::schlick_iter: v.push_back("sc_schlick_iter.v"); break;
-    case VariantId::table256:
-    case VariantId::table1024: v.push_back("sc_table.v"); break;
-    default:
-      if (squarer_form(variant)) {  // cs16 forms: sc_cs16 FORM = 1 with the folded squarer
-        v.push_back("sc_cs16.v");
-        v.push_back("sc_square.v");
-      }
-      break;
-  }
-  if (norm) v.push_back("sc_norm.v");
-  return v;
-}
-
 // ---------------------------------------------------------------------------- small helpers
 std::string root_dir() {
   const char* env = std::getenv("SHADECORE_ROOT");
@@ -169,7 +149,7 @@ void check_interrupt() {
 }
 }  // namespace
 
-Proc run_proc(const std::vector<std::string>& argv, const fs::path& cwd) {
+Proc run_proc(const std::vector<std::string>& argv, const fs::path& cwd, const ProcOptions& opt) {
   check_interrupt();
   int fds[2];
   if (::pipe(fds) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
@@ -180,7 +160,7 @@ Proc run_proc(const std::vector<std::string>& argv, const fs::path& cwd) {
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
   if (pid == 0) {
-    ::setpgid(0, 0);
+    if (opt.own_group) ::setpgid(0, 0);
     ::dup2(fds[1], 1);
     ::dup2(fds[1], 2);
     ::close(fds[0]);
@@ -190,16 +170,26 @@ Proc run_proc(const std::vector<std::string>& argv, const fs::path& cwd) {
     std::fprintf(stderr, "cannot run %s: %s\n", args[0], std::strerror(errno));
     ::_exit(127);
   }
-  ::setpgid(pid, pid);
-  g_child = pid;
+  if (opt.own_group) {
+    ::setpgid(pid, pid);
+    g_child = pid;
+  }
   ::close(fds[1]);
   Proc r;
   char buf[65536];
+  size_t shown = 0;  // r.out[0, shown) has been passed to opt.on_line
   for (;;) {
     const ssize_t k = ::read(fds[0], buf, sizeof buf);
-    if (k > 0) r.out.append(buf, static_cast<size_t>(k));
-    else if (k == 0 || errno != EINTR) break;
+    if (k > 0) {
+      r.out.append(buf, static_cast<size_t>(k));
+      if (opt.on_line)
+        for (size_t nl; (nl = r.out.find('\n', shown)) != std::string::npos; shown = nl + 1)
+          opt.on_line(r.out.substr(shown, nl + 1 - shown));
+    } else if (k == 0 || errno != EINTR) {
+      break;
+    }
   }
+  if (opt.on_line && shown < r.out.size()) opt.on_line(r.out.substr(shown));
   ::close(fds[0]);
   int st = 0;
   while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {

@@ -27,10 +27,6 @@ namespace shadecore::cli::handoff {
 
 namespace fs = std::filesystem;
 
-// ---- the specular unit's RTL files: sc_specular.v, the unit of `variant` (and sc_square.v for the cs16
-// forms, sc_table.v for the table units), sc_norm.v with `norm` — for both cores' bundles.
-std::vector<std::string> specular_files(VariantId variant, bool norm);
-
 // ---- small helpers
 std::string root_dir();  // $SHADECORE_ROOT or the source tree the CLI was built from
 std::string read_text(const fs::path& p);
@@ -50,7 +46,17 @@ struct Proc {
   int status = -1;
   std::string out;
 };
-Proc run_proc(const std::vector<std::string>& argv, const fs::path& cwd);
+// The CLI's subprocess runner for the handoff bundles and the lighting core's build and simulations
+// (cli/light_rtl.cpp): fork + execvp of argv (no shell), in cwd, its output collected in Proc::out.
+struct ProcOptions {
+  // Called with each complete output line (with its '\n'; a last unterminated line at the end) as it
+  // arrives, for output that should be shown while the child runs.
+  std::function<void(const std::string&)> on_line;
+  // true: the child leads its own process group (the handoff's interrupt handler stops the whole tool
+  // tree); false: it stays in the CLI's group, so a terminal's ^C reaches it and its children directly.
+  bool own_group = true;
+};
+Proc run_proc(const std::vector<std::string>& argv, const fs::path& cwd, const ProcOptions& opt = {});
 
 // ---- ports of a wrapper top
 struct Port {

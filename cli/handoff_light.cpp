@@ -24,6 +24,7 @@
 #include "shadecore/stimulus/light_stimulus.hpp"
 #include "handoff_bundle.hpp"
 #include "output.hpp"
+#include "rtl_files.hpp"
 #include "shadecore/units/cs16_forms.hpp"
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
@@ -57,27 +58,6 @@ std::vector<Port> light_ports(const FeatureSet& fs, int tagw) {
   std::vector<Port> v;
   for (const auto& p : load_light_ports())
     v.push_back({p.at("name"), p.at("dir"), eval_width(p.at("width"), w), p.at("meaning")});
-  return v;
-}
-
-// Which RTL files the feature set elaborates (the generate conditions of rtl/sc_light.v; Verilator
-// lint and Yosys from the wrapper top fail on a missing one, and nothing else is copied).
-std::vector<std::string> light_files(const FeatureSet& fs) {
-  bool any_att = false, any_point = false;
-  for (auto k : fs.lights) {
-    any_att = any_att || k == LightKind::PointAtt;
-    any_point = any_point || k == LightKind::Point;
-  }
-  const bool need_n = fs.diffuse || fs.specular;
-  const bool lv = fs.specular && fs.local_viewer;
-  const bool any_pl = any_att || (need_n && any_point);
-  const bool normalize = (need_n && fs.normalize) || lv || any_pl || (fs.specular && fs.blinn);
-  std::vector<std::string> v = {"sc_light.v", "sc_delay.v"};
-  if (normalize) v.push_back("sc_normalize.v");
-  if (any_att) v.push_back("sc_recip.v");
-  if (fs.specular) {
-    for (auto& f : specular_files(fs.variant, fs.norm)) v.push_back(std::move(f));
-  }
   return v;
 }
 
@@ -545,7 +525,7 @@ void run_lighting(const Options& o) {
   check_top_name(top, "tb_shadecore_light");
   require_tools();
   const fs::path root = root_dir();
-  for (const char* f : {"handoff/tb/tb_shadecore_light.v", "handoff/tb/tb_common.vh", "handoff/run_icarus.sh", "handoff/run_verilator.sh",
+  for (const char* f : {"handoff/tb/tb_shadecore_light.v", "handoff/tb/tb_common.vh", "handoff/run_icarus.sh", "handoff/run_verilator.sh", "LICENSE",
                         "rtl/sc_light.v", "rtl/sc_light_regs.vh"})
     if (!fs::exists(root / f)) throw std::runtime_error("shadecore source file " + (root / f).string() + " not found (SHADECORE_ROOT)");
   const uint64_t seed = checked_seed(o.seed);
@@ -577,11 +557,11 @@ void run_lighting(const Options& o) {
 
     // rtl/
     fs::create_directories(dir / "rtl");
-    for (const auto& f : light_files(fs)) {
+    for (const auto& f : rtl::light_files(fs)) {
       fs::copy_file(root / "rtl" / f, dir / "rtl" / f, fs::copy_options::none);
       b.rtl_files.push_back("rtl/" + f);
     }
-    for (const char* inc : {"sc_light_regs.vh", "sc_variants.vh"}) fs::copy_file(root / "rtl" / inc, dir / "rtl" / inc);
+    for (const auto& inc : rtl::light_includes()) fs::copy_file(root / "rtl" / inc, dir / "rtl" / inc);
     write_text(dir / "rtl" / (b.top + ".v"), wrapper_v(b));
     b.rtl_files.push_back("rtl/" + b.top + ".v");
     write_text(dir / "filelist.f", filelist(b));
@@ -605,6 +585,7 @@ void run_lighting(const Options& o) {
     fs::create_directories(dir / "tb");
     fs::copy_file(root / "handoff" / "tb" / "tb_shadecore_light.v", dir / "tb" / "tb_shadecore_light.v");
     fs::copy_file(root / "handoff" / "tb" / "tb_common.vh", dir / "tb" / "tb_common.vh");
+    fs::copy_file(root / "LICENSE", dir / "LICENSE");  // Apache-2.0: every file of the bundle carries its SPDX line
     write_text(dir / "tb" / "tb_config.vh", tb_config_vh(b, std::max(hard.size(), rnd.size())));
     write_text(dir / "tb" / "tb_dut.vh", tb_dut_vh(b));
     write_run_scripts(b, dir);

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // shadecore CLI — on-demand builds of the lighting core per feature set, and runs of a command stream
-// through it (cli/light_rtl.hpp). The build is keyed on FeatureSet::key() and stamped with a hash of
-// every source it is made of (RTL, testbench, C model headers, generated headers), so an edited source
-// rebuilds it; a lock file serialises concurrent builds of the same key (ctest -j).
+// through it (cli/light_rtl.hpp). The build is the CMake project sim/light_core (verilate() with the
+// project's warning rules), configured and built per FeatureSet::key() into <cache>/<key>/; it is
+// stamped with a hash of every source it is made of (RTL, testbench, C model headers, generated
+// headers, the project), so an edited source rebuilds it; a lock file serialises concurrent builds of
+// the same key (ctest -j). Every child runs through handoff::run_proc (fork/execvp, no shell).
 #include "light_rtl.hpp"
 
 #include <fcntl.h>
@@ -22,7 +24,9 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "handoff_bundle.hpp"
 #include "output.hpp"
+#include "rtl_files.hpp"
 
 namespace shadecore::cli {
 namespace fs = std::filesystem;
@@ -38,14 +42,15 @@ std::string read_all(const fs::path& p) {
 // Everything the simulator executable is built from.
 std::string sources_hash() {
   const fs::path src = SHADECORE_SOURCE_DIR, gen = SHADECORE_GENERATED_DIR;
-  std::vector<fs::path> files;
-  for (const auto& dir : {src / "rtl", src / "sim", src / "cmodel/include/shadecore", src / "stimulus/include/shadecore",
-                          gen / "shadecore"})
-    for (const auto& e : fs::recursive_directory_iterator(dir)) {
-      const auto ext = e.path().extension();
-      if (ext == ".v" || ext == ".vh" || ext == ".hpp" || e.path().filename() == "light_main.cpp")
-        files.push_back(e.path());
-    }
+  std::vector<fs::path> files = {src / "sim/light_core/CMakeLists.txt", src / "rtl/lint/verilator_waiver.vlt"};
+  auto add = [&files](const fs::path& p) {
+    const auto ext = p.extension();
+    if (ext == ".v" || ext == ".vh" || ext == ".hpp" || p.filename() == "light_main.cpp") files.push_back(p);
+  };
+  for (const auto& dir : {src / "rtl", src / "sim", gen / "shadecore"})
+    for (const auto& e : fs::directory_iterator(dir)) add(e.path());
+  for (const auto& inc : {src / "cmodel/include", src / "stimulus/include"})
+    for (const auto& e : fs::recursive_directory_iterator(inc)) add(e.path());
   std::sort(files.begin(), files.end());
   uint64_t h = 1469598103934665603ull;
   auto mix = [&h](const std::string& s) {
@@ -55,16 +60,10 @@ std::string sources_hash() {
     }
   };
   for (const auto& f : files) {
-    mix(f.lexically_relative(src).string());
+    mix(f.lexically_relative(f.parent_path().parent_path()).generic_string());
     mix(read_all(f));
   }
   return fmt::format("{:016x}", h);
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
 }
 
 // Elapsed-time ticker on stderr while a long step runs (only on a terminal).
@@ -121,7 +120,8 @@ CoreBuild ensure_core(const FeatureSet& feat, bool quiet) {
   const std::string stamp = sources_hash();
   if (fs::exists(b.exe) && read_all(dir / "stamp") == stamp) return b;
 
-  // Build: the feature set's canonical JSON as a header, then Verilator --sc --exe --build.
+  // Build: the feature set's canonical JSON as a header, then the CMake project sim/light_core
+  // (configure + build in the cache directory; the RTL files from config/configs.json "rtl").
   const fs::path src = SHADECORE_SOURCE_DIR;
   {
     std::ofstream h(dir / "light_features.hpp");
@@ -131,32 +131,46 @@ CoreBuild ensure_core(const FeatureSet& feat, bool quiet) {
     std::ofstream j(dir / "features.json");
     j << feat.canonical().dump(2) << "\n";
   }
-  std::string cmd = "verilator --sc --exe --build -j 2 -O3 --x-assign fast --x-initial fast -Wno-fatal";
-  cmd += " --top-module sc_light --prefix Vlight -Mdir " + quote((dir / "obj").string());
-  cmd += " -I" + quote((src / "rtl").string());
-  for (const auto& p : feat.verilog_params(32)) cmd += " -G" + p;
-  const std::string cflags = "-std=c++17 -O2 -I" + (src / "cmodel/include").string() + " -I" +
-                             std::string(SHADECORE_GENERATED_DIR) + " -I" + (src / "sim").string() + " -I" +
-                             (src / "stimulus/include").string() + " -I" +
-                             dir.string();
-  cmd += " -CFLAGS " + quote(cflags);
-  std::vector<std::string> rtl;
-  for (const auto& e : fs::directory_iterator(src / "rtl"))
-    if (e.path().extension() == ".v") rtl.push_back(e.path().string());
-  std::sort(rtl.begin(), rtl.end());
-  for (const auto& f : rtl) cmd += " " + quote(f);
-  cmd += " " + quote((src / "sim/light_main.cpp").string());
-  cmd += " -o " + quote(b.exe);
+  auto cmake_list = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (const auto& e : v) s += (s.empty() ? "" : ";") + e;
+    return s;
+  };
+  const std::vector<std::string> configure = {
+      SHADECORE_CMAKE_COMMAND, "-S", (src / "sim/light_core").string(), "-B", dir.string(),
+      "-G", SHADECORE_CMAKE_GENERATOR, "-DCMAKE_MAKE_PROGRAM=" SHADECORE_CMAKE_MAKE_PROGRAM,
+      "-DCMAKE_CXX_COMPILER=" SHADECORE_CMAKE_CXX_COMPILER, "-DCMAKE_BUILD_TYPE=Release",
+      "-DSHADECORE_SOURCE_DIR=" + src.string(), "-DSHADECORE_GENERATED_DIR=" SHADECORE_GENERATED_DIR,
+      "-DSHADECORE_LIGHT_PARAMS=" + cmake_list(feat.verilog_params(32)),
+      "-DSHADECORE_LIGHT_RTL=" + cmake_list(rtl::light_files(feat))};
+  const std::vector<std::string> build = {SHADECORE_CMAKE_COMMAND, "--build", dir.string(), "-j", "2"};
   const fs::path log = dir / "build.log";
-  cmd += " > " + quote(log.string()) + " 2>&1";
   fs::remove(dir / "stamp", ec);
-  fs::remove_all(dir / "obj", ec);  // a rebuild starts clean: stale dependency files name moved headers
+  // A cache shared between source trees ($SHADECORE_CORE_CACHE): CMake refuses a binary directory
+  // configured from another source directory, so such a configuration starts afresh.
+  if (fs::exists(dir / "CMakeCache.txt") &&
+      read_all(dir / "CMakeCache.txt").find("CMAKE_HOME_DIRECTORY:INTERNAL=" + (src / "sim/light_core").string() + "\n") ==
+          std::string::npos) {
+    fs::remove(dir / "CMakeCache.txt", ec);
+    fs::remove_all(dir / "CMakeFiles", ec);
+  }
   const auto t0 = std::chrono::steady_clock::now();
   int rc;
+  std::string out;
   {
     Ticker t(fmt::format("building the lighting core '{}' [{}] for {}", feat.name, feat.key(), feat.summary()), quiet);
-    rc = std::system(cmd.c_str());
+    handoff::ProcOptions po;
+    po.own_group = false;  // a terminal's ^C stops cmake, ninja, Verilator and the compiler too
+    handoff::Proc p = handoff::run_proc(configure, fs::current_path(), po);
+    out = "$ " + handoff::shell_join(configure) + "\n" + p.out;
+    rc = p.status;
+    if (rc == 0) {
+      p = handoff::run_proc(build, fs::current_path(), po);
+      out += "$ " + handoff::shell_join(build) + "\n" + p.out;
+      rc = p.status;
+    }
   }
+  std::ofstream(log, std::ios::binary | std::ios::trunc) << out;
   b.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (rc != 0 || !fs::exists(b.exe))
     throw std::runtime_error("building the lighting core failed (log: " + log.string() + ")");
@@ -180,19 +194,23 @@ RtlRunResult run_core_rtl(const FeatureSet& feat, const std::vector<sim::CoreCom
     }
   } cleanup{tmp};
   sim::write_commands((tmp / "cmds.bin").string(), cmds);
-  const std::string cmd = quote(r.build.exe) + " --mode stream --quiet --label " + quote(feat.name) + " --in " +
-                          quote((tmp / "cmds.bin").string()) + " --out " + quote((tmp / "out.bin").string()) +
-                          fmt::format(" --in-stall {} --out-stall {} --seed {}", o.in_stall, o.out_stall, o.seed) +
-                          " > " + quote((tmp / "log.txt").string()) + " 2>&1";
+  const std::vector<std::string> argv = {
+      r.build.exe, "--mode", "stream", "--quiet", "--label", feat.name, "--in", (tmp / "cmds.bin").string(),
+      "--out", (tmp / "out.bin").string(), "--in-stall", fmt::format("{}", o.in_stall), "--out-stall",
+      fmt::format("{}", o.out_stall), "--seed", std::to_string(o.seed)};
   ::setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
   int rc;
+  std::string log;
   {
     size_t frags = 0;
     for (const auto& c : cmds) frags += c.is_write ? 0 : 1;
     Ticker t(fmt::format("simulating {} fragments through the RTL core", frags), o.quiet);
-    rc = std::system(cmd.c_str());
+    handoff::ProcOptions po;
+    po.own_group = false;
+    handoff::Proc p = handoff::run_proc(argv, fs::current_path(), po);
+    rc = p.status;
+    log = std::move(p.out);
   }
-  const std::string log = read_all(tmp / "log.txt");
   const auto pos = log.find("COSIM-RESULT ");
   if (pos == std::string::npos) {
     std::string last = log.substr(0, log.find('\n'));
@@ -225,23 +243,22 @@ int lighting_cosim(const LightCosimArgs& a) {
     if (seed == 0) seed = 1;
   }
   const CoreBuild b = ensure_core(feat, a.quiet);
-  const std::string cmd = quote(b.exe) + " --mode " + a.mode + " --label " + quote(feat.name) +
-                          fmt::format(" --count {} --seed {} --in-stall {} --out-stall {}", a.count, seed,
-                                      a.in_stall, a.out_stall);
+  const std::vector<std::string> argv = {
+      b.exe, "--mode", a.mode, "--label", feat.name, "--count", std::to_string(a.count), "--seed",
+      std::to_string(seed), "--in-stall", fmt::format("{}", a.in_stall), "--out-stall", fmt::format("{}", a.out_stall)};
   ::setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
-  std::FILE* p = ::popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) throw std::runtime_error("cannot start " + b.exe);
-  std::string out, line;
-  char buf[4096];
   nlohmann::json result;
-  while (std::fgets(buf, sizeof buf, p)) {
-    line = buf;
+  handoff::ProcOptions po;
+  po.own_group = false;
+  po.on_line = [&](const std::string& line) {
     if (line.rfind("COSIM-RESULT ", 0) == 0) result = nlohmann::json::parse(line.substr(13));
     else if (!a.quiet || line.rfind("cosim: FAIL", 0) == 0 || line.rfind("MISMATCH", 0) == 0 ||
-             line.rfind("ERROR", 0) == 0 || line.rfind("cosim: reproduce", 0) == 0)
-      std::fputs(buf, stdout);
-  }
-  const int rc = ::pclose(p);
+             line.rfind("ERROR", 0) == 0 || line.rfind("cosim: reproduce", 0) == 0) {
+      std::fputs(line.c_str(), stdout);
+      std::fflush(stdout);
+    }
+  };
+  const int rc = handoff::run_proc(argv, fs::current_path(), po).status;
   if (result.is_null())
     throw std::runtime_error("the lighting-core simulator ended without a result (exit " + std::to_string(rc) + ")");
   result["build_dir"] = b.dir;

@@ -55,7 +55,8 @@ inline Format default_format() { return config_named(kDefaultConfig).format; }
 # Hardware unit variants (config/configs.json "variants": name <-> id, the VARIANT parameter of
 # rtl/sc_specular.v). Sets SHADECORE_VARIANT_NAMES and SHADECORE_VARIANT_<name>_ID, and generates
 #   ${SHADECORE_GENERATED_DIR}/shadecore/variants.hpp  (enum class VariantId, kVariants)
-#   ${CMAKE_SOURCE_DIR}/rtl/sc_variants.vh             (localparam VARIANT_<NAME>, for sc_specular.v; committed)
+#   ${SHADECORE_GENERATED_DIR}/rtl/sc_variants.vh      (localparam VARIANT_<NAME>, for sc_specular.v; committed
+#                                                      as rtl/sc_variants.vh, checked by a ctest)
 string(JSON _nv LENGTH "${_cfg_json}" variants)
 math(EXPR _lastv "${_nv} - 1")
 set(SHADECORE_VARIANT_NAMES "")
@@ -170,10 +171,15 @@ inline constexpr const SquarerForm* squarer_form(VariantId v) {
 }
 }  // namespace shadecore
 " @ONLY)
-# The Verilog include is written into rtl/ (and committed) so that the RTL is self-contained for a
-# hand-off and plain `-Irtl` tools; configure rewrites it only when configs.json changes it.
+# The Verilog includes are committed in rtl/ so that the RTL is self-contained for a hand-off and
+# plain `-Irtl` tools (every tool and bundle includes them from there). Configure never writes into the
+# source tree: it generates them into ${SHADECORE_GENERATED_DIR}/rtl/, and the ctest
+# rtl.generated_headers_current checks that the committed copies equal them (after editing
+# configs.json: `cmake --build build --target update_rtl_headers` copies them into rtl/).
 set(SHADECORE_RTL_INCDIR "${CMAKE_SOURCE_DIR}/rtl")
-file(CONFIGURE OUTPUT "${SHADECORE_RTL_INCDIR}/sc_variants.vh" CONTENT
+set(SHADECORE_GENERATED_RTL_DIR "${SHADECORE_GENERATED_DIR}/rtl")
+set(SHADECORE_GENERATED_RTL_HEADERS sc_variants.vh sc_light_regs.vh)
+file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_RTL_DIR}/sc_variants.vh" CONTENT
 "// SPDX-License-Identifier: Apache-2.0
 // generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
 // Values of the VARIANT parameter of rtl/sc_specular.v (included inside the module).
@@ -193,7 +199,8 @@ endfunction
 # Lighting core (config/configs.json "light", docs/lighting.md): the register map and the light kinds,
 # generated for both sides:
 #   ${SHADECORE_GENERATED_DIR}/shadecore/light_regs.hpp   (constexpr addresses, kinds)
-#   ${CMAKE_SOURCE_DIR}/rtl/sc_light_regs.vh               (localparams, included by rtl/sc_light.v; committed)
+#   ${SHADECORE_GENERATED_DIR}/rtl/sc_light_regs.vh        (localparams, included by rtl/sc_light.v; committed
+#                                                          as rtl/sc_light_regs.vh, checked by a ctest)
 # and the whole configs.json as a string (shadecore/configs_json.hpp), so that the named feature sets
 # are parsed by the same code as a user's feature-set file.
 string(JSON _lmax GET "${_cfg_json}" light max_lights)
@@ -252,7 +259,7 @@ inline constexpr std::array<NamedLightKind, ${_nk}> kLightKinds{{
 ${_kenum}}};
 }  // namespace shadecore
 " @ONLY)
-file(CONFIGURE OUTPUT "${SHADECORE_RTL_INCDIR}/sc_light_regs.vh" CONTENT
+file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_RTL_DIR}/sc_light_regs.vh" CONTENT
 "// SPDX-License-Identifier: Apache-2.0
 // generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
 // Register map and light kinds of rtl/sc_light.v (included inside the module; docs/lighting.md §4).
@@ -267,3 +274,56 @@ namespace shadecore {
 inline constexpr const char* kConfigsJson = R\"shadecore_json(${_cfg_json})shadecore_json\";
 }  // namespace shadecore
 " @ONLY)
+
+# RTL file lists (config/configs.json "rtl" and variants[].rtl; the one source, issue 20). Sets
+#   SHADECORE_RTL_SOURCES            sc_specular with every unit and sc_norm (absolute paths)
+#   SHADECORE_LIGHT_SOURCES          sc_light with every operator and SHADECORE_RTL_SOURCES
+#   SHADECORE_RTL_FILES_<module>     what <module> needs as a top on its own ("standalone", else <module>.v)
+#   SHADECORE_VARIANT_<name>_RTL     a unit's files
+# The CLI reads the same entries at run time (cli/rtl_files.cpp, through shadecore/configs_json.hpp).
+function(_shadecore_json_list out)
+  string(JSON _t TYPE "${_cfg_json}" ${ARGN})
+  if(NOT _t STREQUAL "ARRAY")
+    message(FATAL_ERROR "config/configs.json: ${ARGN} must be a list of file names")
+  endif()
+  string(JSON _len LENGTH "${_cfg_json}" ${ARGN})
+  set(_l "")
+  if(_len GREATER 0)
+    math(EXPR _lst "${_len} - 1")
+    foreach(k RANGE ${_lst})
+      string(JSON _f GET "${_cfg_json}" ${ARGN} ${k})
+      if(NOT EXISTS "${CMAKE_SOURCE_DIR}/rtl/${_f}")
+        message(FATAL_ERROR "config/configs.json: ${ARGN}: rtl/${_f} does not exist")
+      endif()
+      list(APPEND _l "${CMAKE_SOURCE_DIR}/rtl/${_f}")
+    endforeach()
+  endif()
+  set(${out} "${_l}" PARENT_SCOPE)
+endfunction()
+_shadecore_json_list(SHADECORE_RTL_SOURCES rtl sc_specular files)
+foreach(i RANGE ${_lastv})
+  string(JSON _vname GET "${_cfg_json}" variants ${i} name)
+  _shadecore_json_list(SHADECORE_VARIANT_${_vname}_RTL variants ${i} rtl)
+  list(APPEND SHADECORE_RTL_SOURCES ${SHADECORE_VARIANT_${_vname}_RTL})
+endforeach()
+_shadecore_json_list(_norm rtl sc_specular norm)
+list(APPEND SHADECORE_RTL_SOURCES ${_norm})
+list(REMOVE_DUPLICATES SHADECORE_RTL_SOURCES)
+_shadecore_json_list(SHADECORE_LIGHT_SOURCES rtl sc_light files)
+foreach(_cap normalize recip)
+  _shadecore_json_list(_capf rtl sc_light ${_cap})
+  list(APPEND SHADECORE_LIGHT_SOURCES ${_capf})
+endforeach()
+list(APPEND SHADECORE_LIGHT_SOURCES ${SHADECORE_RTL_SOURCES})
+list(REMOVE_DUPLICATES SHADECORE_LIGHT_SOURCES)
+foreach(_src IN LISTS SHADECORE_LIGHT_SOURCES)
+  get_filename_component(_mod "${_src}" NAME_WE)
+  string(JSON _sa ERROR_VARIABLE _nosa GET "${_cfg_json}" rtl standalone ${_mod})
+  if(_nosa)
+    set(SHADECORE_RTL_FILES_${_mod} "${_src}")
+  else()
+    _shadecore_json_list(SHADECORE_RTL_FILES_${_mod} rtl standalone ${_mod})
+  endif()
+endforeach()
+set(SHADECORE_RTL_FILES_sc_specular ${SHADECORE_RTL_SOURCES})
+set(SHADECORE_RTL_FILES_sc_light ${SHADECORE_LIGHT_SOURCES})

@@ -389,8 +389,11 @@ TEST(HandoffLighting, DiffuseBundlePassesAndACorruptedCopyFails) {
                         "filelist.f", "constraints.sdc", "interface.md", "tb/tb_shadecore_light.v", "tb/tb_config.vh",
                         "tb/tb_dut.vh", "run_icarus.sh", "run_verilator.sh", "vectors/hard.hex", "vectors/random.hex",
                         "reports/verilator_lint.log", "reports/yosys_synth.log", "reports/yosys_synth.ys",
-                        "reports/sim_icarus.log", "reports/sim_verilator.log", "MANIFEST.sha256"})
+                        "reports/sim_icarus.log", "reports/sim_verilator.log", "MANIFEST.sha256", "LICENSE"})
     EXPECT_TRUE(fs::exists(b / f)) << f;
+  // The licence travels with the RTL: every shipped source carries its SPDX line.
+  for (const char* f : {"rtl/sc_light.v", "rtl/sc_delay.v", "rtl/sc_light_regs.vh", "tb/tb_shadecore_light.v"})
+    EXPECT_NE(slurp((b / f).string()).find("SPDX-License-Identifier: Apache-2.0"), std::string::npos) << f;
   // diffuse has no specular unit, no normaliser, no reciprocal: none of their files.
   for (const char* f : {"rtl/sc_specular.v", "rtl/sc_cs16.v", "rtl/sc_normalize.v", "rtl/sc_recip.v"})
     EXPECT_FALSE(fs::exists(b / f)) << f;
