@@ -71,6 +71,11 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 class Step {
  public:
   explicit Step(std::string label) : label_(std::move(label)), t0_(Clock::now()), tty_(::isatty(STDERR_FILENO)) {
+    if (delay().count() == 0 && !tty_) {  // no delay: shown at once, whatever the thread's start-up takes
+      shown_ = true;
+      std::fprintf(stderr, "render: %s ...\n", label_.c_str());
+      std::fflush(stderr);
+    }
     th_ = std::thread([this] { loop(); });
   }
   Step(const Step&) = delete;
@@ -106,13 +111,15 @@ class Step {
   }
   void loop() {
     std::unique_lock<std::mutex> lk(mu_);
-    if (cv_.wait_for(lk, delay(), [this] { return done_; })) return;
-    shown_ = true;
+    if (!shown_ && cv_.wait_for(lk, delay(), [this] { return done_; })) return;
     if (!tty_) {
+      if (shown_) return;  // already announced
+      shown_ = true;
       std::fprintf(stderr, "render: %s ...\n", label_.c_str());
       std::fflush(stderr);
       return;
     }
+    shown_ = true;
     io::set_progress_line(true);
     do {
       std::fprintf(stderr, "\rrender: %s%s%s ... %.0f s\033[K", label_.c_str(), detail_.empty() ? "" : ": ",

@@ -92,7 +92,7 @@ fi
 if [ $failed_run -eq 1 ]; then
   fr="$work/root"
   mkdir -p "$fr/docs"
-  cp -r "$root/rtl" "$root/handoff" "$root/config" "$fr/"
+  cp -r "$root/rtl" "$root/handoff" "$root/config" "$root/LICENSE" "$fr/"
   echo "this is not Verilog" >> "$fr/handoff/tb/tb_shadecore.v"
   out=$(SHADECORE_ROOT="$fr" "$exe" handoff "$@" --no-ice40 --out "$work/sub/failed" 2>&1); rc=$?
   [ $rc -ne 0 ] || fail "handoff with a broken testbench template succeeded"
