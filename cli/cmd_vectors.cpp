@@ -24,30 +24,25 @@
 #include "output.hpp"
 #include "shadecore/features.hpp"
 #include "shadecore/units/hard_cases.hpp"
+#include "shadecore/stimulus/rng.hpp"
+#include "shadecore/stimulus/specular.hpp"
 #include "unit_spec.hpp"
 
 namespace shadecore::cli {
 
 namespace {
 
-// splitmix64: the same sequence on every platform and standard library (the seed in a vector
-// file's header reproduces the file).
-struct SplitMix {
-  uint64_t s;
-  uint64_t next() {
-    uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  int64_t uniform(int64_t lo, int64_t hi) {  // inclusive; the modulo bias (< 2^-30) does not matter here
-    return lo + static_cast<int64_t>(next() % static_cast<uint64_t>(hi - lo + 1));
-  }
-};
-
 constexpr uint64_t kMaxVectors = 20'000'000;  // ~0.8 GB of text; split larger exhaustive runs by --n
 
 int hex_digits(int bits) { return (bits + 3) / 4; }
+
+// The co-simulation's stimulus digest of random vectors: the sum over transaction i of
+// stimulus::item_digest(i, −1, code) (n = −1: random mode attaches no exponent to a code).
+uint64_t random_digest(const std::vector<TestVector>& v) {
+  uint64_t d = 0;
+  for (size_t i = 0; i < v.size(); ++i) d += stimulus::item_digest(i, -1, v[i].code);
+  return d;
+}
 
 struct VectorsArgs {
   std::shared_ptr<UnitOptions> unit = std::make_shared<UnitOptions>();
@@ -108,7 +103,7 @@ void run(VectorsArgs& a) {
   const std::vector<TestVector> v = make_vectors(spec, req);
   write_output_file(a.out, format_vectors(spec, req, v));
   fmt::print("vectors: {} {} vector(s) for {}{} -> {}\n", v.size(), req.mode, spec.describe(),
-             req.mode == "random" ? fmt::format(", seed {}", req.seed) : "", a.out);
+             req.mode == "random" ? fmt::format(", seed {}, stimulus digest {}", req.seed, random_digest(v)) : "", a.out);
 }
 
 }  // namespace
@@ -147,31 +142,19 @@ std::vector<TestVector> make_vectors(const UnitSpec& spec, const VectorRequest& 
     if (req.seed == 0) throw std::invalid_argument("random vectors need a non-zero seed");
     if (req.count > kMaxVectors)
       throw std::invalid_argument(fmt::format("--count {} is over the limit of {}", req.count, kMaxVectors));
-    SplitMix rng{req.seed};
+    // Codes from the one specular generator (stimulus/specular.hpp): transaction i gets the code the
+    // co-simulation's transaction i gets with the same seed (`cosim --seed S`: the same stimulus_digest).
+    // The exponent runs (~8 fragments a material) come from a stream of their own, seeded from the seed.
+    sim::Rng mat(sim::mix64(req.seed ^ 0x6d6174657269616cull));
     v.reserve(req.count);
-    int n = static_cast<int>(rng.uniform(req.n_lo, req.n_hi));
+    int n = static_cast<int>(mat.uniform(req.n_lo, req.n_hi));
     UnitMaterial m = unit.setup(n);
     for (uint64_t i = 0; i < req.count; ++i) {
-      if (i > 0 && rng.next() % 8 == 0) {  // material runs of ~8 fragments: writes between fragments
-        n = static_cast<int>(rng.uniform(req.n_lo, req.n_hi));
+      if (i > 0 && mat.next() % 8 == 0) {  // material runs of ~8 fragments: writes between fragments
+        n = static_cast<int>(mat.uniform(req.n_lo, req.n_hi));
         m = unit.setup(n);
       }
-      const uint64_t r = rng.next() % 100;
-      int64_t code;
-      if (r < 70) {
-        code = rng.uniform(0, one);                       // in range
-      } else if (r < 80) {
-        code = rng.uniform(f.in_min(), f.in_max());       // the whole signed word (clamping)
-      } else {
-        int64_t centre;                                   // near 0, 1.0, thr(n), the base zero
-        switch (rng.next() % 4) {
-          case 0: centre = 0; break;
-          case 1: centre = one; break;
-          case 2: centre = cs16_setup(f, n).thr; break;
-          default: centre = one - ((int64_t{1} << (f.frac + 4)) / n); break;
-        }
-        code = std::clamp<int64_t>(centre + rng.uniform(-4, 4), f.in_min(), f.in_max());
-      }
+      const int64_t code = stimulus::random_code(unit, req.seed, i, req.n_lo, req.n_hi);
       add(n, m, code);
     }
   }
@@ -186,7 +169,8 @@ std::string format_vectors(const UnitSpec& spec, const VectorRequest& req, const
   std::string s;
   s += "// shadecore vectors: " + spec.describe() + "\n";
   s += "// mode " + req.mode;
-  if (req.mode == "random") s += fmt::format(", seed {}, n {}..{}", req.seed, req.n_lo, req.n_hi);
+  if (req.mode == "random")
+    s += fmt::format(", seed {}, n {}..{}, stimulus digest {}", req.seed, req.n_lo, req.n_hi, random_digest(v));
   if (req.mode == "exhaustive") s += fmt::format(", n {}..{}: every code 0..2^F, then -2^(F+1), -1, 2^F+1, 2^(F+1)-1", req.n_lo, req.n_hi);
   if (req.mode == "hard") s += " (shadecore::hard_cases: input extremes, 1.0 +-2, thr +-2, the base zero +-2, 12 exponents)";
   s += fmt::format("; {} vectors\n", v.size());

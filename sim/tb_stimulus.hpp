@@ -2,12 +2,12 @@
 // shadecore sim — what the driver feeds the unit, by mode:
 //   exhaustive: for every n in [n_lo, n_hi]: every code in [0, 2^F], then the out-of-range codes
 //               in_min, -1, 2^F+1, in_max (the clamp must saturate, never wrap);
-//   random:     `count` codes: 70 % uniform in [0, 2^F], 10 % uniform over the whole signed input
-//               word, 20 % within ±4 of a special point (0, 2^F, thr(n'), base zero of n'); the
-//               material changes at random cycles (the driver), so no n is attached here.
-//               The code of transaction i (i = first, first+1, ...) is drawn from its own stream,
-//               Rng::for_item(seed, i): a function of (seed, i) only, so one seeded run split into
-//               shards by index gives the same codes whatever the shard count. (Stalls, material
+//   random:     `count` codes from the one specular generator, stimulus::random_code
+//               (stimulus/include/shadecore/stimulus/specular.hpp, shared with `shadecore vectors`):
+//               70 % uniform in [0, 2^F], 10 % over the whole signed input word, 20 % within ±4 of a
+//               special point; the material changes at random cycles (the driver), so no n is attached.
+//               The code of transaction i (i = first, first+1, ...) is a function of (seed, i) only, so
+//               one seeded run split into shards by index gives the same codes whatever the shard count. (Stalls, material
 //               writes and the reset come from the driver's per-run generators: timing, not stimulus.)
 //   directed:   shadecore::hard_cases() — the list the C model tests use — repeated until `count`
 //               items (at least once).
@@ -21,6 +21,7 @@
 #include "shadecore/unit.hpp"
 #include "tb_options.hpp"
 #include "shadecore/stimulus/rng.hpp"
+#include "shadecore/stimulus/specular.hpp"
 
 namespace shadecore::sim {
 
@@ -85,10 +86,8 @@ class Stimulus {
  private:
   static constexpr int kExtras = 4;
 
-  static uint64_t item_digest(uint64_t index, const Item& it) {
-    return mix64(mix64(index) ^ mix64(static_cast<uint64_t>(it.code) + 0x9E3779B97F4A7C15ull) ^
-                 (static_cast<uint64_t>(it.n + 1) << 40));
-  }
+  static uint64_t item_digest(uint64_t index, const Item& it) { return stimulus::item_digest(index, it.n, it.code); }
+
 
   bool next_exhaustive(Item& it) {
     if (n_ > o_.n_hi) return false;
@@ -104,35 +103,10 @@ class Stimulus {
 
   bool next_random(Item& it) {
     if (done_ == o_.count) return false;
-    Rng rng = Rng::for_item(o_.seed, o_.first + done_);
+    // The one specular generator (stimulus/specular.hpp): `shadecore vectors` draws the same codes.
+    it.code = stimulus::random_code(unit_, o_.seed, o_.first + done_, o_.n_lo, o_.n_hi);
     ++done_;
     it.n = -1;
-    const uint64_t r = rng.next() % 100;
-    const int64_t one = f_.one();
-    if (r < 70) {
-      it.code = rng.uniform(0, one);
-    } else if (r < 80) {
-      it.code = rng.uniform(f_.in_min(), f_.in_max());
-    } else {
-      const int n = static_cast<int>(rng.uniform(o_.n_lo, o_.n_hi));
-      int64_t centre = 0;
-      switch (rng.next() % 4) {
-        case 0: centre = 0; break;
-        case 1: centre = one; break;
-        case 2:  // cs16: the θcr threshold; table units: an entry boundary ⌈i·2^F/(E−1)⌉
-          if (const int e = unit_.entries(); e > 0) {
-            const int64_t i = rng.uniform(0, e - 1);
-            centre = (i * one + e - 2) / (e - 1);
-          } else {
-            centre = unit_.setup(n).thr;
-          }
-          break;
-        default: centre = one - ((int64_t{1} << (f_.frac + 4)) / n); break;  // last code with base <= 0
-      }
-      it.code = centre + rng.uniform(-4, 4);
-      if (it.code < f_.in_min()) it.code = f_.in_min();
-      if (it.code > f_.in_max()) it.code = f_.in_max();
-    }
     return true;
   }
 

@@ -186,6 +186,34 @@ TEST(CosimHardening, SameSeedSameStimulusWhateverTheShardCount) {
   EXPECT_EQ(ex[0], ex[1]);
 }
 
+// One stimulus generator (stimulus/specular.hpp): `shadecore vectors --seed S` writes the codes that
+// `shadecore cosim --seed S` drives, transaction for transaction (the same stimulus digest), for cs16 and a
+// Schlick unit; another seed, another digest.
+TEST(CosimHardening, VectorsAndCosimDriveTheSameStimulus) {
+  const TempDir d;
+  auto digest_line = [](const std::string& out) {
+    std::smatch m;
+    return std::regex_search(out, m, std::regex("stimulus digest ([0-9]+)")) ? m[1].str() : std::string();
+  };
+  for (const std::string variant : {"cs16", "schlick_nr"}) {
+    SCOPED_TRACE(variant);
+    const std::string j = d / ("c_" + variant + ".json"), hex = d / ("v_" + variant + ".hex");
+    const CliRun c = run_cli("cosim --variant " + variant + " --config narrow --mode random --count 3000 --seed 77 "
+                             "--in-stall 0.2 --out-stall 0.2 --shards 2 --json " + j);
+    ASSERT_EQ(c.status, 0) << c.out << c.err;
+    const CliRun v = run_cli("vectors --variant " + variant + " --config narrow --mode random --count 3000 --seed 77 --out " + hex);
+    ASSERT_EQ(v.status, 0) << v.out << v.err;
+    const std::string dv = digest_line(v.out);
+    ASSERT_FALSE(dv.empty()) << v.out;
+    EXPECT_EQ(dv, json_field(slurp(j), "stimulus_digest"));
+    EXPECT_EQ(digest_line(slurp(hex)), dv);  // the file's header records it
+    const CliRun o = run_cli("vectors --variant " + variant + " --config narrow --mode random --count 3000 --seed 78 --out " +
+                             (d / "o.hex"));
+    ASSERT_EQ(o.status, 0) << o.err;
+    EXPECT_NE(digest_line(o.out), dv);
+  }
+}
+
 // Waveforms: written through a temporary file and renamed (no stray file), also when the run FAILS (the
 // waveform is its evidence); the CLI's --trace likewise.
 TEST(CosimHardening, TraceFollowsTheOutputRules) {
