@@ -205,6 +205,7 @@ endfunction
 # are parsed by the same code as a user's feature-set file.
 string(JSON _lmax GET "${_cfg_json}" light max_lights)
 string(JSON _lstride GET "${_cfg_json}" light light_stride)
+string(JSON _labits GET "${_cfg_json}" light addr_bits)
 string(JSON _nk LENGTH "${_cfg_json}" light light_kinds)
 math(EXPR _lastk "${_nk} - 1")
 set(_kenum "")
@@ -212,15 +213,27 @@ set(_kvh "")
 foreach(i RANGE ${_lastk})
   string(JSON _kname GET "${_cfg_json}" light light_kinds ${i} name)
   string(JSON _kid GET "${_cfg_json}" light light_kinds ${i} id)
+  string(JSON _kres ERROR_VARIABLE _nokres GET "${_cfg_json}" light light_kinds ${i} reserved)
+  if(_nokres OR NOT _kres)
+    set(_kresc false)
+  else()
+    set(_kresc true)
+  endif()
   string(TOUPPER "${_kname}" _kup)
-  string(APPEND _kenum "    NamedLightKind{\"${_kname}\", ${_kid}},\n")
-  string(APPEND _kvh "localparam integer KIND_${_kup} = ${_kid};\n")
+  string(APPEND _kenum "    NamedLightKind{\"${_kname}\", ${_kid}, ${_kresc}},\n")
+  if(NOT _kresc)
+    string(APPEND _kvh "localparam integer KIND_${_kup} = ${_kid};\n")
+    list(APPEND _kuse "KIND_${_kup}[0]")
+  endif()
 endforeach()
+list(JOIN _kuse ", " _kusestr)
+set(_kusestr ", ${_kusestr}")
 string(JSON _nr LENGTH "${_cfg_json}" light registers)
 math(EXPR _lastr "${_nr} - 1")
 set(_rhpp "")
 set(_rvh "")
 set(_rtab "")
+set(_ruse "MAX_LIGHTS[0], LIGHT_STRIDE[0], REG_ADDR_BITS[0]")
 foreach(i RANGE ${_lastr})
   string(JSON _rname GET "${_cfg_json}" light registers ${i} name)
   string(JSON _raddr GET "${_cfg_json}" light registers ${i} addr)
@@ -230,6 +243,12 @@ foreach(i RANGE ${_lastr})
   if(_noper)
     set(_rper OFF)
   endif()
+  string(JSON _rres ERROR_VARIABLE _nores GET "${_cfg_json}" light registers ${i} reserved)
+  if(_nores OR NOT _rres)
+    set(_rresc false)
+  else()
+    set(_rresc true)
+  endif()
   if(_rper)
     set(_rperc true)
   else()
@@ -237,8 +256,11 @@ foreach(i RANGE ${_lastr})
   endif()
   string(TOUPPER "${_rname}" _rup)
   string(APPEND _rhpp "inline constexpr uint32_t kReg_${_rname} = ${_raddr};\n")
-  string(APPEND _rvh "localparam [7:0] REG_${_rup} = 8'd${_raddr};\n")
-  string(APPEND _rtab "    RegInfo{\"${_rname}\", ${_raddr}, ${_rcount}, \"${_rfmt}\", ${_rperc}},\n")
+  if(NOT _rresc)
+    string(APPEND _rvh "localparam [${_labits}-1:0] REG_${_rup} = ${_labits}'d${_raddr};\n")
+    string(APPEND _ruse ", REG_${_rup}")
+  endif()
+  string(APPEND _rtab "    RegInfo{\"${_rname}\", ${_raddr}, ${_rcount}, \"${_rfmt}\", ${_rperc}, ${_rresc}},\n")
 endforeach()
 file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/light_regs.hpp" CONTENT
 "// SPDX-License-Identifier: Apache-2.0
@@ -251,10 +273,12 @@ file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/light_regs.hpp" CONT
 namespace shadecore {
 inline constexpr int kMaxLights = ${_lmax};
 inline constexpr uint32_t kLightStride = ${_lstride};  // address of light j's register = addr + stride·j
-${_rhpp}struct RegInfo { std::string_view name; uint32_t addr; int count; std::string_view format; bool per_light; };
+inline constexpr int kRegAddrBits = ${_labits};         // width of reg_addr_i
+${_rhpp}// reserved: laid out for the GL-completeness issue, no register in this core (a write is ignored)
+struct RegInfo { std::string_view name; uint32_t addr; int count; std::string_view format; bool per_light; bool reserved; };
 inline constexpr std::array<RegInfo, ${_nr}> kRegisters{{
 ${_rtab}}};
-struct NamedLightKind { std::string_view name; int id; };
+struct NamedLightKind { std::string_view name; int id; bool reserved; };
 inline constexpr std::array<NamedLightKind, ${_nk}> kLightKinds{{
 ${_kenum}}};
 }  // namespace shadecore
@@ -265,7 +289,10 @@ file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_RTL_DIR}/sc_light_regs.vh" CONTENT
 // Register map and light kinds of rtl/sc_light.v (included inside the module; docs/lighting.md §4).
 localparam integer MAX_LIGHTS = ${_lmax};
 localparam integer LIGHT_STRIDE = ${_lstride};
-${_kvh}${_rvh}" @ONLY)
+localparam integer REG_ADDR_BITS = ${_labits};
+${_kvh}${_rvh}// every name above, so that a module using a few of them lints clean (Verilator's unused pattern)
+localparam [0:0] unused_light_regs = ^{1'b0, ${_ruse}${_kusestr}};
+" @ONLY)
 file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/configs_json.hpp" CONTENT
 "// SPDX-License-Identifier: Apache-2.0
 // generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit

@@ -29,32 +29,63 @@
 namespace shadecore {
 
 enum class LightKind : int { Directional = 0, Point = 1, PointAtt = 2 };
+inline constexpr int kNumLightKinds = 3;  // usable kinds (kind 3, spot, is reserved: config/configs.json)
+inline constexpr uint8_t kind_bit(LightKind k) { return static_cast<uint8_t>(1u << static_cast<int>(k)); }
+inline constexpr uint8_t kAllKinds = 0x7;
 
 inline constexpr int kLightFracMax = 16;  // the core's widest format (every product stays within 64 bits)
 
+// Capabilities of a lighting core: what hardware exists. The register file chooses among what exists
+// at run time (light enable and kind, local viewer, reflection, normalize, the material's unit);
+// a capability that is absent is not built (docs/lighting.md §2).
 struct FeatureSet {
   std::string name = "custom";
   std::string config = "default";       // width: a named config of configs.json (frac <= 16)
-  std::vector<LightKind> lights{LightKind::Directional};  // 1..kMaxLights
+  std::vector<uint8_t> slots{kind_bit(LightKind::Directional)};  // per light slot: the kinds it can take
   bool ambient = true;                  // emission + global ambient + per-light ambient terms
   bool diffuse = true;                  // max(N·L, 0)·d·Id
-  bool specular = true;                 // a specular unit per light
-  VariantId variant = VariantId::cs16;  // which unit (per core), when specular
+  bool specular = true;                 // specular units (per lane: one per unit of units())
+  VariantId variant = VariantId::cs16;  // the first specular unit, when specular
+  std::vector<VariantId> more_units;    // further units the material register can choose
   Cutoff cutoff = Cutoff::ThetaCr;      // cs16 only
-  bool norm = false;                    // rtl/sc_norm.v after the unit (coefficient register mat_coef)
-  bool blinn = true;                    // x = N·H (Blinn-Phong) or R·V (Phong)
-  bool local_viewer = false;            // V = normalise(−P) or (0, 0, 1)
-  bool normalize = true;                // GL_NORMALIZE: renormalise N per fragment
+  bool norm = false;                    // rtl/sc_norm.v after each unit (coefficient register mat_coef)
+  bool blinn = true;                    // x = N·H (Blinn-Phong) exists
+  bool phong = false;                   // x = R·V (Phong) exists
+  bool local_viewer = false;            // V = normalise(−P) exists (V = (0, 0, 1) always does)
+  bool normalize = true;                // GL_NORMALIZE: the normal normaliser exists
   int channels = 3;                     // 1 (mono, channel 0 only) or 3 (RGB)
+  int lanes = 1;                        // per-light datapaths; enabled lights take ⌈k/lanes⌉ passes
 
   [[nodiscard]] Format format() const { return config_named(config).format; }
-  [[nodiscard]] int num_lights() const { return static_cast<int>(lights.size()); }
-  [[nodiscard]] bool any_point() const {
-    for (auto k : lights)
-      if (k != LightKind::Directional) return true;
+  [[nodiscard]] int num_lights() const { return static_cast<int>(slots.size()); }
+  [[nodiscard]] bool slot_can(int j, LightKind k) const { return (slots[static_cast<size_t>(j)] & kind_bit(k)) != 0; }
+  // The first kind slot j can take (the only one for a specialised slot).
+  [[nodiscard]] LightKind slot_kind(int j) const {
+    for (int k = 0; k < kNumLightKinds; ++k)
+      if (slots[static_cast<size_t>(j)] & (1u << k)) return static_cast<LightKind>(k);
+    return LightKind::Directional;
+  }
+  [[nodiscard]] bool any_kind(LightKind k) const {
+    for (auto m : slots)
+      if (m & kind_bit(k)) return true;
     return false;
   }
+  [[nodiscard]] bool any_point() const { return any_kind(LightKind::Point) || any_kind(LightKind::PointAtt); }
   [[nodiscard]] bool needs_position() const { return any_point() || (specular && local_viewer); }
+  // The specular units the material can choose (empty without specular), first = variant.
+  [[nodiscard]] std::vector<VariantId> units() const {
+    std::vector<VariantId> u;
+    if (!specular) return u;
+    u.push_back(variant);
+    u.insert(u.end(), more_units.begin(), more_units.end());
+    return u;
+  }
+  [[nodiscard]] bool has_unit(VariantId v) const {
+    for (auto u : units())
+      if (u == v) return true;
+    return false;
+  }
+  [[nodiscard]] bool both_reflections() const { return blinn && phong; }
 
   // Canonical JSON (every key, fixed order, without the name): equal sets give equal strings.
   [[nodiscard]] nlohmann::ordered_json canonical() const;
@@ -62,7 +93,7 @@ struct FeatureSet {
   [[nodiscard]] std::string key() const;
   // "-GNAME=value" parameters of rtl/sc_light.v.
   [[nodiscard]] std::vector<std::string> verilog_params(int tagw) const;
-  // One line for humans: "3 lights (point_att ×2, directional), ambient, diffuse, cs16/theta_cr, blinn, ..."
+  // One line for humans: "3 slots (point_att ×2, directional), ambient, diffuse, cs16/theta_cr, blinn, ..."
   [[nodiscard]] std::string summary() const;
 };
 
@@ -70,6 +101,13 @@ inline const char* to_string(LightKind k) {
   for (const auto& n : kLightKinds)
     if (n.id == static_cast<int>(k)) return n.name.data();
   return "?";
+}
+// "directional" or "point|point_att" (a slot's kinds, in id order).
+inline std::string kinds_name(uint8_t mask) {
+  std::string s;
+  for (int k = 0; k < kNumLightKinds; ++k)
+    if (mask & (1u << k)) s += (s.empty() ? "" : "|") + std::string(to_string(static_cast<LightKind>(k)));
+  return s;
 }
 
 namespace detail {
@@ -86,6 +124,25 @@ inline std::string fs_string(const nlohmann::json& j, const char* key, const std
   if (!j.is_string()) fs_fail(where, std::string("'") + key + "' must be a string");
   return j.get<std::string>();
 }
+inline uint8_t fs_kind(const nlohmann::json& e, const std::string& where) {
+  const std::string s = fs_string(e, "lights[]", where);
+  for (const auto& kind : kLightKinds)
+    if (kind.name == s) {
+      if (kind.reserved)
+        fs_fail(where, "light kind '" + s + "' is reserved (not in this core yet; known: directional, point, point_att)");
+      return static_cast<uint8_t>(1u << kind.id);
+    }
+  fs_fail(where, "unknown light kind '" + s + "' (known: directional, point, point_att)");
+  return 0;
+}
+// A string or a non-empty list of strings, each parsed by `one`.
+template <class F>
+inline void fs_one_or_list(const nlohmann::json& v, const char* key, const std::string& where, F one) {
+  if (v.is_string()) return one(v);
+  if (!v.is_array() || v.empty())
+    fs_fail(where, std::string("'") + key + "' must be a string or a non-empty list of strings");
+  for (const auto& e : v) one(e);
+}
 }  // namespace detail
 
 // Parse one feature set. `where` prefixes every error (a file name or "feature set 'full'").
@@ -93,7 +150,7 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
   using detail::fs_fail;
   if (!j.is_object()) fs_fail(where, "a feature set must be a JSON object");
   FeatureSet fs;
-  bool cutoff_given = false;
+  bool cutoff_given = false, lanes_given = false;
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string& k = it.key();
     const nlohmann::json& v = it.value();
@@ -103,33 +160,48 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
     else if (k == "lights") {
       if (!v.is_array() || v.empty() || v.size() > static_cast<size_t>(kMaxLights))
         fs_fail(where, "'lights' must be a list of 1.." + std::to_string(kMaxLights) +
-                           " light kinds (directional, point, point_att)");
-      fs.lights.clear();
+                           " light slots, each a kind or a list of kinds (directional, point, point_att)");
+      fs.slots.clear();
       for (const auto& e : v) {
-        const std::string s = detail::fs_string(e, "lights[]", where);
-        bool found = false;
-        for (const auto& kind : kLightKinds)
-          if (kind.name == s) {
-            fs.lights.push_back(static_cast<LightKind>(kind.id));
-            found = true;
-          }
-        if (!found) fs_fail(where, "unknown light kind '" + s + "' (known: directional, point, point_att)");
+        uint8_t m = 0;
+        detail::fs_one_or_list(e, "lights[]", where, [&](const nlohmann::json& x) {
+          const uint8_t b = detail::fs_kind(x, where);
+          if (m & b) fs_fail(where, "light slot " + std::to_string(fs.slots.size()) + " names a kind twice");
+          m |= b;
+        });
+        fs.slots.push_back(m);
       }
     } else if (k == "ambient") fs.ambient = detail::fs_bool(v, "ambient", where);
     else if (k == "diffuse") fs.diffuse = detail::fs_bool(v, "diffuse", where);
     else if (k == "specular") {
-      const std::string s = detail::fs_string(v, "specular", where);
-      if (s == "none") fs.specular = false;
-      else {
+      std::vector<VariantId> us;
+      bool none = false;
+      detail::fs_one_or_list(v, "specular", where, [&](const nlohmann::json& x) {
+        const std::string s = detail::fs_string(x, "specular", where);
+        if (s == "none") {
+          none = true;
+          return;
+        }
+        VariantId id{};
         try {
-          fs.variant = parse_variant(s);
+          id = parse_variant(s);
         } catch (const std::exception& e) {
           fs_fail(where, std::string(e.what()) + " or none");
         }
-        if (is_table_variant(fs.variant))
+        if (is_table_variant(id))
           fs_fail(where, "specular unit '" + s + "' is not supported by the lighting core (it has no table-load port; "
                          "use cs16, schlick_div, schlick_nr or schlick_iter)");
-        fs.specular = true;
+        for (auto u : us)
+          if (u == id) fs_fail(where, "specular unit '" + s + "' named twice");
+        us.push_back(id);
+      });
+      if (none && !us.empty()) fs_fail(where, "'specular': none cannot be listed with units");
+      fs.specular = !none;
+      if (fs.specular) {
+        fs.variant = us.front();
+        fs.more_units.assign(us.begin() + 1, us.end());
+      } else {
+        fs.more_units.clear();
       }
     } else if (k == "cutoff") {
       try {
@@ -140,15 +212,25 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
       cutoff_given = true;
     } else if (k == "norm") fs.norm = detail::fs_bool(v, "norm", where);
     else if (k == "reflection") {
-      const std::string s = detail::fs_string(v, "reflection", where);
-      if (s != "blinn" && s != "phong") fs_fail(where, "'reflection' must be blinn or phong");
-      fs.blinn = s == "blinn";
+      bool b = false, p = false;
+      detail::fs_one_or_list(v, "reflection", where, [&](const nlohmann::json& x) {
+        const std::string s = detail::fs_string(x, "reflection", where);
+        if (s != "blinn" && s != "phong") fs_fail(where, "'reflection' must be blinn, phong or a list of both");
+        (s == "blinn" ? b : p) = true;
+      });
+      fs.blinn = b;
+      fs.phong = p;
     } else if (k == "local_viewer") fs.local_viewer = detail::fs_bool(v, "local_viewer", where);
     else if (k == "normalize") fs.normalize = detail::fs_bool(v, "normalize", where);
     else if (k == "channels") {
       if (!v.is_number_integer() || (v.get<int>() != 1 && v.get<int>() != 3))
         fs_fail(where, "'channels' must be 1 or 3");
       fs.channels = v.get<int>();
+    } else if (k == "lanes") {
+      if (!v.is_number_integer() || v.get<int>() < 1 || v.get<int>() > kMaxLights)
+        fs_fail(where, "'lanes' must be an integer 1.." + std::to_string(kMaxLights));
+      fs.lanes = v.get<int>();
+      lanes_given = true;
     } else {
       fs_fail(where, "unknown key '" + k + "'");
     }
@@ -162,10 +244,15 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
     if (std::string(e.what()).rfind(where, 0) == 0) throw;
     fs_fail(where, e.what());
   }
-  if (cutoff_given && (!fs.specular || fs.variant != VariantId::cs16))
-    fs_fail(where, "'cutoff' applies to the cs16 unit only");
+  if (cutoff_given && !fs.has_unit(VariantId::cs16)) fs_fail(where, "'cutoff' applies to the cs16 unit only");
   if (fs.norm && !fs.specular) fs_fail(where, "'norm' needs a specular unit");
   if (!fs.ambient && !fs.diffuse && !fs.specular) fs_fail(where, "no term enabled (ambient, diffuse, specular)");
+  if (lanes_given && fs.lanes > fs.num_lights())
+    fs_fail(where, "'lanes' " + std::to_string(fs.lanes) + " exceeds the " + std::to_string(fs.num_lights()) +
+                       " light slots");
+  if (fs.lanes > fs.num_lights()) fs.lanes = fs.num_lights();
+  if (fs.specular && fs.has_unit(VariantId::schlick_iter) && fs.units().size() > 1)
+    fs_fail(where, "schlick_iter (one fragment per F+4 clocks) cannot share a core with other units");
   return fs;
 }
 
@@ -209,17 +296,31 @@ inline nlohmann::ordered_json FeatureSet::canonical() const {
   nlohmann::ordered_json j;
   j["config"] = config;
   nlohmann::ordered_json l = nlohmann::ordered_json::array();
-  for (auto k : lights) l.push_back(to_string(k));
+  for (auto m : slots) {
+    nlohmann::ordered_json e = nlohmann::ordered_json::array();
+    for (int k = 0; k < kNumLightKinds; ++k)
+      if (m & (1u << k)) e.push_back(to_string(static_cast<LightKind>(k)));
+    if (e.size() == 1) l.push_back(e[0]);
+    else l.push_back(e);
+  }
   j["lights"] = l;
   j["ambient"] = ambient;
   j["diffuse"] = diffuse;
-  j["specular"] = specular ? std::string(variant_name(variant)) : std::string("none");
-  if (specular && variant == VariantId::cs16) j["cutoff"] = to_string(cutoff);
+  if (!specular) j["specular"] = "none";
+  else if (more_units.empty()) j["specular"] = std::string(variant_name(variant));
+  else {
+    nlohmann::ordered_json u = nlohmann::ordered_json::array();
+    for (auto v : units()) u.push_back(std::string(variant_name(v)));
+    j["specular"] = u;
+  }
+  if (has_unit(VariantId::cs16)) j["cutoff"] = to_string(cutoff);
   j["norm"] = norm;
-  j["reflection"] = blinn ? "blinn" : "phong";
+  if (blinn && phong) j["reflection"] = nlohmann::ordered_json::array({"blinn", "phong"});
+  else j["reflection"] = blinn ? "blinn" : "phong";
   j["local_viewer"] = local_viewer;
   j["normalize"] = normalize;
   j["channels"] = channels;
+  j["lanes"] = lanes;
   return j;
 }
 
@@ -237,20 +338,22 @@ inline std::string FeatureSet::key() const {
 
 inline std::vector<std::string> FeatureSet::verilog_params(int tagw) const {
   const Format f = format();
-  uint32_t kinds = 0;
-  for (size_t j = 0; j < lights.size(); ++j) kinds |= static_cast<uint32_t>(lights[j]) << (2 * j);
+  uint32_t kinds = 0, unit_mask = 0;
+  for (size_t j = 0; j < slots.size(); ++j) kinds |= static_cast<uint32_t>(slots[j]) << (3 * j);
+  for (auto u : units()) unit_mask |= 1u << static_cast<int>(u);
   std::vector<std::string> p = {
       "FRAC=" + std::to_string(f.frac),
       "GUARD=" + std::to_string(f.guard),
-      "LIGHTS=" + std::to_string(lights.size()),
-      "LIGHT_KINDS=" + std::to_string(kinds),
+      "LIGHTS=" + std::to_string(slots.size()),
+      "SLOT_KINDS=" + std::to_string(kinds),
+      "LANES=" + std::to_string(lanes),
       "AMBIENT=" + std::to_string(ambient ? 1 : 0),
       "DIFFUSE=" + std::to_string(diffuse ? 1 : 0),
-      "SPECULAR=" + std::to_string(specular ? 1 : 0),
-      "VARIANT=" + std::to_string(static_cast<int>(variant)),
+      "UNITS=" + std::to_string(unit_mask),
       "CUTOFF=" + std::to_string(static_cast<int>(cutoff)),
       "NORM=" + std::to_string(norm ? 1 : 0),
       "BLINN=" + std::to_string(blinn ? 1 : 0),
+      "PHONG=" + std::to_string(phong ? 1 : 0),
       "LOCAL_VIEWER=" + std::to_string(local_viewer ? 1 : 0),
       "NORMALIZE=" + std::to_string(normalize ? 1 : 0),
       "CHANNELS=" + std::to_string(channels),
@@ -260,16 +363,22 @@ inline std::vector<std::string> FeatureSet::verilog_params(int tagw) const {
 }
 
 inline std::string FeatureSet::summary() const {
-  std::string s = std::to_string(lights.size()) + (lights.size() == 1 ? " light (" : " lights (");
-  for (size_t j = 0; j < lights.size(); ++j) s += (j ? ", " : "") + std::string(to_string(lights[j]));
+  std::string s = std::to_string(slots.size()) + (slots.size() == 1 ? " slot (" : " slots (");
+  for (size_t j = 0; j < slots.size(); ++j) s += (j ? ", " : "") + kinds_name(slots[j]);
   s += ")";
+  s += lanes == 1 ? ", 1 lane" : ", " + std::to_string(lanes) + " lanes";
   if (ambient) s += ", ambient+emission";
   if (diffuse) s += ", diffuse";
   if (specular) {
-    s += ", specular " + std::string(variant_name(variant));
-    if (variant == VariantId::cs16) s += "/" + std::string(to_string(cutoff));
+    s += ", specular ";
+    bool first = true;
+    for (auto u : units()) {
+      s += (first ? "" : "|") + std::string(variant_name(u));
+      if (u == VariantId::cs16) s += "/" + std::string(to_string(cutoff));
+      first = false;
+    }
     if (norm) s += "+norm";
-    s += blinn ? ", blinn" : ", phong";
+    s += blinn && phong ? ", blinn|phong" : (blinn ? ", blinn" : ", phong");
     s += local_viewer ? ", local viewer" : ", infinite viewer";
   } else {
     s += ", no specular";

@@ -24,6 +24,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -52,11 +53,25 @@ inline int64_t sign_extend(uint64_t v, int bits) {
 inline uint64_t mask_bits(int bits) { return bits >= 64 ? ~uint64_t{0} : (uint64_t{1} << bits) - 1; }
 
 // The register file of sc_light, as the codes the hardware holds (register map: light_regs.hpp).
+// Mode registers (docs/lighting.md §4): light_model (bit 0 local viewer, bit 1 Phong reflection, bit 2
+// normalize), mat_unit (a variant id), per light mode (bit 0 enable, bits 3:1 kind). Registers are not
+// reset, in the RTL as here: a program writes every register it relies on.
+inline constexpr uint32_t kLightModelBits = 3;  // stored bits of light_model (bits 3..4 reserved)
+inline constexpr uint32_t kMatUnitBits = 4;
+inline constexpr uint32_t kLightModeBits = 4;
+inline constexpr uint32_t kModelLocalViewer = 1u, kModelPhong = 2u, kModelNormalize = 4u;
+inline constexpr uint32_t kModeEnable = 1u;
+inline constexpr uint32_t light_mode_word(bool enable, LightKind k) {
+  return (enable ? kModeEnable : 0u) | (static_cast<uint32_t>(k) << 1);
+}
+
 struct LightRegs {
   uint32_t global_ambient[3] = {};
+  uint32_t light_model = 0, mat_unit = 0;
   uint32_t mat_n = kNMin, mat_thr = 0, mat_coef = 0;
   uint32_t emission[3] = {}, ambient[3] = {}, diffuse[3] = {}, specular[3] = {};
   struct Light {
+    uint32_t mode = 0;
     int64_t pos[3] = {};
     uint32_t ambient[3] = {}, diffuse[3] = {}, specular[3] = {};
     uint32_t kc = 0, kl = 0, kq = 0;
@@ -64,7 +79,8 @@ struct LightRegs {
   std::array<Light, kMaxLights> light{};
 
   // What a write of `data` to `addr` does: the register takes the low bits of its width (signed
-  // formats sign-extended); an address that is no register is ignored. Returns false for those.
+  // formats sign-extended); an address that is no register (or a reserved one) is ignored. Returns
+  // false for those.
   bool write(int F, uint32_t addr, uint32_t data) {
     const uint32_t col = static_cast<uint32_t>(data & mask_bits(light_colour_bits(F)));
     const uint32_t attc = static_cast<uint32_t>(data & mask_bits(light_attc_bits(F)));
@@ -75,6 +91,8 @@ struct LightRegs {
       if (addr == kReg_mat_diffuse + c) return diffuse[c] = col, true;
       if (addr == kReg_mat_specular + c) return specular[c] = col, true;
     }
+    if (addr == kReg_light_model) return light_model = data & mask_bits(kLightModelBits), true;
+    if (addr == kReg_mat_unit) return mat_unit = data & mask_bits(kMatUnitBits), true;
     if (addr == kReg_mat_n) return mat_n = data & 0x7FF, true;
     if (addr == kReg_mat_thr) return mat_thr = static_cast<uint32_t>(data & mask_bits(F + 1)), true;
     if (addr == kReg_mat_coef) return mat_coef = static_cast<uint32_t>(data & mask_bits(light_coef_bits(F))), true;
@@ -92,6 +110,7 @@ struct LightRegs {
     if (off == kReg_light_kc) return L.kc = attc, true;
     if (off == kReg_light_kl) return L.kl = attc, true;
     if (off == kReg_light_kq) return L.kq = attc, true;
+    if (off == kReg_light_mode) return L.mode = data & mask_bits(kLightModeBits), true;
     return false;
   }
 };
@@ -111,15 +130,17 @@ struct Colour {
   bool operator!=(const Colour& o) const { return !(*this == o); }
 };
 
-// Per-light intermediates (names of rtl/sc_light.v's signals).
+// Per-light intermediates (names of rtl/sc_light_lane.v's signals).
 struct LightTrace {
+  bool on = false;     // enabled with a kind its slot can take
+  LightKind kind = LightKind::Directional;
   int64_t l[3] = {};   // unit direction to the light (F fraction bits)
   uint64_t d = 0;      // distance, F fraction bits (point_att)
   uint64_t q = 0;      // kc + kl·d + kq·d² (point_att)
   uint64_t att = 0;    // 1/q, F fraction bits, saturated (point_att); 2^F otherwise
   int64_t ndl = 0;     // ⌊N̂·L / 2^F⌋, signed
   uint32_t diff = 0;   // clamp(ndl, 0, 2^F)
-  bool f = false;      // ndl > 0
+  bool f = false;      // ndl > 0 (and the material's unit exists)
   int64_t x = 0;       // the specular unit's input code (clamped to its signed F+2-bit word)
   uint32_t spec = 0;   // the unit's output (F+1 bits, or F+8 bits with norm)
   uint64_t term[3] = {};  // the light's contribution per channel (after attenuation)
@@ -127,37 +148,87 @@ struct LightTrace {
 struct LightCoreTrace {
   int64_t nn[3] = {};  // N̂ (or N unchanged without normalize)
   int64_t v[3] = {};   // V̂
+  int passes = 1;      // ⌈enabled lights / lanes⌉, at least 1
   uint64_t scene[3] = {};
   std::array<LightTrace, kMaxLights> light{};
   uint64_t total[3] = {};
 };
 
+// The modes a register state selects among a core's capabilities (docs/lighting.md §4, the RTL's
+// decode): a mode naming an absent capability selects what exists — a light whose kind its slot
+// cannot take is off; local viewer / normalize without the hardware are off; the reflection is the
+// one that exists; a mat_unit naming an absent unit gives specular 0.
+struct LightModes {
+  bool local_viewer = false, phong = false, normalize = false;
+  int unit = -1;  // index into FeatureSet::units(), −1: absent (specular 0)
+  uint32_t on = 0;  // bit j: light j contributes
+  int enabled = 0;  // lights on
+};
+
 class LightCore {
  public:
-  explicit LightCore(FeatureSet fs)
-      : fs_(std::move(fs)), f_(fs_.format()), unit_(fs_.variant, f_, fs_.cutoff) {
-    if (fs_.norm) unit_.set_norm(true, 0);  // the coefficient comes from mat_coef; the model index is unused
+  explicit LightCore(FeatureSet fs) : fs_(std::move(fs)), f_(fs_.format()) {
+    for (VariantId v : fs_.units()) {
+      units_.emplace_back(v, f_, fs_.cutoff);
+      if (fs_.norm) units_.back().set_norm(true, 0);  // the coefficient comes from mat_coef; the model index is unused
+    }
+    if (units_.empty()) units_.emplace_back(fs_.variant, f_, fs_.cutoff);  // latency / setup only
   }
 
   [[nodiscard]] const FeatureSet& features() const { return fs_; }
   [[nodiscard]] const Format& format() const { return f_; }
-  [[nodiscard]] const Unit& unit() const { return unit_; }
+  // The first unit (the only one of a specialised core).
+  [[nodiscard]] const Unit& unit() const { return units_.front(); }
+  [[nodiscard]] const std::vector<Unit>& units() const { return units_; }
 
-  // The RTL's fixed latency (accepting edge → out_valid_o, out_ready_i high throughout) and the
-  // fewest advancing edges under backpressure (docs/lighting.md §5).
+  [[nodiscard]] LightModes modes(const LightRegs& r) const {
+    LightModes m;
+    m.local_viewer = fs_.specular && fs_.local_viewer && (r.light_model & kModelLocalViewer);
+    m.phong = fs_.phong && (!fs_.blinn || (r.light_model & kModelPhong));
+    m.normalize = fs_.normalize && (r.light_model & kModelNormalize);
+    const std::vector<VariantId> us = fs_.units();
+    for (size_t i = 0; i < us.size(); ++i)
+      if (static_cast<uint32_t>(us[i]) == r.mat_unit) m.unit = static_cast<int>(i);
+    for (int j = 0; j < fs_.num_lights(); ++j) {
+      const uint32_t mode = r.light[static_cast<size_t>(j)].mode;
+      const uint32_t kind = mode >> 1;
+      if ((mode & kModeEnable) && kind < static_cast<uint32_t>(kNumLightKinds) &&
+          fs_.slot_can(j, static_cast<LightKind>(kind))) {
+        m.on |= 1u << j;
+        ++m.enabled;
+      }
+    }
+    return m;
+  }
+  // Passes per fragment: ⌈enabled / lanes⌉, at least one (the scene term alone).
+  [[nodiscard]] int passes(const LightRegs& r) const {
+    const int k = modes(r).enabled;
+    return k == 0 ? 1 : (k + fs_.lanes - 1) / fs_.lanes;
+  }
+
+  // The RTL's latency (accepting edge → out_valid_o, out_ready_i high throughout) and the fewest
+  // advancing edges under backpressure, for a register state (docs/lighting.md §5); without one,
+  // the largest and the smallest over every register state.
+  [[nodiscard]] int latency(const LightRegs& r) const;
+  [[nodiscard]] int latency_min(const LightRegs& r) const;
   [[nodiscard]] int latency() const;
   [[nodiscard]] int latency_min() const;
+  // Clocks between two passes (schlick_iter: F+4, else 1) and the latency of one pass.
+  [[nodiscard]] int pass_interval() const;
+  [[nodiscard]] int pass_latency(int unit_index) const;
 
   // The per-fragment datapath, for the register values the core holds.
   [[nodiscard]] Colour eval(const LightRegs& r, const Fragment& fr, LightCoreTrace* tr = nullptr) const {
     const int F = f_.frac;
     const int64_t one = int64_t{1} << F;
+    const LightModes md = modes(r);
     LightCoreTrace t;
+    t.passes = md.enabled == 0 ? 1 : (md.enabled + fs_.lanes - 1) / fs_.lanes;
     // N̂ (GL_NORMALIZE) — rtl/sc_normalize.v
-    if (fs_.normalize) normalize3(F, fr.n, t.nn);
+    if (md.normalize) normalize3(F, fr.n, t.nn);
     else std::copy(fr.n, fr.n + 3, t.nn);
     // V̂: local viewer normalise(−P), else (0, 0, 1)
-    if (fs_.specular && fs_.local_viewer) {
+    if (md.local_viewer) {
       const int64_t mp[3] = {-fr.p[0], -fr.p[1], -fr.p[2]};
       normalize3(F, mp, t.v);
     } else {
@@ -169,9 +240,12 @@ class LightCore {
     for (int c = 0; c < ch; ++c)
       t.scene[c] = fs_.ambient ? r.emission[c] + ((uint64_t{r.ambient[c]} * r.global_ambient[c]) >> F) : 0;
     for (int j = 0; j < fs_.num_lights(); ++j) {
-      const LightKind kind = fs_.lights[j];
-      const LightRegs::Light& L = r.light[j];
-      LightTrace& lt = t.light[j];
+      if (!(md.on & (1u << j))) continue;
+      const LightRegs::Light& L = r.light[static_cast<size_t>(j)];
+      LightTrace& lt = t.light[static_cast<size_t>(j)];
+      const LightKind kind = static_cast<LightKind>(L.mode >> 1);
+      lt.on = true;
+      lt.kind = kind;
       lt.att = static_cast<uint64_t>(one);
       if (kind == LightKind::Directional) {
         std::copy(L.pos, L.pos + 3, lt.l);
@@ -188,10 +262,10 @@ class LightCore {
       }
       lt.ndl = dot3(t.nn, lt.l) >> F;
       lt.diff = static_cast<uint32_t>(std::clamp<int64_t>(lt.ndl, 0, one));
-      lt.f = lt.ndl > 0;
+      lt.f = lt.ndl > 0 && md.unit >= 0;
       if (fs_.specular) {
         int64_t x;
-        if (fs_.blinn) {
+        if (!md.phong) {
           const int64_t h[3] = {lt.l[0] + t.v[0], lt.l[1] + t.v[1], lt.l[2] + t.v[2]};
           int64_t hn[3];
           normalize3(F, h, hn);
@@ -202,20 +276,21 @@ class LightCore {
           x = dot3(rv, t.v) >> F;
         }
         lt.x = std::clamp<int64_t>(x, f_.in_min(), f_.in_max());  // the unit's signed F+2-bit word, saturated
-        lt.spec = unit_.eval(mat, lt.x);
+        lt.spec = units_[static_cast<size_t>(md.unit < 0 ? 0 : md.unit)].eval(mat, lt.x);
       }
       for (int c = 0; c < ch; ++c) {
         uint64_t sum = 0;
         if (fs_.ambient) sum += (uint64_t{r.ambient[c]} * L.ambient[c]) >> F;
         if (fs_.diffuse) sum += (((uint64_t{lt.diff} * r.diffuse[c]) >> F) * L.diffuse[c]) >> F;
         if (fs_.specular && lt.f) sum += (((uint64_t{lt.spec} * r.specular[c]) >> F) * L.specular[c]) >> F;
-        lt.term[c] = kind == LightKind::PointAtt ? (lt.att * sum) >> F : sum;
+        lt.term[c] = (lt.att * sum) >> F;  // att = 2^F unless point_att: exactly sum
       }
     }
+    // The sum over the lights is exact (no rounding) and saturated once (docs/spec.md §10.4).
     Colour out;
     for (int c = 0; c < ch; ++c) {
       uint64_t tot = t.scene[c];
-      for (int j = 0; j < fs_.num_lights(); ++j) tot += t.light[j].term[c];
+      for (int j = 0; j < fs_.num_lights(); ++j) tot += t.light[static_cast<size_t>(j)].term[c];
       t.total[c] = tot;
       out.c[c] = static_cast<uint32_t>(std::min<uint64_t>(tot, static_cast<uint64_t>(one)));
     }
@@ -234,25 +309,22 @@ class LightCore {
  private:
   FeatureSet fs_;
   Format f_;
-  Unit unit_;
+  std::vector<Unit> units_;
 };
 
 // ---- latency of rtl/sc_light.v (the same formula as the localparams in its header) -----------
 namespace detail {
 struct LightPipe {
-  int front;  // T_F: stages of the front pipeline (x_j and the sideband registered for the units)
-  int back;   // NB: stages of the back pipeline (colour products, attenuation, sum and clamp)
+  int front;  // T_F: stages of the front pipeline (x and the sideband registered for the units)
+  int back;   // NB: stages of the back pipeline (colour products, attenuation, sum and accumulator)
 };
 inline LightPipe light_pipe(const FeatureSet& fs) {
   constexpr int NL = 10;  // rtl/sc_normalize.v
   constexpr int RL = 7;   // rtl/sc_recip.v
-  bool any_att = false, any_point = false;
-  for (auto k : fs.lights) {
-    any_att = any_att || k == LightKind::PointAtt;
-    any_point = any_point || k == LightKind::Point;
-  }
+  const bool any_att = fs.any_kind(LightKind::PointAtt);
+  const bool any_point = fs.any_kind(LightKind::Point);
   const bool need_n = fs.diffuse || fs.specular;                    // N̂·L is computed
-  const bool lv = fs.specular && fs.local_viewer;                    // V̂ = normalise(−P)
+  const bool lv = fs.specular && fs.local_viewer;                    // V̂ = normalise(−P) exists
   const bool any_pl = any_att || (need_n && any_point);              // some L̂ = normalise(P_j − P)
   const int t_nn = (need_n && fs.normalize) ? NL : 0;                // N̂
   const int t_v = lv ? NL : 0;                                        // V̂
@@ -260,7 +332,9 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   const int t_a = std::max(t_nn, t_l);                                // N̂·L operands
   const int t_h = std::max(t_l, t_v);                                 // H = L + V
   const int t_rv = std::max(t_a + 2, t_v);                            // R·V operands
-  const int t_x = fs.blinn ? t_h + NL + 1 : (lv ? t_rv + 1 : t_a + 2);  // the unit input x_j
+  int t_x = 0;                                                        // the unit input x
+  if (fs.blinn) t_x = std::max(t_x, t_h + NL + 1);
+  if (fs.phong) t_x = std::max(t_x, lv ? t_rv + 1 : t_a + 2);
   const int t_att = NL + 3 + RL;                                      // att (distance, q, 1/q)
   int t_f = 1;
   if (need_n) t_f = std::max(t_f, t_a + 1);
@@ -270,41 +344,66 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
 }
 }  // namespace detail
 
-// Front, the specular unit (with sc_norm when norm) and back, counted in advancing edges.
-inline int LightCore::latency() const {
+inline int LightCore::pass_interval() const {
+  return fs_.specular && fs_.variant == VariantId::schlick_iter ? f_.frac + 4 : 1;
+}
+inline int LightCore::pass_latency(int unit_index) const {
   const detail::LightPipe p = detail::light_pipe(fs_);
-  return p.front + (fs_.specular ? unit_.latency() : 0) + p.back;
+  return p.front + (fs_.specular ? units_[static_cast<size_t>(unit_index < 0 ? 0 : unit_index)].latency() : 0) +
+         p.back;
+}
+
+// One pass's pipeline (front, the material's unit with sc_norm when norm, back), then one more
+// issue interval per further pass: the last pass enters the pipeline (passes − 1)·interval edges
+// after the fragment was accepted.
+inline int LightCore::latency(const LightRegs& r) const {
+  const LightModes m = modes(r);
+  return pass_latency(m.unit) + (passes(r) - 1) * pass_interval();
 }
 
 // With a specular unit the front, the unit and the back are separate elastic segments: while the
-// output is held, a fragment can move through the front and the unit into the unit's output stage,
+// output is held, the passes can move through the front and the unit into the unit's output stage,
 // so at least the edges into the back's stages and the taking edge remain (back + 1). Without one,
 // front and back are one global-enable pipeline: exactly latency().
+inline int LightCore::latency_min(const LightRegs& r) const {
+  return fs_.specular ? detail::light_pipe(fs_).back + 1 : latency(r);
+}
+
+inline int LightCore::latency() const {
+  int worst = 0;
+  for (size_t u = 0; u < units_.size(); ++u) worst = std::max(worst, pass_latency(static_cast<int>(u)));
+  const int max_passes = (fs_.num_lights() + fs_.lanes - 1) / fs_.lanes;
+  return worst + (max_passes - 1) * pass_interval();
+}
 inline int LightCore::latency_min() const {
-  return fs_.specular ? detail::light_pipe(fs_).back + 1 : latency();
+  if (fs_.specular) return detail::light_pipe(fs_).back + 1;
+  return pass_latency(0);
 }
 
 inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fragment& fr, SpecRef ref) const {
   const int F = f_.frac;
+  const LightModes md = modes(r);
   auto v = [F](int64_t code) { return std::ldexp(static_cast<double>(code), -F); };
   auto norm3 = [](double a[3]) {
     const double l = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
     for (int i = 0; i < 3; ++i) a[i] = l > 0 ? a[i] / l : 0.0;
   };
   double nn[3] = {v(fr.n[0]), v(fr.n[1]), v(fr.n[2])}, p[3] = {v(fr.p[0]), v(fr.p[1]), v(fr.p[2])};
-  if (fs_.normalize) norm3(nn);
+  if (md.normalize) norm3(nn);
   double vv[3] = {0, 0, 1};
-  if (fs_.specular && fs_.local_viewer) {
+  if (md.local_viewer) {
     vv[0] = -p[0], vv[1] = -p[1], vv[2] = -p[2];
     norm3(vv);
   }
   const int n = static_cast<int>(r.mat_n);
+  const VariantId var = md.unit >= 0 ? units_[static_cast<size_t>(md.unit)].variant() : fs_.variant;
   std::array<double, 3> out{0, 0, 0};
   for (int c = 0; c < fs_.channels; ++c)
     if (fs_.ambient) out[c] = v(r.emission[c]) + v(r.ambient[c]) * v(r.global_ambient[c]);
   for (int j = 0; j < fs_.num_lights(); ++j) {
-    const LightKind kind = fs_.lights[j];
-    const LightRegs::Light& L = r.light[j];
+    if (!(md.on & (1u << j))) continue;
+    const LightRegs::Light& L = r.light[static_cast<size_t>(j)];
+    const LightKind kind = static_cast<LightKind>(L.mode >> 1);
     double l[3], att = 1.0;
     if (kind == LightKind::Directional) {
       for (int i = 0; i < 3; ++i) l[i] = v(L.pos[i]);
@@ -319,9 +418,9 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
     }
     const double ndl = nn[0] * l[0] + nn[1] * l[1] + nn[2] * l[2];
     double spec = 0.0;
-    if (fs_.specular && ndl > 0) {
+    if (fs_.specular && md.unit >= 0 && ndl > 0) {
       double x;
-      if (fs_.blinn) {
+      if (!md.phong) {
         double h[3] = {l[0] + vv[0], l[1] + vv[1], l[2] + vv[2]};
         norm3(h);
         x = nn[0] * h[0] + nn[1] * h[1] + nn[2] * h[2];
@@ -332,7 +431,7 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
       }
       x = std::clamp(x, 0.0, 1.0);
       if (ref == SpecRef::Exact) spec = golden::cos_pow(x, n);
-      else if (fs_.variant == VariantId::cs16 || squarer_form(fs_.variant))  // cs16 and its forms
+      else if (var == VariantId::cs16 || squarer_form(var))  // cs16 and its forms
         spec = fs_.cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(x, n) : golden::cs16_sign_clamp(x, n);
       else spec = golden::schlick(x, n);
       if (fs_.norm) spec *= v(r.mat_coef);
@@ -354,6 +453,8 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
 // (OpenGL state → codes; done once per light/material change by the driver, in double, like thr(n).)
 
 struct LightParams {
+  std::optional<LightKind> kind;       // default: the slot's first kind (its only one when specialised)
+  bool enabled = true;                 // GL_LIGHTi enable
   double position[4] = {0, 0, 1, 0};  // GL_POSITION in eye space; w = 0 directional
   double ambient[3] = {0, 0, 0}, diffuse[3] = {1, 1, 1}, specular[3] = {1, 1, 1};
   double kc = 1, kl = 0, kq = 0;       // GL_CONSTANT/LINEAR/QUADRATIC_ATTENUATION
@@ -362,9 +463,17 @@ struct MaterialParams {
   double emission[3] = {0, 0, 0}, ambient[3] = {0.2, 0.2, 0.2}, diffuse[3] = {0.8, 0.8, 0.8},
          specular[3] = {0, 0, 0};
   int shininess = 64;       // n, 16..1024
-  int norm_model = 0;       // index into kModels (feature norm only)
+  int norm_model = 0;       // index into kModels (feature norm only); −1: no normalisation (coef = 1)
   CoefKind norm_kind = CoefKind::Fitted;
+  std::optional<VariantId> unit;  // the specular unit (mat_unit); default: the core's first unit
 };
+// Global modes (light_model): default — every capability the core has that has no alternative.
+struct ModeParams {
+  bool local_viewer = false, phong = false, normalize = false;
+};
+inline ModeParams default_modes(const FeatureSet& fs) {
+  return {fs.local_viewer, !fs.blinn, fs.normalize};
+}
 
 namespace detail {
 inline uint32_t colour_code(int F, double x, const char* what) {
@@ -388,14 +497,22 @@ inline int64_t pos_code(int F, double x, const char* what) {
 // Material registers (n, thr, coef and the four colours).
 inline std::vector<RegWrite> material_writes(const LightCore& core, const MaterialParams& m) {
   const int F = core.format().frac;
+  const FeatureSet& fs = core.features();
   std::vector<RegWrite> w;
   validate_n(m.shininess);
-  Unit u(core.unit().variant(), core.format(), core.unit().cutoff());
-  if (core.features().norm) u.set_norm(true, m.norm_model, m.norm_kind);
+  const VariantId var = m.unit.value_or(fs.variant);
+  if (fs.specular && !fs.has_unit(var))
+    throw std::invalid_argument(std::string("specular unit ") + variant_name(var) + " is not in this core (" +
+                                fs.summary() + ")");
+  Unit u(var, core.format(), core.unit().cutoff());
+  const bool norm = fs.norm && m.norm_model >= 0;
+  if (norm) u.set_norm(true, m.norm_model, m.norm_kind);
   const UnitMaterial um = u.setup(m.shininess);
+  w.push_back({kReg_mat_unit, static_cast<uint32_t>(var)});
   w.push_back({kReg_mat_n, static_cast<uint32_t>(um.n)});
   w.push_back({kReg_mat_thr, um.thr});
-  w.push_back({kReg_mat_coef, um.coef});
+  // with the norm hardware and no normalisation: coef = 1.0 (sc_norm then passes the unit's value)
+  w.push_back({kReg_mat_coef, norm ? um.coef : (fs.norm ? (uint32_t{1} << F) : um.coef)});
   for (uint32_t c = 0; c < 3; ++c) {
     w.push_back({kReg_mat_emission + c, detail::colour_code(F, m.emission[c], "material emission")});
     w.push_back({kReg_mat_ambient + c, detail::colour_code(F, m.ambient[c], "material ambient")});
@@ -413,9 +530,13 @@ inline std::vector<RegWrite> light_writes(const LightCore& core, int j, const Li
   if (j < 0 || j >= fs.num_lights())
     throw std::invalid_argument("light " + std::to_string(j) + " not in the feature set (" +
                                 std::to_string(fs.num_lights()) + " lights)");
-  const LightKind kind = fs.lights[j];
+  const LightKind kind = lp.kind.value_or(fs.slot_kind(j));
+  if (!fs.slot_can(j, kind))
+    throw std::invalid_argument("light " + std::to_string(j) + " cannot be " + to_string(kind) +
+                                " in this core (slot kinds: " + kinds_name(fs.slots[static_cast<size_t>(j)]) + ")");
   const uint32_t base = static_cast<uint32_t>(j) * kLightStride;
   std::vector<RegWrite> w;
+  w.push_back({base + kReg_light_mode, light_mode_word(lp.enabled, kind)});
   const uint32_t pmask = static_cast<uint32_t>(mask_bits(light_pos_bits(F)));
   if (kind == LightKind::Directional) {
     if (lp.position[3] != 0.0) throw std::invalid_argument("light " + std::to_string(j) + " is directional (w = 0 expected)");
@@ -449,11 +570,26 @@ inline std::vector<RegWrite> light_writes(const LightCore& core, int j, const Li
   return w;
 }
 
-inline std::vector<RegWrite> global_writes(const LightCore& core, const double ambient[3]) {
+// Light j off (its other registers keep their values).
+inline std::vector<RegWrite> light_off_writes(int j) {
+  return {{static_cast<uint32_t>(j) * kLightStride + kReg_light_mode, 0u}};
+}
+
+inline uint32_t light_model_word(const ModeParams& m) {
+  return (m.local_viewer ? kModelLocalViewer : 0u) | (m.phong ? kModelPhong : 0u) | (m.normalize ? kModelNormalize : 0u);
+}
+
+// Global ambient and the global modes (light_model).
+inline std::vector<RegWrite> global_writes(const LightCore& core, const double ambient[3],
+                                           const ModeParams& modes) {
   std::vector<RegWrite> w;
+  w.push_back({kReg_light_model, light_model_word(modes)});
   for (uint32_t c = 0; c < 3; ++c)
     w.push_back({kReg_global_ambient + c, detail::colour_code(core.format().frac, ambient[c], "global ambient")});
   return w;
+}
+inline std::vector<RegWrite> global_writes(const LightCore& core, const double ambient[3]) {
+  return global_writes(core, ambient, default_modes(core.features()));
 }
 
 // Fragment codes from eye-space doubles (normal any length; position in [−128, 128)).

@@ -1,0 +1,360 @@
+// SPDX-License-Identifier: Apache-2.0
+// ============================================================================================
+// Filename : rtl/sc_light_lane.v
+// Purpose  : one lane of the lighting core's front (rtl/sc_light.v): for the light slot a pass gives
+//            it, the unit direction L̂, the attenuation 1/q, N̂·L and the specular unit's input x,
+//            bit for bit as LightCore::eval() (cmodel/include/shadecore/light.hpp). One global
+//            enable (en_i, the core's front-advancing condition); every box a register stage.
+//
+//   Slot registers are read through the slot index that travels with the pass (idx_i at stage 0,
+//   delayed here to every stage that reads a register; they cannot change while a pass is in flight).
+//   L̂     directional: the position register (a unit direction code, F+8 bits);
+//          point: sc_normalize(P_j − P) (P_j − P F+9 bits, also passed through for the distance)
+//   att    A1 d = max(⌊(P_j−P)·L̂ / 2^F⌋, 0); A2 dd = ⌊d²/2^F⌋, ⌊kl·d/2^F⌋; A3 q = kc + ⌊kl·d/2^F⌋ +
+//          ⌊kq·dd/2^F⌋; sc_recip(q) — for point_att; 2^F for every other kind
+//   ndl    ⌊N̂·L / 2^F⌋ → diff = clamp(ndl, 0, 2^F), f = ndl > 0
+//   x      Blinn: Ĥ = sc_normalize(L̂ + V̂), x = ⌊N̂·Ĥ / 2^F⌋; Phong: R = ⌊ndl·N̂ / 2^(F−1)⌋ − L̂,
+//          x = ⌊R·V̂ / 2^F⌋ (= R_z when only V = (0, 0, 1) exists); saturated to the unit's F+2-bit
+//          word; with both reflections both are computed and phong_i chooses at T_F.
+// Parameters: FRAC, NLT (slots), capabilities CAN_DIR / CAN_PT (point or point_att) / CAN_ATT, NEED_N,
+//             SPECULAR, DIFFUSE, BLINN, PHONG, LV, and the stage times of rtl/sc_light.v's header
+//             (T_L, T_A, T_H, T_RV, T_XB, T_XP, T_ATT, T_F).
+// Ports     : clk_i, en_i; idx_i (slot, stage 0); p_i (fragment position, stage 0); nn_a_i (N̂ at
+//             T_A), nn_b_i (N̂ at T_H+NL), nn_p_i (N̂ at T_A+1), v_h_i (V̂ at T_H), v_p_i (V̂ at T_RV);
+//             phong_i (mode); pos_i, katt_i, kind_i (every slot's registers, packed as
+//             sc_light_regfile.v); outputs at T_F: x_o, diff_o, f_o, att_o, idx_o.
+// ============================================================================================
+`default_nettype none
+
+module sc_light_lane #(
+    parameter integer FRAC     = 16,
+    parameter integer NLT      = 1,
+    parameter integer CAN_DIR  = 1,
+    parameter integer CAN_PT   = 0,
+    parameter integer CAN_ATT  = 0,
+    parameter integer NEED_N   = 1,
+    parameter integer SPECULAR = 1,
+    parameter integer DIFFUSE  = 1,
+    parameter integer BLINN    = 1,
+    parameter integer PHONG    = 0,
+    parameter integer LV       = 0,
+    parameter integer T_L      = 0,
+    parameter integer T_A      = 0,
+    parameter integer T_H      = 0,
+    parameter integer T_RV     = 0,
+    parameter integer T_XB     = 0,
+    parameter integer T_XP     = 0,
+    parameter integer T_ATT    = 0,
+    parameter integer T_F      = 1
+) (
+    input  wire                      clk_i,
+    input  wire                      en_i,
+    input  wire [2:0]                idx_i,
+    input  wire [3*(FRAC+8)-1:0]     p_i,
+    input  wire [3*(FRAC+2)-1:0]     nn_a_i,
+    input  wire [3*(FRAC+2)-1:0]     nn_b_i,
+    input  wire [3*(FRAC+2)-1:0]     nn_p_i,
+    input  wire [3*(FRAC+2)-1:0]     v_h_i,
+    input  wire [3*(FRAC+2)-1:0]     v_p_i,
+    input  wire                      phong_i,
+    input  wire [NLT*3*(FRAC+8)-1:0] pos_i,
+    input  wire [NLT*3*(FRAC+8)-1:0] katt_i,
+    input  wire [NLT*2-1:0]          kind_i,
+    output wire [FRAC+1:0]           x_o,
+    output wire [FRAC:0]             diff_o,
+    output wire                      f_o,
+    output wire [FRAC+7:0]           att_o,
+    output wire [2:0]                idx_o
+);
+
+`include "sc_light_regs.vh"
+
+  localparam integer F   = FRAC;
+  localparam integer NW  = FRAC + 2;
+  localparam integer PW  = FRAC + 8;
+  localparam integer CL  = FRAC + 1;
+  localparam integer LW  = (CAN_DIR != 0) ? PW : NW;         // component width of L
+  localparam integer HVW = LW + 1;                           // of H = L + V
+  localparam integer NDW = LW + 4;                           // of ⌊N̂·L / 2^F⌋
+  localparam integer RVW = NDW + 4;                          // of R = 2(N̂·L)N̂ − L
+  localparam integer NEED_L = (NEED_N != 0 || CAN_ATT != 0) ? 1 : 0;
+  localparam integer POINT_L = (CAN_PT != 0 && NEED_L != 0) ? 1 : 0;   // an L̂ = normalise(P_j − P)
+  localparam [CL-1:0] ONE   = {1'b1, {FRAC{1'b0}}};
+  localparam [NW-1:0] X_MAX = {2'b01, {FRAC{1'b1}}};
+  localparam [NW-1:0] X_MIN = {2'b10, {FRAC{1'b0}}};
+  localparam [PW-1:0] ATT_ONE = {{7{1'b0}}, 1'b1, {FRAC{1'b0}}};
+
+  genvar gi, k;
+
+  // ---------------------------------------------------------------------------- slot index per stage
+  wire [3*(T_F+1)-1:0] idx_s;   // the slot index at stage k at [3k +: 3]
+  assign idx_s[2:0] = idx_i;
+  generate
+    for (k = 1; k <= T_F; k = k + 1) begin : g_idx
+      reg [2:0] idx_q;
+      always @(posedge clk_i) begin
+        if (en_i) idx_q <= idx_s[3*(k-1) +: 3];
+      end
+      assign idx_s[3*k +: 3] = idx_q;
+    end
+  endgenerate
+  assign idx_o = idx_s[3*T_F +: 3];
+  wire [2:0] idx_0 = idx_s[2:0];
+  wire [2:0] idx_l = idx_s[3*T_L +: 3];
+  wire [1:0] kind_l = kind_i[2*idx_l +: 2];
+  wire [3*PW-1:0] pos_0 = pos_i[3*PW*idx_0 +: 3*PW];
+  wire [3*PW-1:0] pos_l = pos_i[3*PW*idx_l +: 3*PW];
+
+  // ---------------------------------------------------------------------------- L (and the distance)
+  wire [3*LW-1:0]     l;      // unit direction to the light at T_L
+  wire [3*(PW+1)-1:0] dv_d;   // P_j − P at T_L (point lights)
+  wire [3*NW-1:0]     l_pt;   // L̂ of a point light at T_L
+  generate
+    if (POINT_L != 0) begin : g_l_point
+      wire [3*(PW+1)-1:0] dv;
+      for (gi = 0; gi < 3; gi = gi + 1) begin : g_dv
+        wire [PW-1:0] pj = pos_0[gi*PW +: PW];
+        wire [PW-1:0] pf = p_i[gi*PW +: PW];
+        assign dv[gi*(PW+1) +: PW+1] = {pj[PW-1], pj} - {pf[PW-1], pf};
+      end
+      sc_normalize #(.FRAC(FRAC), .VW(PW+1)) u_norm_l (
+          .clk_i(clk_i), .en_i(en_i), .v_i(dv), .u_o(l_pt), .v_o(dv_d));
+    end else begin : g_no_point
+      assign l_pt = {3*NW{1'b0}};
+      assign dv_d = {3*(PW+1){1'b0}};
+      wire unused_pt = &{1'b0, l_pt, dv_d, p_i, pos_0};
+    end
+    for (gi = 0; gi < 3; gi = gi + 1) begin : g_lsel
+      wire [NW-1:0] lp = l_pt[gi*NW +: NW];
+      wire [LW-1:0] lp_w = {{(LW-NW){lp[NW-1]}}, lp};
+      if (CAN_DIR != 0 && POINT_L != 0) begin : g_both
+        assign l[gi*LW +: LW] = (kind_l == KIND_DIRECTIONAL[1:0]) ? pos_l[gi*PW +: PW] : lp_w;
+      end else if (CAN_DIR != 0) begin : g_dir
+        assign l[gi*LW +: LW] = pos_l[gi*PW +: PW];
+        wire unused_lp = &{1'b0, lp_w};
+      end else begin : g_pt
+        assign l[gi*LW +: LW] = lp_w;
+      end
+    end
+    if (CAN_DIR == 0 || POINT_L == 0) begin : g_kind_unused
+      wire unused_kind_l = &{1'b0, kind_l, pos_l};
+    end
+  endgenerate
+
+  // ---------------------------------------------------------------------------- attenuation (point_att)
+  wire [FRAC+7:0] att_f;   // att at T_F
+  generate
+    if (CAN_ATT != 0) begin : g_att
+      localparam integer DW = FRAC + 9;    // distance d < 2^(F+9) (|P_j − P| < √3·2^(F+8))
+      localparam integer QW = FRAC + 27;   // q = kc + kl·d + kq·d² < 2^(F+27)
+      wire [2:0] idx_a1 = idx_s[3*(T_L+1) +: 3];
+      wire [2:0] idx_a2 = idx_s[3*(T_L+2) +: 3];
+      wire [2:0] idx_t  = idx_s[3*T_ATT +: 3];
+      wire [PW-1:0] kl = katt_i[(3*idx_a1 + 1)*PW +: PW];
+      wire [PW-1:0] kc = katt_i[(3*idx_a2 + 0)*PW +: PW];
+      wire [PW-1:0] kq = katt_i[(3*idx_a2 + 2)*PW +: PW];
+      // A1 (T_L+1): dl = ⌊(P_j − P)·L̂ / 2^F⌋, d = max(dl, 0)
+      wire signed [PW+NW:0] dp0 = $signed(dv_d[0 +: PW+1]) * $signed(l_pt[0 +: NW]);
+      wire signed [PW+NW:0] dp1 = $signed(dv_d[PW+1 +: PW+1]) * $signed(l_pt[NW +: NW]);
+      wire signed [PW+NW:0] dp2 = $signed(dv_d[2*(PW+1) +: PW+1]) * $signed(l_pt[2*NW +: NW]);
+      wire [PW+NW+2:0] dsum = {{2{dp0[PW+NW]}}, dp0} + {{2{dp1[PW+NW]}}, dp1} + {{2{dp2[PW+NW]}}, dp2};
+      wire [DW-1:0] d_d = dsum[PW+NW+2] ? {DW{1'b0}} : dsum[F+DW-1:F];
+      wire unused_dsum = &{1'b0, dsum[PW+NW+1:F+DW], dsum[F-1:0]};
+      reg [DW-1:0] a1_d_q;
+      always @(posedge clk_i) begin
+        if (en_i) a1_d_q <= d_d;
+      end
+      // A2: dd = ⌊d² / 2^F⌋, kld = ⌊kl·d / 2^F⌋
+      wire [2*DW-1:0]    dd_p  = {{DW{1'b0}}, a1_d_q} * {{DW{1'b0}}, a1_d_q};
+      wire [PW+DW-1:0]   kld_p = {{DW{1'b0}}, kl} * {{PW{1'b0}}, a1_d_q};
+      wire unused_a2 = &{1'b0, dd_p[F-1:0], kld_p[F-1:0]};
+      reg [2*DW-F-1:0]   a2_dd_q;
+      reg [PW+DW-F-1:0]  a2_kld_q;
+      always @(posedge clk_i) begin
+        if (en_i) begin
+          a2_dd_q  <= dd_p[2*DW-1:F];
+          a2_kld_q <= kld_p[PW+DW-1:F];
+        end
+      end
+      // A3: q = kc + kld + ⌊kq·dd / 2^F⌋
+      localparam integer DDW = 2 * DW - F;
+      wire [PW+DDW-1:0] kqdd_p = {{DDW{1'b0}}, kq} * {{PW{1'b0}}, a2_dd_q};
+      wire unused_a3 = &{1'b0, kqdd_p[F-1:0]};
+      wire [QW-1:0] q_d = {{(QW-PW){1'b0}}, kc} + {{(QW-(PW+DW-F)){1'b0}}, a2_kld_q}
+                        + {{(QW-(PW+DDW-F)){1'b0}}, kqdd_p[PW+DDW-1:F]};
+      reg [QW-1:0] a3_q_q;
+      always @(posedge clk_i) begin
+        if (en_i) a3_q_q <= q_d;
+      end
+      // att = 1/q at T_ATT for point_att, 2^F for the other kinds; then to T_F
+      wire [FRAC+7:0] att_r;
+      sc_recip #(.FRAC(FRAC), .QW(QW)) u_recip (
+          .clk_i(clk_i), .en_i(en_i), .q_i(a3_q_q), .att_o(att_r));
+      wire [1:0] kind_t = kind_i[2*idx_t +: 2];
+      wire [FRAC+7:0] att_k = (kind_t == KIND_POINT_ATT[1:0]) ? att_r : ATT_ONE;
+      sc_delay #(.W(FRAC+8), .DEPTH(T_F - T_ATT)) u_dly_att (
+          .clk_i(clk_i), .en_i(en_i), .d_i(att_k), .q_o(att_f));
+    end else begin : g_no_att
+      assign att_f = ATT_ONE;
+      wire unused_att = &{1'b0, katt_i, dv_d};
+    end
+  endgenerate
+  assign att_o = att_f;
+
+  // ---------------------------------------------------------------------------- N̂·L, diffuse factor, front-facing
+  wire [3*LW-1:0] l_a;     // L at T_A
+  wire [NDW-1:0]  ndl;     // ⌊N̂·L / 2^F⌋ at T_A+1
+  wire [CL-1:0]   diff_f;
+  wire            f_f;
+  generate
+    if (NEED_N != 0) begin : g_ndl
+      sc_delay #(.W(3*LW), .DEPTH(T_A - T_L)) u_dly_la (
+          .clk_i(clk_i), .en_i(en_i), .d_i(l), .q_o(l_a));
+      wire signed [NW+LW-1:0] np0 = $signed(nn_a_i[0 +: NW]) * $signed(l_a[0 +: LW]);
+      wire signed [NW+LW-1:0] np1 = $signed(nn_a_i[NW +: NW]) * $signed(l_a[LW +: LW]);
+      wire signed [NW+LW-1:0] np2 = $signed(nn_a_i[2*NW +: NW]) * $signed(l_a[2*LW +: LW]);
+      wire [NW+LW+1:0] nsum = {{2{np0[NW+LW-1]}}, np0} + {{2{np1[NW+LW-1]}}, np1}
+                            + {{2{np2[NW+LW-1]}}, np2};
+      wire unused_nsum = &{1'b0, nsum[F-1:0]};
+      reg [NDW-1:0] ndl_q;
+      always @(posedge clk_i) begin
+        if (en_i) ndl_q <= nsum[NW+LW+1:F];
+      end
+      assign ndl = ndl_q;
+      wire          neg   = ndl_q[NDW-1];
+      wire          big   = !neg && (ndl_q > {{(NDW-CL){1'b0}}, ONE});
+      wire [CL-1:0] diff1 = neg ? {CL{1'b0}} : (big ? ONE : ndl_q[CL-1:0]);
+      wire          f1    = !neg && (ndl_q != {NDW{1'b0}});
+      if (DIFFUSE != 0) begin : g_diff
+        sc_delay #(.W(CL), .DEPTH(T_F - T_A - 1)) u_dly_diff (
+            .clk_i(clk_i), .en_i(en_i), .d_i(diff1), .q_o(diff_f));
+      end else begin : g_no_diff
+        assign diff_f = {CL{1'b0}};
+        wire unused_diff = &{1'b0, diff1};
+      end
+      if (SPECULAR != 0) begin : g_f
+        sc_delay #(.W(1), .DEPTH(T_F - T_A - 1)) u_dly_f (
+            .clk_i(clk_i), .en_i(en_i), .d_i(f1), .q_o(f_f));
+      end else begin : g_no_f
+        assign f_f = 1'b0;
+        wire unused_f = &{1'b0, f1};
+      end
+    end else begin : g_no_ndl
+      assign l_a    = {3*LW{1'b0}};
+      assign ndl    = {NDW{1'b0}};
+      assign diff_f = {CL{1'b0}};
+      assign f_f    = 1'b0;
+      wire unused_ndl = &{1'b0, l, l_a, ndl, nn_a_i};
+    end
+  endgenerate
+  assign diff_o = diff_f;
+  assign f_o    = f_f;
+
+  // ---------------------------------------------------------------------------- x: the unit's input
+  wire [NW-1:0] xb_f, xp_f;   // Blinn's and Phong's x at T_F
+  generate
+    if (SPECULAR != 0 && BLINN != 0) begin : g_blinn
+      // H = L + V at T_H (V = (0, 0, 2^F) unless local viewer), Ĥ at T_H+NL
+      wire [3*LW-1:0] l_h;
+      sc_delay #(.W(3*LW), .DEPTH(T_H - T_L)) u_dly_lh (
+          .clk_i(clk_i), .en_i(en_i), .d_i(l), .q_o(l_h));
+      wire [3*HVW-1:0] h;
+      for (gi = 0; gi < 3; gi = gi + 1) begin : g_h
+        wire [LW-1:0] lc = l_h[gi*LW +: LW];
+        wire [NW-1:0] vc = v_h_i[gi*NW +: NW];
+        assign h[gi*HVW +: HVW] = {lc[LW-1], lc} + {{(HVW-NW){vc[NW-1]}}, vc};
+      end
+      wire [3*NW-1:0]  hn;
+      wire [3*HVW-1:0] h_pass_unused;
+      sc_normalize #(.FRAC(FRAC), .VW(HVW)) u_norm_h (
+          .clk_i(clk_i), .en_i(en_i), .v_i(h), .u_o(hn), .v_o(h_pass_unused));
+      // x = ⌊N̂·Ĥ / 2^F⌋ (T_XB = T_H+NL+1)
+      wire signed [2*NW-1:0] xp0 = $signed(nn_b_i[0 +: NW]) * $signed(hn[0 +: NW]);
+      wire signed [2*NW-1:0] xp1 = $signed(nn_b_i[NW +: NW]) * $signed(hn[NW +: NW]);
+      wire signed [2*NW-1:0] xp2 = $signed(nn_b_i[2*NW +: NW]) * $signed(hn[2*NW +: NW]);
+      wire [2*NW+1:0] xsum = {{2{xp0[2*NW-1]}}, xp0} + {{2{xp1[2*NW-1]}}, xp1}
+                           + {{2{xp2[2*NW-1]}}, xp2};
+      localparam integer XFW = 2 * NW + 2 - FRAC;
+      wire [XFW-1:0] xs = xsum[2*NW+1:F];
+      wire unused_xsum = &{1'b0, xsum[F-1:0]};
+      wire in_rng = (xs[XFW-1:NW-1] == {(XFW-NW+1){1'b0}}) || (xs[XFW-1:NW-1] == {(XFW-NW+1){1'b1}});
+      reg [NW-1:0] x_q;
+      always @(posedge clk_i) begin
+        if (en_i) x_q <= in_rng ? xs[NW-1:0] : (xs[XFW-1] ? X_MIN : X_MAX);
+      end
+      sc_delay #(.W(NW), .DEPTH(T_F - T_XB)) u_dly_x (
+          .clk_i(clk_i), .en_i(en_i), .d_i(x_q), .q_o(xb_f));
+    end else begin : g_no_blinn
+      assign xb_f = {NW{1'b0}};
+      wire unused_b = &{1'b0, nn_b_i, v_h_i};
+    end
+    if (SPECULAR != 0 && PHONG != 0) begin : g_phong
+      // R = ((ndl·N̂) >> (F−1)) − L at T_A+1 (L delayed to T_A+1), registered at T_A+2
+      wire [3*LW-1:0] l1;
+      sc_delay #(.W(3*LW), .DEPTH(1)) u_dly_l1 (
+          .clk_i(clk_i), .en_i(en_i), .d_i(l_a), .q_o(l1));
+      wire [3*RVW-1:0] rv;
+      for (gi = 0; gi < 3; gi = gi + 1) begin : g_r
+        wire signed [NDW+NW-1:0] rp = $signed(ndl) * $signed(nn_p_i[gi*NW +: NW]);
+        wire [NDW+2:0] rs = rp[NDW+NW-1:F-1];
+        wire unused_rp = &{1'b0, rp[F-2:0]};
+        wire [LW-1:0] lc = l1[gi*LW +: LW];
+        assign rv[gi*RVW +: RVW] = {{(RVW-NDW-3){rs[NDW+2]}}, rs} - {{(RVW-LW){lc[LW-1]}}, lc};
+      end
+      if (LV != 0) begin : g_lv
+        // x = ⌊R·V̂ / 2^F⌋ at T_RV+1 (V̂ = (0, 0, 2^F) without the local-viewer mode: x = R_z)
+        reg [3*RVW-1:0] rv_q;
+        always @(posedge clk_i) begin
+          if (en_i) rv_q <= rv;
+        end
+        wire [3*RVW-1:0] rv_d;
+        sc_delay #(.W(3*RVW), .DEPTH(T_RV - T_A - 2)) u_dly_rv (
+            .clk_i(clk_i), .en_i(en_i), .d_i(rv_q), .q_o(rv_d));
+        wire signed [RVW+NW-1:0] xp0 = $signed(rv_d[0 +: RVW]) * $signed(v_p_i[0 +: NW]);
+        wire signed [RVW+NW-1:0] xp1 = $signed(rv_d[RVW +: RVW]) * $signed(v_p_i[NW +: NW]);
+        wire signed [RVW+NW-1:0] xp2 = $signed(rv_d[2*RVW +: RVW]) * $signed(v_p_i[2*NW +: NW]);
+        wire [RVW+NW+1:0] xsum = {{2{xp0[RVW+NW-1]}}, xp0} + {{2{xp1[RVW+NW-1]}}, xp1}
+                               + {{2{xp2[RVW+NW-1]}}, xp2};
+        localparam integer XFW = RVW + NW + 2 - FRAC;
+        wire [XFW-1:0] xs = xsum[RVW+NW+1:F];
+        wire unused_xsum = &{1'b0, xsum[F-1:0]};
+        wire in_rng = (xs[XFW-1:NW-1] == {(XFW-NW+1){1'b0}}) || (xs[XFW-1:NW-1] == {(XFW-NW+1){1'b1}});
+        reg [NW-1:0] x_q;
+        always @(posedge clk_i) begin
+          if (en_i) x_q <= in_rng ? xs[NW-1:0] : (xs[XFW-1] ? X_MIN : X_MAX);
+        end
+        sc_delay #(.W(NW), .DEPTH(T_F - T_XP)) u_dly_x (
+            .clk_i(clk_i), .en_i(en_i), .d_i(x_q), .q_o(xp_f));
+      end else begin : g_inf
+        // V = (0, 0, 1): x = R_z exactly (T_A+2)
+        wire [RVW-1:0] xs = rv[2*RVW +: RVW];
+        wire unused_rxy = &{1'b0, rv[2*RVW-1:0], v_p_i};
+        wire in_rng = (xs[RVW-1:NW-1] == {(RVW-NW+1){1'b0}}) || (xs[RVW-1:NW-1] == {(RVW-NW+1){1'b1}});
+        reg [NW-1:0] x_q;
+        always @(posedge clk_i) begin
+          if (en_i) x_q <= in_rng ? xs[NW-1:0] : (xs[RVW-1] ? X_MIN : X_MAX);
+        end
+        sc_delay #(.W(NW), .DEPTH(T_F - T_XP)) u_dly_x (
+            .clk_i(clk_i), .en_i(en_i), .d_i(x_q), .q_o(xp_f));
+      end
+    end else begin : g_no_phong
+      assign xp_f = {NW{1'b0}};
+      wire unused_p = &{1'b0, nn_p_i, v_p_i, ndl};
+    end
+    if (SPECULAR != 0 && BLINN != 0 && PHONG != 0) begin : g_x_both
+      assign x_o = phong_i ? xp_f : xb_f;
+    end else if (SPECULAR != 0 && PHONG != 0) begin : g_x_phong
+      assign x_o = xp_f;
+      wire unused_xb = &{1'b0, xb_f, phong_i};
+    end else begin : g_x_blinn
+      assign x_o = xb_f;
+      wire unused_xp = &{1'b0, xp_f, phong_i};
+    end
+    if (SPECULAR != 0 && BLINN != 0 && PHONG == 0) begin : g_ndl_b
+      wire unused_ndl_b = &{1'b0, ndl};   // Blinn needs only diff and f of N̂·L
+    end
+  endgenerate
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,311 @@
+// SPDX-License-Identifier: Apache-2.0
+// ============================================================================================
+// Filename : rtl/sc_light_regfile.v
+// Purpose  : register file of the lighting core rtl/sc_light.v (bit for bit LightRegs::write and
+//            LightCore::modes() of cmodel/include/shadecore/light.hpp; map: config/configs.json
+//            "light", generated into sc_light_regs.vh).
+//
+//   A write (wr_i: the core's reg_we_i && reg_ready_o) stores the low bits of the register's width;
+//   other addresses, reserved ones and the registers of absent capabilities are ignored. Registers
+//   are not reset. Register-only products (the scene term e + a·A and, per slot, a·Ia) are
+//   recomputed into registers at every edge: one edge behind a write, before any fragment needs them
+//   (a write only happens with the core empty, and the first fragment after it needs them later).
+//
+//   Mode decode (docs/lighting.md §4): a light slot is on when its mode's enable bit is set and its
+//   kind is one the slot can take (SLOT_KINDS); local viewer and normalize are on only where the
+//   hardware exists; the reflection is Phong when bit 1 is set and Phong exists, or when only Phong
+//   exists; mat_unit selects the unit with that variant id, and a variant that is absent selects the
+//   first unit for transport with its specular term forced to 0 (unit_kill_o).
+//
+// Parameters: as rtl/sc_light.v (FRAC, SLOT_KINDS, AMBIENT, DIFFUSE, UNITS, NORM, BLINN,
+//             PHONG, LOCAL_VIEWER, NORMALIZE, CHANNELS); NLT, NCH, AW as the core computes them.
+// Ports     : clk_i; wr_i, addr_i[AW-1:0], data_i[31:0] (a write this edge);
+//             per slot j, packed at j: pos_o (3 × F+8), katt_o (kc, kl, kq × F+8), kind_o (2 bits, the
+//             register's kind), on_o (1 bit), lamb_o (per channel (a_c·Ia_jc) >> F, F+2 bits),
+//             ldif_o, lspec_o (per channel F+1); material: scene_o (min(e + a·A >> F, 2^F)), mdif_o,
+//             mspec_o; unit: mat_we_o, mat_n_o, mat_thr_o, mat_coef_o (the values after this edge's
+//             write, with mat_we_o at the write edge), unit_sel_o (one-hot over variant ids),
+//             unit_kill_o; modes: lv_o, phong_o, normalize_o.
+// ============================================================================================
+`default_nettype none
+
+module sc_light_regfile #(
+    parameter integer FRAC         = 16,
+    parameter integer SLOT_KINDS   = 1,
+    parameter integer AMBIENT      = 1,
+    parameter integer DIFFUSE      = 1,
+    parameter integer UNITS        = 1,
+    parameter integer NORM         = 0,
+    parameter integer BLINN        = 1,
+    parameter integer PHONG        = 0,
+    parameter integer LOCAL_VIEWER = 0,
+    parameter integer NORMALIZE    = 1,
+    parameter integer NLT          = 1,
+    parameter integer NCH          = 3,
+    parameter integer AW           = 9
+) (
+    input  wire                  clk_i,
+    input  wire                  wr_i,
+    input  wire [AW-1:0]         addr_i,
+    input  wire [31:0]           data_i,
+    output wire [NLT*3*(FRAC+8)-1:0] pos_o,
+    output wire [NLT*3*(FRAC+8)-1:0] katt_o,
+    output wire [NLT*2-1:0]      kind_o,
+    output wire [NLT-1:0]        on_o,
+    output wire [NLT*NCH*(FRAC+2)-1:0] lamb_o,
+    output wire [NLT*NCH*(FRAC+1)-1:0] ldif_o,
+    output wire [NLT*NCH*(FRAC+1)-1:0] lspec_o,
+    output wire [NCH*(FRAC+1)-1:0] scene_o,
+    output wire [NCH*(FRAC+1)-1:0] mdif_o,
+    output wire [NCH*(FRAC+1)-1:0] mspec_o,
+    output wire                  mat_we_o,
+    output wire [10:0]           mat_n_o,
+    output wire [FRAC:0]         mat_thr_o,
+    output wire [FRAC+7:0]       mat_coef_o,
+    output wire [7:0]            unit_sel_o,
+    output wire                  unit_kill_o,
+    output wire                  lv_o,
+    output wire                  phong_o,
+    output wire                  normalize_o
+);
+
+`include "sc_light_regs.vh"
+
+  localparam integer F  = FRAC;
+  localparam integer PW = FRAC + 8;
+  localparam integer CL = FRAC + 1;
+  localparam [CL-1:0] ONE = {1'b1, {FRAC{1'b0}}};
+  localparam integer SPECULAR = (UNITS != 0) ? 1 : 0;
+  localparam integer LV = (SPECULAR != 0 && LOCAL_VIEWER != 0) ? 1 : 0;
+
+  function integer reg_at(input [AW-1:0] base, input integer off);
+    reg_at = {{(32-AW){1'b0}}, base} + off;
+  endfunction
+  function integer slot_kinds(input integer j);
+    slot_kinds = (SLOT_KINDS >> (3 * j)) & 7;
+  endfunction
+  function integer first_unit(input integer dummy);
+    integer v;
+    begin
+      first_unit = 0;
+      for (v = 7; v >= 0; v = v - 1) begin
+        if (((UNITS >> v) & 1) != 0) first_unit = v;
+      end
+      first_unit = first_unit + 0 * dummy;
+    end
+  endfunction
+
+  wire unused_data = &{1'b0, data_i};   // which bits are read depends on the capabilities
+  genvar j, c, gi;
+
+  // ---------------------------------------------------------------------------- global modes
+  generate
+    if (SPECULAR != 0 || NORMALIZE != 0) begin : g_model
+      reg [2:0] model_q;
+      always @(posedge clk_i) begin
+        if (wr_i && addr_i == REG_LIGHT_MODEL) model_q <= data_i[2:0];
+      end
+      assign lv_o        = (LV != 0) && model_q[0];
+      assign phong_o     = (SPECULAR != 0) && (PHONG != 0) && (BLINN == 0 || model_q[1]);
+      assign normalize_o = (NORMALIZE != 0) && model_q[2];
+    end else begin : g_no_model
+      assign lv_o = 1'b0;
+      assign phong_o = 1'b0;
+      assign normalize_o = 1'b0;
+    end
+  endgenerate
+
+  // ---------------------------------------------------------------------------- material colours, scene term
+  wire [NCH*CL-1:0] mamb_w;
+  generate
+    for (c = 0; c < NCH; c = c + 1) begin : g_mat
+      localparam integer A_GA = reg_at(REG_GLOBAL_AMBIENT, c);
+      localparam integer A_EM = reg_at(REG_MAT_EMISSION, c);
+      localparam integer A_MA = reg_at(REG_MAT_AMBIENT, c);
+      localparam integer A_MD = reg_at(REG_MAT_DIFFUSE, c);
+      localparam integer A_MS = reg_at(REG_MAT_SPECULAR, c);
+      if (AMBIENT != 0) begin : g_amb
+        reg [CL-1:0] ga_q, em_q, mamb_q, scene_q;
+        always @(posedge clk_i) begin
+          if (wr_i && addr_i == A_GA[AW-1:0]) ga_q   <= data_i[CL-1:0];
+          if (wr_i && addr_i == A_EM[AW-1:0]) em_q   <= data_i[CL-1:0];
+          if (wr_i && addr_i == A_MA[AW-1:0]) mamb_q <= data_i[CL-1:0];
+        end
+        wire [2*CL-1:0] ag = {{CL{1'b0}}, mamb_q} * {{CL{1'b0}}, ga_q};
+        wire [CL+1:0]   sc = {2'b00, em_q} + {1'b0, ag[2*CL-1:F]};
+        wire unused_ag = &{1'b0, ag[F-1:0]};
+        always @(posedge clk_i) begin
+          scene_q <= (sc > {2'b00, ONE}) ? ONE : sc[CL-1:0];
+        end
+        assign mamb_w[c*CL +: CL]  = mamb_q;
+        assign scene_o[c*CL +: CL] = scene_q;
+      end else begin : g_no_amb
+        assign mamb_w[c*CL +: CL]  = {CL{1'b0}};
+        assign scene_o[c*CL +: CL] = {CL{1'b0}};
+      end
+      if (DIFFUSE != 0) begin : g_dif
+        reg [CL-1:0] mdif_q;
+        always @(posedge clk_i) begin
+          if (wr_i && addr_i == A_MD[AW-1:0]) mdif_q <= data_i[CL-1:0];
+        end
+        assign mdif_o[c*CL +: CL] = mdif_q;
+      end else begin : g_no_dif
+        assign mdif_o[c*CL +: CL] = {CL{1'b0}};
+      end
+      if (SPECULAR != 0) begin : g_spec
+        reg [CL-1:0] mspec_q;
+        always @(posedge clk_i) begin
+          if (wr_i && addr_i == A_MS[AW-1:0]) mspec_q <= data_i[CL-1:0];
+        end
+        assign mspec_o[c*CL +: CL] = mspec_q;
+      end else begin : g_no_spec
+        assign mspec_o[c*CL +: CL] = {CL{1'b0}};
+      end
+    end
+  endgenerate
+
+  // ---------------------------------------------------------------------------- unit material, unit select
+  // The units' own copies are loaded at the same edge with the same values (mat_we_o with the next
+  // register values; legal at any write, since a write only happens with the core empty).
+  generate
+    if (SPECULAR != 0) begin : g_unit_mat
+      wire hit_n = wr_i && (addr_i == REG_MAT_N);
+      wire hit_t = wr_i && (addr_i == REG_MAT_THR);
+      reg [10:0]   mat_n_q;
+      reg [FRAC:0] mat_thr_q;
+      reg [3:0]    unit_q;
+      assign mat_n_o   = hit_n ? data_i[10:0] : mat_n_q;
+      assign mat_thr_o = hit_t ? data_i[FRAC:0] : mat_thr_q;
+      always @(posedge clk_i) begin
+        mat_n_q   <= mat_n_o;
+        mat_thr_q <= mat_thr_o;
+        if (wr_i && addr_i == REG_MAT_UNIT) unit_q <= data_i[3:0];
+      end
+      if (NORM != 0) begin : g_coef
+        wire hit_c = wr_i && (addr_i == REG_MAT_COEF);
+        reg [FRAC+7:0] mat_coef_q;
+        assign mat_coef_o = hit_c ? data_i[FRAC+7:0] : mat_coef_q;
+        always @(posedge clk_i) begin
+          mat_coef_q <= mat_coef_o;
+        end
+        assign mat_we_o = hit_n || hit_t || hit_c;
+      end else begin : g_no_coef
+        assign mat_coef_o = {(FRAC+8){1'b0}};
+        assign mat_we_o   = hit_n || hit_t;
+      end
+      // one-hot over variant ids 0..7; an absent variant: the first unit, specular forced to 0
+      localparam integer FIRST = first_unit(0);
+      localparam [7:0] UMASK = UNITS[7:0];
+      wire present = !unit_q[3] && UMASK[unit_q[2:0]];
+      for (gi = 0; gi < 8; gi = gi + 1) begin : g_sel
+        if (((UNITS >> gi) & 1) != 0) begin : g_u
+          assign unit_sel_o[gi] = present ? (unit_q[2:0] == gi) : (gi == FIRST);
+        end else begin : g_no_u
+          assign unit_sel_o[gi] = 1'b0;
+        end
+      end
+      assign unit_kill_o = !present;
+    end else begin : g_no_unit_mat
+      assign mat_we_o    = 1'b0;
+      assign mat_n_o     = 11'd0;
+      assign mat_thr_o   = {(FRAC+1){1'b0}};
+      assign mat_coef_o  = {(FRAC+8){1'b0}};
+      assign unit_sel_o  = 8'd0;
+      assign unit_kill_o = 1'b1;
+    end
+  endgenerate
+
+  // ---------------------------------------------------------------------------- light slots
+  generate
+    for (j = 0; j < NLT; j = j + 1) begin : g_slot
+      localparam integer KINDS  = slot_kinds(j);
+      localparam integer CAN_D  = KINDS & 1;
+      localparam integer CAN_PT = (KINDS >> 1) & 3;      // point or point_att
+      localparam integer CAN_A  = (KINDS >> 2) & 1;      // point_att
+      localparam integer NEED_P = ((CAN_D != 0 && (DIFFUSE != 0 || SPECULAR != 0)) || CAN_PT != 0) ? 1 : 0;
+      localparam integer ABASE  = LIGHT_STRIDE * j;
+      localparam integer A_MODE = reg_at(REG_LIGHT_MODE, ABASE);
+      localparam integer A_POS  = reg_at(REG_LIGHT_POSITION, ABASE);
+      localparam integer A_KC   = reg_at(REG_LIGHT_KC, ABASE);
+      localparam integer A_KL   = reg_at(REG_LIGHT_KL, ABASE);
+      localparam integer A_KQ   = reg_at(REG_LIGHT_KQ, ABASE);
+
+      // mode: enable and kind; on when the slot can take the kind
+      reg [3:0] mode_q;
+      always @(posedge clk_i) begin
+        if (wr_i && addr_i == A_MODE[AW-1:0]) mode_q <= data_i[3:0];
+      end
+      wire [2:0] kind = mode_q[3:1];
+      assign on_o[j]         = mode_q[0] && !kind[2] && (kind[1:0] != 2'd3) && ((KINDS >> kind[1:0]) & 1) != 0;
+      assign kind_o[2*j +: 2] = kind[1:0];
+
+      if (NEED_P != 0) begin : g_pos
+        for (gi = 0; gi < 3; gi = gi + 1) begin : g_c
+          localparam integer A = A_POS + gi;
+          reg [PW-1:0] pos_q;
+          always @(posedge clk_i) begin
+            if (wr_i && addr_i == A[AW-1:0]) pos_q <= data_i[PW-1:0];
+          end
+          assign pos_o[(3*j + gi)*PW +: PW] = pos_q;
+        end
+      end else begin : g_no_pos
+        assign pos_o[3*j*PW +: 3*PW] = {3*PW{1'b0}};
+      end
+      if (CAN_A != 0) begin : g_att
+        reg [PW-1:0] kc_q, kl_q, kq_q;
+        always @(posedge clk_i) begin
+          if (wr_i && addr_i == A_KC[AW-1:0]) kc_q <= data_i[PW-1:0];
+          if (wr_i && addr_i == A_KL[AW-1:0]) kl_q <= data_i[PW-1:0];
+          if (wr_i && addr_i == A_KQ[AW-1:0]) kq_q <= data_i[PW-1:0];
+        end
+        assign katt_o[3*j*PW +: 3*PW] = {kq_q, kl_q, kc_q};
+      end else begin : g_no_att
+        assign katt_o[3*j*PW +: 3*PW] = {3*PW{1'b0}};
+      end
+      for (c = 0; c < NCH; c = c + 1) begin : g_col
+        localparam integer A_LA = reg_at(REG_LIGHT_AMBIENT, ABASE + c);
+        localparam integer A_LD = reg_at(REG_LIGHT_DIFFUSE, ABASE + c);
+        localparam integer A_LS = reg_at(REG_LIGHT_SPECULAR, ABASE + c);
+        if (AMBIENT != 0) begin : g_amb
+          reg [CL-1:0] lamb_q;
+          reg [CL:0]   amb_q;
+          always @(posedge clk_i) begin
+            if (wr_i && addr_i == A_LA[AW-1:0]) lamb_q <= data_i[CL-1:0];
+          end
+          wire [2*CL-1:0] aa = {{CL{1'b0}}, mamb_w[c*CL +: CL]} * {{CL{1'b0}}, lamb_q};
+          wire unused_aa = &{1'b0, aa[F-1:0]};
+          always @(posedge clk_i) begin
+            amb_q <= aa[2*CL-1:F];
+          end
+          assign lamb_o[(NCH*j + c)*(CL+1) +: CL+1] = amb_q;
+        end else begin : g_no_amb
+          assign lamb_o[(NCH*j + c)*(CL+1) +: CL+1] = {(CL+1){1'b0}};
+        end
+        if (DIFFUSE != 0) begin : g_dif
+          reg [CL-1:0] ldif_q;
+          always @(posedge clk_i) begin
+            if (wr_i && addr_i == A_LD[AW-1:0]) ldif_q <= data_i[CL-1:0];
+          end
+          assign ldif_o[(NCH*j + c)*CL +: CL] = ldif_q;
+        end else begin : g_no_dif
+          assign ldif_o[(NCH*j + c)*CL +: CL] = {CL{1'b0}};
+        end
+        if (SPECULAR != 0) begin : g_spec
+          reg [CL-1:0] lspec_q;
+          always @(posedge clk_i) begin
+            if (wr_i && addr_i == A_LS[AW-1:0]) lspec_q <= data_i[CL-1:0];
+          end
+          assign lspec_o[(NCH*j + c)*CL +: CL] = lspec_q;
+        end else begin : g_no_spec
+          assign lspec_o[(NCH*j + c)*CL +: CL] = {CL{1'b0}};
+        end
+      end
+    end
+    if (AMBIENT == 0) begin : g_mamb_unused
+      wire unused_mamb = &{1'b0, mamb_w};
+    end
+  endgenerate
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,146 @@
+// SPDX-License-Identifier: Apache-2.0
+// ============================================================================================
+// Filename : rtl/sc_light_shade.v
+// Purpose  : one lane of the lighting core's back end (rtl/sc_light.v): a light's colour products,
+//            sum and attenuation per channel, bit for bit as LightCore::eval():
+//   B1  ⌊diff·d_c / 2^F⌋, ⌊spec·s_c / 2^F⌋ (spec = 0 unless f)
+//   B2  sum = ⌊a_c·Ia_jc / 2^F⌋ + ⌊·Id_jc / 2^F⌋ + ⌊·Is_jc / 2^F⌋ (0 for a lane with no light this pass)
+//   B3  term = ⌊att·sum / 2^F⌋ (the stage exists only with the point_att capability; att = 2^F for
+//       the other kinds, so term = sum exactly)
+//   term_o is the lane's term saturated to 2^F: every term is >= 0, so the core's saturating sum of
+//   saturated terms is exactly min(Σ, 2^F) of the unsaturated ones.
+//   Light registers are read through the slot index that travels with the pass (idx_i at B0).
+// Parameters: FRAC, NLT, NCH, SPW (unit output width), AMBIENT, DIFFUSE, SPECULAR, CAN_ATT.
+// Ports     : clk_i, en_i (the back-advancing condition); at B0 (the unit's output): spec_i, f_i,
+//             diff_i, att_i, idx_i, v_i (a light in this lane); material mdif_i, mspec_i; every slot's
+//             lamb_i, ldif_i, lspec_i (packed as sc_light_regfile.v); term_o at the last stage.
+// ============================================================================================
+`default_nettype none
+
+module sc_light_shade #(
+    parameter integer FRAC     = 16,
+    parameter integer NLT      = 1,
+    parameter integer NCH      = 3,
+    parameter integer SPW      = 17,
+    parameter integer AMBIENT  = 1,
+    parameter integer DIFFUSE  = 1,
+    parameter integer SPECULAR = 1,
+    parameter integer CAN_ATT  = 0
+) (
+    input  wire                          clk_i,
+    input  wire                          en_i,
+    input  wire [SPW-1:0]                spec_i,
+    input  wire                          f_i,
+    input  wire [FRAC:0]                 diff_i,
+    input  wire [FRAC+7:0]               att_i,
+    input  wire [2:0]                    idx_i,
+    input  wire                          v_i,
+    input  wire [NCH*(FRAC+1)-1:0]       mdif_i,
+    input  wire [NCH*(FRAC+1)-1:0]       mspec_i,
+    input  wire [NLT*NCH*(FRAC+2)-1:0]   lamb_i,
+    input  wire [NLT*NCH*(FRAC+1)-1:0]   ldif_i,
+    input  wire [NLT*NCH*(FRAC+1)-1:0]   lspec_i,
+    output wire [NCH*(FRAC+1)-1:0]       term_o
+);
+
+  localparam integer F    = FRAC;
+  localparam integer CL   = FRAC + 1;
+  localparam integer SUMW = ((SPW + 2 > FRAC + 3) ? SPW + 2 : FRAC + 3) + 2;   // per-light sum
+  localparam [CL-1:0] ONE = {1'b1, {FRAC{1'b0}}};
+
+  genvar c;
+
+  // spec only counts when N̂·L > 0
+  wire [SPW-1:0] spec_e = f_i ? spec_i : {SPW{1'b0}};
+  reg  [2:0] b1_idx_q;
+  reg        b1_v_q, b2_v_q;
+  always @(posedge clk_i) begin
+    if (en_i) begin
+      b1_idx_q <= idx_i;
+      b1_v_q   <= v_i;
+      b2_v_q   <= b1_v_q;
+    end
+  end
+  wire [FRAC+7:0] b2_att;   // att at B2 (point_att capability)
+  generate
+    if (CAN_ATT != 0) begin : g_b_att
+      reg [FRAC+7:0] b1_att_q, b2_att_q;
+      always @(posedge clk_i) begin
+        if (en_i) begin
+          b1_att_q <= att_i;
+          b2_att_q <= b1_att_q;
+        end
+      end
+      assign b2_att = b2_att_q;
+    end else begin : g_no_b_att
+      assign b2_att = {(FRAC+8){1'b0}};
+      wire unused_b_att = &{1'b0, att_i, b2_att};
+    end
+    if (SPECULAR == 0) begin : g_spec_unused
+      wire unused_spec = &{1'b0, spec_e, mspec_i, lspec_i};
+    end
+    if (DIFFUSE == 0) begin : g_diff_unused
+      wire unused_diff = &{1'b0, diff_i, mdif_i, ldif_i};
+    end
+    if (AMBIENT == 0) begin : g_amb_unused
+      wire unused_amb = &{1'b0, lamb_i};
+    end
+    for (c = 0; c < NCH; c = c + 1) begin : g_ch
+      // B1: pd = ⌊diff·d_c / 2^F⌋, ps = ⌊spec·s_c / 2^F⌋
+      wire [CL+1:0]   td;    // ⌊pd·Id_c / 2^F⌋ (B2 input)
+      wire [SPW+1:0]  ts;    // ⌊ps·Is_c / 2^F⌋
+      wire [CL:0]     amb = lamb_i[(NCH*b1_idx_q + c)*(CL+1) +: CL+1];
+      if (DIFFUSE != 0) begin : g_d
+        wire [2*CL-1:0] pd_p = {{CL{1'b0}}, diff_i} * {{CL{1'b0}}, mdif_i[c*CL +: CL]};
+        wire unused_pd = &{1'b0, pd_p[F-1:0]};
+        reg  [CL:0] b1_pd_q;
+        always @(posedge clk_i) begin
+          if (en_i) b1_pd_q <= pd_p[2*CL-1:F];
+        end
+        wire [CL-1:0] ld = ldif_i[(NCH*b1_idx_q + c)*CL +: CL];
+        wire [2*CL:0] td_p = {{CL{1'b0}}, b1_pd_q} * {{(CL+1){1'b0}}, ld};
+        wire unused_td = &{1'b0, td_p[F-1:0]};
+        assign td = td_p[2*CL:F];
+      end else begin : g_no_d
+        assign td = {(CL+2){1'b0}};
+      end
+      if (SPECULAR != 0) begin : g_s
+        wire [SPW+CL-1:0] ps_p = {{CL{1'b0}}, spec_e} * {{SPW{1'b0}}, mspec_i[c*CL +: CL]};
+        wire unused_ps = &{1'b0, ps_p[F-1:0]};
+        reg  [SPW:0] b1_ps_q;
+        always @(posedge clk_i) begin
+          if (en_i) b1_ps_q <= ps_p[SPW+CL-1:F];
+        end
+        wire [CL-1:0] ls = lspec_i[(NCH*b1_idx_q + c)*CL +: CL];
+        wire [SPW+CL:0] ts_p = {{CL{1'b0}}, b1_ps_q} * {{(SPW+1){1'b0}}, ls};
+        wire unused_ts = &{1'b0, ts_p[F-1:0]};
+        assign ts = ts_p[SPW+CL:F];
+      end else begin : g_no_s
+        assign ts = {(SPW+2){1'b0}};
+      end
+      // B2: sum = amb + td + ts (0 without a light in this lane)
+      wire [SUMW-1:0] sum_d = {{(SUMW-CL-1){1'b0}}, amb} + {{(SUMW-CL-2){1'b0}}, td}
+                            + {{(SUMW-SPW-2){1'b0}}, ts};
+      reg  [SUMW-1:0] b2_sum_q;
+      always @(posedge clk_i) begin
+        if (en_i) b2_sum_q <= b1_v_q ? sum_d : {SUMW{1'b0}};
+      end
+      if (CAN_ATT != 0) begin : g_b3
+        wire [SUMW+FRAC+7:0] at_p = {{SUMW{1'b0}}, b2_att} * {{(FRAC+8){1'b0}}, b2_sum_q};
+        wire unused_at = &{1'b0, at_p[F-1:0]};
+        wire [SUMW+7:0] t_d = at_p[SUMW+FRAC+7:F];
+        reg [CL-1:0] b3_term_q;
+        always @(posedge clk_i) begin
+          if (en_i) b3_term_q <= (t_d > {{(SUMW+7-F){1'b0}}, ONE}) ? ONE : t_d[CL-1:0];
+        end
+        assign term_o[c*CL +: CL] = b3_term_q;
+      end else begin : g_sat
+        assign term_o[c*CL +: CL] = (b2_sum_q > {{(SUMW-CL){1'b0}}, ONE}) ? ONE : b2_sum_q[CL-1:0];
+      end
+    end
+  endgenerate
+  wire unused_b2_v = &{1'b0, b2_v_q};
+
+endmodule
+
+`default_nettype wire
