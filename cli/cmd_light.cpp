@@ -50,7 +50,12 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
     apply(material_writes(core, m));
     for (int j = 0; j < fs.num_lights(); ++j) {
       LightParams lp;
-      const bool dir = fs.lights[j] == LightKind::Directional;
+      // the most general kind the slot can take (point_att on 'full', as the parallel core had)
+      LightKind kind = fs.slot_kind(j);
+      for (int k = 0; k < kNumLightKinds; ++k)
+        if (fs.slot_can(j, static_cast<LightKind>(k))) kind = static_cast<LightKind>(k);
+      lp.kind = kind;
+      const bool dir = kind == LightKind::Directional;
       lp.position[0] = u(-1, 1) * (dir ? 1 : 20);
       lp.position[1] = u(-1, 1) * (dir ? 1 : 20);
       lp.position[2] = dir ? u(0.2, 1) : u(-10, 20);
@@ -139,8 +144,9 @@ void add_light_sweep(CLI::App& app) {
           if (a->specular == "all") continue;
           throw std::invalid_argument("--specular " + a->specular + ": the lighting core has no table units");
         }
-        FeatureSet s = base;
+        FeatureSet s = base;  // the same datapath with this unit programmed (alone)
         s.variant = v.id;
+        s.more_units.clear();
         if (v.id != VariantId::cs16) s.cutoff = Cutoff::ThetaCr;
         sets.push_back(s);
       }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // shadecore render — a scene through the lighting core (docs/scenes.md).
 //
-//   shadecore render SCENE --out DIR [--rtl] [--full-core] [--json FILE] [--size WxH]
+//   shadecore render SCENE --out DIR [--rtl] [--full-core] [--lanes K] [--json FILE] [--size WxH]
 //
 // Derives the smallest feature set(s) that render the scene exactly (one core per specular unit in use),
 // prints them, rasterises on the host (shadecore/render/raster.hpp: host software, not RTL), and writes into DIR:
@@ -61,6 +61,7 @@ using json = nlohmann::ordered_json;
 struct RenderArgs {
   std::string scene, out, json_path, size;
   bool rtl = false, full_core = false, json_given = false, size_given = false;
+  int lanes = 1;
 };
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -317,6 +318,7 @@ void run_render(const RenderArgs& a) {
   ph.load = seconds_since(t_start);
   render::Settings st;
   st.full_core = a.full_core;
+  st.lanes = a.lanes;
   if (a.size_given) std::tie(st.width, st.height) = parse_size(a.size);
   const bool sheet = sc.contact_sheet.has_value();
   std::vector<std::string> names = {"cmodel.png", "exact.png", "diff_exact.png"};
@@ -392,7 +394,7 @@ void run_render(const RenderArgs& a) {
       std::string subs;
       for (const auto& s : grp.full_substitutions) subs += (subs.empty() ? "" : ", ") + s;
       fmt::print("  rendered on the full core: {}{}\n", set_line(grp.fs),
-                 subs.empty() ? std::string() : " — from the scene: " + subs);
+                 subs.empty() ? std::string() : " — at the scene's width: " + subs);
     }
     fmt::print("  fragments: {} ({} per pixel, {} per vertex, {} per face), {}\n", grp.dests.size(), grp.pixels,
                grp.vertices, grp.faces, plural(grp.writes, "register write", "register writes"));
@@ -546,6 +548,7 @@ void run_render(const RenderArgs& a) {
     j["width"] = img_w;
     j["height"] = img_h;
     j["full_core"] = a.full_core;
+    j["lanes"] = a.lanes;
     j["features"] = features;
     j["fragments"] = total_frags;
     j["error_vs_exact"] = stats_json(err_exact);
@@ -594,6 +597,10 @@ void add_render(CLI::App& app) {
   sub->add_option("--out", args->out, "output directory (created if needed)")->required()->check(cliargs::NonEmpty("path"));
   sub->add_flag("--rtl", args->rtl, "also render through the Verilated core and check it pixel by pixel");
   sub->add_flag("--full-core", args->full_core, "use the 'full' feature set instead of the derived one");
+  sub->add_option("--lanes", args->lanes,
+                  "lanes of every core (per-light datapaths; enabled lights take ceil(k/lanes) passes), clamped to "
+                  "its light slots")
+      ->check(CLI::Range(1, kMaxLights));
   auto* json_opt = sub->add_option("--json", args->json_path, "write a JSON report (atomically)")->check(cliargs::NonEmpty("path"));
   auto* size_opt = sub->add_option("--size", args->size, "render at WxH instead of the scene's image size (e.g. 64x64)")
                        ->check(cliargs::NonEmpty("size (expected WxH, e.g. 64x64)"));

@@ -100,6 +100,7 @@ struct Record {
   RegWrite w;
   Fragment f;
   Colour c;
+  int latency = 0;  // advancing edges without backpressure, for the registers the fragment is shaded with
 };
 
 // The co-simulation's stimulus (stimulus/include/shadecore/stimulus/light_stimulus.hpp) replayed through the C model: every
@@ -111,9 +112,13 @@ std::vector<Record> make_records(const LightCore& core, sim::LightMode mode, uin
   std::vector<Record> v;
   sim::CoreCommand c;
   while (stim.next(c)) {
-    Record r{c.is_write, c.w, c.f, {}};
-    if (c.is_write) regs.write(F, c.w.addr, c.w.data);
-    else r.c = core.eval(regs, c.f);
+    Record r{c.is_write, c.w, c.f, {}, 0};
+    if (c.is_write) {
+      regs.write(F, c.w.addr, c.w.data);
+    } else {
+      r.c = core.eval(regs, c.f);
+      r.latency = core.latency(regs);
+    }
     v.push_back(r);
   }
   return v;
@@ -133,8 +138,10 @@ std::string format_records(const FeatureSet& fset, const std::string& what, cons
   s += "// co-simulation; each fragment is shaded with the registers written before it in this file.\n";
   s += "// format: one record per line, ten hex words ($readmemh into a 32-bit memory, 10 words a record;\n";
   s += "// // lines are comments):\n";
-  s += "//   0 ADDR DATA 0 0 0 0 0 0 0    register write: reg_addr_i (8 bits), reg_data_i (32 bits)\n";
-  s += fmt::format("//   1 NX NY NZ PX PY PZ R G B    fragment: normal in_n*_i ({} bits, two's complement, 1.0 = 0x{:x}),\n",
+  s += "//   0 ADDR DATA 0 0 0 0 0 0 0    register write: reg_addr_i (9 bits), reg_data_i (32 bits)\n";
+  s += fmt::format("//   T NX NY NZ PX PY PZ R G B    fragment: T = 1 + 16·L, L its latency without backpressure (the\n"
+                   "//                                registers set its passes and unit: LightCore::latency(regs));\n"
+                   "//                                normal in_n*_i ({} bits, two's complement, 1.0 = 0x{:x}),\n",
                    F + 2, uint64_t{1} << F);
   s += fmt::format("//                                position in_p*_i ({} bits, two's complement), expected colour\n", F + 8);
   s += fmt::format("//                                out_r_o, out_g_o, out_b_o ({} bits, 1.0 = 0x{:x}; 0 on g, b when mono)\n",
@@ -143,9 +150,9 @@ std::string format_records(const FeatureSet& fset, const std::string& what, cons
   s += "// fragment with its tag; every colour must equal R G B bit for bit, in order.\n";
   for (const auto& r : v) {
     if (r.write)
-      s += fmt::format("0 {:02x} {:08x} 0 0 0 0 0 0 0\n", r.w.addr & 0xff, r.w.data);
+      s += fmt::format("0 {:03x} {:08x} 0 0 0 0 0 0 0\n", r.w.addr & 0x1ff, r.w.data);
     else
-      s += fmt::format("1 {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x}\n",
+      s += fmt::format("{:x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x}\n", 1 + 16 * r.latency,
                        static_cast<uint64_t>(r.f.n[0]) & nmask, wn, static_cast<uint64_t>(r.f.n[1]) & nmask, wn,
                        static_cast<uint64_t>(r.f.n[2]) & nmask, wn, static_cast<uint64_t>(r.f.p[0]) & pmask, wp,
                        static_cast<uint64_t>(r.f.p[1]) & pmask, wp, static_cast<uint64_t>(r.f.p[2]) & pmask, wp,
@@ -197,9 +204,11 @@ std::string register_table(const FeatureSet& fs) {
     return std::string(f);
   };
   // Which registers this feature set reads (the others exist in the map but are ignored here).
-  bool any_att = false;
-  for (auto k : fs.lights) any_att = any_att || k == LightKind::PointAtt;
+  const bool any_att = fs.any_kind(LightKind::PointAtt);
   auto used = [&](std::string_view name) -> std::string {
+    if (name == "light_model") return "yes (local viewer, reflection, normalize where they exist)";
+    if (name == "mat_unit") return fs.specular ? "yes" : "no";
+    if (name == "light_mode") return "yes";
     const bool mono = fs.channels == 1;
     auto col = [&](bool on) { return on ? (mono ? "yes (r only: mono)" : "yes") : "no"; };
     if (name == "global_ambient" || name == "mat_emission" || name == "mat_ambient" || name == "light_ambient")
@@ -215,6 +224,7 @@ std::string register_table(const FeatureSet& fs) {
   };
   std::string s = "| register | address | count | format | used by this core |\n|---|---|---|---|---|\n";
   for (const auto& r : kRegisters) {
+    if (r.reserved) continue;  // laid out for GL-completeness, no register in this core
     std::string addr = fmt::format("0x{:02x}", r.addr);
     if (r.count > 1) addr += fmt::format("..0x{:02x}", r.addr + r.count - 1);
     if (r.per_light) addr += fmt::format(" + 0x{:x}·j", kLightStride);
@@ -269,11 +279,7 @@ std::string unit_contract(const FeatureSet& fs) {
 
 // The bounds of the operators this feature set instantiates (docs/lighting.md §3).
 std::string operator_contract(const FeatureSet& fs) {
-  bool any_att = false, any_point = false;
-  for (auto k : fs.lights) {
-    any_att = any_att || k == LightKind::PointAtt;
-    any_point = any_point || k == LightKind::Point;
-  }
+  const bool any_att = fs.any_kind(LightKind::PointAtt), any_point = fs.any_kind(LightKind::Point);
   const bool need_n = fs.diffuse || fs.specular;
   std::vector<std::string> v;
   if (need_n && fs.normalize) v.push_back("N̂");
@@ -312,15 +318,16 @@ std::string interface_md(const LightBundle& b) {
   std::string lights;
   for (int j = 0; j < fs.num_lights(); ++j) {
     LightParams lp;
-    if (fs.lights[j] == LightKind::Directional) {
+    const LightKind kind = fs.slot_kind(j);
+    if (kind == LightKind::Directional) {
       lp.position[0] = 0, lp.position[1] = 0, lp.position[2] = 1, lp.position[3] = 0;
     } else {
       lp.position[0] = 2, lp.position[1] = 3, lp.position[2] = 5, lp.position[3] = 1;
       lp.kc = 1, lp.kl = 0.1, lp.kq = 0.01;
     }
-    lights += fmt::format("   - light {} ({}{}): `{}`\n", j, to_string(fs.lights[j]),
-                          fs.lights[j] == LightKind::Directional ? ", direction (0, 0, 1)"
-                                                                  : ", at (2, 3, 5), kc 1, kl 0.1, kq 0.01",
+    lights += fmt::format("   - light {} ({}{}, enabled): `{}`\n", j, to_string(kind),
+                          kind == LightKind::Directional ? ", direction (0, 0, 1)"
+                                                         : ", at (2, 3, 5), kc 1, kl 0.1, kq 0.01",
                           write_list(light_writes(core, j, lp)));
   }
   const bool iter = fs.specular && fs.variant == VariantId::schlick_iter;

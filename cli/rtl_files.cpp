@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // shadecore — the RTL file lists from config/configs.json (cli/rtl_files.hpp).
+#include <algorithm>
 #include "rtl_files.hpp"
 
 #include <stdexcept>
@@ -58,11 +59,7 @@ std::vector<std::string> specular_includes() {
 
 std::vector<std::string> light_files(const FeatureSet& fs) {
   // The generate conditions of rtl/sc_light.v (NEED_N, LV, ANY_ATT, ANY_PL, T_NN / T_V / T_L / Blinn H).
-  bool any_att = false, any_point = false;
-  for (auto k : fs.lights) {
-    any_att = any_att || k == LightKind::PointAtt;
-    any_point = any_point || k == LightKind::Point;
-  }
+  const bool any_att = fs.any_kind(LightKind::PointAtt), any_point = fs.any_kind(LightKind::Point);
   const bool need_n = fs.diffuse || fs.specular;
   const bool lv = fs.specular && fs.local_viewer;
   const bool any_pl = any_att || (need_n && any_point);
@@ -72,8 +69,11 @@ std::vector<std::string> light_files(const FeatureSet& fs) {
   append(v, l.at("files"), "rtl.sc_light.files");
   if (normalize) append(v, l.at("normalize"), "rtl.sc_light.normalize");
   if (any_att) append(v, l.at("recip"), "rtl.sc_light.recip");
-  if (fs.specular) append(v, specular_files(fs.variant, fs.norm), "rtl.sc_specular");
-  return v;
+  for (VariantId u : fs.units()) append(v, specular_files(u, fs.norm), "rtl.sc_specular");
+  std::vector<std::string> once;  // units share sc_specular.v (and sc_norm.v): each file once
+  for (const auto& f : v)
+    if (std::find(once.begin(), once.end(), f) == once.end()) once.push_back(f);
+  return once;
 }
 
 std::vector<std::string> light_includes() {

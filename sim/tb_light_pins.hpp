@@ -22,8 +22,8 @@ struct LightModel {
   LightRegs regs{};
   bool written = false;
   [[nodiscard]] bool ready() const { return written; }
-  [[nodiscard]] int latency() const { return core->latency(); }
-  [[nodiscard]] int latency_min() const { return core->latency_min(); }
+  [[nodiscard]] int latency() const { return core->latency(regs); }
+  [[nodiscard]] int latency_min() const { return core->latency_min(regs); }
   [[nodiscard]] Out expected(const In& in) const { return core->eval(regs, in); }
 };
 

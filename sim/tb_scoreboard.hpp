@@ -6,7 +6,8 @@
 //   Model::In / Model::Out      the input payload and the output payload (Out has operator!=)
 //   Model::expected(in)         the C model's answer for `in` with the state registered BEFORE this edge
 //   Model::ready()              whether an input may be accepted yet (state loaded)
-//   Model::latency(), latency_min()
+//   Model::latency(), latency_min()   the latency bounds for an input accepted now (the lighting
+//                               core's depend on its registers: passes, the material's unit)
 // The monitor reports, edge by edge, what crossed the ports:
 //   on_input()    a transaction accepted: the expected result is computed right here and queued with
 //                 its tag, cycle and advance count;
@@ -42,7 +43,7 @@ class ScoreboardT {
   using Out = typename Model::Out;
 
   ScoreboardT(Model model, int show)
-      : model_(std::move(model)), latency_(model_.latency()), latency_min_(model_.latency_min()), show_(show),
+      : model_(std::move(model)), show_(show),
         ring_(kCap) {}
 
   Model& model() { return model_; }
@@ -66,6 +67,8 @@ class ScoreboardT {
     e.expected = model_.expected(in);
     e.cycle = cycle;
     e.adv = adv;
+    e.lat_lo = model_.latency_min();
+    e.lat_hi = model_.latency();
     ++size_;
     ++accepted_;
   }
@@ -114,11 +117,11 @@ class ScoreboardT {
     // Exactly `latency` advancing edges for one global-enable pipeline; where elastic segments are
     // chained (NORM stage, the lighting core) a transaction may close up on the one ahead through
     // bubbles under backpressure, so the contract is the range latency_min..latency.
-    if (lat_adv > static_cast<uint64_t>(latency_) || lat_adv < static_cast<uint64_t>(latency_min_)) {
+    if (lat_adv > static_cast<uint64_t>(e.lat_hi) || lat_adv < static_cast<uint64_t>(e.lat_lo)) {
       ++latency_errors_;
       if (latency_errors_ <= static_cast<uint64_t>(show_))
         std::printf("ERROR cycle %llu: tag %u latency %llu advancing cycles (%llu cycles), spec says %d..%d\n",
-                    ull(cycle), tag, ull(lat_adv), ull(lat_cyc), latency_min_, latency_);
+                    ull(cycle), tag, ull(lat_adv), ull(lat_cyc), e.lat_lo, e.lat_hi);
     }
     if (lat_cyc < lat_min_) lat_min_ = lat_cyc;
     if (lat_cyc > lat_max_) lat_max_ = lat_cyc;
@@ -164,6 +167,7 @@ class ScoreboardT {
     In in;
     Out expected;
     uint64_t cycle, adv;
+    int lat_lo, lat_hi;
   };
   static unsigned long long ull(uint64_t v) { return static_cast<unsigned long long>(v); }
   void pop(uint32_t k) {
@@ -171,7 +175,6 @@ class ScoreboardT {
     size_ -= k;
   }
 
-  int latency_, latency_min_;
   int show_;
   std::vector<Out>* record_ = nullptr;
   std::vector<Entry> ring_;

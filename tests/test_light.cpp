@@ -224,7 +224,13 @@ TEST(LightHardCases, SaturatesNeverWraps) {
       for (int j = 0; j < (reg.per_light ? kMaxLights : 1); ++j)
         for (int c = 0; c < reg.count; ++c) r.regs.write(r.F, reg.addr + c + (reg.per_light ? j * kLightStride : 0), cmax);
     }
-    for (int j = 0; j < r.core.features().num_lights(); ++j) r.regs.light[j].kc = 1;  // att saturates
+    for (int j = 0; j < r.core.features().num_lights(); ++j) {
+      r.regs.light[j].kc = 1;  // att saturates
+      LightKind k = r.core.features().slot_kind(j);  // the slot's most general kind, enabled
+      for (int i = 0; i < kNumLightKinds; ++i)
+        if (r.core.features().slot_can(j, static_cast<LightKind>(i))) k = static_cast<LightKind>(i);
+      r.regs.light[j].mode = light_mode_word(true, k);
+    }
     const double n[3] = {0, 0, 1}, p[3] = {0, 0, -1};
     const Colour c = r.core.eval(r.regs, make_fragment(r.F, n, p));
     EXPECT_EQ(c.c[0], 1u << r.F) << name;
@@ -296,7 +302,16 @@ TEST(FeatureSets, StrictParsing) {
   };
   bad(R"({"lightz": []})", "unknown key 'lightz'");
   bad(R"({"lights": []})", "1..8");
-  bad(R"({"lights": ["spot"]})", "unknown light kind 'spot'");
+  bad(R"({"lights": ["spot"]})", "light kind 'spot' is reserved");
+  bad(R"({"lights": ["lamp"]})", "unknown light kind 'lamp'");
+  bad(R"({"lights": [["point", "point"]]})", "names a kind twice");
+  bad(R"({"lights": ["point"], "lanes": 2})", "exceeds the 1 light slots");
+  bad(R"({"lanes": 0})", "'lanes' must be an integer 1..8");
+  bad(R"({"specular": ["cs16", "cs16"]})", "named twice");
+  bad(R"({"specular": ["cs16", "none"]})", "none cannot be listed");
+  bad(R"({"specular": ["schlick_iter", "cs16"]})", "cannot share a core");
+  bad(R"({"specular": ["cs16", "table256"]})", "no table-load port");
+  bad(R"({"reflection": ["blinn", "torrance"]})", "blinn, phong or a list of both");
   bad(R"({"lights": ["point","point","point","point","point","point","point","point","point"]})", "1..8");
   bad(R"({"channels": 2})", "1 or 3");
   bad(R"({"ambient": 1})", "true or false");
@@ -305,4 +320,100 @@ TEST(FeatureSets, StrictParsing) {
   bad(R"({"specular": "schlick_div", "cutoff": "sign_clamp"})", "cs16 unit only");
   bad(R"({"specular": "phong"})", "unknown variant 'phong'");
   EXPECT_THROW(feature_set_named_or_file("no_such_set_or_file"), std::invalid_argument);
+}
+
+// The capability JSON: lists of kinds per slot, several units, both reflections, lanes; canonical
+// round trip; today's one-kind `lights` lists keep parsing.
+TEST(FeatureSets, CapabilitiesParseAndRoundTrip) {
+  using nlohmann::json;
+  const FeatureSet f = feature_set_from_json(
+      json::parse(R"({"lights": [["directional", "point_att"], "point"], "specular": ["cs16", "schlick_nr"],
+                      "reflection": ["blinn", "phong"], "local_viewer": true, "norm": true, "lanes": 2})"),
+      "t");
+  EXPECT_EQ(f.slots, (std::vector<uint8_t>{uint8_t(kind_bit(LightKind::Directional) | kind_bit(LightKind::PointAtt)),
+                                           kind_bit(LightKind::Point)}));
+  EXPECT_EQ(f.units(), (std::vector<VariantId>{VariantId::cs16, VariantId::schlick_nr}));
+  EXPECT_TRUE(f.blinn && f.phong);
+  EXPECT_EQ(f.lanes, 2);
+  const FeatureSet g = feature_set_from_json(json::parse(f.canonical().dump()), "t");
+  EXPECT_EQ(g.key(), f.key());
+  const FeatureSet old = feature_set_from_json(json::parse(R"({"lights": ["point_att", "directional"]})"), "t");
+  EXPECT_EQ(old.lanes, 1);
+  EXPECT_EQ(old.slot_kind(0), LightKind::PointAtt);
+  EXPECT_FALSE(old.slot_can(0, LightKind::Directional));
+  const FeatureSet full = named("full"), par = named("full_parallel");
+  EXPECT_EQ(full.lanes, 1);
+  EXPECT_EQ(par.lanes, 8);
+  EXPECT_TRUE(full.has_unit(VariantId::cs16) && full.has_unit(VariantId::schlick_nr));
+  for (int j = 0; j < kMaxLights; ++j) EXPECT_EQ(full.slots[j], kAllKinds);
+  EXPECT_NE(full.key(), par.key());
+}
+
+// Mode registers naming an absent capability (docs/lighting.md §4): a kind the slot cannot take or the
+// reserved spot kind leaves the light off; local viewer / normalize without the hardware are off; with
+// one reflection the bit is ignored; a mat_unit naming an absent unit gives specular 0.
+TEST(LightModes, AbsentCapabilitiesDecodeAsDocumented) {
+  using nlohmann::json;
+  const FeatureSet fs = feature_set_from_json(
+      json::parse(R"({"lights": ["directional", ["point", "point_att"]], "specular": "cs16", "reflection": "phong",
+                      "local_viewer": false, "normalize": false})"),
+      "t");
+  const LightCore core(fs);
+  LightRegs r;
+  const int F = core.format().frac;
+  r.write(F, kReg_light_model, kModelLocalViewer | kModelNormalize);  // both absent; bit 1 clear but only Phong exists
+  r.write(F, kReg_mat_unit, static_cast<uint32_t>(VariantId::cs16));
+  r.write(F, kReg_light_mode, light_mode_word(true, LightKind::Point));  // slot 0 cannot be a point light
+  r.write(F, kLightStride + kReg_light_mode, light_mode_word(true, LightKind::Point));
+  LightModes m = core.modes(r);
+  EXPECT_FALSE(m.local_viewer);
+  EXPECT_FALSE(m.normalize);
+  EXPECT_TRUE(m.phong);
+  EXPECT_EQ(m.on, 2u);
+  EXPECT_EQ(m.unit, 0);
+  r.write(F, kLightStride + kReg_light_mode, (3u << 1) | 1u);  // spot: reserved
+  EXPECT_EQ(core.modes(r).on, 0u);
+  EXPECT_EQ(core.passes(r), 1);
+  // mat_unit names schlick_nr, which this core lacks: the specular term is 0 (f false), nothing else changes
+  r.write(F, kReg_light_mode, light_mode_word(true, LightKind::Directional));
+  for (int c = 0; c < 3; ++c) {
+    r.write(F, kReg_mat_specular + c, 1u << F);
+    r.write(F, kReg_light_specular + c, 1u << F);
+    r.write(F, kReg_mat_diffuse + c, 1u << (F - 1));
+    r.write(F, kReg_light_diffuse + c, 1u << F);
+  }
+  r.write(F, kReg_mat_n, 16);
+  r.write(F, kReg_light_position + 2, 1u << F);  // L = (0, 0, 1)
+  Fragment fr;
+  fr.n[2] = int64_t{1} << F;  // N = L = V: x = 1, spec = 1
+  LightCoreTrace with, without;
+  const Colour a = core.eval(r, fr, &with);
+  r.write(F, kReg_mat_unit, static_cast<uint32_t>(VariantId::schlick_nr));
+  EXPECT_EQ(core.modes(r).unit, -1);
+  const Colour b = core.eval(r, fr, &without);
+  EXPECT_TRUE(with.light[0].f);
+  EXPECT_FALSE(without.light[0].f);
+  EXPECT_EQ(a.c[0], 1u << F);           // diffuse ½ + specular 1, saturated
+  EXPECT_EQ(b.c[0], 1u << (F - 1));     // diffuse only
+}
+
+// Passes and latency: ⌈k/lanes⌉ passes (one with no light), one more issue interval per pass.
+TEST(LightModes, PassesAndLatencyFollowTheEnabledLights) {
+  for (int lanes : {1, 2, 3, 8}) {
+    FeatureSet fs = named("full");
+    fs.lanes = lanes;
+    const LightCore core(fs);
+    LightRegs r;
+    r.mat_unit = static_cast<uint32_t>(VariantId::cs16);
+    const int base = core.latency(r);
+    EXPECT_EQ(core.passes(r), 1);
+    for (int k = 1; k <= kMaxLights; ++k) {
+      r.light[static_cast<size_t>(k - 1)].mode = light_mode_word(true, LightKind::PointAtt);
+      EXPECT_EQ(core.passes(r), (k + lanes - 1) / lanes) << lanes << " " << k;
+      EXPECT_EQ(core.latency(r), base + (k + lanes - 1) / lanes - 1);
+      EXPECT_LE(core.latency(r), core.latency());
+    }
+    r.mat_unit = static_cast<uint32_t>(VariantId::schlick_nr);  // 3 edges longer than cs16
+    EXPECT_EQ(core.latency(r), base + 3 + (kMaxLights + lanes - 1) / lanes - 1);
+  }
 }

@@ -66,6 +66,9 @@ void expect_full_identical(const Loaded& l, int w = 96, int h = 64) {
   ASSERT_EQ(spec.groups.size(), full.groups.size());
   for (size_t g = 0; g < spec.groups.size(); ++g) {
     EXPECT_EQ(full.groups[g].fs.num_lights(), 8);
+    EXPECT_EQ(full.groups[g].fs.name, "full");
+    EXPECT_TRUE(full.groups[g].full_substitutions.empty());  // programmed by register writes alone
+    EXPECT_EQ(full.groups[g].fs.key(), feature_set_named_or_file("full").key());
     EXPECT_TRUE(full.groups[g].fs.norm && full.groups[g].fs.ambient && full.groups[g].fs.diffuse &&
                 full.groups[g].fs.specular && full.groups[g].fs.normalize);
     EXPECT_EQ(full.groups[g].fs.channels, 3);
@@ -81,7 +84,7 @@ TEST(RenderFeatures, DiffuseSceneGetsTheSmallestSet) {
   const Frame fr = frame(l, false);
   ASSERT_EQ(fr.groups.size(), 1u);
   const FeatureSet& fs = fr.groups[0].fs;
-  EXPECT_EQ(fs.lights, std::vector<LightKind>{LightKind::Directional});
+  EXPECT_EQ(fs.slots, std::vector<uint8_t>{kind_bit(LightKind::Directional)});
   EXPECT_TRUE(fs.ambient);
   EXPECT_TRUE(fs.diffuse);
   EXPECT_FALSE(fs.specular);
@@ -98,7 +101,7 @@ TEST(RenderFeatures, SpheresSceneOneCorePerSpecularUnit) {
   EXPECT_EQ(fr.groups[0].unit_label, "cs16/theta_cr");
   EXPECT_EQ(fr.groups[1].unit_label, "schlick_nr");
   for (const auto& g : fr.groups) {
-    EXPECT_EQ(g.fs.lights, (std::vector<LightKind>{LightKind::Directional, LightKind::PointAtt, LightKind::PointAtt}));
+    EXPECT_EQ(g.fs.slots, (std::vector<uint8_t>{kind_bit(LightKind::Directional), kind_bit(LightKind::PointAtt), kind_bit(LightKind::PointAtt)}));
     EXPECT_TRUE(g.fs.specular);
     EXPECT_TRUE(g.fs.blinn);
     EXPECT_FALSE(g.fs.local_viewer);
@@ -113,7 +116,7 @@ TEST(RenderFeatures, MeshSceneMonoPointLocalViewerPhong) {
   const Frame fr = frame(l, false);
   ASSERT_EQ(fr.groups.size(), 1u);
   const FeatureSet& fs = fr.groups[0].fs;
-  EXPECT_EQ(fs.lights, std::vector<LightKind>{LightKind::Point});
+  EXPECT_EQ(fs.slots, std::vector<uint8_t>{kind_bit(LightKind::Point)});
   EXPECT_EQ(fs.channels, 1);
   EXPECT_TRUE(fs.local_viewer);
   EXPECT_FALSE(fs.blinn);
@@ -172,7 +175,7 @@ TEST(RenderFeatures, MinimalityRules) {
     const Frame fr = frame(l, false);
     ASSERT_EQ(fr.groups.size(), 1u);
     const FeatureSet& fs = fr.groups[0].fs;
-    EXPECT_EQ(fs.lights, std::vector<LightKind>{LightKind::Directional});
+    EXPECT_EQ(fs.slots, std::vector<uint8_t>{kind_bit(LightKind::Directional)});
     EXPECT_EQ(fr.groups[0].light_slot, std::vector<int>{2});
     EXPECT_FALSE(fs.specular);
     EXPECT_EQ(fs.channels, 3);
@@ -195,13 +198,13 @@ TEST(RenderFullCore, ExampleScenesIdenticalOnTheFullCore) {
   }
 }
 
-// Scenes built to hit every difference between a specialised set and 'full': unused light slots,
-// directional lights (substituted), point lights without attenuation on point_att slots (att = 1 exactly),
+// Scenes built to hit every difference between a specialised set and 'full': unused light slots (off),
+// directional, point and point_att lights (programmed kinds),
 // energy normalisation on some materials only (coefficient 1.0 for the others), no GL_NORMALIZE on the
 // specialised core (host normals are fixed points of the normaliser), mono, Phong reflection, local and
-// infinite viewer, each specular unit, emission, materials without specular sharing a specular core.
-TEST(RenderFullCore, EverySubstitutionIdentical) {
-  const std::vector<std::string> units = {"cs16", "schlick_div", "schlick_nr", "schlick_iter"};
+// infinite viewer, each specular unit of 'full', emission, materials without specular sharing a specular core.
+TEST(RenderFullCore, EveryModeIdentical) {
+  const std::vector<std::string> units = {"cs16", "schlick_nr"};
   int n = 0;
   for (const auto& unit : units)
     for (const char* reflection : {"blinn", "phong"})
@@ -229,16 +232,31 @@ TEST(RenderFullCore, EverySubstitutionIdentical) {
                                    objects("phong", "flat"), R"({"ambient": [0, 0, 0]})")));
 }
 
-// The identity above can fail: the literal 'full' set (its light 0 a point_att light) renders a
-// directional light differently, which is why the derivation substitutes it.
-TEST(RenderFullCore, LiteralFullSetDiffersForADirectionalLight) {
+// The identity above can fail: the full core renders what its registers say. Light 0 of diffuse.json
+// (directional) programmed as a point light changes the image; a unit 'full' lacks is a clear error.
+TEST(RenderFullCore, ModeRegistersDecide) {
   const auto l = load("diffuse.json");
   const Frame spec = frame(l, false);
   Frame full = frame(l, true);
-  ASSERT_FALSE(full.groups[0].full_substitutions.empty());
-  EXPECT_EQ(full.groups[0].full_substitutions[0], "light 0 directional");
-  full.groups[0].fs = feature_set_named_or_file("full");
+  bool changed = false;
+  for (auto& c : full.groups[0].cmds)
+    if (c.is_write && c.w.addr == kReg_light_mode) {
+      EXPECT_EQ(c.w.data, light_mode_word(true, LightKind::Directional));
+      c.w.data = light_mode_word(true, LightKind::Point);
+      changed = true;
+    }
+  ASSERT_TRUE(changed);
   EXPECT_GT(render::mismatching_pixels(cmodel_image(spec), cmodel_image(full)), 100u);
+  const std::string objs = objects("phong", "phong");
+  const auto div = parse(make(R"({"position": [0, 1, 1, 0]})",
+                              R"("m": {"diffuse": [0.6, 0.6, 0.6], "specular": [1, 1, 1], "specular_unit": "schlick_div"})",
+                              objs));
+  try {
+    (void)frame(div, true);
+    ADD_FAILURE() << "schlick_div on the full core";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("lacks the unit schlick_div"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RenderImage, DeterministicAndReferenceClose) {

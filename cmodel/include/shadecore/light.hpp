@@ -453,7 +453,7 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
 // (OpenGL state → codes; done once per light/material change by the driver, in double, like thr(n).)
 
 struct LightParams {
-  std::optional<LightKind> kind;       // default: the slot's first kind (its only one when specialised)
+  std::optional<LightKind> kind;       // default: from w and the slot's kinds (light_writes)
   bool enabled = true;                 // GL_LIGHTi enable
   double position[4] = {0, 0, 1, 0};  // GL_POSITION in eye space; w = 0 directional
   double ambient[3] = {0, 0, 0}, diffuse[3] = {1, 1, 1}, specular[3] = {1, 1, 1};
@@ -502,7 +502,7 @@ inline std::vector<RegWrite> material_writes(const LightCore& core, const Materi
   validate_n(m.shininess);
   const VariantId var = m.unit.value_or(fs.variant);
   if (fs.specular && !fs.has_unit(var))
-    throw std::invalid_argument(std::string("specular unit ") + variant_name(var) + " is not in this core (" +
+    throw std::invalid_argument(std::string("specular unit ") + std::string(variant_name(var)) + " is not in this core (" +
                                 fs.summary() + ")");
   Unit u(var, core.format(), core.unit().cutoff());
   const bool norm = fs.norm && m.norm_model >= 0;
@@ -530,7 +530,13 @@ inline std::vector<RegWrite> light_writes(const LightCore& core, int j, const Li
   if (j < 0 || j >= fs.num_lights())
     throw std::invalid_argument("light " + std::to_string(j) + " not in the feature set (" +
                                 std::to_string(fs.num_lights()) + " lights)");
-  const LightKind kind = lp.kind.value_or(fs.slot_kind(j));
+  // Without an explicit kind: a slot's only kind; else directional for w = 0, and for w != 0 point
+  // with attenuation where the slot can take it (GL's positional light), else point.
+  LightKind kind = fs.slot_kind(j);
+  if (lp.kind) kind = *lp.kind;
+  else if (lp.position[3] == 0.0 && fs.slot_can(j, LightKind::Directional)) kind = LightKind::Directional;
+  else if (lp.position[3] != 0.0 && fs.slot_can(j, LightKind::PointAtt)) kind = LightKind::PointAtt;
+  else if (lp.position[3] != 0.0 && fs.slot_can(j, LightKind::Point)) kind = LightKind::Point;
   if (!fs.slot_can(j, kind))
     throw std::invalid_argument("light " + std::to_string(j) + " cannot be " + to_string(kind) +
                                 " in this core (slot kinds: " + kinds_name(fs.slots[static_cast<size_t>(j)]) + ")");

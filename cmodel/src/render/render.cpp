@@ -148,45 +148,37 @@ FeatureSet full_core_for(const FeatureSet& spec, std::vector<std::string>& subs)
   need(!spec.specular || f.specular, "a specular unit");
   need(!spec.norm || f.norm, "energy normalisation");
   need(spec.channels <= f.channels, "RGB");
+  for (int j = 0; j < spec.num_lights(); ++j) {
+    const LightKind s = spec.slot_kind(j);
+    // A point light (kc = 1, kl = kq = 0) on a point_att slot: q = 1, att = recip_att(2^F) = 2^F exactly.
+    need(f.slot_can(j, s) || (s == LightKind::Point && f.slot_can(j, LightKind::PointAtt)),
+         "light slot " + std::to_string(j) + " of kind " + to_string(s));
+  }
+  need(!spec.normalize || f.normalize, "the normal normaliser (normalize)");
+  if (spec.specular) {
+    // the two cs16 cut-offs give bit-identical outputs (docs/results.md): the cut-off needs no mode
+    need(f.has_unit(spec.variant), std::string("the unit ") + std::string(variant_name(spec.variant)));
+    need(!spec.blinn || f.blinn, "Blinn reflection");
+    need(!spec.phong || f.phong, "Phong reflection");
+    need(!spec.local_viewer || f.local_viewer, "the local viewer");
+  }
+  // A width is not a mode: a scene of another config is rendered by the full set at that width.
   if (f.config != spec.config) {
     subs.push_back("config " + spec.config);
     f.config = spec.config;
   }
-  for (int j = 0; j < spec.num_lights(); ++j) {
-    const LightKind s = spec.lights[j], k = f.lights[j];
-    // A point light (kc = 1, kl = kq = 0) on a point_att slot: q = 1, att = recip_att(2^F) = 2^F exactly.
-    if (s == k || (s == LightKind::Point && k == LightKind::PointAtt)) continue;
-    subs.push_back("light " + std::to_string(j) + " " + to_string(s));
-    f.lights[j] = s;
-  }
-  if (spec.normalize && !f.normalize) {
-    subs.push_back("normalize");
-    f.normalize = true;
-  }
-  if (spec.specular) {
-    if (f.variant != spec.variant || (spec.variant == VariantId::cs16 && f.cutoff != spec.cutoff)) {
-      subs.push_back(std::string("unit ") + std::string(variant_name(spec.variant)) +
-                     (spec.variant == VariantId::cs16 ? std::string("/") + to_string(spec.cutoff) : std::string()));
-      f.variant = spec.variant;
-      f.cutoff = spec.variant == VariantId::cs16 ? spec.cutoff : Cutoff::ThetaCr;
-    }
-    if (f.blinn != spec.blinn) {
-      subs.push_back(std::string("reflection ") + (spec.blinn ? "blinn" : "phong"));
-      f.blinn = spec.blinn;
-    }
-    if (f.local_viewer != spec.local_viewer) {
-      subs.push_back(spec.local_viewer ? "local viewer" : "infinite viewer");
-      f.local_viewer = spec.local_viewer;
-    }
-  }
-  if (subs.empty()) f.name = "full";
-  else f.name = "full+scene-modes";
   return f;
+}
+
+// The kind light slot j of `fs` is programmed with for a light of kind `k` of the specialised set.
+static LightKind slot_kind_for(const FeatureSet& fs, int j, LightKind k) {
+  if (fs.slot_can(j, k)) return k;
+  return LightKind::PointAtt;  // a point light on a point_att slot (kc = 1, kl = kq = 0: att = 1 exactly)
 }
 
 Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used,
                            const std::vector<bool>& needs_normalize, bool full_core,
-                           std::optional<VariantId> unit_override) {
+                           std::optional<VariantId> unit_override, int lanes) {
   const int F = config_named(sc.config).format.frac;
   const size_t nm = sc.materials.size();
   std::vector<bool> used(nm, false);
@@ -249,7 +241,7 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
       return false;
     };
     // Which lights contribute to any material of this core.
-    fs.lights.clear();
+    fs.slots.clear();
     g.light_slot.clear();
     for (size_t j = 0; j < sc.lights.size(); ++j) {
       const auto& L = sc.lights[j];
@@ -262,7 +254,7 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
       if (L.position[3] == 0.0) k = LightKind::Directional;
       else if (attc_code(F, L.kc) == (1u << F) && attc_code(F, L.kl) == 0 && attc_code(F, L.kq) == 0)
         k = LightKind::Point;
-      fs.lights.push_back(k);
+      fs.slots.push_back(kind_bit(k));
       g.light_slot.push_back(static_cast<int>(j));
     }
     fs.ambient = any_mat([&](const scene::Material& M, int ch) {
@@ -283,8 +275,8 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
         if (nz(M.specular, ch) && nz(sc.lights[j].specular, ch)) return true;
       return false;
     });
-    if (fs.lights.empty()) {  // nothing lit by any light: one directional light with zero colours
-      fs.lights.push_back(LightKind::Directional);
+    if (fs.slots.empty()) {  // nothing lit by any light: one directional light with zero colours
+      fs.slots.push_back(kind_bit(LightKind::Directional));
       g.light_slot.push_back(-1);
     }
     if (!fs.ambient && !fs.diffuse && !fs.specular) fs.ambient = true;  // a black object still needs a term
@@ -294,6 +286,7 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
     if (fs.specular)
       for (int m : g.materials) fs.norm = fs.norm || sc.materials[m].normalization.has_value();
     fs.blinn = fs.specular ? sc.blinn : true;
+    fs.phong = !fs.blinn;
     fs.local_viewer = fs.specular && sc.local_viewer;
     fs.normalize = false;
     for (int m : g.materials) fs.normalize = fs.normalize || needs_normalize[m];
@@ -311,8 +304,16 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
       if (j >= 0) grey = grey && is_grey(sc.lights[j].ambient) && is_grey(sc.lights[j].diffuse) && is_grey(sc.lights[j].specular);
     fs.channels = grey ? 1 : 3;
     if (!fs.specular) g.unit_label = "none";
+    fs.lanes = std::clamp(lanes, 1, fs.num_lights());
     g.specialised = fs;
-    g.fs = full_core ? full_core_for(fs, g.full_substitutions) : fs;
+    if (full_core) {
+      g.fs = full_core_for(fs, g.full_substitutions);
+      g.fs.lanes = std::clamp(lanes, 1, g.fs.num_lights());
+      if (g.fs.lanes == g.fs.num_lights()) g.fs.name = "full_parallel";
+      else if (g.fs.lanes != 1) g.fs.name = "full/lanes" + std::to_string(g.fs.lanes);
+    } else {
+      g.fs = fs;
+    }
   }
   return d;
 }
@@ -538,7 +539,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
     }
   }
 
-  const Derivation d = derive_features(sc, drawn, needs_normalize, s.full_core, s.unit);
+  const Derivation d = derive_features(sc, drawn, needs_normalize, s.full_core, s.unit, s.lanes);
   fr.groups = d.groups;
   for (int oi : drawn) fr.object_group[oi] = d.group_of_material[sc.objects[oi].material];
 
@@ -579,11 +580,19 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
         ++g.writes;
       }
     };
-    add_writes(global_writes(core, sc.global_ambient.data()));
+    // the modes of the specialised set, programmed (the same words on the full core)
+    const FeatureSet& sp = g.specialised;
+    const ModeParams modes{sp.specular && sp.local_viewer, sp.specular && !sp.blinn, sp.normalize};
+    add_writes(global_writes(core, sc.global_ambient.data(), modes));
     for (int j = 0; j < g.fs.num_lights(); ++j) {
+      if (j >= sp.num_lights()) {  // a slot of the full core the scene does not use: off
+        add_writes(light_off_writes(j));
+        continue;
+      }
       LightParams lp;
       const int sj = j < static_cast<int>(g.light_slot.size()) ? g.light_slot[j] : -1;
-      const LightKind kind = g.fs.lights[j];
+      const LightKind kind = sp.slot_kind(j);
+      lp.kind = slot_kind_for(g.fs, j, kind);
       if (sj >= 0) {
         const auto& L = sc.lights[sj];
         const auto pe = apply(view, L.position);
@@ -619,14 +628,14 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
         mp.specular[c] = M.specular[c];
       }
       mp.shininess = M.shininess;
-      if (M.normalization) {
+      if (M.normalization && sp.specular) {
         mp.norm_model = static_cast<int>(M.normalization->model);
         mp.norm_kind = M.normalization->kind;
+      } else {
+        mp.norm_model = -1;  // with the norm hardware: coefficient 1.0, sc_norm passes spec unchanged
       }
+      if (sp.specular) mp.unit = sp.variant;
       auto ws = material_writes(core, mp);
-      if (g.fs.norm && !(M.normalization && g.fs.specular))
-        for (auto& w : ws)
-          if (w.addr == kReg_mat_coef) w.data = 1u << F;  // coefficient 1.0: sc_norm passes spec unchanged
       add_writes(ws);
       auto frag = [&g](const Fragment& f, DestKind k, uint32_t idx) {
         CoreCmd c;

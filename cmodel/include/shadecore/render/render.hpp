@@ -48,7 +48,7 @@ struct Dest {
 struct CoreGroup {
   FeatureSet fs;                        // the set this render uses
   FeatureSet specialised;               // the derived smallest set (== fs unless the full core is used)
-  std::vector<std::string> full_substitutions;  // full core: the modes taken from the scene instead of 'full'
+  std::vector<std::string> full_substitutions;  // full core: what is not 'full' (only a config)
   std::vector<int> materials;           // scene material indices
   std::vector<int> light_slot;          // scene light index per core light slot (−1 = unused slot)
   std::string unit_label;               // "cs16/theta_cr", "schlick_nr", "none"
@@ -60,6 +60,7 @@ struct CoreGroup {
 
 struct Settings {
   bool full_core = false;
+  int lanes = 1;                              // lanes of the cores (clamped to their light slots)
   int width = 0, height = 0;                  // 0: the scene's size
   std::optional<scene::Shading> mode;         // every object in this mode
   std::optional<VariantId> unit;              // every specular material through this unit
@@ -75,11 +76,11 @@ struct Derivation {
 };
 Derivation derive_features(const scene::Scene& sc, const std::vector<int>& objects_used,
                            const std::vector<bool>& phong_used_by_material, bool full_core,
-                           std::optional<VariantId> unit_override);
+                           std::optional<VariantId> unit_override, int lanes = 1);
 
-// The full core for a specialised set: config/configs.json 'full', with the modes the scene uses that
-// 'full' cannot reproduce bit-exactly (light kind directional, the specular unit, reflection, viewer)
-// taken from `spec`; each substitution is described in `subs`. Throws if 'full' lacks a unit `spec` needs.
+// The full core for a specialised set: config/configs.json 'full', programmed by register writes alone
+// (its capabilities include every mode of `spec`); only a width other than full's is substituted (a
+// width is no mode) and described in `subs`. Throws if 'full' lacks a capability `spec` needs.
 FeatureSet full_core_for(const FeatureSet& spec, std::vector<std::string>& subs);
 
 // The objects' geometry, tessellated (or read from its OBJ file) when prepare() reaches the object and

@@ -1,15 +1,19 @@
 // SPDX-License-Identifier: Apache-2.0
 // shadecore sim — what the driver feeds the lighting core, one CoreCommand (register write or
 // fragment) at a time, by mode:
-//   random:   a random but realistic register program first (global ambient, a material with random n,
-//             every light of the feature set with random colours, positions and attenuation), then
+//   random:   a random but realistic register program first (global ambient and random modes — local
+//             viewer, reflection, normalize —, a material with random n and a random unit of the core,
+//             every light slot with a random kind it can take, enabled or not, random colours, positions
+//             and attenuation), then
 //             `count` fragments: 45 % realistic (random eye-space positions, normals of random length),
 //             20 % raw random codes over the whole input words, 35 % hard cases built on the current
 //             registers (see hard_fragment()). With probability `write_rate` per fragment a burst of
-//             register writes comes first: a new material, a new light, raw random data to colour,
-//             position or attenuation registers (extremes included), or a write to a non-register address.
-//   directed: the hard-case programs and fragments of docs/lighting.md §7, each at least once, repeated
-//             until `count` fragments.
+//             register writes comes first: a new material, a new light, raw random data to any register
+//             but n/thr/coef (mode registers and reserved ones included, so modes that name absent
+//             capabilities occur), new modes, or a write to a non-register address.
+//   directed: the hard-case programs and fragments of docs/lighting.md §7, each at least once, then every
+//             global mode × every unit × enable patterns (none, one, every other, all), repeated until
+//             `count` fragments.
 //   stream:   a command file (stimulus/include/shadecore/stimulus/light_stream.hpp), e.g. a scene's fragments from `shadecore render`.
 // Deterministic from the seed: the whole sequence is a function of (seed, feature set, count).
 #pragma once
@@ -103,12 +107,34 @@ class LightStimulus {
     }
     m.shininess = static_cast<int>(rng_.uniform(kNMin, kNMax));
     m.norm_model = static_cast<int>(rng_.uniform(0, kNumModels - 1));
+    if (rng_.next() % 4 == 0) m.norm_model = -1;  // no normalisation (coef = 1 with the norm hardware)
     m.norm_kind = rng_.next() & 1 ? CoefKind::Classical : CoefKind::Fitted;
+    const std::vector<VariantId> us = core_.features().units();
+    if (!us.empty()) m.unit = us[rng_.next() % us.size()];
     return material_writes(core_, m);
+  }
+  // A kind slot j can take: the r-th of its kinds (mod their count).
+  LightKind slot_kind(int j, uint64_t r) const {
+    const uint8_t mask = core_.features().slots[static_cast<size_t>(j)];
+    int count = 0;
+    for (int k = 0; k < kNumLightKinds; ++k) count += (mask >> k) & 1;
+    int want = static_cast<int>(r % static_cast<uint64_t>(count));
+    for (int k = 0; k < kNumLightKinds; ++k)
+      if ((mask >> k) & 1) {
+        if (want == 0) return static_cast<LightKind>(k);
+        --want;
+      }
+    return LightKind::Directional;
+  }
+  ModeParams random_modes() {
+    const uint64_t r = rng_.next();
+    return {(r & 1) != 0, (r & 2) != 0, (r & 4) != 0};
   }
   std::vector<RegWrite> random_light(int j) {
     LightParams lp;
-    const LightKind kind = core_.features().lights[j];
+    const LightKind kind = slot_kind(j, rng_.next());
+    lp.kind = kind;
+    lp.enabled = rng_.next() % 8 != 0;
     if (kind == LightKind::Directional) {
       double d[3];
       do {
@@ -133,14 +159,14 @@ class LightStimulus {
   }
   void program_random() {
     double ga[3] = {u(0, 0.4), u(0, 0.4), u(0, 0.4)};
-    push(global_writes(core_, ga));
+    push(global_writes(core_, ga, random_modes()));
     push(random_material());
     for (int j = 0; j < core_.features().num_lights(); ++j) push(random_light(j));
   }
   // Raw register data: every register of the map, random bits or an extreme of its width.
   void random_writes() {
     const int nl = core_.features().num_lights();
-    switch (rng_.next() % 5) {
+    switch (rng_.next() % 6) {
       case 0: push(random_material()); break;
       case 1: push(random_light(static_cast<int>(rng_.uniform(0, nl - 1)))); break;
       case 2: {  // raw colour / position / attenuation data, extremes included
@@ -162,10 +188,19 @@ class LightStimulus {
         push(ws);
         break;
       }
-      case 3: push({{static_cast<uint32_t>(0xF0 + rng_.uniform(0, 15)), static_cast<uint32_t>(rng_.next())}}); break;
+      case 3:  // an address that is no register (above the back-material bank)
+        push({{static_cast<uint32_t>(rng_.uniform(0x130, (1 << kRegAddrBits) - 1)), static_cast<uint32_t>(rng_.next())}});
+        break;
+      case 4: {  // new modes, lights switched on and off
+        push({{kReg_light_model, light_model_word(random_modes())}});
+        const int j = static_cast<int>(rng_.uniform(0, nl - 1));
+        push({{static_cast<uint32_t>(j) * kLightStride + kReg_light_mode,
+               light_mode_word(rng_.next() % 3 != 0, slot_kind(j, rng_.next()))}});
+        break;
+      }
       default: {  // global ambient
         double ga[3] = {u(0, 1.9), u(0, 1.9), u(0, 1.9)};
-        push(global_writes(core_, ga));
+        push(global_writes(core_, ga, random_modes()));
       }
     }
   }
@@ -272,7 +307,8 @@ class LightStimulus {
     add_writes(material_writes(core_, m));
     for (int j = 0; j < nl; ++j) {
       LightParams lp;
-      if (core_.features().lights[j] == LightKind::Directional) {
+      lp.kind = slot_kind(j, static_cast<uint64_t>(j));
+      if (*lp.kind == LightKind::Directional) {
         lp.position[0] = 0.3 * j, lp.position[1] = 0.5, lp.position[2] = 1, lp.position[3] = 0;
       } else {
         lp.position[0] = 4.0 * j - 10, lp.position[1] = 5, lp.position[2] = 2, lp.position[3] = 1;
@@ -285,7 +321,8 @@ class LightStimulus {
     // 2. H = 0: a light exactly opposite the viewer (directional L = (0, 0, −1); point light behind P)
     for (int j = 0; j < nl; ++j) {
       LightParams lp;
-      if (core_.features().lights[j] == LightKind::Directional) {
+      lp.kind = slot_kind(j, static_cast<uint64_t>(j));
+      if (*lp.kind == LightKind::Directional) {
         lp.position[2] = -1, lp.position[3] = 0;
       } else {
         lp.position[2] = -120, lp.position[3] = 1;
@@ -305,8 +342,9 @@ class LightStimulus {
     //     point light at (0, 0, 10) seen from P = 0), N = (1, 0, δ·2^−F)
     for (int j = 0; j < nl; ++j) {
       LightParams lp;
-      lp.position[2] = core_.features().lights[j] == LightKind::Directional ? 1 : 10;
-      lp.position[3] = core_.features().lights[j] == LightKind::Directional ? 0 : 1;
+      lp.kind = slot_kind(j, static_cast<uint64_t>(j));
+      lp.position[2] = *lp.kind == LightKind::Directional ? 1 : 10;
+      lp.position[3] = *lp.kind == LightKind::Directional ? 0 : 1;
       add_writes(light_writes(core_, j, lp));
     }
     for (int64_t d = -2; d <= 2; ++d) {
@@ -351,12 +389,52 @@ class LightStimulus {
     add_writes(ws);
     for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
     // 6. writes to addresses that are no register (ignored) and extremes of n
-    add_writes({{0xFE, 0xFFFFFFFFu}, {0x07, 0x12345678u}, {0x0F, 0xFFFFFFFFu}});
+    add_writes({{0x1FE, 0xFFFFFFFFu}, {0x09, 0x12345678u}, {0x0F, 0xFFFFFFFFu}});
     for (int n : {kNMin, kNMax}) {
       m.shininess = n;
       add_writes(material_writes(core_, m));
       for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
     }
+    // 7. modes: every light_model value (reserved bits set too) × every unit (and an absent one) ×
+    //    enable patterns; a plain light program with every slot's kinds in turn
+    m.shininess = 64;
+    for (uint32_t pass = 0; pass < 3; ++pass) {
+      for (int j = 0; j < nl; ++j) {
+        LightParams lp;
+        lp.kind = slot_kind(j, static_cast<uint64_t>(j) + pass);
+        lp.position[0] = 2.0 * j - 5, lp.position[1] = 3, lp.position[2] = *lp.kind == LightKind::Directional ? 1 : 4;
+        lp.position[3] = *lp.kind == LightKind::Directional ? 0 : 1;
+        lp.kc = 0.5, lp.kl = 0.05, lp.kq = 0.01;
+        lp.specular[0] = lp.specular[1] = lp.specular[2] = 0.9;
+        add_writes(light_writes(core_, j, lp));
+      }
+      for (uint32_t model = 0; model < 32; model += (pass == 0 ? 1 : 5)) {
+        add_writes({{kReg_light_model, model}});
+        std::vector<VariantId> us = core_.features().units();
+        for (size_t ui = 0; ui <= us.size(); ++ui) {
+          if (ui < us.size()) {
+            m.unit = us[ui];
+            add_writes(material_writes(core_, m));
+          } else {
+            add_writes({{kReg_mat_unit, 15u}});  // no unit has id 15: specular 0
+          }
+          for (int pat = 0; pat < 4; ++pat) {
+            std::vector<RegWrite> en;
+            for (int j = 0; j < nl; ++j) {
+              const bool on = pat == 3 || (pat == 1 && j == nl - 1) || (pat == 2 && j % 2 == 0);
+              en.push_back({static_cast<uint32_t>(j) * kLightStride + kReg_light_mode,
+                            light_mode_word(on, slot_kind(j, static_cast<uint64_t>(j) + pass))});
+            }
+            add_writes(en);
+            for (uint64_t k = 0; k < 3; ++k) add_frag(hard_fragment((k + static_cast<uint64_t>(pat)) % 10));
+          }
+        }
+      }
+    }
+    // a slot asked for a kind it cannot take, and the reserved kind 3 (spot): the light is off
+    for (int j = 0; j < nl; ++j)
+      add_writes({{static_cast<uint32_t>(j) * kLightStride + kReg_light_mode, (static_cast<uint32_t>(j) % 5 + 3) << 1 | 1u}});
+    for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
   }
 
   const LightCore& core_;
