@@ -383,6 +383,12 @@ low bits of its width (signed formats sign-extended); an address that is no regi
 of features or lights this core does not have, are ignored.
 
 {regs}
+Mode fields: `light_model` bit 0 local viewer, bit 1 reflection (0 Blinn N·H, 1 Phong R·V), bit 2
+normalize; `light_mode` bit 0 enable, bits 3:1 kind (0 directional, 1 point, 2 point_att); `mat_unit` the
+variant id of the material's unit ({units}). A mode naming a capability this core lacks selects what
+exists: a light whose kind its slot cannot take is off; local viewer / normalize without their hardware
+are off; with one reflection the bit is ignored; a `mat_unit` naming an absent unit gives specular 0.
+
 ## Handshake and register writes
 
 AXI-Stream style valid/ready on the fragment input and the colour output: a transfer happens at a rising
@@ -407,8 +413,10 @@ every register the feature set uses before the first fragment.
 
 ## Latency and throughput
 
-- Latency: {lat} (`LightCore::latency()`, the formula in the header of `rtl/sc_light.v`.)
-- Throughput: {thru}, all lights in parallel.
+- Latency: {lat} (`LightCore::latency(regs)`, the formula in the header of `rtl/sc_light.v`: per pass,
+  plus one issue interval per further pass; the figures above are the largest over every register state.)
+- Cycles per fragment: ⌈k/{lanes}⌉ passes for k enabled lights (one pass with none), one pass per clock
+  ({thru}); the core has {lanes} lane(s) for {nl} light slot(s).
 
 ## Programming sequence
 
@@ -468,8 +476,14 @@ input and output delays of 30 % of the period as stated assumptions.
       fmt::arg("nlm1", fs.num_lights() - 1), fmt::arg("regs", register_table(fs)),
       fmt::arg("iterready", iter ? " && (issue interval: schlick_iter takes one fragment per F+4 clocks)" : ""),
       fmt::arg("lat", lat),
-      fmt::arg("thru", iter ? fmt::format("one fragment every {} clocks (schlick_iter)", schlick_iter_interval(F))
-                            : "one fragment per clock while `out_ready_i` is high"),
+      fmt::arg("thru", iter ? fmt::format("schlick_iter: one pass every {} clocks", schlick_iter_interval(F))
+                            : "while `out_ready_i` is high"),
+      fmt::arg("lanes", fs.lanes), fmt::arg("nl", fs.num_lights()),
+      fmt::arg("units", [&] {
+        std::string u;
+        for (VariantId v : fs.units()) u += (u.empty() ? "" : ", ") + fmt::format("{} = {}", variant_name(v), static_cast<int>(v));
+        return u.empty() ? std::string("none") : u;
+      }()),
       fmt::arg("gw", write_list(global_writes(core, ga))),
       fmt::arg("normex", fs.norm ? ", coefficient of the Phong model" : ""),
       fmt::arg("mw", write_list(material_writes(core, m))), fmt::arg("lights", lights),
