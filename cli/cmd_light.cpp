@@ -182,6 +182,10 @@ void add_light_sweep(CLI::App& app) {
     if (!a->json.empty()) {
       nlohmann::json j = {{"features", base.name},
                           {"feature_set", nlohmann::json::parse(base.canonical().dump())},
+                          {"feature_key", base.key()},
+                          {"verilog_params", base.verilog_params(8)},
+                          {"latency", LightCore(base).latency()},
+                          {"latency_min", LightCore(base).latency_min()},
                           {"frac", F},
                           {"programs", a->programs},
                           {"per_program", a->per_program},

@@ -62,9 +62,10 @@ FeatureSet random_set(SplitMix& rng, int index) {
     for (const auto& c : shadecore::kConfigs)
       if (c.format.frac <= shadecore::kLightFracMax) cfgs.emplace_back(c.name);
     fs.config = cfgs[static_cast<size_t>(rng.below(static_cast<int>(cfgs.size())))];
-    fs.lights.clear();
+    fs.slots.clear();
     const int n = 1 + rng.below(shadecore::kMaxLights);
-    for (int j = 0; j < n; ++j) fs.lights.push_back(static_cast<shadecore::LightKind>(rng.below(3)));
+    for (int j = 0; j < n; ++j) fs.slots.push_back(static_cast<uint8_t>(1 + rng.below(7)));  // a non-empty kind set
+    fs.lanes = 1 + rng.below(n);
     fs.ambient = rng.coin();
     fs.diffuse = rng.coin();
     fs.specular = rng.coin();
@@ -72,10 +73,16 @@ FeatureSet random_set(SplitMix& rng, int index) {
     for (const auto& v : shadecore::kVariants)
       if (!shadecore::is_table_variant(v.id)) units.push_back(v.id);
     fs.variant = units[static_cast<size_t>(rng.below(static_cast<int>(units.size())))];
+    fs.more_units.clear();
+    if (fs.variant != shadecore::VariantId::schlick_iter)
+      for (auto u : units)  // further units the material can choose (schlick_iter only alone)
+        if (u != fs.variant && u != shadecore::VariantId::schlick_iter && rng.below(4) == 0) fs.more_units.push_back(u);
     fs.cutoff = rng.coin() ? shadecore::Cutoff::SignClamp : shadecore::Cutoff::ThetaCr;
-    if (!fs.specular || fs.variant != shadecore::VariantId::cs16) fs.cutoff = shadecore::Cutoff::ThetaCr;
+    if (!fs.specular || !fs.has_unit(shadecore::VariantId::cs16)) fs.cutoff = shadecore::Cutoff::ThetaCr;
     fs.norm = fs.specular && rng.coin();
-    fs.blinn = rng.coin();
+    const int refl = rng.below(3);  // Blinn, Phong or both
+    fs.blinn = refl != 1;
+    fs.phong = refl != 0;
     fs.local_viewer = rng.coin();
     fs.normalize = rng.coin();
     fs.channels = rng.coin() ? 3 : 1;

@@ -1,0 +1,225 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
+"""Cost against throughput of the lighting core (issue 18): docs/lighting_cost.json.
+
+One row per (feature set, lanes): Yosys generic cells counted hierarchically (`synth -top sc_light; abc;
+stat -top sc_light`, as docs/lighting.md §8), `synth_xilinx -family xc7 -flatten` LUT / FF / DSP48E1,
+`synth_ecp5` LUT4 / MULT18X18D, the latency (LightCore::latency, every slot on, the slowest unit), the
+fragments per clock for 0, 1, 2, 4 and 8 enabled lights (⌈k/lanes⌉ passes, one pass per clock: the
+scheduler of rtl/sc_light.v, checked cycle for cycle by the co-simulation's latency checks) and the
+SystemC co-simulation speed. The feature set of a row is the named set with its `lanes` replaced; its
+Verilog parameters come from the CLI (`shadecore light-sweep --json`: FeatureSet::verilog_params), so
+nothing here restates the feature-set rules.
+
+    scripts/lighting_cost.py --build build --sets full --lanes 1,2,4,8 --steps generic,xc7,ecp5,cosim
+    scripts/lighting_cost.py --build build --sets diffuse,gl_default,phong_point,mono_spec
+
+Rows are cached in the output file by (set, lanes, step, source hash): rerunning resumes, an edited RTL
+reruns. A step that fails or exceeds --timeout is recorded as null with the reason.
+"""
+import argparse
+import datetime
+import hashlib
+import json
+import math
+import os
+import platform
+import re
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def one_line(s, limit=300):
+    s = " ".join(str(s).split())
+    return s if len(s) <= limit else s[:limit] + "..."
+
+
+def run(cmd, timeout):
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+    if p.returncode != 0:
+        raise RuntimeError(f"{cmd[0]} exited {p.returncode}: {one_line(p.stderr or p.stdout)}")
+    return p.stdout
+
+
+def light_files():
+    cfg = json.load(open(os.path.join(ROOT, "config", "configs.json")))
+    r = cfg["rtl"]
+    files = list(r["sc_light"]["files"]) + r["sc_light"]["normalize"] + r["sc_light"]["recip"]
+    files += r["sc_specular"]["files"] + r["sc_specular"]["norm"]
+    for v in cfg["variants"]:
+        files += v["rtl"]
+    out = []
+    for f in files:
+        if f not in out:
+            out.append(f)
+    return [os.path.join(ROOT, "rtl", f) for f in out]
+
+
+def source_hash():
+    h = hashlib.sha256()
+    for f in sorted(light_files()) + [os.path.join(ROOT, "rtl", "sc_light_regs.vh"),
+                                      os.path.join(ROOT, "rtl", "sc_variants.vh")]:
+        h.update(open(f, "rb").read())
+    return h.hexdigest()[:16]
+
+
+def read_core(params):
+    ch = " ".join(f"-chparam {p.split('=')[0]} {p.split('=')[1]}" for p in params if not p.startswith("TAGW="))
+    return (f"read_verilog -I{os.path.join(ROOT, 'rtl')} {' '.join(light_files())}; "
+            f"hierarchy -check -top sc_light {ch}")
+
+
+def count(stat_text, pattern):
+    """Sum of the cell counts whose type matches `pattern` in the last `stat` summary."""
+    total = 0
+    for m in re.finditer(r"^\s+(\S+)\s+(\d+)\s*$", stat_text, re.M):
+        if re.fullmatch(pattern, m.group(1)):
+            total += int(m.group(2))
+    return total
+
+
+def last_block(text, marker):
+    i = text.rfind(marker)
+    return text[i:] if i >= 0 else text
+
+
+def step_generic(params, timeout):
+    out = run(["yosys", "-q", "-p", f"{read_core(params)}; synth -top sc_light; abc; tee -o /dev/stdout stat -top sc_light"],
+              timeout)
+    m = re.findall(r"Number of cells:\s+(\d+)", last_block(out, "design hierarchy"))
+    if not m:
+        raise RuntimeError("no cell count in the yosys output")
+    return {"cells": int(m[0])}
+
+
+def step_xc7(params, timeout):
+    out = run(["yosys", "-q", "-p", f"{read_core(params)}; synth_xilinx -family xc7 -flatten -top sc_light; "
+               "tee -o /dev/stdout stat"], timeout)
+    return {"x7_lut": count(out, r"LUT[1-6]"), "x7_ff": count(out, r"FD\w*"), "x7_dsp48": count(out, r"DSP48E1"),
+            "x7_carry4": count(out, r"CARRY4")}
+
+
+def step_ecp5(params, timeout):
+    out = run(["yosys", "-q", "-p", f"{read_core(params)}; synth_ecp5 -top sc_light; tee -o /dev/stdout stat"],
+              timeout)
+    return {"ecp5_lut4": count(out, r"LUT4"), "ecp5_mult18": count(out, r"MULT18X18D"),
+            "ecp5_ff": count(out, r"TRELLIS_FF")}
+
+
+def step_cosim(shadecore, fs_file, count_, timeout):
+    with tempfile.TemporaryDirectory() as tmp:
+        js = os.path.join(tmp, "cosim.json")
+        p = subprocess.run([shadecore, "cosim", "--core", "lighting", "--features", fs_file, "--mode", "random",
+                            "--count", str(count_), "--in-stall", "0", "--out-stall", "0", "--seed", "1", "--json", js],
+                           capture_output=True, text=True, timeout=timeout)
+        if p.returncode != 0:
+            raise RuntimeError(f"cosim exited {p.returncode}: {one_line(p.stderr or p.stdout)}")
+        j = json.load(open(js))
+        return {"cosim_fragments_per_s": round(j["vectors_per_s"]), "cosim_mismatches": j["mismatches"],
+                "cosim_vectors": j["vectors"]}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--sets", default="full")
+    ap.add_argument("--lanes", default="", help="lanes to try for every set (default: the set's own)")
+    ap.add_argument("--steps", default="generic,xc7,ecp5,cosim")
+    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "lighting_cost.json"))
+    ap.add_argument("--cosim-count", type=int, default=100000)
+    ap.add_argument("--timeout", type=int, default=7200, help="seconds per synthesis step")
+    a = ap.parse_args()
+    shadecore = os.path.join(a.build, "cli", "shadecore")
+    if not os.access(shadecore, os.X_OK):
+        sys.exit(f"lighting_cost.py: error: {shadecore} not found (build first: scripts/build.sh)")
+    steps = [s for s in a.steps.split(",") if s]
+    for s in steps:
+        if s not in ("generic", "xc7", "ecp5", "cosim"):
+            sys.exit(f"lighting_cost.py: error: unknown step '{s}' (generic, xc7, ecp5, cosim)")
+    doc = {"rows": []}
+    if os.path.exists(a.out):
+        doc = json.load(open(a.out))
+    src = source_hash()
+    machine = f"{platform.node()} ({os.cpu_count()} cores, {platform.machine()})"
+    yosys_v = one_line(subprocess.run(["yosys", "-V"], capture_output=True, text=True).stdout)
+    cfg = json.load(open(os.path.join(ROOT, "config", "configs.json")))
+    named = {f["name"]: f for f in cfg["feature_sets"]}
+    for name in a.sets.split(","):
+        if name not in named:
+            sys.exit(f"lighting_cost.py: error: unknown feature set '{name}' (named: {', '.join(named)})")
+        base = dict(named[name])
+        lanes_list = [int(x) for x in a.lanes.split(",")] if a.lanes else [base.get("lanes", 1)]
+        for lanes in lanes_list:
+            slots = len(base["lights"])
+            if lanes > slots:
+                continue
+            fs = dict(base)
+            fs["lanes"] = lanes
+            fs.pop("_comment", None)
+            with tempfile.TemporaryDirectory() as tmp:
+                fs_file = os.path.join(tmp, f"{name}_lanes{lanes}.json")
+                json.dump(fs, open(fs_file, "w"))
+                sweep = os.path.join(tmp, "ls.json")
+                run([shadecore, "light-sweep", "--features", fs_file, "--programs", "1", "--per-program", "1",
+                     "--json", sweep], 600)
+                info = json.load(open(sweep))
+                row = next((r for r in doc["rows"] if r["set"] == name and r["lanes"] == lanes), None)
+                if row is None:
+                    row = {"set": name, "lanes": lanes}
+                    doc["rows"].append(row)
+                row.update({
+                    "design_point": "one light per lane per clock",
+                    "feature_key": info["feature_key"],
+                    "verilog_params": info["verilog_params"],
+                    "slots": slots,
+                    "cycles_per_light": 1.0 / lanes,
+                    "latency": info["latency"],
+                    "latency_min": info["latency_min"],
+                    "fragments_per_clock": {str(k): 1.0 / max(1, math.ceil(k / lanes))
+                                            for k in (0, 1, 2, 4, 8) if k <= slots},
+                })
+                for st in steps:
+                    if row.get("source", {}).get(st) == src and row.get(st + "_error") is None and st + "_s" in row:
+                        print(f"{name} lanes {lanes} {st}: cached", flush=True)
+                        continue
+                    print(f"{name} lanes {lanes} {st} ...", flush=True)
+                    t0 = time.time()
+                    try:
+                        if st == "generic":
+                            res = step_generic(info["verilog_params"], a.timeout)
+                        elif st == "xc7":
+                            res = step_xc7(info["verilog_params"], a.timeout)
+                        elif st == "ecp5":
+                            res = step_ecp5(info["verilog_params"], a.timeout)
+                        else:
+                            res = step_cosim(shadecore, fs_file, a.cosim_count, a.timeout)
+                        row.update(res)
+                        row[st + "_error"] = None
+                    except (RuntimeError, subprocess.TimeoutExpired) as e:
+                        row[st + "_error"] = one_line(e)
+                        print(f"  failed: {one_line(e)}", flush=True)
+                    row[st + "_s"] = round(time.time() - t0, 1)
+                    row.setdefault("source", {})[st] = src
+                    row.setdefault("when", {})[st] = datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC")
+                    doc.update({
+                        "command": "scripts/lighting_cost.py " + " ".join(sys.argv[1:]),
+                        "machine": machine, "yosys": yosys_v,
+                        "date": datetime.datetime.utcnow().strftime("%Y-%m-%d"),
+                        "method": "generic cells: synth -top sc_light; abc; stat -top sc_light (hierarchical); "
+                                  "xc7: synth_xilinx -family xc7 -flatten; ecp5: synth_ecp5; cosim: shadecore "
+                                  "cosim --core lighting --mode random, no stalls, SystemC testbench",
+                    })
+                    tmpf = a.out + ".tmp"
+                    with open(tmpf, "w") as f:
+                        json.dump(doc, f, indent=1)
+                        f.write("\n")
+                    os.replace(tmpf, a.out)
+                    print(f"  {st}: {res if row[st + '_error'] is None else 'error'} ({row[st + '_s']} s)", flush=True)
+
+
+if __name__ == "__main__":
+    main()
