@@ -24,10 +24,7 @@
 #include "shadecore/unit.hpp"
 
 namespace fs = std::filesystem;
-using shadecore::testing::CliRun;
-using shadecore::testing::expect_one_line_error;
-using shadecore::testing::run_cli;
-using shadecore::testing::run_shell;
+using namespace shadecore::testing;  // tests/cli_run.hpp
 
 namespace {
 
@@ -43,6 +40,13 @@ std::string slurp(const fs::path& p) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+// `shadecore vectors ARGS --out DIR/NAME`, which must succeed; the file's text.
+std::string vectors_file(const fs::path& dir, const std::string& name, const std::string& args) {
+  const CliRun r = run_cli("vectors " + args + " --out " + (dir / name).string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  return slurp(dir / name);
 }
 
 struct Line {
@@ -186,8 +190,7 @@ TEST(VectorsCli, HardCasesFromTheModel) {
 TEST(VectorsCli, RandomIsReproducibleFromItsSeed) {
   const fs::path d = temp_dir("rand");
   auto make = [&](const std::string& name, const std::string& args) {
-    const CliRun r = run_cli("vectors --variant schlick_div --config narrow --mode random " + args + " --out " + (d / name).string());
-    EXPECT_EQ(r.status, 0) << r.err;
+    vectors_file(d, name, "--variant schlick_div --config narrow --mode random " + args);
     std::string header;
     auto v = read_vectors(d / name, &header);
     return std::make_pair(v, header);
@@ -271,9 +274,7 @@ TEST(VectorsCli, BadArgumentsAndOutputRules) {
 TEST(VectorsCli, LightingRecordsReplayThroughTheModel) {
   const fs::path d = temp_dir("lvec");
   auto make = [&](const std::string& name, const std::string& args) {
-    const CliRun r = run_cli("vectors --core lighting --features mono_spec " + args + " --out " + (d / name).string());
-    EXPECT_EQ(r.status, 0) << r.err;
-    return slurp(d / name);
+    return vectors_file(d, name, "--core lighting --features mono_spec " + args);
   };
   const std::string a = make("a.hex", "--mode random --count 80 --seed 21");
   EXPECT_EQ(a.substr(a.find("\n0 ")), make("b.hex", "--mode random --count 80 --seed 21").substr(a.find("\n0 ")));

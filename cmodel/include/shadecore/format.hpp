@@ -36,24 +36,23 @@ struct Format {
   [[nodiscard]] constexpr int64_t in_max() const { return (int64_t{1} << (frac + 1)) - 1; }
 };
 
+// Throws std::invalid_argument "<what> <v> out of range [lo, hi]" unless lo <= v <= hi.
+inline void check_in_range(const char* what, long long v, long long lo, long long hi) {
+  if (v < lo || v > hi)
+    throw std::invalid_argument(std::string(what) + " " + std::to_string(v) + " out of range [" + std::to_string(lo) +
+                                ", " + std::to_string(hi) + "]");
+}
+
 // Throws std::invalid_argument with a one-line message when the format is illegal.
 inline void validate(const Format& f) {
-  if (f.frac < kFracMin || f.frac > kFracMax)
-    throw std::invalid_argument("fraction width " + std::to_string(f.frac) + " out of range [" +
-                                std::to_string(kFracMin) + ", " + std::to_string(kFracMax) + "]");
-  if (f.guard < kGuardMin || f.guard > kGuardMax)
-    throw std::invalid_argument("guard width " + std::to_string(f.guard) + " out of range [" +
-                                std::to_string(kGuardMin) + ", " + std::to_string(kGuardMax) + "]");
+  check_in_range("fraction width", f.frac, kFracMin, kFracMax);
+  check_in_range("guard width", f.guard, kGuardMin, kGuardMax);
   if (f.work() > kWorkMax)
     throw std::invalid_argument("frac+guard = " + std::to_string(f.work()) + " exceeds " +
                                 std::to_string(kWorkMax));
 }
 
 // Throws std::invalid_argument unless n is an integer in [16, 1024].
-inline void validate_n(long long n) {
-  if (n < kNMin || n > kNMax)
-    throw std::invalid_argument("specular exponent n = " + std::to_string(n) + " out of range [" +
-                                std::to_string(kNMin) + ", " + std::to_string(kNMax) + "]");
-}
+inline void validate_n(long long n) { check_in_range("specular exponent n =", n, kNMin, kNMax); }
 
 }  // namespace shadecore

@@ -123,12 +123,8 @@ struct NormFormat {
 };
 
 inline void validate(const NormFormat& f) {
-  if (f.frac < kFracMin || f.frac > kFracMax)
-    throw std::invalid_argument("fraction width " + std::to_string(f.frac) + " out of range [" +
-                                std::to_string(kFracMin) + ", " + std::to_string(kFracMax) + "]");
-  if (f.int_bits < kCoefIntBitsMin || f.int_bits > kCoefIntBitsMax)
-    throw std::invalid_argument("coefficient integer bits " + std::to_string(f.int_bits) + " out of range [" +
-                                std::to_string(kCoefIntBitsMin) + ", " + std::to_string(kCoefIntBitsMax) + "]");
+  check_in_range("fraction width", f.frac, kFracMin, kFracMax);
+  check_in_range("coefficient integer bits", f.int_bits, kCoefIntBitsMin, kCoefIntBitsMax);
 }
 
 // Material setup: code = ⌊coef·2^F + ½⌋ (round half up of the IEEE-double value), checked to fit
