@@ -19,6 +19,7 @@
 #include <fmt/core.h>
 
 #include "output.hpp"
+#include "unit_spec.hpp"
 
 namespace shadecore::cli::handoff {
 
@@ -110,7 +111,6 @@ Proc run_proc(const std::vector<std::string>& argv, const fs::path& cwd, const P
 }
 
 namespace {
-namespace {
 std::string manifest(const fs::path& dir) {
   std::vector<std::string> files;
   for (const auto& e : fs::recursive_directory_iterator(dir))
@@ -124,7 +124,6 @@ std::string manifest(const fs::path& dir) {
   return s;
 }
 }  // namespace
-
 
 void make_bundle(const std::string& out, bool force, const std::function<void(const fs::path&, const Step&)>& fill) {
   // Destination: a symlink to a directory is followed (the link stays); a non-directory is refused.

@@ -13,8 +13,6 @@
 #include "output.hpp"
 
 namespace shadecore::cli::handoff {
-
-namespace {
 namespace {
 std::string tool_version(const std::vector<std::string>& argv) {
   try {
@@ -25,7 +23,6 @@ std::string tool_version(const std::vector<std::string>& argv) {
     return "?";
   }
 }
-
 
 std::string report_header(const std::string& what, const std::string& cmd, const std::string& version) {
   return fmt::format("# {}\n# command (in the bundle directory): {}\n# tool: {}\n# date: {}\n\n", what, cmd, version,
@@ -45,7 +42,6 @@ void report_lint(BundleBase& b, const fs::path& dir) {
   if (r.status != 0 || warn)
     throw std::runtime_error("Verilator lint of the bundle is not clean: " + first_line(r.out) + " (reports/verilator_lint.log)");
 }
-
 
 void report_yosys(BundleBase& b, const fs::path& dir) {
   std::string files;
@@ -107,7 +103,6 @@ void report_yosys(BundleBase& b, const fs::path& dir) {
                                          last_line_with(r.out, "ERROR").empty() ? "no ERROR line (killed?)"
                                                                                 : last_line_with(r.out, "ERROR")));
 }
-
 
 void report_ice40(BundleBase& b, const fs::path& dir, bool skip) {
   const fs::path log = dir / "reports" / "ice40.log";
@@ -178,7 +173,6 @@ void report_ice40(BundleBase& b, const fs::path& dir, bool skip) {
   write_text(log, text + "\n# result: " + b.ice40_status + "\n");
 }
 
-
 // Runs one of the bundle's simulator scripts; returns its last line (PASS ...).
 std::string run_sim(const fs::path& dir, const std::string& script, const std::string& log) {
   const std::vector<std::string> cmd = {"sh", "./" + script};
@@ -192,7 +186,6 @@ std::string run_sim(const fs::path& dir, const std::string& script, const std::s
   return last;
 }
 
-
 std::string synth_summary(const BundleBase& b) {
   switch (b.synth) {
     case SynthMode::Skipped: return "skipped: " + b.synth_why;
@@ -201,7 +194,6 @@ std::string synth_summary(const BundleBase& b) {
     default: return fmt::format("{} cells, {} flip-flops, logic depth {}", b.synth_cells, b.synth_ffs, b.synth_depth);
   }
 }
-
 
 void check_and_report(BundleBase& b, const fs::path& dir, bool no_ice40, const std::function<void(const std::string&)>& step) {
   report_lint(b, dir);
@@ -212,7 +204,6 @@ void check_and_report(BundleBase& b, const fs::path& dir, bool no_ice40, const s
   step("iCE40: " + b.ice40_status);
 }
 
-
 void simulate_and_summarise(BundleBase& b, const fs::path& dir, const std::function<void(const std::string&)>& step) {
   b.icarus_line = run_sim(dir, "run_icarus.sh", "sim_icarus.log");
   step(b.icarus_line);
@@ -221,7 +212,6 @@ void simulate_and_summarise(BundleBase& b, const fs::path& dir, const std::funct
   write_text(dir / "reports" / "summary.md", summary_md(b));
   write_text(dir / "README.md", bundle_readme(b));
 }
-
 
 void require_tools() {
   for (const char* tool : {"iverilog", "vvp", "verilator", "yosys", "tar", "gzip"})

@@ -23,7 +23,6 @@ namespace {
 // ---------------------------------------------------------------------------- the port table
 nlohmann::json load_ports() { return interface_ports("ports"); }
 
-
 std::string sym_width(const std::string& expr) {
   return (expr == "TAGW" || expr == "COEFW") ? "`" + expr + "`" : expr;
 }
@@ -70,7 +69,6 @@ struct Bundle : BundleBase {
   int tagw = 8;
   size_t n_hard = 0, n_random = 0;
 };
-
 
 std::string wrapper_v(const Bundle& b) {
   const UnitSpec& s = b.spec;
@@ -172,7 +170,6 @@ std::string tb_dut_vh(const Bundle& b) {
   return s;
 }
 
-
 // Fmax recorded by scripts/cost_report.py (docs/tradeoffs.json: iCE40 HX8K, icetime after nextpnr).
 void recorded_fmax(Bundle& b) {
   const fs::path p = fs::path(root_dir()) / "docs" / "tradeoffs.json";
@@ -189,8 +186,6 @@ void recorded_fmax(Bundle& b) {
   } catch (const nlohmann::json::exception&) {
   }
 }
-
-
 
 std::string error_contract(const UnitSpec& s) {
   const int F = s.format.frac, G = s.format.guard;
@@ -282,9 +277,29 @@ std::string interface_md(const Bundle& b) {
   const std::string ready = s.variant == VariantId::schlick_iter
                                 ? "`in_ready_o = rst_ni && !busy && (!out_valid_o || out_ready_i)`"
                                 : "`in_ready_o = rst_ni && (!out_valid_o || out_ready_i)`";
-  return fill_template("handoff/interface.md",
-                      {
-       {"top", b.top},
+  const std::string outdesc =
+      s.norm ? fmt::format("{} bits unsigned, 8 integer and {} fraction bits (the normalised term; < 256)", s.coef_bits(),
+                           f.frac)
+             : fmt::format("{} bits unsigned, 1 integer and {} fraction bits, ≤ 2^F", f.frac + 1, f.frac);
+  const std::string thrline =
+      s.uses_thr() ? fmt::format("- `mat_thr_i`: thr(n) = ⌈cos(6/√n)·2^F⌉ evaluated in IEEE double (the smallest code "
+                                 "with cos ≥ cos θcr; never within 10⁻⁶ of an integer, so any libm gives the same code), "
+                                 "{} bits unsigned. A fragment is cut to 0 when its clamped code is below thr.\n",
+                                 f.frac + 1)
+                   : "";
+  const std::string coefline =
+      s.norm ? fmt::format("- `mat_coef_i`: ⌊coef(n)·2^F + ½⌋ for the material's energy-normalisation coefficient "
+                           "coef(n) (docs/spec.md §7: (a·n + b)/(k·π) fitted, or the classical closed forms), {} bits "
+                           "unsigned; the hardware takes any code. This bundle's vectors: {}.\n",
+                           s.coef_bits(), s.norm_label())
+             : "";
+  const std::string period =
+      b.fmax_mhz > 0
+          ? fmt::format("{:.1f} ns from the measured {:.2f} MHz", std::ceil(10000.0 / b.fmax_mhz) / 10.0, b.fmax_mhz)
+          : "20 ns placeholder: no measured Fmax";
+  return fill_template(
+      "handoff/interface.md",
+      {{"top", b.top},
        {"vname", s.variant_name},
        {"cfg", s.config_name},
        {"cmd", command_line()},
@@ -304,21 +319,9 @@ std::string interface_md(const Bundle& b) {
        {"ports", concrete_port_table(b.ports)},
        {"inw", std::to_string(f.in_bits())},
        {"sign", std::to_string(f.frac + 1)},
-       {"outdesc", s.norm ? fmt::format("{} bits unsigned, 8 integer and {} fraction bits (the normalised term; "
-                                               "< 256)", s.coef_bits(), f.frac)
-                                 : fmt::format("{} bits unsigned, 1 integer and {} fraction bits, ≤ 2^F", f.frac + 1, f.frac)},
-       {"thrline", s.uses_thr() ? fmt::format("- `mat_thr_i`: thr(n) = ⌈cos(6/√n)·2^F⌉ evaluated in IEEE double "
-                                                     "(the smallest code with cos ≥ cos θcr; never within 10⁻⁶ of an "
-                                                     "integer, so any libm gives the same code), {} bits unsigned. A "
-                                                     "fragment is cut to 0 when its clamped code is below thr.\n",
-                                                     f.frac + 1)
-                                       : ""},
-       {"coefline", s.norm ? fmt::format("- `mat_coef_i`: ⌊coef(n)·2^F + ½⌋ for the material's energy-normalisation "
-                                                "coefficient coef(n) (docs/spec.md §7: (a·n + b)/(k·π) fitted, or the "
-                                                "classical closed forms), {} bits unsigned; the hardware takes any code. "
-                                                "This bundle's vectors: {}.\n",
-                                                s.coef_bits(), s.norm_label())
-                                  : ""},
+       {"outdesc", outdesc},
+       {"thrline", thrline},
+       {"coefline", coefline},
        {"examples", examples},
        {"ready", ready},
        {"lat", lat},
@@ -329,8 +332,7 @@ std::string interface_md(const Bundle& b) {
        {"nhard", std::to_string(b.n_hard)},
        {"nrand", std::to_string(b.n_random)},
        {"seed", std::to_string(b.seed)},
-       {"period", b.fmax_mhz > 0 ? fmt::format("{:.1f} ns from the measured {:.2f} MHz", std::ceil(10000.0 / b.fmax_mhz) / 10.0, b.fmax_mhz)
-                                        : "20 ns placeholder: no measured Fmax"}});
+       {"period", period}});
 }
 
 }  // namespace

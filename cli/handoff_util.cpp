@@ -26,7 +26,6 @@ std::string root_dir() {
   return env && *env ? env : SHADECORE_SOURCE_DIR;
 }
 
-
 std::string read_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read " + p.string());
@@ -34,7 +33,6 @@ std::string read_text(const fs::path& p) {
   ss << in.rdbuf();
   return ss.str();
 }
-
 
 void write_text(const fs::path& p, const std::string& s, bool exec) {
   fs::create_directories(p.parent_path());
@@ -44,7 +42,6 @@ void write_text(const fs::path& p, const std::string& s, bool exec) {
   if (!out) throw std::runtime_error("cannot write " + p.string());
   if (exec) fs::permissions(p, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec, fs::perm_options::add);
 }
-
 
 bool on_path(const std::string& tool) {
   const char* path = std::getenv("PATH");
@@ -57,7 +54,6 @@ bool on_path(const std::string& tool) {
 
 std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
 
-
 std::string last_line_with(const std::string& out, const std::string& needle) {
   std::stringstream ss(out);
   std::string line, found;
@@ -65,7 +61,6 @@ std::string last_line_with(const std::string& out, const std::string& needle) {
     if (line.find(needle) != std::string::npos) found = line;
   return found;
 }
-
 
 std::string shell_join(const std::vector<std::string>& argv) {
   std::string s;
@@ -76,7 +71,6 @@ std::string shell_join(const std::vector<std::string>& argv) {
   }
   return s;
 }
-
 
 // SHA-256 (FIPS 180-4), for MANIFEST.sha256 in `sha256sum` format.
 std::string sha256_hex(const std::string& data) {
@@ -119,7 +113,6 @@ std::string sha256_hex(const std::string& data) {
   return out;
 }
 
-
 nlohmann::json interface_ports(const std::string& key) {
   const fs::path p = fs::path(root_dir()) / "config" / "interface.json";
   try {
@@ -139,7 +132,6 @@ int eval_width(const std::string& expr, const Widths& w) {
   throw std::runtime_error("config/interface.json: unknown width '" + expr + "'");
 }
 
-
 SynthMode parse_synth(const std::string& text, SynthMode auto_mode) {
   if (text == "auto") return auto_mode;
   if (text == "flat") return SynthMode::Flat;
@@ -148,14 +140,12 @@ SynthMode parse_synth(const std::string& text, SynthMode auto_mode) {
   throw std::invalid_argument("unknown --synth '" + text + "' (known: auto, flat, hier, skip)");
 }
 
-
 void check_top_name(const std::string& top, const std::string& tb) {
   static const std::regex ident(R"(^[A-Za-z_][A-Za-z0-9_]{0,62}$)");
   if (!std::regex_match(top, ident)) throw std::invalid_argument("--top '" + top + "' is not a Verilog identifier");
   if (top.rfind("sc_", 0) == 0 || top == tb)
     throw std::invalid_argument("--top '" + top + "' clashes with the bundle's module names (sc_*, " + tb + ")");
 }
-
 
 uint64_t checked_seed(uint64_t seed) {
   const uint64_t s = seed != 0 ? seed : pick_seed();

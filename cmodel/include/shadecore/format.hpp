@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace shadecore {
 
@@ -41,6 +42,17 @@ inline void check_in_range(const char* what, long long v, long long lo, long lon
   if (v < lo || v > hi)
     throw std::invalid_argument(std::string(what) + " " + std::to_string(v) + " out of range [" + std::to_string(lo) +
                                 ", " + std::to_string(hi) + "]");
+}
+
+// The value of the entry of `table` whose name is `key` (name_of, value_of: an entry's name and value);
+// else throws std::invalid_argument "unknown <what> '<key>' (known: <every name>)".
+template <class Table, class NameOf, class ValueOf>
+auto find_named(const Table& table, std::string_view key, const char* what, NameOf name_of, ValueOf value_of) {
+  for (const auto& e : table)
+    if (name_of(e) == key) return value_of(e);
+  std::string known;
+  for (const auto& e : table) known += (known.empty() ? "" : ", ") + std::string(name_of(e));
+  throw std::invalid_argument("unknown " + std::string(what) + " '" + std::string(key) + "' (known: " + known + ")");
 }
 
 // Throws std::invalid_argument with a one-line message when the format is illegal.

@@ -61,11 +61,7 @@ inline const ModelInfo& info(Model m) { return kModels[static_cast<int>(m)]; }
 
 // Throws std::invalid_argument for an unknown key.
 inline Model parse_model(std::string_view key) {
-  for (const auto& m : kModels)
-    if (m.key == key) return m.model;
-  std::string names;
-  for (const auto& m : kModels) names += (names.empty() ? "" : ", ") + std::string(m.key);
-  throw std::invalid_argument("unknown model '" + std::string(key) + "' (known: " + names + ")");
+  return find_named(kModels, key, "model", [](const auto& m) { return m.key; }, [](const auto& m) { return m.model; });
 }
 
 // Classical coefficient of the exact lobe cos^n over the hemisphere (the paper's middle column,
