@@ -24,9 +24,11 @@
 #include "shadecore/configs.hpp"
 #include "shadecore/units/cs16.hpp"
 #include "shadecore/analysis/golden.hpp"
+#include "cycle.hpp"
 
 using namespace shadecore;
 using namespace shadecore::brdf;
+using shadecore::bench::cycle_inputs;
 
 namespace {
 
@@ -44,23 +46,14 @@ const std::vector<Set>& sets() {
   static const std::vector<Set> v = [] {
     std::vector<Set> s(kSets);
     std::mt19937_64 rng(2004);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
+    RandomDirections dir(rng);
     std::uniform_int_distribution<int> nd(16, 1024);
-    const auto sphere = [&]() {
-      const double z = 2 * u(rng) - 1, ph = 2 * kPi * u(rng), r = std::sqrt(std::max(0.0, 1 - z * z));
-      return Vec3{r * std::cos(ph), r * std::sin(ph), z};
-    };
-    const auto hemi = [&](const Vec3& n) {
-      Vec3 d = sphere();
-      while (std::fabs(dot(d, n)) < 1e-3) d = sphere();
-      return dot(d, n) < 0 ? d * -1.0 : d;
-    };
     const Format f = default_format();
     for (Set& e : s) {
-      e.n = sphere();
-      e.t = sphere();
-      e.wi = hemi(e.n);
-      e.wo = hemi(e.n);
+      e.n = dir.sphere();
+      e.t = dir.sphere();
+      e.wi = dir.hemisphere(e.n);
+      e.wo = dir.hemisphere(e.n);
       e.cos_h = dot(e.n, normalize(e.wi + e.wo));
       e.nexp = nd(rng);
       e.code = std::llround(std::ldexp(e.cos_h, f.frac));
@@ -77,17 +70,13 @@ const std::vector<Set>& lobe_sets() {
   static const std::vector<Set> v = [] {
     std::vector<Set> s;
     std::mt19937_64 rng(1975);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    const auto sphere = [&]() {
-      const double z = 2 * u(rng) - 1, ph = 2 * kPi * u(rng), r = std::sqrt(std::max(0.0, 1 - z * z));
-      return Vec3{r * std::cos(ph), r * std::sin(ph), z};
-    };
+    RandomDirections dir(rng);
     while (s.size() < kSets) {
       Set e;
-      e.n = sphere();
-      e.t = sphere();
-      e.wi = sphere();
-      e.wo = sphere();
+      e.n = dir.sphere();
+      e.t = dir.sphere();
+      e.wi = dir.sphere();
+      e.wo = dir.sphere();
       if (dot(e.wi, e.n) < 1e-3 || dot(e.wo, e.n) < 1e-3 || dot(e.wo, mirror(e.wi, e.n)) <= 0) continue;
       s.push_back(e);
     }
@@ -100,13 +89,10 @@ template <class M>
 void run_model(benchmark::State& st, std::array<M, 4> mats, bool in_lobe = false) {
   const std::vector<Set>& in = in_lobe ? lobe_sets() : sets();
   benchmark::DoNotOptimize(mats);  // the parameters are run-time data
-  size_t i = 0;
-  for (auto _ : st) {
+  cycle_inputs(st, kSets, [&](size_t i) {
     const Set& e = in[i];
-    benchmark::DoNotOptimize(mats[i & 3](e.wi, e.wo, e.n, e.t));
-    i = (i + 1) & (kSets - 1);
-  }
-  st.SetItemsProcessed(st.iterations());
+    return mats[i & 3](e.wi, e.wo, e.n, e.t);
+  });
 }
 
 void BM_Lambert(benchmark::State& st) { run_model(st, std::array<Lambert, 4>{{{0.2}, {0.4}, {0.6}, {0.8}}}); }
@@ -181,40 +167,20 @@ BENCHMARK(BM_BlinnPhong_InLobe);
 
 void BM_Unit_PowExact(benchmark::State& st) {
   const std::vector<Set>& in = sets();
-  size_t i = 0;
-  for (auto _ : st) {
-    benchmark::DoNotOptimize(golden::cos_pow(in[i].cos_h, in[i].nexp));
-    i = (i + 1) & (kSets - 1);
-  }
-  st.SetItemsProcessed(st.iterations());
+  cycle_inputs(st, kSets, [&](size_t i) { return golden::cos_pow(in[i].cos_h, in[i].nexp); });
 }
 void BM_Unit_Cs16Double(benchmark::State& st) {
   const std::vector<Set>& in = sets();
-  size_t i = 0;
-  for (auto _ : st) {
-    benchmark::DoNotOptimize(golden::cs16_theta_cr(in[i].cos_h, in[i].nexp));
-    i = (i + 1) & (kSets - 1);
-  }
-  st.SetItemsProcessed(st.iterations());
+  cycle_inputs(st, kSets, [&](size_t i) { return golden::cs16_theta_cr(in[i].cos_h, in[i].nexp); });
 }
 void BM_Unit_SchlickDouble(benchmark::State& st) {
   const std::vector<Set>& in = sets();
-  size_t i = 0;
-  for (auto _ : st) {
-    benchmark::DoNotOptimize(golden::schlick(in[i].cos_h, in[i].nexp));
-    i = (i + 1) & (kSets - 1);
-  }
-  st.SetItemsProcessed(st.iterations());
+  cycle_inputs(st, kSets, [&](size_t i) { return golden::schlick(in[i].cos_h, in[i].nexp); });
 }
 void BM_Unit_Cs16Fixed(benchmark::State& st) {
   const std::vector<Set>& in = sets();
   const Format f = default_format();
-  size_t i = 0;
-  for (auto _ : st) {
-    benchmark::DoNotOptimize(cs16_eval(f, Cutoff::ThetaCr, in[i].mat, in[i].code));
-    i = (i + 1) & (kSets - 1);
-  }
-  st.SetItemsProcessed(st.iterations());
+  cycle_inputs(st, kSets, [&](size_t i) { return cs16_eval(f, Cutoff::ThetaCr, in[i].mat, in[i].code); });
 }
 
 // Blinn-Phong (2.10) with the fixed-point cs16 unit as its highlight: the vector work in double, then
@@ -226,8 +192,7 @@ void BM_BlinnPhong_Cs16Fixed(benchmark::State& st) {
   benchmark::DoNotOptimize(kd);
   benchmark::DoNotOptimize(ks);
   const double scale = std::ldexp(1.0, f.frac), inv = std::ldexp(1.0, -f.frac);
-  size_t i = 0;
-  for (auto _ : st) {
+  cycle_inputs(st, kSets, [&](size_t i) {
     const Set& e = in[i];
     const double ci = dot(e.n, e.wi), co = dot(e.n, e.wo);
     double r = 0;
@@ -236,10 +201,8 @@ void BM_BlinnPhong_Cs16Fixed(benchmark::State& st) {
       const uint32_t out = cs16_eval(f, Cutoff::ThetaCr, e.mat, std::llround(cd * scale));
       r = kd[i & 3] / kPi + ks[i & 3] * (e.mat.n + 2) / (2 * kPi) * (out * inv);
     }
-    benchmark::DoNotOptimize(r);
-    i = (i + 1) & (kSets - 1);
-  }
-  st.SetItemsProcessed(st.iterations());
+    return r;
+  });
 }
 
 BENCHMARK(BM_Unit_PowExact);

@@ -12,8 +12,10 @@
 #include "shadecore/units/cs16.hpp"
 #include "shadecore/analysis/golden.hpp"
 #include "shadecore/analysis/sweep.hpp"
+#include "cycle.hpp"
 
 using namespace shadecore;
+using shadecore::bench::cycle_inputs;
 
 namespace {
 
@@ -49,12 +51,7 @@ const Inputs& inputs() {
 void BM_Cs16Fixed(benchmark::State& st) {
   const Format f = default_format();
   const Inputs& in = inputs();
-  size_t i = 0;
-  for (auto _ : st) {
-    benchmark::DoNotOptimize(cs16_eval(f, Cutoff::ThetaCr, in.mats[i], in.codes[i]));
-    i = (i + 1) & 4095;
-  }
-  st.SetItemsProcessed(st.iterations());
+  cycle_inputs(st, in.codes.size(), [&](size_t i) { return cs16_eval(f, Cutoff::ThetaCr, in.mats[i], in.codes[i]); });
 }
 BENCHMARK(BM_Cs16Fixed);
 
@@ -73,36 +70,21 @@ void BM_Cs16FixedBlock(benchmark::State& st) {
 }
 BENCHMARK(BM_Cs16FixedBlock);
 
-void BM_PowDouble(benchmark::State& st) {
+// The rate of a double reference ref(cos θ, n) on the same inputs.
+template <class Ref>
+void double_rate(benchmark::State& st, Ref&& ref) {
   const Inputs& in = inputs();
-  size_t i = 0;
-  for (auto _ : st) {
-    benchmark::DoNotOptimize(golden::cos_pow(in.cosines[i], in.ns[i]));
-    i = (i + 1) & 4095;
-  }
-  st.SetItemsProcessed(st.iterations());
+  cycle_inputs(st, in.cosines.size(), [&](size_t i) { return ref(in.cosines[i], in.ns[i]); });
 }
+
+void BM_PowDouble(benchmark::State& st) { double_rate(st, [](double c, int n) { return golden::cos_pow(c, n); }); }
 BENCHMARK(BM_PowDouble);
 
-void BM_SchlickDouble(benchmark::State& st) {
-  const Inputs& in = inputs();
-  size_t i = 0;
-  for (auto _ : st) {
-    benchmark::DoNotOptimize(golden::schlick(in.cosines[i], in.ns[i]));
-    i = (i + 1) & 4095;
-  }
-  st.SetItemsProcessed(st.iterations());
-}
+void BM_SchlickDouble(benchmark::State& st) { double_rate(st, [](double c, int n) { return golden::schlick(c, n); }); }
 BENCHMARK(BM_SchlickDouble);
 
 void BM_Cs16Double(benchmark::State& st) {
-  const Inputs& in = inputs();
-  size_t i = 0;
-  for (auto _ : st) {
-    benchmark::DoNotOptimize(golden::cs16_theta_cr(in.cosines[i], in.ns[i]));
-    i = (i + 1) & 4095;
-  }
-  st.SetItemsProcessed(st.iterations());
+  double_rate(st, [](double c, int n) { return golden::cs16_theta_cr(c, n); });
 }
 BENCHMARK(BM_Cs16Double);
 

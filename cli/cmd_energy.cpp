@@ -5,7 +5,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -63,13 +62,6 @@ std::vector<double> parse_angles(const std::string& s) {
   }
   if (out.empty()) throw std::invalid_argument("empty angle list");
   return out;
-}
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char buf[64];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
-  return buf;
 }
 
 void run(const EnergyArgs& a) {
@@ -205,15 +197,7 @@ void run(const EnergyArgs& a) {
     j["seconds"] = secs;
     outs.set(json_out, j.dump(2) + "\n");
   }
-  if (plots_out >= 0) {
-    const std::string stage = outs.stage(plots_out);
-    write_staged(stage + "/energy.csv", csv.str());
-    std::fflush(stdout);
-    run_python("plot_fit.py", {"--dir", stage, "--energy", "--caption",
-                               fmt::format("{}, {}", command_line(), utc_now())});
-  }
-  outs.commit();
-  if (plots_out >= 0) fmt::print("plots written to {}/\n", a.plots_dir);
+  commit_with_fit_plots(outs, plots_out, a.plots_dir, "energy.csv", csv.str(), "--energy");
 }
 
 }  // namespace

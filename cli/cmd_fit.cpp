@@ -4,7 +4,6 @@
 // published and re-derived coefficients, and a verdict per published bound.
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <sstream>
 
 #include <fmt/core.h>
@@ -79,13 +78,6 @@ std::string integrand_text(Model m, const fit::Lobe& l) {
   std::string arg = mi.half_angle ? "theta/2" : (m == Model::BlinnNdf || m == Model::BlinnHeightfield ? "alpha" : "theta");
   std::string var = (m == Model::BlinnNdf || m == Model::BlinnHeightfield) ? "alpha" : "theta";
   return fmt::format("{}({}, n){}·sin {} d{}", fit::to_string(l.kind), arg, mi.cos_weight ? "·cos " + var : "", var, var);
-}
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char buf[64];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
-  return buf;
 }
 
 void run(const FitArgs& a) {
@@ -286,14 +278,7 @@ void run(const FitArgs& a) {
     j["seconds"] = secs;
     outs.set(json_out, j.dump(2) + "\n");
   }
-  if (plots_out >= 0) {
-    const std::string stage = outs.stage(plots_out);
-    write_staged(stage + "/fit_res.csv", csv.str());
-    std::fflush(stdout);
-    run_python("plot_fit.py", {"--dir", stage, "--fit", "--caption", fmt::format("{}, {}", command_line(), utc_now())});
-  }
-  outs.commit();
-  if (plots_out >= 0) fmt::print("plots written to {}/\n", a.plots_dir);
+  commit_with_fit_plots(outs, plots_out, a.plots_dir, "fit_res.csv", csv.str(), "--fit");
 }
 
 }  // namespace

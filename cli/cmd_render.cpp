@@ -42,9 +42,9 @@
 
 #include "shadecore/common/args.hpp"
 #include "commands.hpp"
-#include "legend.hpp"
+#include "shadecore/common/legend.hpp"
 #include "output.hpp"
-#include "png.hpp"
+#include "shadecore/common/png.hpp"
 #include "shadecore/render/mesh.hpp"
 #include "shadecore/render/render.hpp"
 #include "shadecore/render/scene.hpp"
@@ -53,6 +53,7 @@
 
 namespace shadecore::cli {
 namespace {
+using namespace shadecore::canvas;
 
 namespace fsys = std::filesystem;
 using Clock = std::chrono::steady_clock;

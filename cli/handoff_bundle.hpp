@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
-// shadecore handoff — what every bundle has in common, whichever core it delivers (cli/cmd_handoff.cpp:
-// the specular unit; cli/handoff_light.cpp: the lighting core):
+// shadecore handoff — what every bundle has in common, whichever core it delivers (cli/handoff_specular.cpp:
+// the specular unit; cli/handoff_light.cpp: the lighting core; cli/cmd_handoff.cpp: the command, and there
+// the list of the parts by job):
 //   * the destination rules and the transaction: --out DIR refused when not empty unless --force, the
 //     bundle built in a hidden staging directory beside DIR, MANIFEST.sha256, DIR.tar.gz, moved into
 //     place only when everything passed; a failure or an interrupt leaves nothing (make_bundle);
 //   * child processes in their own process group (an interrupt stops a whole tool tree);
 //   * the reports: Verilator lint, Yosys generic synthesis (flat or hierarchical, or skipped with a
 //     recorded note), iCE40 where installed, both simulators through the bundle's own run scripts;
-//   * constraints.sdc, filelist.f, README.md, reports/summary.md, the run scripts (templates handoff/).
+//   * constraints.sdc, filelist.f, README.md, reports/summary.md (text: cli/templates/handoff/), the run
+//     scripts (templates handoff/), rtl/ and tb/.
 #pragma once
 
 #include <cstdint>
@@ -17,10 +19,15 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "shadecore/variants.hpp"
 
 namespace shadecore {
 struct FeatureSet;
+}
+namespace shadecore::cli {
+struct UnitSpec;
 }
 
 namespace shadecore::cli::handoff {
@@ -32,7 +39,6 @@ std::string root_dir();  // $SHADECORE_ROOT or the source tree the CLI was built
 std::string read_text(const fs::path& p);
 void write_text(const fs::path& p, const std::string& s, bool exec = false);
 bool on_path(const std::string& tool);
-std::string utc_now();
 std::string first_line(const std::string& s);
 std::string last_line_with(const std::string& out, const std::string& needle);
 std::string sha256_hex(const std::string& data);
@@ -69,6 +75,8 @@ struct Widths {
 };
 // A symbolic width of config/interface.json ("F+1", "F+2", "F+8", "TAGW", "COEFW", a number).
 int eval_width(const std::string& expr, const Widths& w);
+// A port list of config/interface.json ("ports": sc_specular, "light_ports": sc_light), read at run time.
+nlohmann::json interface_ports(const std::string& key);
 std::string concrete_port_table(const std::vector<Port>& ports);
 
 // ---- what every bundle records about itself
@@ -106,6 +114,10 @@ struct Options {
   std::string synth = "auto";
   bool top_given = false, count_given = false;
 };
+// The specular unit's bundle for the resolved unit options (cli/handoff_specular.cpp).
+void run_specular(const Options& o, const UnitSpec& spec);
+// The port table of sc_specular from config/interface.json "ports" (symbolic widths; the README's).
+std::string specular_port_table();
 // The lighting-core bundle (cli/handoff_light.cpp).
 void run_lighting(const Options& o);
 // A lighting-core vector file (format in its header; docs/handoff.md): mode "hard" (the directed hard
@@ -132,6 +144,15 @@ void report_ice40(BundleBase& b, const fs::path& dir, bool skip);
 std::string run_sim(const fs::path& dir, const std::string& script, const std::string& log);
 // run_icarus.sh / run_verilator.sh from the templates in handoff/, for testbench module b.tb.
 void write_run_scripts(const BundleBase& b, const fs::path& dir);
+// Throws unless each file (relative to root_dir()) exists.
+void require_sources(const std::vector<std::string>& files);
+// rtl/: `files` and `includes` copied from the source tree's rtl/, the wrapper top rtl/<b.top>.v; records
+// them in b.rtl_files (the files, then the wrapper) and writes filelist.f.
+void write_rtl(BundleBase& b, const fs::path& dir, const std::vector<std::string>& files,
+               const std::vector<std::string>& includes, const std::string& wrapper);
+// tb/: the testbench tb/<b.tb>.v and tb_common.vh from handoff/tb/, its tb_config.vh and tb_dut.vh; LICENSE;
+// the run scripts.
+void write_testbench(const BundleBase& b, const fs::path& dir, const std::string& tb_config, const std::string& tb_dut);
 // Lint, Yosys, iCE40 (reports/), each with a step line; throws when lint or Yosys fails.
 void check_and_report(BundleBase& b, const fs::path& dir, bool no_ice40, const std::function<void(const std::string&)>& step);
 // Both run scripts on the bundle as delivered (throws unless both PASS), then reports/summary.md, README.md.

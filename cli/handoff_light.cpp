@@ -24,7 +24,7 @@
 #include "shadecore/stimulus/light_stimulus.hpp"
 #include "handoff_bundle.hpp"
 #include "output.hpp"
-#include "rtl_files.hpp"
+#include "shadecore/common/rtl_files.hpp"
 #include "shadecore/units/cs16_forms.hpp"
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
@@ -44,14 +44,7 @@ struct LightBundle : BundleBase {
   size_t n_hard = 0, n_random = 0, n_hard_frag = 0, n_random_frag = 0;
 };
 
-nlohmann::json load_light_ports() {
-  const fs::path p = fs::path(root_dir()) / "config" / "interface.json";
-  try {
-    return nlohmann::json::parse(read_text(p)).at("light_ports");
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error("malformed " + p.string() + ": " + e.what());
-  }
-}
+nlohmann::json load_light_ports() { return interface_ports("light_ports"); }
 
 std::vector<Port> light_ports(const FeatureSet& fs, int tagw) {
   const Widths w{fs.format().frac, tagw, fs.format().frac + kCoefIntBits};
@@ -545,10 +538,8 @@ void run_lighting(const Options& o) {
   const std::string top = o.top_given ? o.top : "shadecore_light_top";
   check_top_name(top, "tb_shadecore_light");
   require_tools();
-  const fs::path root = root_dir();
-  for (const char* f : {"handoff/tb/tb_shadecore_light.v", "handoff/tb/tb_common.vh", "handoff/run_icarus.sh", "handoff/run_verilator.sh", "LICENSE",
-                        "rtl/sc_light.v", "rtl/sc_light_regs.vh"})
-    if (!fs::exists(root / f)) throw std::runtime_error("shadecore source file " + (root / f).string() + " not found (SHADECORE_ROOT)");
+  require_sources({"handoff/tb/tb_shadecore_light.v", "handoff/tb/tb_common.vh", "handoff/run_icarus.sh", "handoff/run_verilator.sh",
+                   "LICENSE", "rtl/sc_light.v", "rtl/sc_light_regs.vh"});
   const uint64_t seed = checked_seed(o.seed);
 
   make_bundle(o.out, o.force, [&](const fs::path& dir, const Step& step) {
@@ -576,16 +567,8 @@ void run_lighting(const Options& o) {
     b.latency_min = core.latency_min();
     step(fmt::format("bundle for {}, top {}, TAGW {}, seed {}", b.desc, b.top, b.tagw, b.seed));
 
-    // rtl/
-    fs::create_directories(dir / "rtl");
-    for (const auto& f : rtl::light_files(fs)) {
-      fs::copy_file(root / "rtl" / f, dir / "rtl" / f, fs::copy_options::none);
-      b.rtl_files.push_back("rtl/" + f);
-    }
-    for (const auto& inc : rtl::light_includes()) fs::copy_file(root / "rtl" / inc, dir / "rtl" / inc);
-    write_text(dir / "rtl" / (b.top + ".v"), wrapper_v(b));
-    b.rtl_files.push_back("rtl/" + b.top + ".v");
-    write_text(dir / "filelist.f", filelist(b));
+    // rtl/, filelist.f
+    write_rtl(b, dir, rtl::light_files(fs), rtl::light_includes(), wrapper_v(b));
 
     // vectors/: the co-simulation's directed and random stimulus, expected colours from the C model
     const auto hard = make_records(core, sim::LightMode::Directed, 0, seed);
@@ -602,14 +585,8 @@ void run_lighting(const Options& o) {
     step(fmt::format("vectors: {} hard-case records ({} fragments), {} random records ({} fragments, seed {})", b.n_hard,
                      b.n_hard_frag, b.n_random, b.n_random_frag, seed));
 
-    // tb/, scripts
-    fs::create_directories(dir / "tb");
-    fs::copy_file(root / "handoff" / "tb" / "tb_shadecore_light.v", dir / "tb" / "tb_shadecore_light.v");
-    fs::copy_file(root / "handoff" / "tb" / "tb_common.vh", dir / "tb" / "tb_common.vh");
-    fs::copy_file(root / "LICENSE", dir / "LICENSE");  // Apache-2.0: every file of the bundle carries its SPDX line
-    write_text(dir / "tb" / "tb_config.vh", tb_config_vh(b, std::max(hard.size(), rnd.size())));
-    write_text(dir / "tb" / "tb_dut.vh", tb_dut_vh(b));
-    write_run_scripts(b, dir);
+    // tb/, scripts, LICENSE
+    write_testbench(b, dir, tb_config_vh(b, std::max(hard.size(), rnd.size())), tb_dut_vh(b));
 
     // reports/, constraints (no measured Fmax for the lighting core: the placeholder), interface
     check_and_report(b, dir, o.no_ice40, step);

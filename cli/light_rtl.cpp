@@ -26,7 +26,7 @@
 
 #include "handoff_bundle.hpp"
 #include "output.hpp"
-#include "rtl_files.hpp"
+#include "shadecore/common/rtl_files.hpp"
 
 namespace shadecore::cli {
 namespace fs = std::filesystem;

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <regex>
 #include <stdexcept>
@@ -192,6 +193,25 @@ void run_python_script(const std::string& script, const std::string& args) {
   const std::string path = scripts_dir() + "/" + script;
   if (!fs::exists(path)) throw std::runtime_error("plot script not found: " + path);
   run_child({"/bin/sh", "-c", std::string(SHADECORE_PYTHON) + " '" + path + "' " + args}, "plotting");
+}
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
+  return buf;
+}
+
+void commit_with_fit_plots(io::OutputSet& outs, int plots_out, const std::string& plots_dir,
+                           const std::string& csv_name, const std::string& csv, const std::string& what) {
+  if (plots_out >= 0) {
+    const std::string stage = outs.stage(plots_out);
+    write_staged(stage + "/" + csv_name, csv);
+    std::fflush(stdout);
+    run_python("plot_fit.py", {"--dir", stage, what, "--caption", fmt::format("{}, {}", command_line(), utc_now())});
+  }
+  outs.commit();
+  if (plots_out >= 0) fmt::print("plots written to {}/\n", plots_dir);
 }
 
 void ProgressFlags::add(CLI::App* sub) {

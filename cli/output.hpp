@@ -58,6 +58,15 @@ void run_python(const std::string& script, const std::vector<std::string>& args)
 // Older form: `args` is a shell-quoted string (kept for callers written against it).
 void run_python_script(const std::string& script, const std::string& args);
 
+// The current date and time, "YYYY-MM-DD HH:MM UTC" (JSON "date", report headers, plot captions).
+std::string utc_now();
+
+// The end of `shadecore fit` and `shadecore energy`: with --plots (plots_out >= 0) writes `csv` as
+// <stage>/<csv_name> and runs scripts/plot_fit.py --dir <stage> <what> (--fit or --energy) with the command
+// line and date as caption; commits every output; then says where the plots went.
+void commit_with_fit_plots(io::OutputSet& outs, int plots_out, const std::string& plots_dir,
+                           const std::string& csv_name, const std::string& csv, const std::string& what);
+
 // Adds --progress / --no-progress to a subcommand; progress_enabled() then says whether to draw.
 struct ProgressFlags {
   bool on = false, off = false;

@@ -307,7 +307,7 @@ inline constexpr const char* kConfigsJson = R\"shadecore_json(${_cfg_json})shade
 #   SHADECORE_LIGHT_SOURCES          sc_light with every operator and SHADECORE_RTL_SOURCES
 #   SHADECORE_RTL_FILES_<module>     what <module> needs as a top on its own ("standalone", else <module>.v)
 #   SHADECORE_VARIANT_<name>_RTL     a unit's files
-# The CLI reads the same entries at run time (cli/rtl_files.cpp, through shadecore/configs_json.hpp).
+# The CLI reads the same entries at run time (common/src/rtl_files.cpp, through shadecore/configs_json.hpp).
 function(_shadecore_json_list out)
   string(JSON _t TYPE "${_cfg_json}" ${ARGN})
   if(NOT _t STREQUAL "ARRAY")

@@ -9,7 +9,7 @@
 //                                                  (scripts/yosys_check.sh), @I@ becomes
 //                                                  -Psc_light.NAME=VALUE ... (Icarus), @F@ becomes
 //                                                  the set's RTL files (config/configs.json "rtl",
-//                                                  cli/rtl_files.hpp) in --rtl-dir DIR
+//                                                  common/include/shadecore/common/rtl_files.hpp) in --rtl-dir DIR
 //   sc_light_params --random N [--seed S] [--tagw N] --rtl-dir DIR -- TOOL ARG...
 //                                                  draw N feature sets (every capability: lights and
 //                                                  kinds, terms, unit, cutoff, norm, reflection, local
@@ -32,7 +32,7 @@
 #include <string>
 #include <vector>
 
-#include "rtl_files.hpp"
+#include "shadecore/common/rtl_files.hpp"
 #include "shadecore/features.hpp"
 #include "shadecore/units/table.hpp"
 
@@ -109,7 +109,7 @@ std::vector<std::string> substitute(const FeatureSet& fs, int tagw, const std::s
       for (const auto& p : params) args.push_back("-Psc_light." + p);
     } else if (a == "@F@") {
       if (rtl_dir.empty()) throw std::invalid_argument("@F@ needs --rtl-dir DIR");
-      for (const auto& f : shadecore::cli::rtl::light_files(fs)) args.push_back(rtl_dir + "/" + f);
+      for (const auto& f : shadecore::rtl::light_files(fs)) args.push_back(rtl_dir + "/" + f);
     } else {
       args.push_back(a);
     }

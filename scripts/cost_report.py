@@ -383,11 +383,16 @@ def place_ice40(dev, pkg, js, tmp, freq):
         icetime_dsp_on_path(text)
 
 
+def synth_cells(variant, cfg, synth, tmp, stat_name):
+    """Yosys: the core of (variant, cfg), then the `synth` command; its cell counts by type (stat -json)."""
+    st = os.path.join(tmp, stat_name)
+    run(["yosys", "-q", "-p", f"{read_core(params_of(variant, cfg))}; {synth}; tee -q -o {st} stat -json"])
+    return parse_stat_json(open(st).read())["by_type"]
+
+
 def m_hx8k(ctx, variant, cfg, design, tmp):
-    js, st = os.path.join(tmp, "hx.json"), os.path.join(tmp, "hx_stat.json")
-    run(["yosys", "-q", "-p", f"{read_core(params_of(variant, cfg))}; synth_ice40 -top sc_specular -json {js}; "
-         f"tee -q -o {st} stat -json"])
-    s = parse_stat_json(open(st).read())["by_type"]
+    js = os.path.join(tmp, "hx.json")
+    s = synth_cells(variant, cfg, f"synth_ice40 -top sc_specular -json {js}", tmp, "hx_stat.json")
     res = {"luts": s.get("SB_LUT4", 0), "dffs": count(s, r"SB_DFF\w*"), "bram_hx8k": s.get("SB_RAM40_4K", 0),
            "fmax_mhz": None, "pnr": "not run"}
     if res["luts"] > HX8K_LCS:
@@ -399,10 +404,7 @@ def m_hx8k(ctx, variant, cfg, design, tmp):
 
 
 def m_up5k(ctx, variant, cfg, design, tmp):
-    st = os.path.join(tmp, "up_stat.json")
-    run(["yosys", "-q", "-p", f"{read_core(params_of(variant, cfg))}; synth_ice40 -dsp -top sc_specular; "
-         f"tee -q -o {st} stat -json"])
-    s = parse_stat_json(open(st).read())["by_type"]
+    s = synth_cells(variant, cfg, "synth_ice40 -dsp -top sc_specular", tmp, "up_stat.json")
     res = {"dsp_up5k": s.get("SB_MAC16", 0), "luts_up5k": s.get("SB_LUT4", 0), "dffs_up5k": count(s, r"SB_DFF\w*"),
            "bram_up5k": s.get("SB_RAM40_4K", 0), "fmax_up5k_mhz": None, "fmax_up5k_nextpnr_mhz": None}
     over = [f"{res['dsp_up5k']} SB_MAC16 > {UP5K['dsp']}"] if res["dsp_up5k"] > UP5K["dsp"] else []
@@ -430,10 +432,7 @@ def m_up5k(ctx, variant, cfg, design, tmp):
 
 
 def m_ecp5(ctx, variant, cfg, design, tmp):
-    st = os.path.join(tmp, "ecp5.json")
-    run(["yosys", "-q", "-p", f"{read_core(params_of(variant, cfg))}; synth_ecp5 -top sc_specular; "
-         f"tee -q -o {st} stat -json"])
-    s = parse_stat_json(open(st).read())["by_type"]
+    s = synth_cells(variant, cfg, "synth_ecp5 -top sc_specular", tmp, "ecp5.json")
     return {"ecp5_mult18": s.get("MULT18X18D", 0), "ecp5_lut4": s.get("LUT4", 0),
             "ecp5_ff": s.get("TRELLIS_FF", 0), "ecp5_ccu2": s.get("CCU2C", 0), "ecp5_bram": s.get("DP16KD", 0),
             "ecp5_lutram": count(s, r"TRELLIS_DPR16X4")}

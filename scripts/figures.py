@@ -5,6 +5,7 @@ import datetime
 import importlib
 import os
 import platform
+import signal
 import sys
 
 
@@ -17,6 +18,15 @@ def require(*modules):
             prog = os.path.basename(sys.argv[0]) or "python"
             sys.exit(f"{prog}: error: python module '{m}' is not installed for {sys.executable} "
                      "(run the script with /usr/bin/python3, which has numpy and matplotlib)")
+
+
+def run(main):
+    """Runs a plotting script's main(): Ctrl-C ends it with one line on stderr and status 130 (128 + SIGINT)."""
+    try:
+        main()
+    except KeyboardInterrupt:
+        print(f"{os.path.basename(sys.argv[0])}: interrupted", file=sys.stderr)
+        sys.exit(128 + signal.SIGINT)
 
 
 def machine():

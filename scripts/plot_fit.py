@@ -13,8 +13,6 @@ import csv
 import datetime
 import math
 import os
-import signal
-import sys
 from collections import defaultdict
 
 import figures  # scripts/figures.py: footer, atomic save, import check
@@ -157,8 +155,4 @@ def main():
 
 
 if __name__ == "__main__":
-    try:
-        main()
-    except KeyboardInterrupt:
-        print("plot_fit.py: interrupted", file=sys.stderr)
-        sys.exit(128 + signal.SIGINT)
+    figures.run(main)

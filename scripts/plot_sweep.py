@@ -8,8 +8,6 @@ approx_over_n.png (max/min approximation error per n).
 Each figure carries the command, machine and date in a footer. Files are written atomically."""
 import argparse
 import os
-import signal
-import sys
 
 import figures  # scripts/figures.py: footer, atomic save, import check
 
@@ -185,8 +183,4 @@ def main():
 
 
 if __name__ == "__main__":
-    try:
-        main()
-    except KeyboardInterrupt:
-        print("plot_sweep.py: interrupted", file=sys.stderr)
-        sys.exit(128 + signal.SIGINT)
+    figures.run(main)

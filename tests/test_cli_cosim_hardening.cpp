@@ -21,12 +21,7 @@
 #if defined(SHADECORE_COSIM_SIM) && defined(SHADECORE_BARE_SIM)
 
 namespace fs = std::filesystem;
-using shadecore::testing::CliRun;
-using shadecore::testing::lines;
-using shadecore::testing::run_cli;
-using shadecore::testing::run_shell;
-using shadecore::testing::slurp;
-using shadecore::testing::TempDir;
+using namespace shadecore::testing;  // tests/cli_run.hpp
 
 namespace {
 

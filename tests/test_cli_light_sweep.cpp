@@ -14,11 +14,7 @@
 
 #include "cli_run.hpp"
 
-using shadecore::testing::CliRun;
-using shadecore::testing::lines;
-using shadecore::testing::run_cli;
-using shadecore::testing::slurp;
-using shadecore::testing::TempDir;
+using namespace shadecore::testing;  // tests/cli_run.hpp
 
 namespace {
 const std::string kSmall = "light-sweep --features phong_point --specular all --programs 2 --per-program 10";

@@ -15,12 +15,7 @@
 #if defined(SHADECORE_SCRIPTS_DIR) && defined(SHADECORE_TESTS_DIR)
 
 namespace fs = std::filesystem;
-using shadecore::testing::CliRun;
-using shadecore::testing::lines;
-using shadecore::testing::run_cli;
-using shadecore::testing::run_shell;
-using shadecore::testing::slurp;
-using shadecore::testing::TempDir;
+using namespace shadecore::testing;  // tests/cli_run.hpp
 
 namespace {
 const std::string kPython = "/usr/bin/python3";

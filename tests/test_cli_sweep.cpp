@@ -12,9 +12,7 @@
 #include "cli_run.hpp"
 
 namespace fs = std::filesystem;
-using shadecore::testing::CliRun;
-using shadecore::testing::expect_one_line_error;
-using shadecore::testing::run_cli;
+using namespace shadecore::testing;  // tests/cli_run.hpp
 
 TEST(CliSweep, BadArgumentsGiveOneLineErrors) {
   expect_one_line_error("sweep --variant nosuch --no-progress", "unknown variant");

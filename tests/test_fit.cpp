@@ -120,9 +120,7 @@ TEST(Fit, MinimaxIsLocallyOptimal) {
     for (double db : {-1e-3, 0.0, 1e-3}) EXPECT_GE(fit::max_abs_residual(s, {mm.a + da, mm.b + db}), best - 1e-15);
 }
 
-using shadecore::testing::CliRun;
-using shadecore::testing::expect_one_line_error;
-using shadecore::testing::run_cli;
+using namespace shadecore::testing;  // tests/cli_run.hpp
 
 TEST(CliFit, BadArgumentsGiveOneLineErrors) {
   expect_one_line_error("fit --lobe gauss", "unknown lobe");

@@ -24,10 +24,7 @@
 #include "shadecore/unit.hpp"
 
 namespace fs = std::filesystem;
-using shadecore::testing::CliRun;
-using shadecore::testing::expect_one_line_error;
-using shadecore::testing::run_cli;
-using shadecore::testing::run_shell;
+using namespace shadecore::testing;  // tests/cli_run.hpp
 
 namespace {
 
@@ -43,6 +40,32 @@ std::string slurp(const fs::path& p) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+// `shadecore vectors ARGS --out DIR/NAME`, which must succeed; the file's text.
+std::string vectors_file(const fs::path& dir, const std::string& name, const std::string& args) {
+  const CliRun r = run_cli("vectors " + args + " --out " + (dir / name).string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  return slurp(dir / name);
+}
+
+// A data line of a lighting vector file: ten hex words (KIND, then a register write ADDR DATA or a
+// fragment NX NY NZ PX PY PZ and the expected R G B). False when the line does not hold ten words.
+bool read_record(const std::string& line, std::vector<uint64_t>& w) {
+  std::stringstream ss(line);
+  w.assign(10, 0);
+  for (auto& x : w) ss >> std::hex >> x;
+  return !ss.fail();
+}
+
+// The fragment of a record: normals in F+2 bits, positions in F+8 bits, two's complement.
+shadecore::Fragment record_fragment(const std::vector<uint64_t>& w, int F) {
+  shadecore::Fragment f;
+  for (int i = 0; i < 3; ++i) {
+    f.n[i] = shadecore::sign_extend(w[1 + i], F + 2);
+    f.p[i] = shadecore::sign_extend(w[4 + i], F + 8);
+  }
+  return f;
 }
 
 struct Line {
@@ -186,8 +209,7 @@ TEST(VectorsCli, HardCasesFromTheModel) {
 TEST(VectorsCli, RandomIsReproducibleFromItsSeed) {
   const fs::path d = temp_dir("rand");
   auto make = [&](const std::string& name, const std::string& args) {
-    const CliRun r = run_cli("vectors --variant schlick_div --config narrow --mode random " + args + " --out " + (d / name).string());
-    EXPECT_EQ(r.status, 0) << r.err;
+    vectors_file(d, name, "--variant schlick_div --config narrow --mode random " + args);
     std::string header;
     auto v = read_vectors(d / name, &header);
     return std::make_pair(v, header);
@@ -271,9 +293,7 @@ TEST(VectorsCli, BadArgumentsAndOutputRules) {
 TEST(VectorsCli, LightingRecordsReplayThroughTheModel) {
   const fs::path d = temp_dir("lvec");
   auto make = [&](const std::string& name, const std::string& args) {
-    const CliRun r = run_cli("vectors --core lighting --features mono_spec " + args + " --out " + (d / name).string());
-    EXPECT_EQ(r.status, 0) << r.err;
-    return slurp(d / name);
+    return vectors_file(d, name, "--core lighting --features mono_spec " + args);
   };
   const std::string a = make("a.hex", "--mode random --count 80 --seed 21");
   EXPECT_EQ(a.substr(a.find("\n0 ")), make("b.hex", "--mode random --count 80 --seed 21").substr(a.find("\n0 ")));
@@ -291,20 +311,13 @@ TEST(VectorsCli, LightingRecordsReplayThroughTheModel) {
     int frags = 0, lit = 0;
     while (std::getline(in, line)) {
       if (line.rfind("//", 0) == 0) continue;
-      std::stringstream ss(line);
-      std::vector<uint64_t> w(10);
-      for (auto& x : w) ss >> std::hex >> x;
-      ASSERT_FALSE(ss.fail()) << line;
+      std::vector<uint64_t> w;
+      ASSERT_TRUE(read_record(line, w)) << line;
       if (w[0] == 0) {
         regs.write(F, static_cast<uint32_t>(w[1]), static_cast<uint32_t>(w[2]));
         continue;
       }
-      shadecore::Fragment f;
-      for (int i = 0; i < 3; ++i) {
-        f.n[i] = shadecore::sign_extend(w[1 + i], F + 2);
-        f.p[i] = shadecore::sign_extend(w[4 + i], F + 8);
-      }
-      const shadecore::Colour col = core.eval(regs, f);
+      const shadecore::Colour col = core.eval(regs, record_fragment(w, F));
       for (int i = 0; i < 3; ++i) EXPECT_EQ(w[7 + i], col.c[i]) << line;
       EXPECT_EQ(w[8], 0u);  // mono
       lit += w[7] != 0;
@@ -414,10 +427,8 @@ TEST(HandoffLighting, DiffuseBundlePassesAndACorruptedCopyFails) {
   int records = 0, frags = 0, writes = 0;
   while (std::getline(in, line)) {
     if (line.rfind("//", 0) == 0) continue;
-    std::stringstream ss(line);
-    std::vector<uint64_t> w(10);
-    for (auto& x : w) ss >> std::hex >> x;
-    ASSERT_FALSE(ss.fail()) << line;
+    std::vector<uint64_t> w;
+    ASSERT_TRUE(read_record(line, w)) << line;
     ++records;
     if (w[0] == 0) {
       regs.write(F, static_cast<uint32_t>(w[1]), static_cast<uint32_t>(w[2]));
@@ -425,12 +436,7 @@ TEST(HandoffLighting, DiffuseBundlePassesAndACorruptedCopyFails) {
       continue;
     }
     ASSERT_EQ(w[0], 1u) << line;
-    shadecore::Fragment f;
-    for (int i = 0; i < 3; ++i) {
-      f.n[i] = shadecore::sign_extend(w[1 + i], F + 2);
-      f.p[i] = shadecore::sign_extend(w[4 + i], F + 8);
-    }
-    const shadecore::Colour c = core.eval(regs, f);
+    const shadecore::Colour c = core.eval(regs, record_fragment(w, F));
     for (int i = 0; i < 3; ++i) EXPECT_EQ(w[7 + i], c.c[i]) << line;
     ++frags;
   }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Issue 23: the legend of the signed log-scale difference images and the contact sheet's layout
-// (cli/legend.hpp). The layout is checked on its boxes and on the pixels drawn: no two labels overlap, every
+// (shadecore/common/legend.hpp). The layout is checked on its boxes and on the pixels drawn: no two labels overlap, every
 // label lies inside the canvas and outside every cell, for every cell size, unit count and mode count the
 // scene format allows; the bar's colours are render::diff_rgb8's at the tick positions.
 #include <gtest/gtest.h>
@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "legend.hpp"
-#include "png.hpp"
+#include "shadecore/common/legend.hpp"
+#include "shadecore/common/png.hpp"
 #include "shadecore/render/render.hpp"
 
-using namespace shadecore::cli;
+using namespace shadecore::canvas;
 namespace render = shadecore::render;
 
 namespace {

@@ -18,10 +18,7 @@
 namespace {
 
 namespace fs = std::filesystem;
-using shadecore::testing::lines;
-using shadecore::testing::run_cli;
-using shadecore::testing::slurp;
-using shadecore::testing::TempDir;
+using namespace shadecore::testing;  // tests/cli_run.hpp
 
 const char* kScene = R"({
   "image": {"width": 24, "height": 18},

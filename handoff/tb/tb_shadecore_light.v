@@ -100,6 +100,8 @@ module tb_shadecore_light;
   integer next_rec, cur, rst_left, lat, e, k;
   reg     have, cur_w, valid_q, mid_done, held, done;
   reg [31:0] rng, w;
+  // w holds one 32-bit vector word; every field taken from it is narrower (at most FRAC+8 bits or TAGW).
+  wire unused_tb_w = &{1'b0, w};
   reg [TAGW-1:0] held_tag;
   reg [3*FRAC+2:0] held_rgb;
   reg [31:0] er, eg, eb;

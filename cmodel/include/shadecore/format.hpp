@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace shadecore {
 
@@ -36,24 +37,34 @@ struct Format {
   [[nodiscard]] constexpr int64_t in_max() const { return (int64_t{1} << (frac + 1)) - 1; }
 };
 
+// Throws std::invalid_argument "<what> <v> out of range [lo, hi]" unless lo <= v <= hi.
+inline void check_in_range(const char* what, long long v, long long lo, long long hi) {
+  if (v < lo || v > hi)
+    throw std::invalid_argument(std::string(what) + " " + std::to_string(v) + " out of range [" + std::to_string(lo) +
+                                ", " + std::to_string(hi) + "]");
+}
+
+// The value of the entry of `table` whose name is `key` (name_of, value_of: an entry's name and value);
+// else throws std::invalid_argument "unknown <what> '<key>' (known: <every name>)".
+template <class Table, class NameOf, class ValueOf>
+auto find_named(const Table& table, std::string_view key, const char* what, NameOf name_of, ValueOf value_of) {
+  for (const auto& e : table)
+    if (name_of(e) == key) return value_of(e);
+  std::string known;
+  for (const auto& e : table) known += (known.empty() ? "" : ", ") + std::string(name_of(e));
+  throw std::invalid_argument("unknown " + std::string(what) + " '" + std::string(key) + "' (known: " + known + ")");
+}
+
 // Throws std::invalid_argument with a one-line message when the format is illegal.
 inline void validate(const Format& f) {
-  if (f.frac < kFracMin || f.frac > kFracMax)
-    throw std::invalid_argument("fraction width " + std::to_string(f.frac) + " out of range [" +
-                                std::to_string(kFracMin) + ", " + std::to_string(kFracMax) + "]");
-  if (f.guard < kGuardMin || f.guard > kGuardMax)
-    throw std::invalid_argument("guard width " + std::to_string(f.guard) + " out of range [" +
-                                std::to_string(kGuardMin) + ", " + std::to_string(kGuardMax) + "]");
+  check_in_range("fraction width", f.frac, kFracMin, kFracMax);
+  check_in_range("guard width", f.guard, kGuardMin, kGuardMax);
   if (f.work() > kWorkMax)
     throw std::invalid_argument("frac+guard = " + std::to_string(f.work()) + " exceeds " +
                                 std::to_string(kWorkMax));
 }
 
 // Throws std::invalid_argument unless n is an integer in [16, 1024].
-inline void validate_n(long long n) {
-  if (n < kNMin || n > kNMax)
-    throw std::invalid_argument("specular exponent n = " + std::to_string(n) + " out of range [" +
-                                std::to_string(kNMin) + ", " + std::to_string(kNMax) + "]");
-}
+inline void validate_n(long long n) { check_in_range("specular exponent n =", n, kNMin, kNMax); }
 
 }  // namespace shadecore

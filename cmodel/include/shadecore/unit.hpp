@@ -41,11 +41,7 @@ struct UnitMaterial {
 };
 
 inline VariantId parse_variant(std::string_view name) {
-  for (const auto& v : kVariants)
-    if (v.name == name) return v.id;
-  std::string known;
-  for (const auto& v : kVariants) known += (known.empty() ? "" : ", ") + std::string(v.name);
-  throw std::invalid_argument("unknown variant '" + std::string(name) + "' (known: " + known + ")");
+  return find_named(kVariants, name, "variant", [](const auto& v) { return v.name; }, [](const auto& v) { return v.id; });
 }
 
 inline std::string_view variant_name(VariantId id) {

@@ -4,6 +4,7 @@
 #include "shadecore/analysis/brdf.hpp"
 
 #include <cstdio>
+#include <initializer_list>
 #include <random>
 
 #include "shadecore/analysis/quadrature.hpp"
@@ -21,6 +22,15 @@ std::string fmt_params(const char* format, double a, double b = 0, double c = 0,
 template <class M>
 Instance make(const char* model, std::string params, const M& m, bool aniso = false) {
   return Instance{model, std::move(params), aniso, Fn(m)};
+}
+
+// The anisotropic models' grid: every reflectance pair r (ρd, ρs) with every shape pair a (mx, my or nx, ny),
+// M{r0, r1, a0, a1}; `params` names the four numbers.
+using Pairs = std::initializer_list<std::array<double, 2>>;
+template <class M>
+void add_anisotropic(std::vector<Instance>& g, const char* model, const char* params, Pairs rr, Pairs aa) {
+  for (const auto& r : rr)
+    for (const auto& a : aa) g.push_back(make(model, fmt_params(params, r[0], r[1], a[0], a[1]), M{r[0], r[1], a[0], a[1]}, true));
 }
 
 }  // namespace
@@ -95,23 +105,14 @@ std::vector<Instance> parameter_grid(const std::string& only) {
         g.push_back(make("Strauss", fmt_params("C=1 s=%g e=%g t=0", s, e), Strauss{1.0, s, e, 0.0}));
 
   // Ward: ρd + ρs <= 1 (the thesis: "< 1 and m not too large"; its normalisation is "exact while m < 0.2").
-  if (want("Ward")) {
-    const double rr[][2] = {{0.4, 0.4}, {0.0, 1.0}};
-    const double mm[][2] = {{0.05, 0.05}, {0.1, 0.1}, {0.2, 0.2}, {0.05, 0.2}, {0.3, 0.3}};
-    for (auto& r : rr)
-      for (auto& m : mm)
-        g.push_back(make("Ward", fmt_params("rho_d=%g rho_s=%g mx=%g my=%g", r[0], r[1], m[0], m[1]),
-                         Ward{r[0], r[1], m[0], m[1]}, true));
-  }
+  if (want("Ward"))
+    add_anisotropic<Ward>(g, "Ward", "rho_d=%g rho_s=%g mx=%g my=%g", {{0.4, 0.4}, {0.0, 1.0}},
+                          {{0.05, 0.05}, {0.1, 0.1}, {0.2, 0.2}, {0.05, 0.2}, {0.3, 0.3}});
 
-  if (want("Ashikhmin-Shirley")) {
-    const double rr[][2] = {{0.4, 0.4}, {1.0, 0.0}, {0.0, 1.0}, {1.0, 0.05}};
-    const double nn[][2] = {{1, 1}, {10, 10}, {100, 100}, {10, 1000}, {1000, 1000}};
-    for (auto& r : rr)
-      for (auto& n : nn)
-        g.push_back(make("Ashikhmin-Shirley", fmt_params("Rd=%g Rs=%g nx=%g ny=%g", r[0], r[1], n[0], n[1]),
-                         AshikhminShirley{r[0], r[1], n[0], n[1]}, true));
-  }
+  if (want("Ashikhmin-Shirley"))
+    add_anisotropic<AshikhminShirley>(g, "Ashikhmin-Shirley", "Rd=%g Rs=%g nx=%g ny=%g",
+                                      {{0.4, 0.4}, {1.0, 0.0}, {0.0, 1.0}, {1.0, 0.05}},
+                                      {{1, 1}, {10, 10}, {100, 100}, {10, 1000}, {1000, 1000}});
 
   // Schlick: figures 4.5 (p = 1, r = 0.8..0.001) and 4.6 (r = 0.4, p = 1..0.001); C = 1 (all light
   // reflected: the hardest case for energy) and C = 0.05; one DOUBLE material.
@@ -187,20 +188,11 @@ Albedo directional_albedo(const Fn& f, double theta_i, double phi_i, double rel_
 
 Reciprocity reciprocity(const Fn& f, int pairs, unsigned long long seed) {
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  const auto sphere = [&]() {
-    const double z = 2 * u(rng) - 1, ph = 2 * kPi * u(rng), r = std::sqrt(std::max(0.0, 1 - z * z));
-    return Vec3{r * std::cos(ph), r * std::sin(ph), z};
-  };
-  const auto hemi = [&](const Vec3& n) {
-    Vec3 d = sphere();
-    while (std::fabs(dot(d, n)) < 1e-3) d = sphere();
-    return dot(d, n) < 0 ? d * -1.0 : d;
-  };
+  RandomDirections dir(rng);
   Reciprocity r;
   for (int k = 0; k < pairs; ++k) {
-    const Vec3 n = sphere(), t = sphere();
-    const Vec3 a = hemi(n), b = hemi(n);
+    const Vec3 n = dir.sphere(), t = dir.sphere();
+    const Vec3 a = dir.hemisphere(n), b = dir.hemisphere(n);
     const double fab = f(a, b, n, t), fba = f(b, a, n, t);
     const double den = std::max(std::fabs(fab), std::fabs(fba));
     if (den == 0) continue;

@@ -86,15 +86,36 @@ double cell_integral(Model m, bool blinn_rows, double ua, double ub, double si, 
   return gauss(ua, lo) + gauss(lo, ub);  // at most one class change per code cell in practice
 }
 
+// What both integrations of one (model, n, θi) need: the normalisation coefficient (double, and its code
+// for the fixed-point datapath), the cs16 material, 2^F, sin and cos θi, and whether the lobe is a
+// function of N·h (Blinn rows) rather than of R·ωo (Phong rows).
+struct LobeSetup {
+  NormFormat nf;
+  double coef_d;
+  uint32_t coef_q;
+  Cs16Material mat;
+  double scale, si, ci;
+  bool blinn_rows;
+
+  LobeSetup(Model m, int n, double theta_i, const Options& o)
+      : nf{o.format.frac, o.coef_int_bits},
+        coef_d(coef_value(m, o.coef, n)),
+        coef_q(o.fixed_point ? coef_code(nf, coef_d) : 0),
+        mat(cs16_setup(o.format, n)),
+        scale(std::ldexp(1.0, o.format.frac)),
+        si(std::sin(theta_i)),
+        ci(std::cos(theta_i)),
+        blinn_rows(info(m).half_angle || m == Model::BlinnNdf || m == Model::BlinnHeightfield) {}
+
+  // The normalised double lobe coef·cs16(c, n) under the run's cut-off.
+  [[nodiscard]] double golden_lobe(const Options& o, double c, int n) const {
+    return coef_d * (o.cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(c, n) : golden::cs16_sign_clamp(c, n));
+  }
+};
+
 double reflectance_cells(Model m, int n, double theta_i, const Options& o) {
-  const ModelInfo& mi = info(m);
-  const NormFormat nf{o.format.frac, o.coef_int_bits};
-  const double coef_d = coef_value(m, o.coef, n);
-  const uint32_t coef_q = o.fixed_point ? coef_code(nf, coef_d) : 0;
-  const Cs16Material mat = cs16_setup(o.format, n);
-  const double scale = std::ldexp(1.0, o.format.frac), ulp = 1 / scale;
-  const double si = std::sin(theta_i), ci = std::cos(theta_i);
-  const bool blinn_rows = mi.half_angle || m == Model::BlinnNdf || m == Model::BlinnHeightfield;
+  const LobeSetup ls(m, n, theta_i, o);
+  const double scale = ls.scale, ulp = 1 / scale;
   const int64_t one = int64_t{1} << o.format.frac;
   const int64_t kmin = std::max<int64_t>(0, static_cast<int64_t>(std::floor(std::cos(lobe_radius(o, n)) * scale)) - 2);
   double sum = 0;
@@ -102,37 +123,30 @@ double reflectance_cells(Model m, int n, double theta_i, const Options& o) {
     // Code cell of k under round-to-nearest, clipped to u <= 1.
     const double ua = (k - 0.5) * ulp, ub = std::min(1.0, (k + 0.5) * ulp);
     if (o.fixed_point) {
-      const uint32_t spec = cs16_eval(o.format, o.cutoff, mat, k);
+      const uint32_t spec = cs16_eval(o.format, o.cutoff, ls.mat, k);
       if (spec == 0) continue;
-      const double v = static_cast<double>(norm_eval(nf, coef_q, spec)) * ulp;
-      sum += cell_integral(m, blinn_rows, ua, ub, si, ci, [v](double) { return v; });
+      const double v = static_cast<double>(norm_eval(ls.nf, ls.coef_q, spec)) * ulp;
+      sum += cell_integral(m, ls.blinn_rows, ua, ub, ls.si, ls.ci, [v](double) { return v; });
     } else {
-      sum += cell_integral(m, blinn_rows, ua, ub, si, ci, [&](double u) {
-        return coef_d * (o.cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(u, n) : golden::cs16_sign_clamp(u, n));
-      });
+      sum += cell_integral(m, ls.blinn_rows, ua, ub, ls.si, ls.ci, [&](double u) { return ls.golden_lobe(o, u, n); });
     }
   }
   return sum;
 }
 
 double reflectance_grid(Model m, int n, double theta_i, const Options& o) {
-  const ModelInfo& mi = info(m);
-  const NormFormat nf{o.format.frac, o.coef_int_bits};
-  const double coef_d = coef_value(m, o.coef, n);
-  const uint32_t coef_q = o.fixed_point ? coef_code(nf, coef_d) : 0;
-  const Cs16Material mat = cs16_setup(o.format, n);
-  const double scale = std::ldexp(1.0, o.format.frac);
+  const LobeSetup ls(m, n, theta_i, o);
+  const double scale = ls.scale;
   // The normalised lobe for a cosine computed from the directions.
   auto lobe = [&](double c) -> double {
-    if (!o.fixed_point)
-      return coef_d * (o.cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(c, n) : golden::cs16_sign_clamp(c, n));
+    if (!o.fixed_point) return ls.golden_lobe(o, c, n);
     const int64_t code = std::llround(c * scale);  // quantise to the (F+2)-bit input (|c| <= 1 fits)
-    const uint32_t spec = cs16_eval(o.format, o.cutoff, mat, code);
-    return static_cast<double>(norm_eval(nf, coef_q, spec)) / scale;
+    const uint32_t spec = cs16_eval(o.format, o.cutoff, ls.mat, code);
+    return static_cast<double>(norm_eval(ls.nf, ls.coef_q, spec)) / scale;
   };
 
-  const double si = std::sin(theta_i), ci = std::cos(theta_i);
-  const bool blinn_rows = mi.half_angle || m == Model::BlinnNdf || m == Model::BlinnHeightfield;
+  const double si = ls.si, ci = ls.ci;
+  const bool blinn_rows = ls.blinn_rows;
   const double rmax = std::min(lobe_radius(o, n), blinn_rows ? M_PI / 2 : M_PI);
   const double dr = rmax / o.radial, dp = M_PI / o.azimuth;
   std::vector<double> cp(o.azimuth), sp(o.azimuth);

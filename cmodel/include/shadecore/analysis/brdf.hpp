@@ -24,6 +24,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,27 @@ inline Frame make_frame(const Vec3& n, const Vec3& t) {
 
 // Θs = 2N(N·Θi) − Θi, eq. (1.10).
 inline Vec3 mirror(const Vec3& wi, const Vec3& n) { return n * (2.0 * dot(n, wi)) - wi; }
+
+// Random directions from a 64-bit Mersenne Twister (the reciprocity check, bench/bench_brdf.cpp):
+// sphere() uniform on the unit sphere (z, then φ, from two draws); hemisphere(n) uniform on n's side,
+// directions within 10⁻³ of the horizon drawn again.
+class RandomDirections {
+ public:
+  explicit RandomDirections(std::mt19937_64& rng) : rng_(rng) {}
+  Vec3 sphere() {
+    const double z = 2 * u_(rng_) - 1, ph = 2 * kPi * u_(rng_), r = std::sqrt(std::max(0.0, 1 - z * z));
+    return Vec3{r * std::cos(ph), r * std::sin(ph), z};
+  }
+  Vec3 hemisphere(const Vec3& n) {
+    Vec3 d = sphere();
+    while (std::fabs(dot(d, n)) < 1e-3) d = sphere();
+    return dot(d, n) < 0 ? d * -1.0 : d;
+  }
+
+ private:
+  std::mt19937_64& rng_;
+  std::uniform_real_distribution<double> u_{0.0, 1.0};
+};
 
 // ---------------------------------------------------------------------------------------------
 // Building blocks of chapter 3.
@@ -150,15 +172,22 @@ struct PhongClassic {
   }
 };
 
+// kd/π + ks (n+2)/(2π)·lobe() — the diffuse term and Phong's normalised lobe of (2.9) — or 0 when the
+// light or the viewer is below the surface (lobe() is then not evaluated).
+template <class Lobe>
+inline double phong_normalised(double kd, double ks, double n, const Vec3& wi, const Vec3& wo, const Vec3& nn,
+                               Lobe&& lobe) {
+  const double ci = dot(nn, wi), co = dot(nn, wo);
+  if (ci <= 0 || co <= 0) return 0.0;
+  return kd / kPi + ks * (n + 2) / (2 * kPi) * lobe();
+}
+
 // Phong BRDF (Lafortune & Willems), eq. (2.7): f = kd/π + ks (n+2)/(2π) cos^n α, with kd + ks <= 1
 // (eq. 2.8 prints "<= 0", a typo: with 0 the model would reflect nothing).
 struct PhongBrdf {
   double kd = 0.4, ks = 0.4, n = 10;
   double operator()(const Vec3& wi, const Vec3& wo, const Vec3& nn, const Vec3& = {}) const {
-    const double ci = dot(nn, wi), co = dot(nn, wo);
-    if (ci <= 0 || co <= 0) return 0.0;
-    const double ca = dot(wo, mirror(wi, nn));
-    return kd / kPi + ks * (n + 2) / (2 * kPi) * cos_pow(ca, n);
+    return phong_normalised(kd, ks, n, wi, wo, nn, [&] { return cos_pow(dot(wo, mirror(wi, nn)), n); });
   }
 };
 
@@ -167,10 +196,7 @@ struct PhongBrdf {
 struct BlinnPhong {
   double kd = 0.4, ks = 0.4, n = 10;
   double operator()(const Vec3& wi, const Vec3& wo, const Vec3& nn, const Vec3& = {}) const {
-    const double ci = dot(nn, wi), co = dot(nn, wo);
-    if (ci <= 0 || co <= 0) return 0.0;
-    const double cd = dot(nn, normalize(wi + wo));
-    return kd / kPi + ks * (n + 2) / (2 * kPi) * cos_pow(cd, n);
+    return phong_normalised(kd, ks, n, wi, wo, nn, [&] { return cos_pow(dot(nn, normalize(wi + wo)), n); });
   }
 };
 
@@ -180,10 +206,7 @@ struct BlinnPhong {
 struct SchlickPhong {
   double kd = 0.4, ks = 0.4, n = 10;
   double operator()(const Vec3& wi, const Vec3& wo, const Vec3& nn, const Vec3& = {}) const {
-    const double ci = dot(nn, wi), co = dot(nn, wo);
-    if (ci <= 0 || co <= 0) return 0.0;
-    const double cd = dot(nn, normalize(wi + wo));
-    return kd / kPi + ks * (n + 2) / (2 * kPi) * schlick_highlight(cd, n);
+    return phong_normalised(kd, ks, n, wi, wo, nn, [&] { return schlick_highlight(dot(nn, normalize(wi + wo)), n); });
   }
 };
 
@@ -196,18 +219,26 @@ enum class Microfacet {
   Unit,    // 1/(4π): D/π is a unit-area distribution and 1/4 the Jacobian of the half vector
 };
 
+// kd/π + ks·spec/π (ks·spec/(4π) with Microfacet::Unit) for spec(cos θi, cos θr, cos δ = N·Θh,
+// cos β = Θr·Θh), the specular term of (3.17) — or 0 when the light or the viewer is below the surface.
+template <class Spec>
+inline double microfacet(double kd, double ks, Microfacet norm, const Vec3& wi, const Vec3& wo, const Vec3& nn,
+                         Spec&& spec) {
+  const double ci = dot(nn, wi), co = dot(nn, wo);
+  if (ci <= 0 || co <= 0) return 0.0;
+  const Vec3 h = normalize(wi + wo);
+  return kd / kPi + ks * spec(ci, co, dot(nn, h), dot(wo, h)) / (norm == Microfacet::Thesis ? kPi : 4 * kPi);
+}
+
 // Cook-Torrance, eq. (3.15)-(3.17): f = kd/π + ks (1/π) F D G / (cos θi cos θr), D Beckmann (3.6),
 // G Blinn (3.1), F Fresnel (3.9)/(3.10) at cos β = Θr·Θh, kd + ks <= 1.
 struct CookTorrance {
   double kd = 0.4, ks = 0.4, m = 0.2, eta = 1.5, kappa = 0;
   Microfacet norm = Microfacet::Thesis;
   double operator()(const Vec3& wi, const Vec3& wo, const Vec3& nn, const Vec3& = {}) const {
-    const double ci = dot(nn, wi), co = dot(nn, wo);
-    if (ci <= 0 || co <= 0) return 0.0;
-    const Vec3 h = normalize(wi + wo);
-    const double cd = dot(nn, h), cb = dot(wo, h);
-    const double spec = fresnel(cb, eta, kappa) * d_beckmann(cd, m) * g_blinn(cd, ci, co, cb) / (ci * co);
-    return kd / kPi + ks * spec / (norm == Microfacet::Thesis ? kPi : 4 * kPi);
+    return microfacet(kd, ks, norm, wi, wo, nn, [&](double ci, double co, double cd, double cb) {
+      return fresnel(cb, eta, kappa) * d_beckmann(cd, m) * g_blinn(cd, ci, co, cb) / (ci * co);
+    });
   }
 };
 
@@ -217,14 +248,10 @@ struct SchlickCookTorrance {
   double kd = 0.4, ks = 0.4, m = 0.2, f0 = 0.04;
   Microfacet norm = Microfacet::Thesis;
   double operator()(const Vec3& wi, const Vec3& wo, const Vec3& nn, const Vec3& = {}) const {
-    const double ci = dot(nn, wi), co = dot(nn, wo);
-    if (ci <= 0 || co <= 0) return 0.0;
-    const Vec3 h = normalize(wi + wo);
-    const double cd = dot(nn, h), cb = dot(wo, h);
-    const double k = std::sqrt(2 * m * m / kPi);
-    const double spec =
-        fresnel_schlick(cb, f0) * d_schlick(cd, m) * g_schlick(ci, k) * g_schlick(co, k) / (ci * co);
-    return kd / kPi + ks * spec / (norm == Microfacet::Thesis ? kPi : 4 * kPi);
+    return microfacet(kd, ks, norm, wi, wo, nn, [&](double ci, double co, double cd, double cb) {
+      const double k = std::sqrt(2 * m * m / kPi);
+      return fresnel_schlick(cb, f0) * d_schlick(cd, m) * g_schlick(ci, k) * g_schlick(co, k) / (ci * co);
+    });
   }
 };
 

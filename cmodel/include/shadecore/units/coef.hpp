@@ -61,11 +61,7 @@ inline const ModelInfo& info(Model m) { return kModels[static_cast<int>(m)]; }
 
 // Throws std::invalid_argument for an unknown key.
 inline Model parse_model(std::string_view key) {
-  for (const auto& m : kModels)
-    if (m.key == key) return m.model;
-  std::string names;
-  for (const auto& m : kModels) names += (names.empty() ? "" : ", ") + std::string(m.key);
-  throw std::invalid_argument("unknown model '" + std::string(key) + "' (known: " + names + ")");
+  return find_named(kModels, key, "model", [](const auto& m) { return m.key; }, [](const auto& m) { return m.model; });
 }
 
 // Classical coefficient of the exact lobe cos^n over the hemisphere (the paper's middle column,
@@ -123,12 +119,8 @@ struct NormFormat {
 };
 
 inline void validate(const NormFormat& f) {
-  if (f.frac < kFracMin || f.frac > kFracMax)
-    throw std::invalid_argument("fraction width " + std::to_string(f.frac) + " out of range [" +
-                                std::to_string(kFracMin) + ", " + std::to_string(kFracMax) + "]");
-  if (f.int_bits < kCoefIntBitsMin || f.int_bits > kCoefIntBitsMax)
-    throw std::invalid_argument("coefficient integer bits " + std::to_string(f.int_bits) + " out of range [" +
-                                std::to_string(kCoefIntBitsMin) + ", " + std::to_string(kCoefIntBitsMax) + "]");
+  check_in_range("fraction width", f.frac, kFracMin, kFracMax);
+  check_in_range("coefficient integer bits", f.int_bits, kCoefIntBitsMin, kCoefIntBitsMax);
 }
 
 // Material setup: code = ⌊coef·2^F + ½⌋ (round half up of the IEEE-double value), checked to fit

@@ -46,29 +46,26 @@ inline bool parse_i64(const std::string& s, int64_t& v) {
   return r.ec == std::errc() && r.ptr == s.data() + s.size();
 }
 
-// An unsigned integer in [lo, hi] (CLI11 itself would wrap "-5" to 2^64 - 5).
-inline CLI::Validator UInt(uint64_t lo, uint64_t hi = std::numeric_limits<uint64_t>::max()) {
+// An integer in [lo, hi] read by parse (parse_u64 or parse_i64); `name` is the type shown in --help.
+template <class T>
+CLI::Validator IntegerIn(bool (*parse)(const std::string&, T&), T lo, T hi, const char* name) {
   return CLI::Validator(
-      [lo, hi](std::string& s) -> std::string {
-        uint64_t v = 0;
-        if (!parse_u64(s, v) || v < lo || v > hi)
+      [parse, lo, hi](std::string& s) -> std::string {
+        T v = 0;
+        if (!parse(s, v) || v < lo || v > hi)
           return "'" + s + "' is not an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
         return {};
       },
-      "UINT");
+      name);
+}
+
+// An unsigned integer in [lo, hi] (CLI11 itself would wrap "-5" to 2^64 - 5).
+inline CLI::Validator UInt(uint64_t lo, uint64_t hi = std::numeric_limits<uint64_t>::max()) {
+  return IntegerIn<uint64_t>(parse_u64, lo, hi, "UINT");
 }
 
 // A signed integer in [lo, hi].
-inline CLI::Validator Int(int64_t lo, int64_t hi) {
-  return CLI::Validator(
-      [lo, hi](std::string& s) -> std::string {
-        int64_t v = 0;
-        if (!parse_i64(s, v) || v < lo || v > hi)
-          return "'" + s + "' is not an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
-        return {};
-      },
-      "INT");
-}
+inline CLI::Validator Int(int64_t lo, int64_t hi) { return IntegerIn<int64_t>(parse_i64, lo, hi, "INT"); }
 
 // -1 (none) or a count >= 0: the --reset-at rule.
 inline CLI::Validator ResetAt() {

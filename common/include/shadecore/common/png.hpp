@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
-// shadecore CLI — PNG output (libpng, 8-bit RGB, written to memory so the file goes out atomically) and a
-// small RGB canvas with a 5×7 bitmap font for the contact sheet's labels and the legends (cli/legend.hpp).
+// shadecore — PNG output (libpng, 8-bit RGB, written to memory so the file goes out atomically) and a
+// small RGB canvas with a 5×7 bitmap font for the contact sheet's labels and the legends (shadecore/common/legend.hpp).
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-namespace shadecore::cli {
+namespace shadecore::canvas {
 
 // 8-bit RGB, row-major from the top. Deterministic: no time or text chunks.
 std::string encode_png(int width, int height, const std::vector<uint8_t>& rgb);
@@ -30,4 +30,4 @@ struct Canvas {
   void fill(int x, int y, int w, int h, uint8_t r, uint8_t g, uint8_t b);
 };
 
-}  // namespace shadecore::cli
+}  // namespace shadecore::canvas

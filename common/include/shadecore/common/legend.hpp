@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// shadecore CLI — legends and layout for the render images (issue 23): the colour bar of the signed log-scale
+// shadecore — legends and layout for the render images (issue 23): the colour bar of the signed log-scale
 // difference images (render::diff_rgb8) and the contact sheet's layout (cells, column headers, row labels and
-// one legend strip), drawn with cli/png.hpp's Canvas and its 5×7 font.
+// one legend strip), drawn with shadecore/common/png.hpp's Canvas and its 5×7 font.
 //
 // The difference scale (render::diff_rgb8, not changed here): per pixel Δ = code − 2^F·ref in output LSBs
 // (2^−F); red where the image is brighter than the reference, blue where darker, intensity
@@ -45,9 +45,9 @@
 #include <string>
 #include <vector>
 
-#include "png.hpp"
+#include "shadecore/common/png.hpp"
 
-namespace shadecore::cli {
+namespace shadecore::canvas {
 
 // A rectangle of pixels [x, x + w) × [y, y + h).
 struct Box {
@@ -156,4 +156,4 @@ SheetLayout layout_sheet(int cell_w, int cell_h, const std::vector<std::string>&
                          const std::vector<std::string>& row_names, int F,
                          const std::string& caption_what = "unit");
 
-}  // namespace shadecore::cli
+}  // namespace shadecore::canvas

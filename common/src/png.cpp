@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// shadecore CLI — PNG encoding through libpng and the contact sheet's canvas.
-#include "png.hpp"
+// shadecore — PNG encoding through libpng and the contact sheet's canvas.
+#include "shadecore/common/png.hpp"
 
 #include <png.h>
 
@@ -9,7 +9,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace shadecore::cli {
+namespace shadecore::canvas {
 
 namespace {
 void on_write(png_structp p, png_bytep data, png_size_t n) {
@@ -234,4 +234,4 @@ void Canvas::fill(int x, int y, int w, int h, uint8_t r, uint8_t g, uint8_t b) {
     }
 }
 
-}  // namespace shadecore::cli
+}  // namespace shadecore::canvas

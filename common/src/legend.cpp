@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// shadecore CLI — the difference legend and the contact sheet's layout (cli/legend.hpp).
-#include "legend.hpp"
+// shadecore — the difference legend and the contact sheet's layout (shadecore/common/legend.hpp).
+#include "shadecore/common/legend.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include <fmt/core.h>
 
-namespace shadecore::cli {
+namespace shadecore::canvas {
 
 namespace {
 constexpr uint8_t kInk = 230;        // text
@@ -304,4 +304,4 @@ SheetLayout layout_sheet(int cell_w, int cell_h, const std::vector<std::string>&
   return L;
 }
 
-}  // namespace shadecore::cli
+}  // namespace shadecore::canvas

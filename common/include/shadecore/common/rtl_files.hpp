@@ -3,7 +3,7 @@
 // the one source that CMake (cmake/ShadecoreConfigs.cmake) reads too. The CLI reads the copy compiled
 // in through shadecore/configs_json.hpp, so it works from the build tree and needs no source file at
 // run time. Names are file names in rtl/ (e.g. "sc_cs16.v"); the files include the generated headers
-// of *_includes() (-I rtl). Users: both handoff bundles (cli/cmd_handoff.cpp, cli/handoff_light.cpp),
+// of *_includes() (-I rtl). Users: both handoff bundles (cli/handoff_specular.cpp, cli/handoff_light.cpp),
 // the lighting-core build (cli/light_rtl.cpp, sim/light_core) and sc_light_params (rtl/).
 #pragma once
 
@@ -12,7 +12,7 @@
 
 #include "shadecore/features.hpp"
 
-namespace shadecore::cli::rtl {
+namespace shadecore::rtl {
 
 // sc_specular.v with the unit of `variant` (variants[].rtl) and, with `norm`, sc_norm.v.
 std::vector<std::string> specular_files(VariantId variant, bool norm);
@@ -25,4 +25,4 @@ std::vector<std::string> specular_includes();
 std::vector<std::string> light_files(const FeatureSet& fs);
 std::vector<std::string> light_includes();
 
-}  // namespace shadecore::cli::rtl
+}  // namespace shadecore::rtl

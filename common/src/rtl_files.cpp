@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
-// shadecore — the RTL file lists from config/configs.json (cli/rtl_files.hpp).
+// shadecore — the RTL file lists from config/configs.json (shadecore/common/rtl_files.hpp).
 #include <algorithm>
-#include "rtl_files.hpp"
+
+#include "shadecore/common/rtl_files.hpp"
 
 #include <stdexcept>
 
@@ -9,7 +10,7 @@
 
 #include "shadecore/configs_json.hpp"
 
-namespace shadecore::cli::rtl {
+namespace shadecore::rtl {
 namespace {
 
 const nlohmann::json& rtl_json() {
@@ -82,4 +83,4 @@ std::vector<std::string> light_includes() {
   return v;
 }
 
-}  // namespace shadecore::cli::rtl
+}  // namespace shadecore::rtl

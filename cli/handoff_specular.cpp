@@ -1,0 +1,401 @@
+// SPDX-License-Identifier: Apache-2.0
+// shadecore handoff — the specular unit's bundle (issue 11; the command and the bundle's layout:
+// cli/cmd_handoff.cpp): one configuration of rtl/sc_specular.v with every parameter fixed in a wrapper top,
+// its port table from config/interface.json, the testbench configuration, the C model's vectors, the
+// recorded Fmax, the error contract and interface.md (text: cli/templates/handoff/interface.md).
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "handoff_bundle.hpp"
+#include "output.hpp"
+#include "shadecore/common/rtl_files.hpp"
+#include "text_template.hpp"
+#include "unit_spec.hpp"
+
+namespace shadecore::cli::handoff {
+namespace {
+
+// ---------------------------------------------------------------------------- the port table
+nlohmann::json load_ports() { return interface_ports("ports"); }
+
+std::string sym_width(const std::string& expr) {
+  return (expr == "TAGW" || expr == "COEFW") ? "`" + expr + "`" : expr;
+}
+
+bool port_present(const nlohmann::json& p, const UnitSpec& spec) {
+  const std::string when = p.value("when", "");
+  if (when == "thr") return spec.uses_thr();
+  if (when == "norm") return spec.norm;
+  if (when == "table") return is_table_variant(spec.variant);
+  return true;
+}
+
+std::vector<Port> concrete_ports(const nlohmann::json& ports, const UnitSpec& spec, int tagw) {
+  const Widths w{spec.format.frac, tagw, spec.coef_bits()};
+  std::vector<Port> v;
+  for (const auto& p : ports) {
+    if (!port_present(p, spec)) continue;
+    const std::string expr = spec.norm && p.contains("width_norm") ? p.at("width_norm").get<std::string>()
+                                                                   : p.at("width").get<std::string>();
+    v.push_back({p.at("name"), p.at("dir"), eval_width(expr, w), p.at("meaning")});
+  }
+  return v;
+}
+
+}  // namespace
+
+// The README's port table (symbolic widths, every port of sc_specular). Also used by the test that
+// keeps README.md in step (scripts/update_readme_ports.sh --check).
+std::string specular_port_table() {
+  std::string s = "| port | dir | width | meaning |\n|---|---|---|---|\n";
+  for (const auto& p : load_ports()) {
+    std::string width = sym_width(p.at("width"));
+    if (p.contains("width_norm")) width += " (" + sym_width(p.at("width_norm")) + " with `NORM` = 1)";
+    s += fmt::format("| `{}` | {} | {} | {} |\n", p.at("name").get<std::string>(), p.at("dir").get<std::string>(), width,
+                     p.at("meaning").get<std::string>());
+  }
+  return s;
+}
+
+namespace {
+
+struct Bundle : BundleBase {
+  UnitSpec spec;
+  int tagw = 8;
+  size_t n_hard = 0, n_random = 0;
+};
+
+std::string wrapper_v(const Bundle& b) {
+  const UnitSpec& s = b.spec;
+  std::string ports, conns;
+  for (size_t i = 0; i < b.ports.size(); ++i) {
+    const Port& p = b.ports[i];
+    const std::string range = p.width == 1 ? std::string(13, ' ') : fmt::format("{:<13}", fmt::format("[{}:0]", p.width - 1));
+    ports += fmt::format("    {} wire {}{}{}\n", p.dir == "in" ? "input " : "output", range, p.name,
+                         i + 1 < b.ports.size() ? "," : "");
+  }
+  auto has = [&](const std::string& n) {
+    return std::any_of(b.ports.begin(), b.ports.end(), [&](const Port& p) { return p.name == n; });
+  };
+  const char* names[] = {"clk_i",       "rst_ni",     "mat_we_i",    "mat_n_i",     "mat_thr_i",  "mat_coef_i",
+                         "tab_we_i",    "tab_addr_i", "tab_value_i", "tab_delta_i", "in_valid_i", "in_ready_o",
+                         "in_cos_i",    "in_tag_i",   "out_valid_o", "out_ready_i", "out_spec_o", "out_tag_o"};
+  for (size_t i = 0; i < std::size(names); ++i) {
+    const std::string n = names[i];
+    std::string expr = n;
+    if (!has(n)) {
+      if (n == "mat_thr_i") expr = fmt::format("{{{}{{1'b0}}}}", s.format.frac + 1);
+      else if (n == "mat_coef_i") expr = fmt::format("{{{}{{1'b0}}}}", s.coef_bits());
+      else if (n == "tab_we_i") expr = "1'b0";
+      else if (n == "tab_addr_i") expr = "10'd0";
+      else if (n == "tab_value_i" || n == "tab_delta_i") expr = fmt::format("{{{}{{1'b0}}}}", s.format.frac + 1);
+      else throw std::runtime_error("internal: port " + n + " missing from config/interface.json");
+    }
+    conns += fmt::format("      .{:<12}({}){}\n", n, expr, i + 1 < std::size(names) ? "," : "");
+  }
+  std::string unused;
+  if (!has("mat_thr_i")) unused += fmt::format("//   mat_thr_i  tied to 0 (not used by {}{})\n", s.variant_name,
+                                               s.is_cs16() ? " with CUTOFF = 1" : "");
+  if (!has("mat_coef_i")) unused += "//   mat_coef_i tied to 0 (NORM = 0)\n";
+  if (!has("tab_we_i")) unused += "//   tab_we_i, tab_addr_i, tab_value_i, tab_delta_i tied to 0 (no table RAM in this unit)\n";
+  return fmt::format(
+      "// ============================================================================================\n"
+      "// Filename : rtl/{top}.v  (generated by shadecore handoff — do not edit; regenerate instead)\n"
+      "// Purpose  : the bundle's top level: rtl/sc_specular.v with every parameter fixed, so no -G / -P /\n"
+      "//            defparam is needed downstream.\n"
+      "//              VARIANT = {vid} ({vname}), FRAC = {F}, GUARD = {G}, CUTOFF = {cut} ({cutname}),\n"
+      "//              TAGW = {tagw}, NORM = {norm}, COEFW = {coefw}\n"
+      "//            Ports, formats, handshake, reset, latency ({lat} cycles) and programming: interface.md.\n"
+      "// Ports of sc_specular not brought out:\n{unused}"
+      "// Made by  : {cmd}\n"
+      "// ============================================================================================\n"
+      "`default_nettype none\n\n"
+      "module {top} (\n{ports});\n\n"
+      "  sc_specular #(\n"
+      "      .VARIANT({vid}),\n      .FRAC   ({F}),\n      .GUARD  ({G}),\n      .CUTOFF ({cut}),\n"
+      "      .TAGW   ({tagw}),\n      .NORM   ({norm}),\n      .COEFW  ({coefw})\n"
+      "  ) u_core (\n{conns}  );\n\nendmodule\n\n`default_nettype wire\n",
+      fmt::arg("top", b.top), fmt::arg("vid", static_cast<int>(s.variant)), fmt::arg("vname", s.variant_name),
+      fmt::arg("F", s.format.frac), fmt::arg("G", s.format.guard), fmt::arg("cut", static_cast<int>(s.cutoff)),
+      fmt::arg("cutname", to_string(s.cutoff)), fmt::arg("tagw", b.tagw), fmt::arg("norm", s.norm ? 1 : 0),
+      fmt::arg("coefw", s.coef_bits()), fmt::arg("lat", b.latency), fmt::arg("unused", unused.empty() ? "//   (none)\n" : unused),
+      fmt::arg("cmd", command_line()), fmt::arg("ports", ports), fmt::arg("conns", conns));
+}
+
+std::string tb_config_vh(const Bundle& b, size_t maxvec) {
+  const UnitSpec& s = b.spec;
+  return fmt::format(
+      "// tb/tb_config.vh — generated by shadecore handoff for {desc}; included by tb/tb_shadecore.v\n"
+      "// (inside the module). The widths are those of rtl/{top}.v; the latency is the C model's\n"
+      "// (shadecore::Unit::latency / latency_min), as docs in interface.md.\n"
+      "localparam integer FRAC         = {F};        // F: 1.0 = 2^F\n"
+      "localparam integer OUTW         = {outw};        // out_spec_o width\n"
+      "localparam integer COEFW        = {coefw};        // mat_coef_i width (driven only with NORM = 1)\n"
+      "localparam integer TAGW         = {tagw};\n"
+      "localparam integer LATENCY      = {lat};        // advancing edges from acceptance to the taking edge\n"
+      "localparam integer LATENCY_MIN  = {latmin};        // under output backpressure (NORM = 1 can close up)\n"
+      "localparam integer MAXVEC       = {maxvec};     // the largest vector file in vectors/\n"
+      "localparam integer NVEC_DEFAULT = {nhard};      // vectors in vectors/hard.hex (the default file)\n"
+      "localparam integer TB_SEED      = {seed};  // random input gaps / backpressure (+seed= overrides)\n",
+      fmt::arg("desc", s.describe()), fmt::arg("top", b.top), fmt::arg("F", s.format.frac), fmt::arg("outw", s.out_bits()),
+      fmt::arg("coefw", s.coef_bits()), fmt::arg("tagw", b.tagw), fmt::arg("lat", b.latency),
+      fmt::arg("latmin", b.latency_min), fmt::arg("maxvec", maxvec), fmt::arg("nhard", b.n_hard), fmt::arg("seed", b.seed));
+}
+
+std::string tb_dut_vh(const Bundle& b) {
+  std::map<std::string, std::string> sig = {
+      {"clk_i", "clk"},         {"rst_ni", "rst_n"},       {"mat_we_i", "mat_we"},     {"mat_n_i", "mat_n"},
+      {"mat_thr_i", "mat_thr"}, {"mat_coef_i", "mat_coef"}, {"in_valid_i", "in_valid"}, {"in_ready_o", "in_ready"},
+      {"in_cos_i", "in_cos"},   {"in_tag_i", "in_tag"},     {"out_valid_o", "out_valid"}, {"out_ready_i", "out_ready"},
+      {"out_spec_o", "out_spec"}, {"out_tag_o", "out_tag"},   {"tab_we_i", "tab_we"},     {"tab_addr_i", "tab_addr"},
+      {"tab_value_i", "tab_value"}, {"tab_delta_i", "tab_delta"}};
+  std::string s = fmt::format("// tb/tb_dut.vh — generated by shadecore handoff: the design under test, rtl/{}.v.\n", b.top);
+  bool thr = false, coef = false;
+  s += fmt::format("  {} dut (\n", b.top);
+  for (size_t i = 0; i < b.ports.size(); ++i) {
+    const Port& p = b.ports[i];
+    if (p.name == "mat_thr_i") thr = true;
+    if (p.name == "mat_coef_i") coef = true;
+    s += fmt::format("      .{:<12}({}){}\n", p.name, sig.at(p.name), i + 1 < b.ports.size() ? "," : "");
+  }
+  s += "  );\n";
+  // Testbench registers that drive no port of this configuration: marked unused for lint.
+  if (!thr || !coef)
+    s += fmt::format("  wire unused_tb_mat = &{{1'b0{}{}}};\n", thr ? "" : ", mat_thr", coef ? "" : ", mat_coef");
+  return s;
+}
+
+// Fmax recorded by scripts/cost_report.py (docs/tradeoffs.json: iCE40 HX8K, icetime after nextpnr).
+void recorded_fmax(Bundle& b) {
+  const fs::path p = fs::path(root_dir()) / "docs" / "tradeoffs.json";
+  if (!fs::exists(p)) return;
+  try {
+    for (const auto& r : nlohmann::json::parse(read_text(p)))
+      if (r.value("variant", "") == b.spec.variant_name && r.value("config", "") == b.spec.config_name &&
+          r.contains("fmax_mhz") && r["fmax_mhz"].is_number()) {
+        b.fmax_mhz = r["fmax_mhz"].get<double>();
+        b.fmax_source = fmt::format("{:.2f} MHz on an iCE40 {} (nextpnr-ice40 + icetime, docs/tradeoffs.json, "
+                                    "scripts/cost_report.py{})",
+                                    b.fmax_mhz, r.value("pnr", "HX8K"), b.spec.norm ? "; measured without NORM" : "");
+      }
+  } catch (const nlohmann::json::exception&) {
+  }
+}
+
+std::string error_contract(const UnitSpec& s) {
+  const int F = s.format.frac, G = s.format.guard;
+  std::string e;
+  switch (s.variant) {
+    case VariantId::cs16:
+      e = fmt::format(
+          "cs16(c, n) = ((n/16)(c − 1) + 1)^16, cut to 0 by the {cut} test. Against the double-precision cs16 of the\n"
+          "same input code and the same cut decision y (docs/spec.md §3.3):\n\n"
+          "    −(½ + 15·2^−G) < out − y·2^F ≤ +½ ulp    (G = {G}: ({lo:.5f}, +0.5] ulp, 1 ulp = 2^−{F})\n\n"
+          "Rounding happens in five places only: four truncating squarings (W = F + G = {W} fraction bits) and the\n"
+          "final round half up. The output never exceeds 2^F and is non-decreasing in the input code for every n.\n"
+          "Both cut-off forms give bit-identical outputs at every legal width.\n",
+          fmt::arg("cut", s.cutoff == Cutoff::ThetaCr ? "θcr (c < thr(n))" : "sign (base ≤ 0)"), fmt::arg("G", G),
+          fmt::arg("lo", -(0.5 + 15.0 * std::ldexp(1.0, -G))), fmt::arg("F", F), fmt::arg("W", F + G));
+      break;
+    case VariantId::schlick_div:
+    case VariantId::schlick_iter:
+      e = "S(t, n) = t / (n − (n − 1)·t). The output is the exact quotient 2^F·c/Dc (Dc = n(2^F − c) + c) rounded\n"
+          "half up: |out − 2^F·S| ≤ ½ ulp (correctly rounded) against the double S of the same clamped code;\n"
+          "t = 0 gives 0 and t = 1 gives exactly 2^F; the output is non-decreasing in the code (docs/spec.md §6.4).\n";
+      break;
+    case VariantId::schlick_nr:
+      e = fmt::format(
+          "S(t, n) = t / (n − (n − 1)·t) by a 64-entry reciprocal table, two Newton–Raphson iterations and one\n"
+          "multiply: |out − 2^F·S| ≤ {:.4f} ulp against the double S of the same clamped code (faithful, not\n"
+          "always correctly rounded); output ≤ 2^F, non-decreasing in the code (docs/spec.md §6.4).\n",
+          schlick_nr_bound_ulp(F));
+      break;
+    case VariantId::table256:
+    case VariantId::table1024:
+      e = "Table of T(i) = (i/(E−1))^n (E entries {D, V}, loaded per material) interpolated at f = (E−1)·c:\n"
+          "−1 < out − 2^F·lerp ≤ +1 ulp against the double table lerp of the same clamped code (docs/spec.md §9.4).\n";
+      break;
+    default:
+      if (const SquarerForm* form = squarer_form(s.variant)) {
+        const Cs16Contract c = cs16_contract(form->contract, s.format);
+        e = fmt::format(
+            "cs16(c, n) = ((n/16)(c − 1) + 1)^16, cut to 0 by the {cut} test and where the base is ≤ 0, computed with\n"
+            "folded, truncated squarers (form {name}, docs/spec.md §3.4). Against the double-precision cs16 of the\n"
+            "same input code y, the '{contract}' contract:\n\n"
+            "    {lo:.5f} {op} out − y·2^F ≤ +{hi:.1f} ulp    (1 ulp = 2^−{F})\n\n"
+            "checked exhaustively (every code, n = 16..1024) at F = 8 and 16 (tests/test_cs16_forms.cpp, `shadecore sweep`).\n",
+            fmt::arg("cut", s.cutoff == Cutoff::ThetaCr ? "θcr (c < thr(n))" : "sign (base ≤ 0)"),
+            fmt::arg("name", s.variant_name), fmt::arg("contract", form->contract), fmt::arg("lo", c.lo),
+            fmt::arg("op", c.lo_strict ? "<" : "≤"), fmt::arg("hi", c.hi), fmt::arg("F", F));
+      }
+      break;
+  }
+  if (s.norm)
+    e += "\nWith NORM = 1 the unit output u is multiplied by the material's coefficient code k and rounded half up:\n"
+         "out = ⌊(u·k + 2^(F−1)) / 2^F⌋ (COEFW bits, never overflows). Against the ideal coef(n)·u/2^F this is\n"
+         "within 1 ulp (½ from the coefficient's rounding, ½ from the product's); relative to the double\n"
+         "coef·(the unit's double reference) the bound above is scaled by coef, plus 1 ulp (docs/spec.md §7.3).\n";
+  return e;
+}
+
+std::string interface_md(const Bundle& b) {
+  const UnitSpec& s = b.spec;
+  const Format& f = s.format;
+  const Unit u = s.unit();
+  // Example materials from the C model.
+  std::string examples;
+  for (int n : {16, 128, 1024}) {
+    const UnitMaterial m = u.setup(n);
+    examples += fmt::format("| {} | 0x{:x} | {} |", n, n, s.uses_thr() ? fmt::format("0x{:x} ({})", m.thr, m.thr) : "—");
+    examples += s.norm ? fmt::format(" 0x{:x} ({}) |\n", m.coef, m.coef) : " — |\n";
+  }
+  std::string lat;
+  if (s.norm)
+    lat = fmt::format("**{} cycles** with `out_ready_i` high (the unit's {} + 2 for the normalisation multiply): a fragment "
+                      "accepted at the edge ending cycle t is on `out_*` in cycle t+{}. Under backpressure the unit and "
+                      "the normalisation stage advance separately, so a fragment can close up on the one ahead: "
+                      "{}..{} advancing edges (an edge advances when `!out_valid_o || out_ready_i` before it).",
+                      b.latency, b.latency - 2, b.latency, b.latency_min, b.latency);
+  else if (s.variant == VariantId::schlick_iter)
+    lat = fmt::format("**{} cycles** from the accepting edge to the first edge at which the result can be taken.",
+                      b.latency);
+  else
+    lat = fmt::format("**{} cycles**: a fragment accepted at the edge ending cycle t is on `out_*` in cycle t+{} when "
+                      "`out_ready_i` stays high. Under backpressure the whole pipeline holds (one global enable); the "
+                      "result appears after the {}th advancing edge (an edge advances when `!out_valid_o || "
+                      "out_ready_i` before it).",
+                      b.latency, b.latency, b.latency);
+  const std::string thru = s.variant == VariantId::schlick_iter
+                               ? fmt::format("one fragment every {} clocks (`in_ready_o` is low while a division is in "
+                                             "progress and while an untaken result waits)", schlick_iter_interval(f.frac))
+                               : "one fragment per clock while `out_ready_i` is high";
+  const std::string ready = s.variant == VariantId::schlick_iter
+                                ? "`in_ready_o = rst_ni && !busy && (!out_valid_o || out_ready_i)`"
+                                : "`in_ready_o = rst_ni && (!out_valid_o || out_ready_i)`";
+  const std::string outdesc =
+      s.norm ? fmt::format("{} bits unsigned, 8 integer and {} fraction bits (the normalised term; < 256)", s.coef_bits(),
+                           f.frac)
+             : fmt::format("{} bits unsigned, 1 integer and {} fraction bits, ≤ 2^F", f.frac + 1, f.frac);
+  const std::string thrline =
+      s.uses_thr() ? fmt::format("- `mat_thr_i`: thr(n) = ⌈cos(6/√n)·2^F⌉ evaluated in IEEE double (the smallest code "
+                                 "with cos ≥ cos θcr; never within 10⁻⁶ of an integer, so any libm gives the same code), "
+                                 "{} bits unsigned. A fragment is cut to 0 when its clamped code is below thr.\n",
+                                 f.frac + 1)
+                   : "";
+  const std::string coefline =
+      s.norm ? fmt::format("- `mat_coef_i`: ⌊coef(n)·2^F + ½⌋ for the material's energy-normalisation coefficient "
+                           "coef(n) (docs/spec.md §7: (a·n + b)/(k·π) fitted, or the classical closed forms), {} bits "
+                           "unsigned; the hardware takes any code. This bundle's vectors: {}.\n",
+                           s.coef_bits(), s.norm_label())
+             : "";
+  const std::string period =
+      b.fmax_mhz > 0
+          ? fmt::format("{:.1f} ns from the measured {:.2f} MHz", std::ceil(10000.0 / b.fmax_mhz) / 10.0, b.fmax_mhz)
+          : "20 ns placeholder: no measured Fmax";
+  return fill_template(
+      "handoff/interface.md",
+      {{"top", b.top},
+       {"vname", s.variant_name},
+       {"cfg", s.config_name},
+       {"cmd", command_line()},
+       {"date", utc_now()},
+       {"vid", std::to_string(static_cast<int>(s.variant))},
+       {"F", std::to_string(f.frac)},
+       {"Fm1", std::to_string(f.frac - 1)},
+       {"G", std::to_string(f.guard)},
+       {"one_hex", fmt::format("{:x}", f.one())},
+       {"onedec", std::to_string(f.one())},
+       {"cut", std::to_string(static_cast<int>(s.cutoff))},
+       {"cutname", to_string(s.cutoff)},
+       {"tagw", std::to_string(b.tagw)},
+       {"norm", s.norm ? "1" : "0"},
+       {"normlabel", s.norm_label()},
+       {"coefw", std::to_string(s.coef_bits())},
+       {"ports", concrete_port_table(b.ports)},
+       {"inw", std::to_string(f.in_bits())},
+       {"sign", std::to_string(f.frac + 1)},
+       {"outdesc", outdesc},
+       {"thrline", thrline},
+       {"coefline", coefline},
+       {"examples", examples},
+       {"ready", ready},
+       {"lat", lat},
+       {"thru", thru},
+       {"matports", std::string(s.uses_thr() ? ", `mat_thr_i`" : "") + (s.norm ? ", `mat_coef_i`" : "")},
+       {"thrflow", std::string(s.uses_thr() ? ", thr" : "") + (s.norm ? " and the coefficient" : "")},
+       {"contract", error_contract(s)},
+       {"nhard", std::to_string(b.n_hard)},
+       {"nrand", std::to_string(b.n_random)},
+       {"seed", std::to_string(b.seed)},
+       {"period", period}});
+}
+
+}  // namespace
+
+void run_specular(const Options& a, const UnitSpec& spec) {
+  if (is_table_variant(spec.variant))
+    throw std::invalid_argument("handoff does not support the table variant " + spec.variant_name +
+                                " yet (the bundle's testbench cannot load the table RAM); use shadecore cosim");
+  if (a.out.empty()) throw std::invalid_argument("--out DIR is required");
+  if (a.tagw < 1 || a.tagw > 32) throw std::invalid_argument("--tagw must be in 1..32");
+  if (a.count < 1 || a.count > 1'000'000) throw std::invalid_argument("--count must be in 1..1000000");
+  const SynthMode synth = parse_synth(a.synth, SynthMode::Flat);
+  const std::string top = a.top_given ? a.top : "shadecore_top";
+  check_top_name(top, "tb_shadecore");
+  require_tools();
+  require_sources({"handoff/tb/tb_shadecore.v", "handoff/tb/tb_common.vh", "handoff/run_icarus.sh", "handoff/run_verilator.sh",
+                   "LICENSE", "rtl/sc_specular.v"});
+  const uint64_t seed = checked_seed(a.seed);
+
+  make_bundle(a.out, a.force, [&](const fs::path& dir, const Step& step) {
+    Bundle b;
+    b.spec = spec;
+    b.desc = spec.describe();
+    b.tb = "tb_shadecore";
+    b.tagw = a.tagw;
+    b.top = top;
+    b.seed = seed;
+    b.synth = synth;
+    b.synth_why = synth == SynthMode::Skipped ? "--synth skip" : synth == SynthMode::Hierarchical ? "--synth hier" : "";
+    b.ports = concrete_ports(load_ports(), spec, a.tagw);
+    const Unit unit = spec.unit();
+    b.latency = unit.latency();
+    b.latency_min = unit.latency_min();
+    step("bundle for " + spec.describe() + fmt::format(", top {}, TAGW {}, seed {}", b.top, b.tagw, b.seed));
+
+    // rtl/, filelist.f
+    write_rtl(b, dir, rtl::specular_files(spec.variant, spec.norm), rtl::specular_includes(), wrapper_v(b));
+
+    // vectors/ (the C model, as `shadecore vectors`)
+    VectorRequest hard;
+    hard.mode = "hard";
+    const auto vh = make_vectors(spec, hard);
+    VectorRequest rnd;
+    rnd.mode = "random";
+    rnd.count = a.count;
+    rnd.seed = seed;
+    const auto vr = make_vectors(spec, rnd);
+    write_text(dir / "vectors" / "hard.hex", format_vectors(spec, hard, vh));
+    write_text(dir / "vectors" / "random.hex", format_vectors(spec, rnd, vr));
+    b.n_hard = vh.size();
+    b.n_random = vr.size();
+    step(fmt::format("vectors: {} hard cases, {} random (seed {})", vh.size(), vr.size(), seed));
+
+    // tb/, scripts, LICENSE
+    write_testbench(b, dir, tb_config_vh(b, std::max(vh.size(), vr.size())), tb_dut_vh(b));
+
+    // reports/ and the measured Fmax, then the constraints that use it
+    recorded_fmax(b);
+    check_and_report(b, dir, a.no_ice40, step);
+    write_text(dir / "constraints.sdc", sdc(b));
+    write_text(dir / "interface.md", interface_md(b));
+    simulate_and_summarise(b, dir, step);
+  });
+}
+
+}  // namespace shadecore::cli::handoff
