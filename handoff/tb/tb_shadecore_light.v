@@ -167,10 +167,10 @@ module tb_shadecore_light;
           $display("FAIL vector file has fewer than %0d records or a malformed word (record %0d word %0d)", nrec, e, k);
           fail_exit;
         end
-      if (mem[RW*e] == 32'd1) nfrag = nfrag + 1;
+      if (mem[RW*e][3:0] == 4'd1 && (mem[RW*e] >> 4) != 32'd0) nfrag = nfrag + 1;
       else if (mem[RW*e] == 32'd0) nwrite = nwrite + 1;
       else begin
-        $display("FAIL vector file: record %0d has kind %0d (0 write, 1 fragment)", e, mem[RW*e]);
+        $display("FAIL vector file: record %0d has kind 0x%0h (0 write, 1 + 16*latency fragment)", e, mem[RW*e]);
         fail_exit;
       end
     end
