@@ -277,7 +277,7 @@ TEST_F(RenderCli, WritesImagesAndJson) {
   const fs::path out = dir_ / "out" / "nested", js = dir_ / "r.json";
   const auto r = run_cli("render " + scene + " --out " + out.string() + " --json " + js.string());
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("feature set: 1 light (directional)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("feature set: 1 slot (directional), 1 lane"), std::string::npos) << r.out;
   for (const char* f : {"cmodel.png", "exact.png", "diff_exact.png"}) {
     ASSERT_TRUE(fs::exists(out / f)) << f;
     std::ifstream in(out / f, std::ios::binary);
