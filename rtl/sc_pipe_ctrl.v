@@ -81,10 +81,11 @@ module sc_pipe_ctrl #(
   endgenerate
 
 `ifdef FORMAL
-  // Step 0 of a proof has arbitrary registers: the properties below are checked from the first edge
-  // after a reset on (the harness, formal/sc_formal_unit.v, assumes rst_ni low in the first cycle).
+  // Step 0 of a proof has arbitrary registers: the properties below are checked from cycle 1 on (f_past);
+  // the harness (formal/sc_formal_unit.v, formal/sc_formal_ctrl.v) assumes rst_ni low in cycle 0.
+  // f_past is 1 in every cycle after the first, so in an induction step every property is active.
   localparam integer CW = sc_bits(DEPTH + 2);
-  reg          f_past   = 1'b0;            // a reset has been seen (cycle >= 1 after it)
+  reg          f_past   = 1'b0;            // cycle >= 1 (the harness resets in cycle 0)
   reg [CW-1:0] f_cnt    = {CW{1'b0}};      // accepted - taken since the last reset
   reg          f_acc    = 1'b0;            // a fragment was accepted since the last reset
   wire         f_accept = in_valid_i && in_ready_o;
@@ -99,8 +100,8 @@ module sc_pipe_ctrl #(
   end
 
   always @(posedge clk_i) begin
+    f_past <= 1'b1;
     if (!rst_ni) begin
-      f_past <= 1'b1;
       f_cnt  <= {CW{1'b0}};
       f_acc  <= 1'b0;
     end else begin

@@ -195,12 +195,12 @@ module sc_schlick_iter #(
 
   // Handshake properties, the same as rtl/sc_pipe_ctrl.v's (this unit has its own multi-cycle
   // control): at most one fragment in flight (in the divider or in the output register).
-  reg       f_past = 1'b0;                 // a reset has been seen
+  reg       f_past = 1'b0;                 // cycle >= 1 (the harness resets in cycle 0)
   reg [1:0] f_cnt  = 2'd0;                 // accepted - taken since the last reset
   reg       f_acc  = 1'b0;
   always @(posedge clk_i) begin
+    f_past <= 1'b1;
     if (!rst_ni) begin
-      f_past <= 1'b1;
       f_cnt  <= 2'd0;
       f_acc  <= 1'b0;
     end else begin
@@ -214,6 +214,7 @@ module sc_schlick_iter #(
       it_count:       assert (f_cnt == {1'b0, busy_q} + {1'b0, out_valid_q});
       it_count_bound: assert (f_cnt <= 2'd1);
       it_no_spurious: assert (f_acc || !out_valid_o);
+      it_acc:         assert (f_acc || f_cnt == 2'd0);
     end
   end
   always @(posedge clk_i) begin

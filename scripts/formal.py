@@ -8,10 +8,11 @@ k-induction: a bounded base case (BMC from reset, N steps) and an induction step
 (unbounded). Jobs come from config/configs.json (every variant at every named width, sc_norm at every
 width, the control primitive alone at several depths).
 
-Abstraction: with --abstract (the default) every $mul cell is a cut point (yosys `cutpoint t:$mul`):
-its output is a free value in every cycle. The properties are about control, holding and material
-registers, none about values, so the abstracted design has more behaviours than the real one and a
-proof of it is a proof of the real design (over-approximation). --no-abstract keeps the multipliers.
+Abstraction (the default; --no-abstract keeps the datapath): every arithmetic, comparison and shift cell
+of 8 bits or more is a cut point (yosys `cutpoint`, see ABSTRACT): its output is a free value in every
+cycle. The properties are about control, holding and material registers, none about values, so the
+abstracted design has more behaviours than the real one and a proof of it is a proof of the real design
+(over-approximation); a counter-example of the abstracted design may be spurious (none was seen).
 
   scripts/formal.py list
   scripts/formal.py prove JOB [--depth N] [--no-abstract] [--json FILE]
@@ -33,6 +34,10 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RTL = os.path.join(ROOT, "rtl")
 HARNESS = os.path.join(ROOT, "formal", "sc_formal_unit.v")
+CTRL_HARNESS = os.path.join(ROOT, "formal", "sc_formal_ctrl.v")
+# Every property is 1-step (or made inductive by a strengthening invariant, docs/formal.md), so a short
+# k-induction closes: base case PROOF_DEPTH steps from reset, induction step of the same length.
+PROOF_DEPTH = 4
 
 
 def load_config():
@@ -75,29 +80,29 @@ def jobs():
     files = unit_files(cfg)
     out = {}
     for d in (1, 2, 3, 7):
-        out["pipe_ctrl.d%d" % d] = dict(top="sc_pipe_ctrl", params={"DEPTH": d}, files=["sc_pipe_ctrl.v"],
-                                         harness=False, depth=d + 3)
+        out["pipe_ctrl.d%d" % d] = dict(top="sc_formal_ctrl", params={"DEPTH": d}, files=["sc_pipe_ctrl.v"],
+                                         harness=CTRL_HARNESS, depth=PROOF_DEPTH, reach=d)
     for c in cfg["configs"]:
         F, G = c["frac"], c["guard"]
         for v in cfg["variants"]:
             lat = latency(v, F)
             p = {"KIND": 0, "VARIANT": v["id"], "FRAC": F, "GUARD": G, "CUTOFF": 0, "NORM": 0}
             out["unit.%s.%s" % (v["name"], c["name"])] = dict(top="sc_formal_unit", params=p, files=files,
-                                                             harness=True, depth=lat + 3)
+                                                             harness=HARNESS, depth=PROOF_DEPTH, reach=lat)
         out["norm.%s" % c["name"]] = dict(top="sc_formal_unit",
                                          params={"KIND": 1, "FRAC": F, "GUARD": G}, files=files,
-                                         harness=True, depth=2 + 3)
+                                         harness=HARNESS, depth=PROOF_DEPTH, reach=2)
     dflt = [c for c in cfg["configs"] if c["name"] == cfg["default"]][0]
     F, G = dflt["frac"], dflt["guard"]
     for v in cfg["variants"]:
         lat = latency(v, F)
         p = {"KIND": 0, "VARIANT": v["id"], "FRAC": F, "GUARD": G, "CUTOFF": 0, "NORM": 1}
         out["unit_norm.%s.%s" % (v["name"], dflt["name"])] = dict(top="sc_formal_unit", params=p, files=files,
-                                                                 harness=True, depth=lat + 2 + 3)
+                                                                 harness=HARNESS, depth=PROOF_DEPTH, reach=lat + 2)
         if v["name"] == "cs16" or "squarer" in v:
             p = dict(p, NORM=0, CUTOFF=1)
             out["unit_sign_clamp.%s.%s" % (v["name"], dflt["name"])] = dict(
-                top="sc_formal_unit", params=p, files=files, harness=True, depth=lat + 3)
+                top="sc_formal_unit", params=p, files=files, harness=HARNESS, depth=PROOF_DEPTH, reach=lat)
     return out
 
 
@@ -145,15 +150,26 @@ def run(cmd, log, cwd):
     return p.returncode, p.stdout, time.monotonic() - t0
 
 
+# The abstraction: every arithmetic, comparison and shift cell with an operand or a result of 8 bits or
+# more becomes a cut point (its output a free value each cycle). That is the datapath (products, the
+# divider's subtractors, clamps, rounding adds); the control (valid bits, the iterative unit's 5-bit
+# step counter, the proof counters, all narrower than 8 bits) and every multiplexer, register and
+# equality are kept. Cutting a combinational cell only adds behaviours, so what is proved for the
+# abstracted design holds for the real one.
+_ARITH = "t:$add t:$sub t:$mul t:$neg t:$div t:$mod t:$lt t:$le t:$gt t:$ge t:$shl t:$shr t:$sshl t:$sshr " \
+         "t:$shift t:$shiftx"
+ABSTRACT = "select -set arith %s; select -set wide r:A_WIDTH>=8 r:B_WIDTH>=8 r:Y_WIDTH>=8; " \
+           "cutpoint @arith @wide %%i; " % _ARITH
+
+
 def build_smt2(job, work, rtl_dir, abstract):
     files = [os.path.join(rtl_dir, f) for f in job["files"]]
-    if job["harness"]:
-        files.append(HARNESS)
+    files.append(job["harness"])
     chp = " ".join("-set %s %d" % (k, v) for k, v in job["params"].items())
     script = ("read_verilog -formal -DFORMAL -I%s %s; chparam %s %s; prep -top %s; flatten; %s"
               "opt_clean; async2sync; dffunmap; stat; write_smt2 -wires %s" %
               (rtl_dir, " ".join(files), chp, job["top"], job["top"],
-               "cutpoint t:$mul; " if abstract else "", os.path.join(work, "design.smt2")))
+               ABSTRACT if abstract else "", os.path.join(work, "design.smt2")))
     rc, out, dt = run(["yosys", "-q", "-l", os.path.join(work, "yosys.log"), "-p", script],
                       os.path.join(work, "yosys.out"), work)
     if rc != 0 or re.search(r"implicitly declared", out + open(os.path.join(work, "yosys.log")).read()):
@@ -220,7 +236,7 @@ def mutant(name, mname, vcd=None, depth=None):
     build_smt2(job, work, rtl, True)
     vcd = vcd or os.path.join(work, "cex.vcd")
     # deep enough to reach a held output and the edge after it (the proof depth is what induction needs)
-    ok_b, t_b, _, out_b, fail_b = smtbmc(work, depth or job["depth"] + 4, False, vcd)
+    ok_b, t_b, _, out_b, fail_b = smtbmc(work, depth or job["reach"] + 4, False, vcd)
     have_vcd = os.path.exists(vcd) and "$enddefinitions" in open(vcd).read()
     hit = [a for a in fail_b if any(a.endswith(e) or ("." + e) in a or e in a for e in expect)]
     return dict(job=name, mutation=mname, base=ok_b, failed=fail_b, expected=expect, vcd=vcd if have_vcd else None,
