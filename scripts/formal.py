@@ -38,6 +38,9 @@ CTRL_HARNESS = os.path.join(ROOT, "formal", "sc_formal_ctrl.v")
 # Every property is 1-step (or made inductive by a strengthening invariant, docs/formal.md), so a short
 # k-induction closes: base case PROOF_DEPTH steps from reset, induction step of the same length.
 PROOF_DEPTH = 4
+# sc_pipe_ctrl on its own at every DEPTH a unit uses (cs16 7, forms 5, schlick_div F+4, schlick_nr 10,
+# table 3, norm 2) and 1
+CTRL_DEPTHS = (1, 2, 3, 5, 7, 10, 12, 20, 28)
 
 
 def load_config():
@@ -79,7 +82,7 @@ def jobs():
     cfg = load_config()
     files = unit_files(cfg)
     out = {}
-    for d in (1, 2, 3, 7):
+    for d in CTRL_DEPTHS:
         out["pipe_ctrl.d%d" % d] = dict(top="sc_formal_ctrl", params={"DEPTH": d}, files=["sc_pipe_ctrl.v"],
                                          harness=CTRL_HARNESS, depth=PROOF_DEPTH, reach=d)
     for c in cfg["configs"]:
@@ -88,22 +91,38 @@ def jobs():
             lat = latency(v, F)
             p = {"KIND": 0, "VARIANT": v["id"], "FRAC": F, "GUARD": G, "CUTOFF": 0, "NORM": 0}
             out["unit.%s.%s" % (v["name"], c["name"])] = dict(top="sc_formal_unit", params=p, files=files,
-                                                             harness=HARNESS, depth=PROOF_DEPTH, reach=lat)
+                                                             harness=HARNESS, depth=PROOF_DEPTH, reach=lat, drop_ctrl_asserts=True)
         out["norm.%s" % c["name"]] = dict(top="sc_formal_unit",
                                          params={"KIND": 1, "FRAC": F, "GUARD": G}, files=files,
-                                         harness=HARNESS, depth=PROOF_DEPTH, reach=2)
+                                         harness=HARNESS, depth=PROOF_DEPTH, reach=2, drop_ctrl_asserts=True)
     dflt = [c for c in cfg["configs"] if c["name"] == cfg["default"]][0]
     F, G = dflt["frac"], dflt["guard"]
     for v in cfg["variants"]:
         lat = latency(v, F)
         p = {"KIND": 0, "VARIANT": v["id"], "FRAC": F, "GUARD": G, "CUTOFF": 0, "NORM": 1}
         out["unit_norm.%s.%s" % (v["name"], dflt["name"])] = dict(top="sc_formal_unit", params=p, files=files,
-                                                                 harness=HARNESS, depth=PROOF_DEPTH, reach=lat + 2)
+                                                                 harness=HARNESS, depth=PROOF_DEPTH, reach=lat + 2, drop_ctrl_asserts=True)
         if v["name"] == "cs16" or "squarer" in v:
             p = dict(p, NORM=0, CUTOFF=1)
             out["unit_sign_clamp.%s.%s" % (v["name"], dflt["name"])] = dict(
-                top="sc_formal_unit", params=p, files=files, harness=HARNESS, depth=PROOF_DEPTH, reach=lat)
+                top="sc_formal_unit", params=p, files=files, harness=HARNESS, depth=PROOF_DEPTH, reach=lat, drop_ctrl_asserts=True)
     return out
+
+
+def is_long(name):
+    """Jobs the default test suite leaves out (ctest label long): the deep control proofs (the popcount of
+    pc_count at DEPTH 20 and 28 takes z3 from seconds to minutes) and the NORM = 1 / sign_clamp repeats."""
+    return name in ("pipe_ctrl.d20", "pipe_ctrl.d28") or name.startswith(("unit_norm.", "unit_sign_clamp."))
+
+
+# Mutants run by ctest (formal/CMakeLists.txt): mutation -> job whose proof it must break.
+CTEST_MUTANTS = [("drop_transfer", "pipe_ctrl.d7"), ("spurious_after_reset", "pipe_ctrl.d7"),
+                 ("accept_in_reset", "pipe_ctrl.d7"), ("release_held", "unit.cs16.default"),
+                 ("accept_in_reset", "unit.cs16.default"), ("material_without_we", "unit.cs16.default"),
+                 ("material_new_at_write", "unit.cs16.default"), ("release_held", "unit.schlick_div.narrow"),
+                 ("iter_accept_in_reset", "unit.schlick_iter.default"),
+                 ("iter_release_held", "unit.schlick_iter.default"), ("iter_drop_held", "unit.schlick_iter.default"),
+                 ("iter_drop_transfer", "unit.schlick_iter.default")]
 
 
 # Mutations: (file, exact text, replacement, assertions one of which must fail). Each text must occur
@@ -166,9 +185,14 @@ def build_smt2(job, work, rtl_dir, abstract):
     files = [os.path.join(rtl_dir, f) for f in job["files"]]
     files.append(job["harness"])
     chp = " ".join("-set %s %d" % (k, v) for k, v in job["params"].items())
-    script = ("read_verilog -formal -DFORMAL -I%s %s; chparam %s %s; prep -top %s; flatten; %s"
+    # Unit jobs drop the control primitive's own assertions (pc_*): they are proved on sc_pipe_ctrl alone at
+    # every DEPTH a unit uses (jobs pipe_ctrl.d*, free inputs, so they hold in any context), and a unit's
+    # properties (hold, ready in reset, material, the iterative unit's count) do not rely on them. The
+    # popcount behind pc_count is what makes deep pipelines slow for z3 (DEPTH 20: ~17 s CPU).
+    drop = "chformal -assert -remove a:src=*sc_pipe_ctrl.v*; " if job.get("drop_ctrl_asserts") else ""
+    script = ("read_verilog -formal -DFORMAL -I%s %s; chparam %s %s; prep -top %s; %sflatten; %s"
               "opt_clean; async2sync; dffunmap; stat; write_smt2 -wires %s" %
-              (rtl_dir, " ".join(files), chp, job["top"], job["top"],
+              (rtl_dir, " ".join(files), chp, job["top"], job["top"], drop,
                ABSTRACT if abstract else "", os.path.join(work, "design.smt2")))
     rc, out, dt = run(["yosys", "-q", "-l", os.path.join(work, "yosys.log"), "-p", script],
                       os.path.join(work, "yosys.out"), work)
@@ -246,13 +270,15 @@ def mutant(name, mname, vcd=None, depth=None):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="cmd", required=True)
-    sub.add_parser("list")
+    ls = sub.add_parser("list")
+    ls.add_argument("--ctest", action="store_true", help="one line per job: NAME quick|long")
     p = sub.add_parser("prove")
     p.add_argument("job")
     p.add_argument("--depth", type=int)
     p.add_argument("--no-abstract", action="store_true")
     p.add_argument("--json")
     p.add_argument("--keep")
+    sub.add_parser("mutants", help="the mutant/job pairs ctest runs")
     m = sub.add_parser("mutant")
     m.add_argument("job")
     m.add_argument("mutation", choices=sorted(MUTATIONS))
@@ -264,9 +290,16 @@ def main():
     a.add_argument("--no-abstract", action="store_true")
     args = ap.parse_args()
 
+    if args.cmd == "mutants":
+        for m, j in CTEST_MUTANTS:
+            print(m, j)
+        return 0
     if args.cmd == "list":
         for n, j in jobs().items():
-            print(n, j["top"], j["params"], "depth", j["depth"])
+            if args.ctest:
+                print("%s %s" % (n, "long" if is_long(n) else "quick"))
+            else:
+                print(n, j["top"], j["params"], "depth", j["depth"], "long" if is_long(n) else "quick")
         return 0
     if args.cmd == "prove":
         if args.job not in jobs():
@@ -283,10 +316,14 @@ def main():
         return 0 if r["status"] == "proved" else 1
     if args.cmd == "mutant":
         r = mutant(args.job, args.mutation, args.vcd, args.depth)
-        print("formal: %s mutant %s of %s: %s; failed assertions: %s; counter-example: %s" %
+        vcd_info = "none"
+        if r["vcd"]:
+            vcd_info = "%s (%d bytes%s)" % (r["vcd"], os.path.getsize(r["vcd"]),
+                                          "" if args.vcd else ", removed after the check")
+        print("formal: %s mutant %s of %s: %s; failed assertions: %s; counter-example VCD: %s" %
               ("PASS" if r["killed"] else "FAIL", args.mutation, args.job,
                "killed" if r["killed"] else "NOT killed (expected one of %s)" % r["expected"],
-               " ".join(r["failed"]) or "none", r["vcd"] or "none"))
+               " ".join(r["failed"]) or "none", vcd_info))
         if r["killed"] and not args.vcd:
             shutil.rmtree(r["work"])
         return 0 if r["killed"] else 1

@@ -289,7 +289,33 @@ def main():
     s = sub.add_parser("show")
     s.add_argument("unit")
     s.add_argument("config")
+    t = sub.add_parser("tighter", help="the cs16 reference contract with its lower end raised by 2^-G ulp: "
+                       "Gappa must not prove it (shows that the check can fail)")
+    t.add_argument("unit", choices=["cs16"])
+    t.add_argument("config")
     args = ap.parse_args()
+    if args.cmd == "tighter":
+        cfg = load_config()
+        c = [c for c in cfg["configs"] if c["name"] == args.config]
+        if not c:
+            print("gappa_bounds: unknown config %s" % args.config, file=sys.stderr)
+            return 1
+        F, G = c[0]["frac"], c[0]["guard"]
+        text = script_cs16_ref(F, G)
+        lo, hi = contract("reference", F, G)
+        tight = (lo + Q(1, 2 ** G)) * Q(1, 2 ** F)
+        old = "out - Y4 in [%s," % b(lo * Q(1, 2 ** F))
+        if text.count(old) != 1:
+            print("gappa_bounds: goal not found in the generated script", file=sys.stderr)
+            return 1
+        r = run_gappa(text.replace(old, "out - Y4 in [%s," % b(tight)))
+        ok = run_gappa(text)["proved"]
+        print("gappa: contract %s; tightened to lower end %s ulp: %s" %
+              ("proved" if ok else "NOT proved", lo + Q(1, 2 ** G), "proved (unexpected)" if r["proved"] else "not proved"))
+        if ok and not r["proved"]:
+            print("gappa: tighter contract rejected")
+            return 0
+        return 1
     if args.cmd == "show":
         for u, c, text, *_ in units():
             if u == args.unit and c == args.config:
