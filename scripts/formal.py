@@ -279,6 +279,8 @@ def main():
     p.add_argument("--json")
     p.add_argument("--keep")
     sub.add_parser("mutants", help="the mutant/job pairs ctest runs")
+    tb = sub.add_parser("table", help="docs/formal.md's table from the JSON of `all --json`")
+    tb.add_argument("json")
     m = sub.add_parser("mutant")
     m.add_argument("job")
     m.add_argument("mutation", choices=sorted(MUTATIONS))
@@ -290,6 +292,16 @@ def main():
     a.add_argument("--no-abstract", action="store_true")
     args = ap.parse_args()
 
+    if args.cmd == "table":
+        rows = json.load(open(args.json))
+        print("| job | top | parameters | result | base steps | induction k | yosys s | base s | induction s |")
+        print("|---|---|---|---|---|---|---|---|---|")
+        for r in rows:
+            p = " ".join("%s=%s" % kv for kv in r["params"].items())
+            print("| `%s` | %s | %s | %s | %d | %s | %.1f | %.1f | %.1f |" % (
+                r["job"], r["top"], p, "**proved** (k-induction)" if r["status"] == "proved" else r["status"],
+                r["depth"], r["k"], r["t_yosys"], r["t_base"], r["t_induction"]))
+        return 0
     if args.cmd == "mutants":
         for m, j in CTEST_MUTANTS:
             print(m, j)
