@@ -34,8 +34,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 getcontext().prec = 80
 
-PREC = 200          # Sollya working precision (bits); the domain end points are rounded to it
-ACC_EXP = 60        # supnorm accuracy 2^-ACC_EXP (relative, on values near 1: see cs16_script)
+PREC = 100          # Sollya working precision (bits); the domain end points are rounded to it
+ACC_EXP = 30        # supnorm accuracy 2^-ACC_EXP (relative, on values near 1, so ~1e-9 absolute; 2^-60 costs
+                    # 3.6x the time, measured 2026-12-01: 0.34 s vs 1.22 s user for 4 n)
 
 
 def parse_range(s):
