@@ -252,6 +252,114 @@ def schlick_cert(n, tol=Q(1, 10 ** 14)):
     return dict(n=n, inf=(i_lo, i_hi), sup=(-m_hi, -m_lo), boxes=b1 + b2)
 
 
+def _bnb(f, dd, a0, b0, tol):
+    """Certified inf and sup of a function on [a0, b0] (integers, units 2^-P) by branch and bound.
+    f(A) -> (lower, upper) of the value; dd(a, b) -> (lower, upper) of the derivative on [a, b] (units 2^-P per
+    unit of t). Returns ((inf_lo, inf_hi), (sup_lo, sup_hi)) as exact rationals."""
+    import heapq
+
+    def lower(a, b, fa, fb):
+        lo, hi = dd(a, b)
+        if lo >= 0:
+            return Q(fa)
+        if hi <= 0:
+            return Q(fb)
+        qa, qb = Q(a, ONE), Q(b, ONE)
+        t = (Q(fb) - hi * qb - Q(fa) + lo * qa) / (lo - hi)
+        return Q(fa) + lo * (t - qa)
+
+    def upper(a, b, fa, fb):
+        lo, hi = dd(a, b)
+        if lo >= 0:
+            return Q(fb)
+        if hi <= 0:
+            return Q(fa)
+        qa, qb = Q(a, ONE), Q(b, ONE)
+        t = (Q(fb) - lo * qb - Q(fa) + hi * qa) / (hi - lo)
+        return Q(fa) + hi * (t - qa)
+
+    tolS = tol * ONE
+
+    def run(minimise):
+        if minimise:
+            bound = lambda x, y, fx, fy: lower(x, y, fx[0], fy[0])
+            val = lambda fx: Q(fx[1])
+        else:
+            bound = lambda x, y, fx, fy: -upper(x, y, fx[1], fy[1])
+            val = lambda fx: Q(-fx[0])
+        a, b = a0, b0
+        fa, fb = f(a), f(b)
+        best = min(val(fa), val(fb))
+        heap = [(bound(a, b, fa, fb), a, b, fa, fb)]
+        low = None
+        while heap:
+            L, a, b, fa, fb = heapq.heappop(heap)
+            if best - L <= tolS:
+                low = L
+                break
+            m = (a + b) // 2
+            fm = f(m)
+            best = min(best, val(fm))
+            for (x, y, fx, fy) in ((a, m, fa, fm), (m, b, fm, fb)):
+                lb = bound(x, y, fx, fy)
+                if lb < best - tolS:
+                    heapq.heappush(heap, (lb, x, y, fx, fy))
+        lo = best - tolS if low is None else min(low, best - tolS)
+        return lo / ONE, best / ONE
+
+    i_lo, i_hi = run(True)
+    m_lo, m_hi = run(False)
+    return (i_lo, i_hi), (-m_hi, -m_lo)
+
+
+def cs16_cert(n, cut, tol=Q(1, 10 ** 14)):
+    """Independent cross-check of the Sollya intervals: certified bisection of Δ = c^n − base^16 on the shaded
+    part, base = 1 + (n/16)(c − 1) (exact integers in units 2^-(P+4)). Δ' = n(c^(n−1) − base^15), both terms
+    increasing in c (base^15 is an odd power of an increasing function), so the bounds of _bnb apply. The
+    shaded part's left end: theta_cr c* = cos(6/sqrt n) enclosed by mpmath interval arithmetic (iv, 300 bits),
+    sign_clamp c* = 1 − 16/n exactly; the box starts at a = floor(c*·2^P) <= c* and the ends are corrected by
+    2n·(c* − a) as in cs16_intervals. The cut part: sup = c*^n (enclosed from the same bounds), inf = 0."""
+    SH = 16 * (P_BITS + 4) - P_BITS
+
+    def B(A):                       # base in units 2^-(P+4), exact
+        return 16 * ONE + n * (A - ONE)
+
+    def f(A):
+        b16 = B(A) ** 16
+        return _pow(A, n, False) - _cdiv(b16, 1 << SH), _pow(A, n, True) - (b16 >> SH)
+
+    def dd(a, b):
+        def p15(A, up):
+            v = B(A) ** 15
+            sh = 15 * (P_BITS + 4) - P_BITS
+            return _cdiv(v, 1 << sh) if up else v >> sh
+        return n * (_pow(a, n - 1, False) - p15(b, True)), n * (_pow(b, n - 1, True) - p15(a, False))
+
+    if cut == "theta_cr":
+        from mpmath import iv
+        iv.prec = 300
+        e = iv.cos(6 / iv.sqrt(iv.mpf(n)))
+        def exact(t):               # an mpf tuple (sign, man, exp, bc) as an exact rational
+            sign, man, ex, _ = t
+            v = Q(man) * (Q(2) ** ex)
+            return -v if sign else v
+        c_lo, c_hi = exact(e._mpi_[0]), exact(e._mpi_[1])
+    else:
+        c_lo = c_hi = Q(n - 16, n)
+    a = (c_lo.numerator * ONE) // c_lo.denominator
+    if n == 16:
+        # base = c exactly: Δ = 0 on the whole shaded part (a bisection cannot close on a flat zero)
+        i_lo = i_hi = s_lo = s_hi = Q(0)
+    else:
+        (i_lo, i_hi), (s_lo, s_hi) = _bnb(f, dd, a, ONE, tol)
+    eps = Q(2 * n) * (c_hi - Q(a, ONE))
+    sh_sup = (s_lo - eps, s_hi)
+    sh_inf = (i_lo, min(i_hi + eps, Q(0)))
+    cut_sup = (c_lo ** n, c_hi ** n) if c_lo >= 0 else (Q(0), c_hi ** n)
+    return dict(n=n, cutoff=cut, sup=(max(sh_sup[0], cut_sup[0]), max(sh_sup[1], cut_sup[1])),
+                inf=(min(sh_inf[0], Q(0)), min(sh_inf[1], Q(0))))
+
+
 # ---------------------------------------------------------------------------------------------- output
 def dec_down(q, digits=10):
     """Largest decimal with `digits` significant digits <= q (outward rounding of a lower end)."""
@@ -355,6 +463,10 @@ def main():
     k.add_argument("-j", type=int, default=2)
     k.add_argument("--shadecore", required=True)
     k.add_argument("--config", default="default")
+    cx = sub.add_parser("crosscheck", help="the exact bisection (cs16_cert) on sample n against bounds.json's "
+                        "Sollya intervals: both enclose the same value, so they must intersect")
+    cx.add_argument("--out", required=True)
+    cx.add_argument("--every", type=int, default=64)
     rp = sub.add_parser("report", help="docs/bounds.md from out/bounds/bounds.json and gappa.json")
     rp.add_argument("--out", required=True)
     rp.add_argument("--doc", required=True)
@@ -378,6 +490,25 @@ def main():
             rows = [schlick_cert(n) for n in range(lo, hi + 1)]
             json.dump(dict(seconds=time.monotonic() - t0, rows=to_json(rows)), open(args.json, "w"))
             return 0
+        if args.cmd == "crosscheck":
+            j = json.load(open(os.path.join(args.out, "bounds.json")))
+            cs = {(r["cutoff"], r["n"]): r for r in from_json(j["cs16"])}
+            ns = sorted(set(n for (_, n) in cs))
+            sample = [n for n in ns if n <= ns[0] + 8 or n % args.every == 0 or n == ns[-1]]
+            rows, ok = [], True
+            t0 = time.monotonic()
+            for n in sample:
+                for cut in ("theta_cr", "sign_clamp"):
+                    r = cs16_cert(n, cut)
+                    so = cs[(cut, n)]
+                    meet = all(max(r[k][0], so[k][0]) <= min(r[k][1], so[k][1]) for k in ("sup", "inf"))
+                    ok &= meet
+                    rows.append(dict(n=n, cutoff=cut, sup=r["sup"], inf=r["inf"], agrees=meet))
+            dt = time.monotonic() - t0
+            json.dump(dict(seconds=dt, rows=to_json(rows)), open(os.path.join(args.out, "crosscheck.json"), "w"))
+            print("bounds: cross-check of %d (n, cut-off) pairs by exact bisection: %s (%.0f s)" %
+                  (len(rows), "every interval intersects Sollya's" if ok else "DISAGREES", dt))
+            return 0 if ok else 1
         if args.cmd == "report":
             import gappa_bounds
             j = json.load(open(os.path.join(args.out, "bounds.json")))
@@ -389,7 +520,7 @@ def main():
             sweeps = {k: dict(_command=v["command"].replace(" --json", "").split(" /tmp")[0] if "/tmp" in v["command"] else v["command"],
                               approx=v["approx"], format=dict(frac=frac)) for k, v in j["sweeps"].items()}
             res = dict(cs16=cs, schlick=sc, sweeps=sweeps, t_cs=j["seconds"]["sollya"], t_sc=j["seconds"]["schlick"],
-                       lo=lo, hi=hi, config=cfg)
+                       lo=lo, hi=hi, config=cfg, out=args.out)
             doc = report(res, gappa_bounds.load(os.path.join(args.out, "gappa.json")))
             with open(args.doc + ".tmp", "w") as f:
                 f.write(doc)
@@ -533,6 +664,16 @@ def report(res, gappa):
         L.append("| %d | %s | %s | %s | %s |" % (n, interval(a["sup"]), interval(a["inf"]), interval(b["sup"]),
                                                  interval(b["inf"])))
     L.append("")
+    cxp = os.path.join(ROOT, "out", "bounds", "crosscheck.json") if res.get("out") is None else os.path.join(res["out"], "crosscheck.json")
+    if os.path.exists(cxp):
+        cx = json.load(open(cxp))
+        rows = from_json(cx["rows"])
+        L.append("**Cross-check by a second method** (`scripts/bounds.py crosscheck`): an exact-arithmetic certified bisection "
+                 "of the same Δ (`cs16_cert`: integers with directed rounding, Δ' = n(c^(n−1) − base^15) bounded from its two "
+                 "monotone terms, θcr's cos enclosed by mpmath interval arithmetic) on %d (n, cut-off) pairs; every interval "
+                 "%s the Sollya one (%.0f s). E.g. n = 1024, `theta_cr`: sup Δ ∈ %s.\n" % (
+                     len(rows), "intersects" if all(r["agrees"] for r in rows) else "does NOT always intersect", cx["seconds"],
+                     interval([r for r in rows if r["n"] == max(x["n"] for x in rows) and r["cutoff"] == "theta_cr"][0]["sup"])))
     L.append("## 2. Model error of Schlick, certified (exact bisection)\n")
     L.append("Δ(t, n) = t^n − t/(n − n·t + t) on t ∈ [0, 1] (no cut). `supnorm` needs a polynomial and Sollya's `infnorm` "
              "gave enclosures far too wide to be useful here (n = 1024: [0, 0.33] for sup|Δ + 1| − 1; tried 2026-12-01), so "
