@@ -137,18 +137,12 @@ module sc_cs16 #(
   // One global enable: every stage moves when the output stage is empty or being taken.
   // LATENCY register stages: S0..S6 in the reference form, S1..S5 in FORM = 1 (no S0, no S6).
   localparam integer LATENCY = (FORM == 0) ? 7 : 5;
-  reg  [LATENCY-1:0] v_q;                  // valid bit of each stage
-  wire               adv = !v_q[LATENCY-1] || out_ready_i;
-  assign in_ready_o  = rst_ni && adv;
-  assign out_valid_o = v_q[LATENCY-1];
-
-  always @(posedge clk_i) begin
-    if (!rst_ni) begin
-      v_q <= {LATENCY{1'b0}};
-    end else if (adv) begin
-      v_q <= {v_q[LATENCY-2:0], in_valid_i};
-    end
-  end
+  wire               adv;                  // global enable (rtl/sc_pipe_ctrl.v)
+  wire [LATENCY-1:0] v_stage;              // valid bit of each stage (unused: adv qualifies the data)
+  sc_pipe_ctrl #(.DEPTH(LATENCY)) u_ctrl (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(in_ready_o),
+      .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .en_o(adv), .valid_o(v_stage));
+  wire unused_v_stage = &{1'b0, v_stage};
 
   // ---------------------------------------------------------------------------- material registers
   reg [10:0] mat_n_q;
@@ -160,21 +154,13 @@ module sc_cs16 #(
     end
   end
 
-  // ceil(log2(v)), v >= 1
-  function integer clog2(input integer v);
-    integer r;
-    begin
-      r = 0;
-      while ((1 << r) < v) r = r + 1;
-      clog2 = r;
-    end
-  endfunction
+  `include "sc_util.vh"   // sc_clog2 (ceil(log2 v), sc_clog2(1) = 0), sc_bits, sc_max, sc_min
   // Columns a FORM = 1 squaring drops (docs/spec.md §3.4): those more than T = clog2(N) + keep
   // (keep = SQ_Kk of squaring k) below the stage's truncation point 2·Win - Wout, clamped to [0, shift].
   function integer drop_cols(input integer shift, input integer win, input integer wout, input integer keep);
     integer d;
     begin
-      d = 2 * win - wout - (clog2(win) + keep);
+      d = 2 * win - wout - (sc_clog2(win) + keep);
       if (d < 0) d = 0;
       if (d > shift) d = shift;
       drop_cols = d;
@@ -380,6 +366,30 @@ module sc_cs16 #(
       assign out_tag_o  = s5_tag_q;
     end
   endgenerate
+
+`ifdef FORMAL
+  // Material rule of docs/spec.md §4 (proved with the unit, docs/formal.md): a material register
+  // loads exactly at an edge with mat_we_i high (in reset too) and holds otherwise, and a fragment
+  // accepted at an edge captures the material as it was before that edge (the old one at a write).
+  reg f_init = 1'b0;
+  always @(posedge clk_i) f_init <= 1'b1;
+  always @(posedge clk_i) begin
+    if (f_init) begin
+      mat_load_n:   assert (mat_n_q == ($past(mat_we_i) ? $past(mat_n_i) : $past(mat_n_q)));
+      mat_load_thr: assert (mat_thr_q == ($past(mat_we_i) ? $past(mat_thr_i) : $past(mat_thr_q)));
+    end
+  end
+  generate
+    if (FORM == 0) begin : g_f_ref
+      always @(posedge clk_i) begin
+        if (f_init && $past(adv)) begin
+          mat_old_n:   assert (g_ref.s0_n_q == $past(mat_n_q));
+          mat_old_thr: assert (g_ref.s0_thr_q == $past(mat_thr_q));
+        end
+      end
+    end
+  endgenerate
+`endif
 
 endmodule
 

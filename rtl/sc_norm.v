@@ -97,18 +97,12 @@ module sc_norm #(
   localparam [PW-1:0] HALF = {{(PW-F){1'b0}}, 1'b1, {(F-1){1'b0}}};  // 2^(F-1)
 
   // ---------------------------------------------------------------------------- handshake
-  reg  [1:0] v_q;  // valid bits of N1, N2
-  wire       adv = !v_q[1] || out_ready_i;
-  assign in_ready_o  = rst_ni && adv;
-  assign out_valid_o = v_q[1];
-
-  always @(posedge clk_i) begin
-    if (!rst_ni) begin
-      v_q <= 2'b00;
-    end else if (adv) begin
-      v_q <= {v_q[0], in_valid_i};
-    end
-  end
+  wire       adv;                          // global enable (rtl/sc_pipe_ctrl.v)
+  wire [1:0] v_stage;                      // valid bit of each stage (unused: adv qualifies the data)
+  sc_pipe_ctrl #(.DEPTH(2)) u_ctrl (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(in_ready_o),
+      .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .en_o(adv), .valid_o(v_stage));
+  wire unused_v_stage = &{1'b0, v_stage};
 
   // ---------------------------------------------------------------------------- coefficient source
   wire [COEFW-1:0] coef;
@@ -154,6 +148,23 @@ module sc_norm #(
 
   assign out_norm_o = n2_out_q;
   assign out_tag_o  = n2_tag_q;
+
+`ifdef FORMAL
+  // Material rule of docs/spec.md §4 (proved with the unit, docs/formal.md): a material register
+  // loads exactly at an edge with mat_we_i high (in reset too) and holds otherwise, and a fragment
+  // accepted at an edge captures the material as it was before that edge (the old one at a write).
+  reg f_init = 1'b0;
+  always @(posedge clk_i) f_init <= 1'b1;
+  generate
+    if (COEF_SRC == 0) begin : g_f_mat
+      always @(posedge clk_i) begin
+        if (f_init) begin
+          mat_load_coef: assert (coef == ($past(mat_we_i) ? $past(mat_coef_i) : $past(coef)));
+        end
+      end
+    end
+  endgenerate
+`endif
 
 endmodule
 

@@ -67,9 +67,9 @@ module sc_normalize #(
   localparam integer MB  = FRAC + 6 + (FRAC % 2);    // mantissa fraction bits, even (rsqrt_mant_frac)
   localparam integer MW  = MB + 2;                   // m in [2^MB, 2^(MB+2))
   localparam integer AW  = R + 1;                    // width of the a0 table entries
-  localparam integer SWF = (2 * VW > MW) ? 2 * VW : MW;  // frame of s (even)
+  localparam integer SWF = sc_max(2 * VW, MW);  // frame of s (even)
   localparam integer HW  = SWF / 2;                  // bit pairs in the frame
-  localparam integer KW  = clog2(HW);                // width of k (k <= HW-1)
+  localparam integer KW  = sc_bits(HW);                // width of k (k <= HW-1)
   localparam integer OW  = FRAC + 2;                 // output component width
   localparam integer PW  = HW + FRAC + 7;            // low bits of v_i·y2 that reach u_i
   localparam integer NS  = 10;                       // stages = latency
@@ -87,18 +87,8 @@ module sc_normalize #(
   endgenerate
 
   // ---------------------------------------------------------------------------- constant functions
-  function integer clog2(input integer x);
-    integer v;
-    begin
-      clog2 = 0;
-      v = 1;
-      while (v < x) begin
-        v = v * 2;
-        clog2 = clog2 + 1;
-      end
-      if (clog2 == 0) clog2 = 1;
-    end
-  endfunction
+  `include "sc_util.vh"   // sc_bits (index width, >= 1), sc_max
+
 
   // rsqrt_seed(i) of the C model: the largest y in [0, 2^T] with (2y−1)²·(2i+1) <= 2^(2T+8),
   // i.e. 1/√(midpoint of [i/32, (i+1)/32)) with T fraction bits, rounded to nearest. Bisection in
@@ -137,12 +127,10 @@ module sc_normalize #(
 
   // ---------------------------------------------------------------------------- input pass-through
   // v travels with the fragment to S10 (S9 needs it; v_o is its S10 copy).
-  reg [3*VW*NS-1:0] v_q;   // stage k (1..10) at bits [(k-1)*3*VW +: 3*VW]
-  always @(posedge clk_i) begin
-    if (en_i) v_q <= {v_q[3*VW*(NS-1)-1:0], v_i};
-  end
-  wire [3*VW-1:0] v8 = v_q[3*VW*8-1:3*VW*7];   // the S8 copy, multiplied in S9
-  assign v_o = v_q[3*VW*NS-1:3*VW*(NS-1)];
+  // Two rtl/sc_delay.v lines: S1..S8 (the S8 copy is multiplied in S9), then S9..S10 (v_o).
+  wire [3*VW-1:0] v8;
+  sc_delay #(.W(3 * VW), .DEPTH(8)) u_v_s8 (.clk_i(clk_i), .en_i(en_i), .d_i(v_i), .q_o(v8));
+  sc_delay #(.W(3 * VW), .DEPTH(NS - 8)) u_v_s10 (.clk_i(clk_i), .en_i(en_i), .d_i(v8), .q_o(v_o));
 
   // ---------------------------------------------------------------------------- S1: s = v·v
   wire signed [VW-1:0]   vx = v_i[VW-1:0];

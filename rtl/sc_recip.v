@@ -54,10 +54,10 @@ module sc_recip #(
   localparam integer R   = FRAC + 8;                  // recip_frac
   localparam integer T   = 10;                        // kSchlickNrTableFrac
   localparam integer P   = 6;                         // kSchlickNrIndexBits
-  localparam integer QWF = (QW > R + 1) ? QW : R + 1; // normalisation frame
-  localparam integer LZW = clog2(QWF);                // width of lz (0..QWF-1)
+  localparam integer QWF = sc_max(QW, R + 1); // normalisation frame
+  localparam integer LZW = sc_bits(QWF);                // width of lz (0..QWF-1)
   localparam integer SHC = QWF + 7 - FRAC;            // sh = SHC - lz
-  localparam integer SHW = clog2(SHC + 1);            // width of sh (0..SHC)
+  localparam integer SHW = sc_bits(SHC + 1);            // width of sh (0..SHC)
 
   // ---------------------------------------------------------------------------- check configuration
   // Portable Verilog-2005 elaboration error: a failing check instantiates a module that does not
@@ -72,18 +72,8 @@ module sc_recip #(
   endgenerate
 
   // ---------------------------------------------------------------------------- constant functions
-  function integer clog2(input integer x);
-    integer v;
-    begin
-      clog2 = 0;
-      v = 1;
-      while (v < x) begin
-        v = v * 2;
-        clog2 = clog2 + 1;
-      end
-      if (clog2 == 0) clog2 = 1;
-    end
-  endfunction
+  `include "sc_util.vh"   // sc_bits (index width, >= 1), sc_max
+
 
   // schlick_nr_table(i) of the C model: round-half-up(2^(T+P+1) / (2^(P+1) + 2i + 1)), the
   // reciprocal of the midpoint of [1 + i/64, 1 + (i+1)/64) with T fraction bits (1016 .. 514).

@@ -97,18 +97,12 @@ module sc_schlick_div #(
   wire unused_thr = &{1'b0, mat_thr_i};       // the Schlick forms have no per-material threshold
 
   // ---------------------------------------------------------------------------- handshake
-  reg  [NS-1:0] v_q;                          // valid bit of S0, S1, Q0..Q(F+1)
-  wire          adv = !v_q[NS-1] || out_ready_i;
-  assign in_ready_o  = rst_ni && adv;
-  assign out_valid_o = v_q[NS-1];
-
-  always @(posedge clk_i) begin
-    if (!rst_ni) begin
-      v_q <= {NS{1'b0}};
-    end else if (adv) begin
-      v_q <= {v_q[NS-2:0], in_valid_i};
-    end
-  end
+  wire          adv;                        // global enable (rtl/sc_pipe_ctrl.v)
+  wire [NS-1:0] v_stage;                    // valid bit of each stage (unused: adv qualifies the data)
+  sc_pipe_ctrl #(.DEPTH(NS)) u_ctrl (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(in_ready_o),
+      .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .en_o(adv), .valid_o(v_stage));
+  wire unused_v_stage = &{1'b0, v_stage};
 
   // ---------------------------------------------------------------------------- material register
   reg [10:0] mat_n_q;
@@ -209,6 +203,22 @@ module sc_schlick_div #(
 
   assign out_spec_o = out_q;
   assign out_tag_o  = out_tag_q;
+
+`ifdef FORMAL
+  // Material rule of docs/spec.md §4 (proved with the unit, docs/formal.md): a material register
+  // loads exactly at an edge with mat_we_i high (in reset too) and holds otherwise, and a fragment
+  // accepted at an edge captures the material as it was before that edge (the old one at a write).
+  reg f_init = 1'b0;
+  always @(posedge clk_i) f_init <= 1'b1;
+  always @(posedge clk_i) begin
+    if (f_init) begin
+      mat_load_n: assert (mat_n_q == ($past(mat_we_i) ? $past(mat_n_i) : $past(mat_n_q)));
+      if ($past(adv)) begin
+        mat_old_n: assert (s0_n_q == $past(mat_n_q));
+      end
+    end
+  end
+`endif
 
 endmodule
 

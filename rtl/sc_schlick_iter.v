@@ -178,6 +178,52 @@ module sc_schlick_iter #(
   assign out_spec_o = out_q;
   assign out_tag_o  = out_tag_q;
 
+`ifdef FORMAL
+  // Material rule of docs/spec.md §4 (proved with the unit, docs/formal.md): a material register
+  // loads exactly at an edge with mat_we_i high (in reset too) and holds otherwise, and a fragment
+  // accepted at an edge captures the material as it was before that edge (the old one at a write).
+  reg f_init = 1'b0;
+  always @(posedge clk_i) f_init <= 1'b1;
+  always @(posedge clk_i) begin
+    if (f_init) begin
+      mat_load_n: assert (mat_n_q == ($past(mat_we_i) ? $past(mat_n_i) : $past(mat_n_q)));
+      if ($past(accept)) begin
+        mat_old_n: assert (n_q == $past(mat_n_q));
+      end
+    end
+  end
+
+  // Handshake properties, the same as rtl/sc_pipe_ctrl.v's (this unit has its own multi-cycle
+  // control): at most one fragment in flight (in the divider or in the output register).
+  reg       f_past = 1'b0;                 // cycle >= 1 (the harness resets in cycle 0)
+  reg [1:0] f_cnt  = 2'd0;                 // accepted - taken since the last reset
+  reg       f_acc  = 1'b0;
+  always @(posedge clk_i) begin
+    f_past <= 1'b1;
+    if (!rst_ni) begin
+      f_cnt  <= 2'd0;
+      f_acc  <= 1'b0;
+    end else begin
+      f_cnt <= f_cnt + {1'b0, accept} - {1'b0, take};
+      if (accept) f_acc <= 1'b1;
+    end
+  end
+  always @* begin
+    it_ready_reset: assert (rst_ni || !in_ready_o);
+    if (f_past) begin
+      it_count:       assert (f_cnt == {1'b0, busy_q} + {1'b0, out_valid_q});
+      it_count_bound: assert (f_cnt <= 2'd1);
+      it_no_spurious: assert (f_acc || !out_valid_o);
+      it_acc:         assert (f_acc || f_cnt == 2'd0);
+    end
+  end
+  always @(posedge clk_i) begin
+    if (f_past && $past(f_past) && $past(rst_ni) && $past(out_valid_o) && !$past(out_ready_i)) begin
+      it_hold: assert (out_valid_o);
+    end
+  end
+`endif
+
 endmodule
 
 `default_nettype wire

@@ -271,6 +271,23 @@ module sc_specular #(
     end
   endgenerate
 
+`ifdef FORMAL
+  // Material rule of docs/spec.md §4 (proved with the unit, docs/formal.md): a material register
+  // loads exactly at an edge with mat_we_i high (in reset too) and holds otherwise, and a fragment
+  // accepted at an edge captures the material as it was before that edge (the old one at a write).
+  reg f_init = 1'b0;
+  always @(posedge clk_i) f_init <= 1'b1;
+  generate
+    if (NORM == 1) begin : g_f_norm
+      always @(posedge clk_i) begin
+        if (f_init) begin
+          mat_load_coef: assert (u_in_tag[UTAGW-1:TAGW] == ($past(mat_we_i) ? $past(mat_coef_i) : $past(u_in_tag[UTAGW-1:TAGW])));
+        end
+      end
+    end
+  endgenerate
+`endif
+
 endmodule
 
 `default_nettype wire

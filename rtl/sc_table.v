@@ -105,18 +105,12 @@ module sc_table #(
   wire unused_mat = &{1'b0, mat_we_i, mat_n_i, mat_thr_i};
 
   // ---------------------------------------------------------------------------- handshake
-  reg  [2:0] v_q;                          // valid bit of S0..S2
-  wire       adv = !v_q[2] || out_ready_i;
-  assign in_ready_o  = rst_ni && adv;
-  assign out_valid_o = v_q[2];
-
-  always @(posedge clk_i) begin
-    if (!rst_ni) begin
-      v_q <= 3'd0;
-    end else if (adv) begin
-      v_q <= {v_q[1:0], in_valid_i};
-    end
-  end
+  wire       adv;                          // global enable (rtl/sc_pipe_ctrl.v)
+  wire [2:0] v_stage;                      // valid bit of each stage (unused: adv qualifies the data)
+  sc_pipe_ctrl #(.DEPTH(3)) u_ctrl (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(in_ready_o),
+      .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .en_o(adv), .valid_o(v_stage));
+  wire unused_v_stage = &{1'b0, v_stage};
 
   // ---------------------------------------------------------------------------- table RAM (write port)
   // Inferable: one write port, one synchronous read port with enable (iCE40: SB_RAM40_4K).

@@ -3,13 +3,15 @@
 # Installs the Debian packages shadecore needs, if any are missing. Idempotent and quiet when
 # everything is present. Needs root (or sudo) only when something must be installed.
 # Extra package names given as arguments are installed too (scripts/cost_report.py asks for the
-# iCE40 place-and-route tools this way, so the default setup stays lean).
+# iCE40 place-and-route tools this way, so the default setup stays lean). z3 (the SMT solver of
+# yosys-smtbmc), sollya and gappa are the proof tools of the formal suite (docs/formal.md, docs/bounds.md).
 set -euo pipefail
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libtinyobjloader-dev
   verilator libsystemc-dev yosys iverilog
+  z3 sollya gappa
   python3 python3-numpy python3-matplotlib zlib1g-dev
   "$@"
 )

@@ -1,0 +1,362 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
+"""Formal proofs of the units' control properties (issue 21, docs/formal.md).
+
+Drives yosys + yosys-smtbmc (solver z3) directly; SymbiYosys is not packaged on Debian. A proof is
+k-induction: a bounded base case (BMC from reset, N steps) and an induction step of the same N
+(`yosys-smtbmc -i`), both must pass; together they prove the properties for every reachable state
+(unbounded). Jobs come from config/configs.json (every variant at every named width, sc_norm at every
+width, the control primitive alone at several depths).
+
+Abstraction (the default; --no-abstract keeps the datapath): every arithmetic, comparison and shift cell
+of 8 bits or more is a cut point (yosys `cutpoint`, see ABSTRACT): its output is a free value in every
+cycle. The properties are about control, holding and material registers, none about values, so the
+abstracted design has more behaviours than the real one and a proof of it is a proof of the real design
+(over-approximation); a counter-example of the abstracted design may be spurious (none was seen).
+
+  scripts/formal.py list
+  scripts/formal.py prove JOB [--depth N] [--no-abstract] [--json FILE]
+  scripts/formal.py mutant JOB MUTATION [--vcd FILE]    expects a failure with a counter-example VCD
+  scripts/formal.py all [--json FILE] [--filter RE]      every job, a summary (docs/formal.md)
+
+Exit status: 0 the expected result (proof passed / mutant failed with a VCD), 1 anything else.
+"""
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+RTL = os.path.join(ROOT, "rtl")
+HARNESS = os.path.join(ROOT, "formal", "sc_formal_unit.v")
+CTRL_HARNESS = os.path.join(ROOT, "formal", "sc_formal_ctrl.v")
+# Every property is 1-step (or made inductive by a strengthening invariant, docs/formal.md), so a short
+# k-induction closes: base case PROOF_DEPTH steps from reset, induction step of the same length.
+PROOF_DEPTH = 4
+# sc_pipe_ctrl on its own at every DEPTH a unit uses (cs16 7, forms 5, schlick_div F+4, schlick_nr 10,
+# table 3, norm 2) and 1
+CTRL_DEPTHS = (1, 2, 3, 5, 7, 10, 12, 20, 28)
+
+
+def load_config():
+    with open(os.path.join(ROOT, "config", "configs.json")) as f:
+        return json.load(f)
+
+
+def unit_files(cfg):
+    """Every file sc_specular can instantiate (the "rtl" lists of configs.json)."""
+    files = list(cfg["rtl"]["sc_specular"]["files"])
+    for v in cfg["variants"]:
+        files += v["rtl"]
+    files += cfg["rtl"]["sc_specular"]["norm"]
+    out = []
+    for f in files:
+        if f not in out:
+            out.append(f)
+    return out
+
+
+def latency(variant, frac):
+    """Stages in flight of each unit (docs/spec.md §4)."""
+    name = variant["name"]
+    if name == "cs16":
+        return 7
+    if "squarer" in variant:
+        return 5
+    if name in ("schlick_div", "schlick_iter"):
+        return frac + 4
+    if name == "schlick_nr":
+        return 10
+    if variant.get("contract") == "table":
+        return 3
+    raise ValueError("unknown variant " + name)
+
+
+def jobs():
+    """name -> dict(top, params, files, depth)."""
+    cfg = load_config()
+    files = unit_files(cfg)
+    out = {}
+    for d in CTRL_DEPTHS:
+        out["pipe_ctrl.d%d" % d] = dict(top="sc_formal_ctrl", params={"DEPTH": d}, files=["sc_pipe_ctrl.v"],
+                                         harness=CTRL_HARNESS, depth=PROOF_DEPTH, reach=d)
+    for c in cfg["configs"]:
+        F, G = c["frac"], c["guard"]
+        for v in cfg["variants"]:
+            lat = latency(v, F)
+            p = {"KIND": 0, "VARIANT": v["id"], "FRAC": F, "GUARD": G, "CUTOFF": 0, "NORM": 0}
+            out["unit.%s.%s" % (v["name"], c["name"])] = dict(top="sc_formal_unit", params=p, files=files,
+                                                             harness=HARNESS, depth=PROOF_DEPTH, reach=lat, drop_ctrl_asserts=True)
+        out["norm.%s" % c["name"]] = dict(top="sc_formal_unit",
+                                         params={"KIND": 1, "FRAC": F, "GUARD": G}, files=files,
+                                         harness=HARNESS, depth=PROOF_DEPTH, reach=2, drop_ctrl_asserts=True)
+    dflt = [c for c in cfg["configs"] if c["name"] == cfg["default"]][0]
+    F, G = dflt["frac"], dflt["guard"]
+    for v in cfg["variants"]:
+        lat = latency(v, F)
+        p = {"KIND": 0, "VARIANT": v["id"], "FRAC": F, "GUARD": G, "CUTOFF": 0, "NORM": 1}
+        out["unit_norm.%s.%s" % (v["name"], dflt["name"])] = dict(top="sc_formal_unit", params=p, files=files,
+                                                                 harness=HARNESS, depth=PROOF_DEPTH, reach=lat + 2, drop_ctrl_asserts=True)
+        if v["name"] == "cs16" or "squarer" in v:
+            p = dict(p, NORM=0, CUTOFF=1)
+            out["unit_sign_clamp.%s.%s" % (v["name"], dflt["name"])] = dict(
+                top="sc_formal_unit", params=p, files=files, harness=HARNESS, depth=PROOF_DEPTH, reach=lat, drop_ctrl_asserts=True)
+    return out
+
+
+def is_long(name):
+    """Jobs the default test suite leaves out (ctest label long): the deep control proofs (the popcount of
+    pc_count at DEPTH 20 and 28 takes z3 from seconds to minutes), the cs16 forms at the wide width (Yosys
+    spends ~20-45 s elaborating sc_square's constant functions there) and the NORM = 1 / sign_clamp repeats."""
+    return (name in ("pipe_ctrl.d20", "pipe_ctrl.d28", "unit.cs16_faithful.wide", "unit.cs16_compact.wide") or
+            name.startswith(("unit_norm.", "unit_sign_clamp.")))
+
+
+# Mutants run by ctest (formal/CMakeLists.txt): mutation -> job whose proof it must break.
+CTEST_MUTANTS = [("drop_transfer", "pipe_ctrl.d7"), ("spurious_after_reset", "pipe_ctrl.d7"),
+                 ("accept_in_reset", "pipe_ctrl.d7"), ("release_held", "unit.cs16.default"),
+                 ("accept_in_reset", "unit.cs16.default"), ("material_without_we", "unit.cs16.default"),
+                 ("material_new_at_write", "unit.cs16.default"), ("release_held", "unit.schlick_div.narrow"),
+                 ("iter_accept_in_reset", "unit.schlick_iter.default"),
+                 ("iter_release_held", "unit.schlick_iter.default"), ("iter_drop_held", "unit.schlick_iter.default"),
+                 ("iter_drop_transfer", "unit.schlick_iter.default")]
+
+
+# Mutations: (file, exact text, replacement, assertions one of which must fail). Each text must occur
+# exactly once in the file, so a mutation cannot silently stop applying when the RTL changes.
+MUTATIONS = {
+    # a fragment accepted while the output stage is empty and out_ready_i low is lost
+    "drop_transfer": ("sc_pipe_ctrl.v", "v_q <= {v_q[DEPTH-2:0], in_valid_i};",
+                      "v_q <= {v_q[DEPTH-2:0], in_valid_i && out_ready_i};", ["pc_count"]),
+    # the data registers load while the output is held (valid stays, data and tag change)
+    "release_held": ("sc_pipe_ctrl.v", "assign en_o        = adv;",
+                     "assign en_o        = adv || in_valid_i;", ["u_hold_data", "u_hold_tag"]),
+    # in_ready_o no longer low during reset
+    "accept_in_reset": ("sc_pipe_ctrl.v", "assign in_ready_o  = rst_ni && adv;",
+                        "assign in_ready_o  = adv;", ["pc_ready_reset", "u_ready_reset"]),
+    # reset leaves a valid bit set: a valid output nothing was accepted for
+    "spurious_after_reset": ("sc_pipe_ctrl.v", "v_q <= {DEPTH{1'b0}};",
+                             "v_q <= {{(DEPTH-1){1'b0}}, 1'b1};", ["pc_count", "pc_no_spurious"]),
+    # a material write taken without mat_we_i
+    "material_without_we": ("sc_cs16.v", "if (mat_we_i) begin\n      mat_n_q   <= mat_n_i;",
+                            "if (mat_we_i || in_valid_i) begin\n      mat_n_q   <= mat_n_i;", ["mat_load_n"]),
+    # a fragment accepted at a material-write edge gets the new material
+    "material_new_at_write": ("sc_cs16.v", "s0_n_q   <= mat_n_q;",
+                              "s0_n_q   <= mat_we_i ? mat_n_i : mat_n_q;", ["mat_old_n"]),
+    # the iterative unit: accepts in reset / releases a held result / drops an accepted fragment
+    "iter_accept_in_reset": ("sc_schlick_iter.v",
+                             "assign in_ready_o  = rst_ni && !busy_q && (!out_valid_q || out_ready_i);",
+                             "assign in_ready_o  = !busy_q && (!out_valid_q || out_ready_i);",
+                             ["it_ready_reset", "u_ready_reset"]),
+    "iter_release_held": ("sc_schlick_iter.v", "if (last) begin\n      out_q     <= rnd[NQ-1:1];",
+                          "if (last || in_valid_i) begin\n      out_q     <= rnd[NQ-1:1];", ["u_hold_data"]),
+    # the iterative unit drops a held result (out_valid_q falls without a take)
+    "iter_drop_held": ("sc_schlick_iter.v", "end else if (take) begin\n        out_valid_q <= 1'b0;",
+                       "end else begin\n        out_valid_q <= 1'b0;", ["it_hold", "it_count", "u_hold_valid"]),
+    "iter_drop_transfer": ("sc_schlick_iter.v", "if (accept) begin\n        busy_q <= 1'b1;",
+                           "if (accept && in_cos_i[0]) begin\n        busy_q <= 1'b1;", ["it_count"]),
+}
+
+
+def run(cmd, log, cwd):
+    t0 = time.monotonic()
+    p = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    with open(log, "w") as f:
+        f.write(p.stdout)
+    return p.returncode, p.stdout, time.monotonic() - t0
+
+
+# The abstraction: every arithmetic, comparison and shift cell with an operand or a result of 8 bits or
+# more becomes a cut point (its output a free value each cycle). That is the datapath (products, the
+# divider's subtractors, clamps, rounding adds); the control (valid bits, the iterative unit's 5-bit
+# step counter, the proof counters, all narrower than 8 bits) and every multiplexer, register and
+# equality are kept. Cutting a combinational cell only adds behaviours, so what is proved for the
+# abstracted design holds for the real one.
+_ARITH = "t:$add t:$sub t:$mul t:$neg t:$div t:$mod t:$lt t:$le t:$gt t:$ge t:$shl t:$shr t:$sshl t:$sshr " \
+         "t:$shift t:$shiftx"
+ABSTRACT = "select -set arith %s; select -set wide r:A_WIDTH>=8 r:B_WIDTH>=8 r:Y_WIDTH>=8; " \
+           "cutpoint @arith @wide %%i; " % _ARITH
+
+
+def build_smt2(job, work, rtl_dir, abstract):
+    files = [os.path.join(rtl_dir, f) for f in job["files"]]
+    files.append(job["harness"])
+    chp = " ".join("-set %s %d" % (k, v) for k, v in job["params"].items())
+    # Unit jobs drop the control primitive's own assertions (pc_*): they are proved on sc_pipe_ctrl alone at
+    # every DEPTH a unit uses (jobs pipe_ctrl.d*, free inputs, so they hold in any context), and a unit's
+    # properties (hold, ready in reset, material, the iterative unit's count) do not rely on them. The
+    # popcount behind pc_count is what makes deep pipelines slow for z3 (DEPTH 20: ~17 s CPU).
+    drop = "chformal -assert -remove a:src=*sc_pipe_ctrl.v*; " if job.get("drop_ctrl_asserts") else ""
+    script = ("read_verilog -formal -DFORMAL -I%s %s; chparam %s %s; prep -top %s; %sflatten; %s"
+              "opt_clean; async2sync; dffunmap; stat; write_smt2 -wires %s" %
+              (rtl_dir, " ".join(files), chp, job["top"], job["top"], drop,
+               ABSTRACT if abstract else "", os.path.join(work, "design.smt2")))
+    rc, out, dt = run(["yosys", "-q", "-l", os.path.join(work, "yosys.log"), "-p", script],
+                      os.path.join(work, "yosys.out"), work)
+    if rc != 0 or re.search(r"implicitly declared", out + open(os.path.join(work, "yosys.log")).read()):
+        sys.stderr.write(out)
+        raise RuntimeError("yosys failed (or an identifier was implicitly declared), see %s" % work)
+    cells = 0
+    m = re.findall(r"Number of cells:\s+(\d+)", open(os.path.join(work, "yosys.log")).read())
+    if m:
+        cells = int(m[-1])
+    return dt, cells
+
+
+def smtbmc(work, depth, induction, vcd=None):
+    cmd = ["yosys-smtbmc", "-s", "z3", "--presat", "-t", str(depth)]
+    if induction:
+        cmd.append("-i")
+    if vcd:
+        cmd += ["--dump-vcd", vcd]
+    cmd.append(os.path.join(work, "design.smt2"))
+    rc, out, dt = run(cmd, os.path.join(work, "induction.log" if induction else "bmc.log"), work)
+    passed = rc == 0 and "Status: PASSED" in out
+    k = None
+    m = re.findall(r"Trying induction in step (\d+)", out)
+    if induction and passed and m:
+        k = depth - int(m[-1])
+    failed = re.findall(r"Assert failed in \S+: ([^\s]+)", out)
+    return passed, dt, k, out, failed
+
+
+def prove(name, depth=None, abstract=True, keep=None):
+    job = jobs()[name]
+    depth = depth or job["depth"]
+    work = keep or tempfile.mkdtemp(prefix="sc_formal_")
+    os.makedirs(work, exist_ok=True)
+    t_y, cells = build_smt2(job, work, RTL, abstract)
+    ok_b, t_b, _, out_b, fail_b = smtbmc(work, depth, False, os.path.join(work, "base.vcd"))
+    ok_i, t_i, k, out_i, fail_i = (False, 0.0, None, "", [])
+    if ok_b:
+        ok_i, t_i, k, out_i, fail_i = smtbmc(work, depth, True, os.path.join(work, "induction.vcd"))
+    res = dict(job=name, top=job["top"], params=job["params"], depth=depth, abstract=abstract, cells=cells,
+               base=ok_b, induction=ok_i, k=k, t_yosys=round(t_y, 2), t_base=round(t_b, 2),
+               t_induction=round(t_i, 2), failed=fail_b or fail_i, work=work,
+               status="proved" if (ok_b and ok_i) else ("base failed" if not ok_b else "induction failed"))
+    if keep is None and ok_b and ok_i:
+        shutil.rmtree(work)
+        res["work"] = None
+    return res
+
+
+def mutant(name, mname, vcd=None, depth=None):
+    job = jobs()[name]
+    fname, old, new, expect = MUTATIONS[mname]
+    work = tempfile.mkdtemp(prefix="sc_mutant_")
+    rtl = os.path.join(work, "rtl")
+    shutil.copytree(RTL, rtl, ignore=shutil.ignore_patterns("tests", "lint"))
+    path = os.path.join(rtl, fname)
+    src = open(path).read()
+    if src.count(old) != 1:
+        raise RuntimeError("mutation %s: the text occurs %d times in rtl/%s (must be once)" %
+                           (mname, src.count(old), fname))
+    open(path, "w").write(src.replace(old, new))
+    if fname not in job["files"]:
+        raise RuntimeError("mutation %s: job %s does not use rtl/%s" % (mname, name, fname))
+    build_smt2(job, work, rtl, True)
+    vcd = vcd or os.path.join(work, "cex.vcd")
+    # deep enough to reach a held output and the edge after it (the proof depth is what induction needs)
+    ok_b, t_b, _, out_b, fail_b = smtbmc(work, depth or job["reach"] + 4, False, vcd)
+    have_vcd = os.path.exists(vcd) and "$enddefinitions" in open(vcd).read()
+    hit = [a for a in fail_b if any(a.endswith(e) or ("." + e) in a or e in a for e in expect)]
+    return dict(job=name, mutation=mname, base=ok_b, failed=fail_b, expected=expect, vcd=vcd if have_vcd else None,
+                t_base=round(t_b, 2), killed=(not ok_b) and have_vcd and bool(hit), work=work)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    ls = sub.add_parser("list")
+    ls.add_argument("--ctest", action="store_true", help="one line per job: NAME quick|long")
+    p = sub.add_parser("prove")
+    p.add_argument("job")
+    p.add_argument("--depth", type=int)
+    p.add_argument("--no-abstract", action="store_true")
+    p.add_argument("--json")
+    p.add_argument("--keep")
+    sub.add_parser("mutants", help="the mutant/job pairs ctest runs")
+    tb = sub.add_parser("table", help="docs/formal.md's table from the JSON of `all --json`")
+    tb.add_argument("json")
+    m = sub.add_parser("mutant")
+    m.add_argument("job")
+    m.add_argument("mutation", choices=sorted(MUTATIONS))
+    m.add_argument("--vcd")
+    m.add_argument("--depth", type=int)
+    a = sub.add_parser("all")
+    a.add_argument("--json")
+    a.add_argument("--filter", default=".")
+    a.add_argument("--no-abstract", action="store_true")
+    args = ap.parse_args()
+
+    if args.cmd == "table":
+        rows = json.load(open(args.json))
+        print("| job | top | parameters | result | base steps | induction k | yosys s | base s | induction s |")
+        print("|---|---|---|---|---|---|---|---|---|")
+        for r in rows:
+            p = " ".join("%s=%s" % kv for kv in r["params"].items())
+            print("| `%s` | %s | %s | %s | %d | %s | %.1f | %.1f | %.1f |" % (
+                r["job"], r["top"], p, "**proved** (k-induction)" if r["status"] == "proved" else r["status"],
+                r["depth"], r["k"], r["t_yosys"], r["t_base"], r["t_induction"]))
+        return 0
+    if args.cmd == "mutants":
+        for m, j in CTEST_MUTANTS:
+            print(m, j)
+        return 0
+    if args.cmd == "list":
+        for n, j in jobs().items():
+            if args.ctest:
+                print("%s %s" % (n, "long" if is_long(n) else "quick"))
+            else:
+                print(n, j["top"], j["params"], "depth", j["depth"], "long" if is_long(n) else "quick")
+        return 0
+    if args.cmd == "prove":
+        if args.job not in jobs():
+            print("formal: unknown job %s (scripts/formal.py list)" % args.job, file=sys.stderr)
+            return 1
+        r = prove(args.job, args.depth, not args.no_abstract, args.keep)
+        if args.json:
+            json.dump(r, open(args.json, "w"), indent=1)
+        print("formal: %s %s: %s (depth %d, induction k=%s, base %.1f s, induction %.1f s%s)" %
+              ("PASS" if r["status"] == "proved" else "FAIL", args.job, r["status"], r["depth"], r["k"],
+               r["t_base"], r["t_induction"], "" if not r["failed"] else ", failed: " + " ".join(r["failed"])))
+        if r["work"]:
+            print("formal: logs and VCD in %s" % r["work"])
+        return 0 if r["status"] == "proved" else 1
+    if args.cmd == "mutant":
+        r = mutant(args.job, args.mutation, args.vcd, args.depth)
+        vcd_info = "none"
+        if r["vcd"]:
+            vcd_info = "%s (%d bytes%s)" % (r["vcd"], os.path.getsize(r["vcd"]),
+                                          "" if args.vcd else ", removed after the check")
+        print("formal: %s mutant %s of %s: %s; failed assertions: %s; counter-example VCD: %s" %
+              ("PASS" if r["killed"] else "FAIL", args.mutation, args.job,
+               "killed" if r["killed"] else "NOT killed (expected one of %s)" % r["expected"],
+               " ".join(r["failed"]) or "none", vcd_info))
+        if r["killed"] and not args.vcd:
+            shutil.rmtree(r["work"])
+        return 0 if r["killed"] else 1
+    if args.cmd == "all":
+        res = []
+        fail = 0
+        for n in jobs():
+            if not re.search(args.filter, n):
+                continue
+            r = prove(n, None, not args.no_abstract)
+            res.append(r)
+            fail |= r["status"] != "proved"
+            print("%-36s %-16s depth %3d k %3s  yosys %5.1f s  base %6.1f s  induction %6.1f s" %
+                  (n, r["status"], r["depth"], r["k"], r["t_yosys"], r["t_base"], r["t_induction"]), flush=True)
+        if args.json:
+            json.dump(res, open(args.json, "w"), indent=1)
+        return 1 if fail else 0
+    return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
