@@ -142,23 +142,9 @@ module sc_light #(
 
 `include "sc_light_regs.vh"
 `include "sc_variants.vh"
+`include "sc_util.vh"
 
   // ---------------------------------------------------------------------------- constant functions
-  function integer imax(input integer a, input integer b);
-    imax = (a > b) ? a : b;
-  endfunction
-  function integer clog2(input integer x);
-    integer v;
-    begin
-      clog2 = 0;
-      v = 1;
-      while (v < x) begin
-        v = v * 2;
-        clog2 = clog2 + 1;
-      end
-      if (clog2 == 0) clog2 = 1;
-    end
-  endfunction
   // OR of the kinds the slots can take
   function integer all_kinds(input integer n);
     integer j;
@@ -178,7 +164,7 @@ module sc_light #(
     begin
       max_unit_latency = dummy;
       for (v = 0; v < 8; v = v + 1) begin
-        if (((UNITS >> v) & 1) != 0) max_unit_latency = imax(max_unit_latency, unit_latency(v));
+        if (((UNITS >> v) & 1) != 0) max_unit_latency = sc_max(max_unit_latency, unit_latency(v));
       end
     end
   endfunction
@@ -219,18 +205,18 @@ module sc_light #(
   localparam integer T_NN  = (NEED_N != 0 && NORMALIZE != 0) ? NL : 0;   // N̂ (0: the input N)
   localparam integer T_V   = (LV != 0) ? NL : 0;                          // V̂ (0: constant)
   localparam integer T_L   = (ANY_PL != 0) ? NL : 0;                      // L̂ of point lights
-  localparam integer T_A   = imax(T_NN, T_L);                             // N̂·L operands
-  localparam integer T_H   = imax(T_L, T_V);                              // H = L + V (Blinn)
-  localparam integer T_RV  = imax(T_A + 2, T_V);                          // R·V operands (Phong, local viewer)
+  localparam integer T_A   = sc_max(T_NN, T_L);                             // N̂·L operands
+  localparam integer T_H   = sc_max(T_L, T_V);                              // H = L + V (Blinn)
+  localparam integer T_RV  = sc_max(T_A + 2, T_V);                          // R·V operands (Phong, local viewer)
   localparam integer T_XB  = T_H + NL + 1;                                // x, Blinn
   localparam integer T_XP  = (LV != 0) ? T_RV + 1 : T_A + 2;              // x, Phong
-  localparam integer T_X   = imax((HAS_B != 0) ? T_XB : 0, (HAS_P != 0) ? T_XP : 0);
+  localparam integer T_X   = sc_max((HAS_B != 0) ? T_XB : 0, (HAS_P != 0) ? T_XP : 0);
   localparam integer T_ATT = NL + 3 + RL;                                 // att (point_att)
-  localparam integer T_F   = imax(imax(1, (NEED_N != 0) ? T_A + 1 : 0),
-                                  imax((SPECULAR != 0) ? T_X : 0, (ANY_ATT != 0) ? T_ATT : 0));
+  localparam integer T_F   = sc_max(sc_max(1, (NEED_N != 0) ? T_A + 1 : 0),
+                                  sc_max((SPECULAR != 0) ? T_X : 0, (ANY_ATT != 0) ? T_ATT : 0));
   localparam integer NB    = (ANY_ATT != 0) ? 4 : 3;                      // back pipeline stages
   localparam integer SPW   = (NORM != 0) ? FRAC + 8 : FRAC + 1;           // unit output width
-  localparam integer CNTW  = clog2(T_F + max_unit_latency(0) + NB + 3);   // fragments in flight
+  localparam integer CNTW  = sc_bits(T_F + max_unit_latency(0) + NB + 3);   // fragments in flight
   localparam integer ITER  = (UNITS == (1 << VARIANT_SCHLICK_ITER)) ? 1 : 0;
   localparam integer GAP   = FRAC + 3;                                    // schlick_iter: interval F+4, minus 1
   localparam integer IDENT = (NLN == NLT) ? 1 : 0;                        // lane j serves slot j

@@ -5,7 +5,7 @@
 //            INSIDE a module body (`include "sc_util.vh"), so there is no include guard: every
 //            module that includes it gets its own copy of the functions (Verilog-2005 functions
 //            are module-scoped). Files that include it: rtl/sc_cs16.v, rtl/sc_normalize.v,
-//            rtl/sc_recip.v, rtl/sc_pipe_ctrl.v.
+//            rtl/sc_recip.v, rtl/sc_pipe_ctrl.v, rtl/sc_light.v.
 //
 //   sc_clog2(x) = ceil(log2(x)) for x >= 1; sc_clog2(1) = 0 (and 0 for x <= 1).
 //   sc_bits(x)  = bits of an index 0..x-1 = max(1, sc_clog2(x)): sc_bits(1) = sc_bits(2) = 1.
