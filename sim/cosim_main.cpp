@@ -106,8 +106,9 @@ int run(const Options& o, const Unit& unit, const RunConfig& rc, std::string& ca
   pins.bind(dut);
   Scoreboard sb(unit, o.show);
   Stimulus stim(o, unit);
-  // Stalls, material writes and the reset point come from the driver's own generators, seeded per run:
-  // a shard starting at transaction `first` gets its own streams (shard 0 / an unsharded run: the seed).
+  // Stalls come from the driver's own generators, seeded per run: a shard starting at transaction `first`
+  // gets its own streams (shard 0 / an unsharded run: the seed). Codes, materials and the reset point are
+  // functions of (seed, transaction index): the stimulus.
   Options timing = o;
   if (o.first != 0) timing.seed = mix64(o.seed ^ mix64(o.first));
   Driver drv("driver", pins, stim, unit, timing);
@@ -189,6 +190,7 @@ int run(const Options& o, const Unit& unit, const RunConfig& rc, std::string& ca
       {"protocol_errors", sb.protocol_errors_},
       {"dropped_by_reset", sb.dropped_by_reset_},
       {"resets", drv.resets()},
+      {"replayed_after_reset", drv.replayed()},
       {"table_writes", drv.table_writes()},
       {"material_writes", sb.material_writes_},
       {"latency_spec", unit.latency()},
@@ -262,11 +264,12 @@ int main_impl(int argc, char** argv) {
   app.add_option("--in-stall", o.in_stall, "probability per cycle of an input gap, in [0, 1)")->check(Probability(false));
   app.add_option("--out-stall", o.out_stall, "probability per cycle of out_ready_i low, in [0, 1)")
       ->check(Probability(false));
-  auto* mat_opt = app.add_option("--mat-rate", o.mat_rate, "random mode: probability per cycle of a material write")
+  auto* mat_opt = app.add_option("--mat-rate", o.mat_rate, "random mode: probability per transaction of a material change before it (default 0.01)")
                       ->check(Probability(true));
   auto* reset_opt = app.add_option("--reset-at", o.reset_at,
-                                   "pulse rst_ni low after this many accepted fragments (-1 none; default: half way "
-                                   "in random/directed, none in exhaustive)")
+                                   "pulse rst_ni low once, before the transaction of this index (random: global index, so only "
+                                   "the shard holding it resets; -1 none; default: half way through this run in "
+                                   "random/directed, none in exhaustive)")
                         ->check(ResetAt());
   app.add_option("--reset-cycles", o.reset_cycles, "length of each reset pulse")->check(Int(1, 1000));
   app.add_option("--trace", o.trace, "write an FST waveform to this file (also: +trace, +trace=FILE)")
@@ -335,7 +338,7 @@ int main_impl(int argc, char** argv) {
       o.reset_at = -1;
       if (o.mode != Mode::Exhaustive && !reset_opt->count()) {
         Stimulus probe(o, unit);
-        o.reset_at = static_cast<int64_t>(probe.planned() / 2);
+        o.reset_at = static_cast<int64_t>(o.first + probe.planned() / 2);  // random: a global index
       }
     }
     // The command that replays this run exactly: every option resolved (the seed picked, the reset
