@@ -11,6 +11,7 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libtinyobjloader-dev
   verilator libsystemc-dev yosys iverilog
   python3 python3-numpy python3-matplotlib zlib1g-dev
+  slurm-wlm munge
   "$@"
 )
 
