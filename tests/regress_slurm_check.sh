@@ -115,8 +115,12 @@ done
 kill -INT $rpid
 wait $rpid
 st=$?
-sleep 1
-left=$(squeue -h -j "$job" 2>/dev/null | wc -l)
+left=1
+for _ in $(seq 1 50); do
+  left=$(squeue -h -j "$job" 2>/dev/null | wc -l)
+  [ "$left" = 0 ] && break
+  sleep 0.2
+done
 check "SIGINT: exit 130 (got $st), array $job cancelled ($left task(s) left)" '[ $st -eq 130 ] && [ -n "$job" ] && [ "$left" = 0 ]'
 
 [ $fail -eq 0 ] && echo "regress.slurm: PASS"
