@@ -808,10 +808,11 @@ int run_regress(const RegressArgs& a) {
   // ---- merge and report
   const json merged = merge(plan, specs, st);
   write_atomic(dir / "merged.json", merged.dump(2) + "\n");
-  std::string md = fmt::format("# shadecore regress: plan {}\n\n{}\n\nRun directory `{}`; written {} by `{}` on {} ({} backend); "
+  const std::string desc = plan.value("description", std::string());
+  std::string md = fmt::format("# shadecore regress: plan {}\n\n{}Run directory `{}`; written {} by `{}` on {} ({} backend); "
                                "this invocation ran {} shard(s) in {:.1f} s wall.\n\n"
                                "| job | kind | shards | vectors | mismatches | shard time (s) | verdict |\n|---|---|---:|---:|---:|---:|---|\n",
-                               plan_name, plan.value("description", std::string()), dir.string(), now_utc(), command_line(),
+                               plan_name, desc.empty() ? "" : desc + "\n\n", dir.string(), now_utc(), command_line(),
                                host_name(), a.local ? "local" : "Slurm", ran.size(), wall);
   std::vector<std::string> problems;
   for (const auto& j : merged["jobs"]) {
@@ -837,6 +838,11 @@ int run_regress(const RegressArgs& a) {
       problems.push_back(fmt::format("shard {} FAILED its check ({} mismatches); log {}", s.spec->id,
                                      s.result.value("mismatches", uint64_t{0}), log));
     }
+  }
+  if (!retried.empty()) {
+    md += "\nRetried once (lost or failed to run in the first round):";
+    for (const auto& r : retried) md += " `" + r.get<std::string>() + "`";
+    md += "\n";
   }
   if (!problems.empty()) {
     md += "\n## Problems\n\n";
