@@ -272,6 +272,9 @@ int main_impl(int argc, char** argv) {
                                    "random/directed, none in exhaustive)")
                         ->check(ResetAt());
   app.add_option("--reset-cycles", o.reset_cycles, "length of each reset pulse")->check(Int(1, 1000));
+  bool no_resend = false;
+  app.add_flag("--no-resend", no_resend,
+               "do not send again the transactions the reset flushes (they are dropped: the run checks fewer)");
   app.add_option("--trace", o.trace, "write an FST waveform to this file (also: +trace, +trace=FILE)")
       ->check(NonEmpty("path"));
   app.add_option("--show", o.show, "errors printed in full per kind")->check(Int(0, 1000000));
@@ -298,6 +301,7 @@ int main_impl(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return fail(std::string(e.what()) + " (see " + g_prog + " --help)");
   }
+  o.resend = !no_resend;
   if (plus_trace_given && !o.trace.empty()) return fail("give the waveform file once: --trace or +trace, not both");
   if (plus_trace_given) o.trace = plus_trace;
   try {
@@ -359,6 +363,7 @@ int main_impl(int argc, char** argv) {
       if (o.mode == Mode::Random) add("--mat-rate", shortest(o.mat_rate));
       add("--reset-at", std::to_string(o.reset_at));
       add("--reset-cycles", std::to_string(o.reset_cycles));
+      if (!o.resend) r += " --no-resend";
       if (norm) {
         r += " --norm";
         if (!coef_model.empty()) add("--coef-model", coef_model);

@@ -42,6 +42,7 @@ class Driver : public sc_core::sc_module {
         unit_(unit),
         reset_at_(local_reset(o, stim.planned())),
         reset_cycles_(o.reset_cycles),
+        resend_(o.resend),
         in_stall_(o.in_stall, o.seed * 0x9E3779B97F4A7C15ull + 1),
         out_stall_(o.out_stall, o.seed * 0xD1B54A32D192ED03ull + 2),
         code_mask_((uint32_t{1} << unit.format().in_bits()) - 1),
@@ -65,7 +66,7 @@ class Driver : public sc_core::sc_module {
   static int64_t local_reset(const Options& o, uint64_t planned) {
     if (o.reset_at < 0) return -1;
     const uint64_t r = static_cast<uint64_t>(o.reset_at);
-    if (r < o.first || r - o.first >= planned) return -1;
+    if (r < o.first || r - o.first > planned) return -1;  // (= planned: after the last one is accepted)
     return static_cast<int64_t>(r - o.first);
   }
 
@@ -84,9 +85,9 @@ class Driver : public sc_core::sc_module {
     if (took) {
       have_ = false;
       ++accepted_;
-      if (reset_at_ >= 0) in_flight_.push_back(item_);
+      if (reset_at_ >= 0 && resend_) in_flight_.push_back(item_);
     }
-    if (!rst_q_ && !in_flight_.empty()) {
+    if (!rst_q_ && !in_flight_.empty() && resend_) {
       // Flushed: sent again after the reset, in their order, with new tags (after the one being
       // presented, which is held through the reset; the material registers keep their value).
       replayed_ += in_flight_.size();
@@ -168,6 +169,7 @@ class Driver : public sc_core::sc_module {
   const Unit& unit_;
   const int64_t reset_at_;
   const int reset_cycles_;
+  const bool resend_;
   StallGen in_stall_, out_stall_;
   const uint32_t code_mask_;
   const int entries_;  // table units: E; 0 otherwise

@@ -27,6 +27,7 @@ struct Options {
   // resets there and the others do not); -1 none, -2 auto (half way through the run)
   int64_t reset_at = -2;
   int reset_cycles = 3;
+  bool resend = true;           // the transactions a reset flushes are sent again (false: --no-resend, dropped)
   std::string trace;            // FST file ("" = no trace)
   int show = 10;                // mismatches printed in full
   // Self-test of the checks (must make the run FAIL): corrupt what the monitor reports for the
