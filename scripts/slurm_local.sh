@@ -18,6 +18,7 @@ set -euo pipefail
 cmd=${1:-}
 dir=${2:-${SLURM_LOCAL_DIR:-/tmp/shadecore-slurm-$(id -u)}}
 port=${SLURM_LOCAL_PORT:-26817}
+max_array=${SLURM_LOCAL_MAX_ARRAY:-1001}   # Slurm's default; the tests lower it to exercise the split
 die() { echo "slurm_local: error: $*" >&2; exit 1; }
 
 case "$cmd" in
@@ -25,6 +26,7 @@ case "$cmd" in
   *) die "usage: $0 start|stop|status [DIR]" ;;
 esac
 case "$port" in ''|*[!0-9]*) die "SLURM_LOCAL_PORT must be a number" ;; esac
+case "$max_array" in ''|*[!0-9]*) die "SLURM_LOCAL_MAX_ARRAY must be a number" ;; esac
 
 find_tool() {
   local t
@@ -123,7 +125,7 @@ JobCompType=jobcomp/none
 JobAcctGatherType=jobacct_gather/none
 MpiDefault=none
 ReturnToService=2
-MaxArraySize=1001
+MaxArraySize=$max_array
 NodeName=$host NodeAddr=127.0.0.1 CPUs=$cpus State=UNKNOWN
 PartitionName=local Nodes=$host Default=YES MaxTime=INFINITE State=UP
 EOF

@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: Apache-2.0
 # ctest regress.slurm (label slurm, issue 22): `shadecore regress --plan smoke` through a real single-node
 # Slurm cluster (scripts/slurm_local.sh) and through --local, on the same build:
-#   1. --slurm with at most one task at once; one pending task of the array is cancelled (scancel
-#      JOB_TASK): the run must retry exactly that shard once and pass;
+#   1. --slurm with at most one task at once per array, on a cluster whose MaxArraySize (8) is below the
+#      plan's shard count: one sbatch --array per MaxArraySize tasks; one pending task is cancelled
+#      (scancel JOB_TASK): the run must retry exactly that shard once and pass;
 #   2. --local -j 2: the two merged reports must be equal (byte for byte: merged.json holds no times,
 #      hosts or paths);
 #   3. the merged report equals one-process runs: the random job against `shadecore cosim --shards 1`
@@ -24,6 +25,7 @@ command -v slurmctld >/dev/null 2>&1 || [ -x /usr/sbin/slurmctld ] || { echo "SK
 tmp=$(mktemp -d /tmp/shadecore-regress-test.XXXXXX)
 export SLURM_LOCAL_DIR=$tmp/cluster
 export SLURM_LOCAL_PORT=${SHADECORE_TEST_SLURM_PORT:-27817}
+export SLURM_LOCAL_MAX_ARRAY=8   # below the smoke plan's shard count: the plan must be split into several arrays
 cleanup() {
   "$src/scripts/slurm_local.sh" stop "$SLURM_LOCAL_DIR" >/dev/null 2>&1 || true
   rm -rf "$tmp"
@@ -41,7 +43,7 @@ eval "$("$src/scripts/slurm_local.sh" start "$SLURM_LOCAL_DIR")" || { echo "FAIL
 rpid=$!
 job=""
 for _ in $(seq 1 200); do
-  job=$(sed -n 's/^regress: round 1: Slurm array job \([0-9]*\) .*/\1/p' "$tmp/slurm.out")
+  job=$(sed -n 's/^regress: round 1: Slurm array job \([0-9]*\) .*/\1/p' "$tmp/slurm.out" | head -n 1)
   [ -n "$job" ] && break
   sleep 0.1
 done
@@ -53,6 +55,9 @@ wait $rpid
 st=$?
 cat "$tmp/slurm.out"
 check "--slurm smoke exits 0 (got $st)" '[ $st -eq 0 ]'
+nshards=$(jq_get "$tmp/slurm/shards.json" "len(d)")
+arrays=$(grep -c '^regress: round 1: Slurm array job' "$tmp/slurm.out")
+check "$nshards shards in $arrays arrays of at most 8 tasks" '[ "$arrays" -eq $(( (nshards + 7) / 8 )) ] && [ "$arrays" -gt 1 ]'
 check "an array job was submitted and task $victim ($victim_id) cancelled" '[ -n "$job" ] && [ -n "$victim_id" ]'
 check "the cancelled shard was retried, and only it" \
   '[ "$(jq_get "$tmp/slurm/run.json" "d[\"invocations\"][-1][\"retried\"]")" = "['"'"$victim_id"'"']" ]'
@@ -108,10 +113,11 @@ check "another plan in the same directory is refused with one line (exit $st)" \
 rpid=$!
 job=""
 for _ in $(seq 1 200); do
-  job=$(sed -n 's/^regress: round 1: Slurm array job \([0-9]*\) .*/\1/p' "$tmp/int.out")
-  [ -n "$job" ] && break
+  job=$(sed -n 's/^regress: round 1: Slurm array job \([0-9]*\) .*/\1/p' "$tmp/int.out" | tr '\n' ',')
+  [ "$(grep -c '^regress: round 1: Slurm array job' "$tmp/int.out")" -ge 3 ] && break
   sleep 0.1
 done
+job=${job%,}
 kill -INT $rpid
 wait $rpid
 st=$?
