@@ -34,6 +34,7 @@
 #include "shadecore/units/coef.hpp"
 #include "shadecore/configs.hpp"
 #include "shadecore/units/hard_cases.hpp"
+#include "shadecore/stimulus/specular.hpp"
 #include "shadecore/unit.hpp"
 
 namespace shadecore::cli {
@@ -215,11 +216,11 @@ void run_cosim(const CosimArgs& a) {
       v.insert(v.end(), {"--count", std::to_string(a.count), "--seed", std::to_string(seed)});
     }
     // The mid-stream reset is a global transaction index: every shard gets the same one (random mode
-    // default: half way through the whole run), and only the shard that holds it resets.
+    // default: drawn from the seed in the middle half of the whole run), and only the shard holding it resets.
     if (a.reset_at != -2)
       v.insert(v.end(), {"--reset-at", std::to_string(a.reset_at)});
     else if (a.mode == "random")
-      v.insert(v.end(), {"--reset-at", std::to_string(a.count / 2)});
+      v.insert(v.end(), {"--reset-at", std::to_string(stimulus::default_reset_index(seed, a.count))});
     if (!trace_tmp.empty()) v.insert(v.end(), {"--trace", trace_tmp});
     if (a.norm) v.push_back("--norm");
     if (a.coef_model_given) v.insert(v.end(), {"--coef-model", a.coef_model});
@@ -370,7 +371,7 @@ void add_cosim(CLI::App& app) {
                   "0.01; a table unit's change is a load of E cycles); a function of (seed, transaction index)")
       ->check(Probability(false));
   sub->add_option("--reset-at", args->reset_at,
-                  "rst_ni pulse once, before the transaction of this global index (-1 none; default half way in random/directed)")
+                  "rst_ni pulse once, before the transaction of this global index (-1 none; default: random, drawn from the seed in the middle half; directed, half way)")
       ->check(ResetAt());
   auto* shards_opt = sub->add_option("--shards", args->shards, "parallel simulator processes (0 = one per core; at most 64)")
                          ->check(Int(0, kMaxParallel));

@@ -48,6 +48,7 @@
 #include "shadecore/common/progress.hpp"
 #include "shadecore/common/subprocess.hpp"
 #include "shadecore/configs.hpp"
+#include "shadecore/stimulus/specular.hpp"
 #include "shadecore/unit.hpp"
 
 namespace shadecore::cli {
@@ -242,7 +243,8 @@ std::vector<ShardSpec> expand(const json& plan) {
       } else if (mode == "random") {
         const uint64_t count = get<uint64_t>(j, name, "count", 100000);
         if (count == 0) throw std::invalid_argument(fmt::format("plan: job '{}': count must be >= 1", name));
-        const int64_t reset_at = get<int64_t>(j, name, "reset_at", static_cast<int64_t>(count / 2));
+        const int64_t reset_at =
+            get<int64_t>(j, name, "reset_at", static_cast<int64_t>(stimulus::default_reset_index(seed, count)));
         const int shards = static_cast<int>(std::min<uint64_t>(shards_req, count));
         for (int k = 0; k < shards; ++k) {
           const uint64_t base = count / shards, extra = count % shards, kk = static_cast<uint64_t>(k);

@@ -268,8 +268,8 @@ int main_impl(int argc, char** argv) {
                       ->check(Probability(true));
   auto* reset_opt = app.add_option("--reset-at", o.reset_at,
                                    "pulse rst_ni low once, before the transaction of this index (random: global index, so only "
-                                   "the shard holding it resets; -1 none; default: half way through this run in "
-                                   "random/directed, none in exhaustive)")
+                                   "the shard holding it resets; -1 none; default: random, drawn from the seed in the "
+                                   "middle half of this run; directed, half way; none in exhaustive)")
                         ->check(ResetAt());
   app.add_option("--reset-cycles", o.reset_cycles, "length of each reset pulse")->check(Int(1, 1000));
   bool no_resend = false;
@@ -342,7 +342,10 @@ int main_impl(int argc, char** argv) {
       o.reset_at = -1;
       if (o.mode != Mode::Exhaustive && !reset_opt->count()) {
         Stimulus probe(o, unit);
-        o.reset_at = static_cast<int64_t>(o.first + probe.planned() / 2);  // random: a global index
+        // random: a global index in the middle half drawn from the seed; directed: half way
+        o.reset_at = o.mode == Mode::Random
+                         ? static_cast<int64_t>(o.first + stimulus::default_reset_index(o.seed, o.count))
+                         : static_cast<int64_t>(probe.planned() / 2);
       }
     }
     // The command that replays this run exactly: every option resolved (the seed picked, the reset

@@ -79,6 +79,13 @@ inline uint64_t last_material_change(uint64_t seed, uint64_t index, double rate)
   return index;
 }
 
+// The default mid-stream reset of a random run of `count` transactions: before a transaction drawn from the
+// seed in the middle half of the run, [count/4, 3·count/4] — a global index, so every shard agrees, and not
+// tied to a shard boundary (a reset at a shard's first index would catch nothing in flight).
+inline uint64_t default_reset_index(uint64_t seed, uint64_t count) {
+  return count / 4 + mix64(seed ^ 0x5245534554415421ull) % (count / 2 + 1);
+}
+
 // One transaction's term of the stimulus digest.
 inline uint64_t item_digest(uint64_t index, int n, int64_t code) {
   return mix64(mix64(index) ^ mix64(static_cast<uint64_t>(code) + 0x9E3779B97F4A7C15ull) ^
