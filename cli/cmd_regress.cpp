@@ -478,6 +478,7 @@ struct RegressArgs {
   std::vector<std::string> sbatch_args;
   int max_running = 0;
   int poll_ms = 2000;
+  bool merge_only = false;
   ProgressFlags progress;
 };
 
@@ -726,7 +727,8 @@ std::string grouped(uint64_t v) {
 }
 
 int run_regress(const RegressArgs& a) {
-  if (a.local == a.slurm) throw std::invalid_argument("give one backend: --local or --slurm");
+  if (a.merge_only && (a.local || a.slurm)) throw std::invalid_argument("--merge-only runs nothing: no --local or --slurm");
+  if (!a.merge_only && a.local == a.slurm) throw std::invalid_argument("give one backend: --local or --slurm");
   if (a.local && (!a.partition.empty() || !a.time_limit.empty() || !a.account.empty() || !a.sbatch_args.empty() || a.max_running))
     throw std::invalid_argument("--partition, --time, --account, --sbatch-arg and --max-running apply to --slurm only");
   if (a.slurm && a.jobs) throw std::invalid_argument("-j applies to --local only (Slurm places the shards)");
@@ -746,6 +748,8 @@ int run_regress(const RegressArgs& a) {
     if (old != plan || old_sj != sj)
       throw std::invalid_argument("--out " + a.out + " holds a run of another plan (or another build); give a new directory");
     resume = true;
+  } else if (a.merge_only) {
+    throw std::invalid_argument("--merge-only: " + a.out + " holds no run of this plan (no plan.json)");
   } else if (fs::exists(dir, ec) && !fs::is_empty(dir, ec)) {
     throw std::invalid_argument("--out " + a.out + " exists and is not a regress run directory; give a new or empty directory");
   }
@@ -767,25 +771,29 @@ int run_regress(const RegressArgs& a) {
   }
   const std::string self = self_exe();
   fmt::print("regress: plan {} ({}): {} job(s), {} shard(s); {} backend; run directory {}\n", plan_name, plan_file,
-             plan["jobs"].size(), specs.size(), a.local ? fmt::format("local, {} at once", cliargs::resolve_parallel(a.jobs)) : "Slurm",
+             plan["jobs"].size(), specs.size(),
+             a.merge_only ? std::string("no (--merge-only)")
+                          : a.local ? fmt::format("local, {} at once", cliargs::resolve_parallel(a.jobs)) : std::string("Slurm"),
              dir.string());
   if (resume) fmt::print("regress: resume: {} of {} shard(s) already done, running {}\n", done, specs.size(), specs.size() - done);
   std::fflush(stdout);
 
   proc::InterruptScope scope;
-  io::Progress bar(specs.size(), a.progress.enabled(), "regress");
+  io::Progress bar(specs.size(), a.progress.enabled() && !a.merge_only, "regress");
   bar.set(done);
   std::unique_ptr<Backend> be;
-  if (a.local) be = std::make_unique<LocalBackend>(dir, self, cliargs::resolve_parallel(a.jobs), bar, done);
+  if (a.merge_only)
+    ;  // the report of what is there
+  else if (a.local) be = std::make_unique<LocalBackend>(dir, self, cliargs::resolve_parallel(a.jobs), bar, done);
   else be = std::make_unique<SlurmBackend>(dir, self, a, plan_name, bar, done);
 
   json runlog = fs::exists(dir / "run.json") ? json::parse(read_file(dir / "run.json"), nullptr, false) : json::object();
   if (!runlog.is_object()) runlog = json::object();
   if (!runlog.contains("invocations")) runlog["invocations"] = json::array();
-  json inv = {{"started", now_utc()}, {"backend", a.local ? "local" : "slurm"}, {"host", host_name()}, {"command", command_line()}};
+  json inv = {{"started", now_utc()}, {"backend", a.merge_only ? "none (--merge-only)" : a.local ? "local" : "slurm"}, {"host", host_name()}, {"command", command_line()}};
   const auto t0 = std::chrono::steady_clock::now();
   json ran = json::array(), retried = json::array();
-  for (int round = 1; round <= 2; ++round) {
+  for (int round = 1; round <= (a.merge_only ? 0 : 2); ++round) {
     std::vector<ShardState*> todo;
     for (auto& s : st)
       if (!s.done) todo.push_back(&s);
@@ -815,7 +823,7 @@ int run_regress(const RegressArgs& a) {
                                "this invocation ran {} shard(s) in {:.1f} s wall.\n\n"
                                "| job | kind | shards | vectors | mismatches | shard time (s) | verdict |\n|---|---|---:|---:|---:|---:|---|\n",
                                plan_name, desc.empty() ? "" : desc + "\n\n", dir.string(), now_utc(), command_line(),
-                               host_name(), a.local ? "local" : "Slurm", ran.size(), wall);
+                               host_name(), a.merge_only ? "no" : a.local ? "local" : "Slurm", ran.size(), wall);
   std::vector<std::string> problems;
   for (const auto& j : merged["jobs"]) {
     double t = 0;
@@ -883,6 +891,8 @@ void add_regress(CLI::App& app) {
       ->check(NonEmpty("sbatch argument"));
   sub->add_option("--max-running", a->max_running, "--slurm: at most this many tasks of the array at once (--array=...%K)")
       ->check(Int(1, 100000));
+  sub->add_flag("--merge-only", a->merge_only,
+                "run nothing: write the merged report of the shards --out holds (missing ones: INCOMPLETE, exit 1)");
   sub->add_option("--poll", a->poll_ms, "--slurm: milliseconds between squeue polls (default 2000)")->check(Int(100, 600000));
   a->progress.add(sub);
   sub->callback([a] {
