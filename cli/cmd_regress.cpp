@@ -775,7 +775,9 @@ int run_regress(const RegressArgs& a) {
              a.merge_only ? std::string("no (--merge-only)")
                           : a.local ? fmt::format("local, {} at once", cliargs::resolve_parallel(a.jobs)) : std::string("Slurm"),
              dir.string());
-  if (resume) fmt::print("regress: resume: {} of {} shard(s) already done, running {}\n", done, specs.size(), specs.size() - done);
+  if (resume)
+    fmt::print("regress: {}: {} of {} shard(s) already done, {} {}\n", a.merge_only ? "merge only" : "resume", done, specs.size(),
+               specs.size() - done, a.merge_only ? "missing" : "to run");
   std::fflush(stdout);
 
   proc::InterruptScope scope;
