@@ -9,10 +9,6 @@
 // "COSIM-RESULT {json}" lines. Every argument is checked here before any simulator starts.
 // Exit 0 only if every shard passed; 2 if the co-simulation ran and FAILED (the JSON and the waveform
 // that record it are written); 1 for any error (nothing written).
-#include <fcntl.h>
-#include <poll.h>
-#include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -34,9 +30,11 @@
 #include "light_rtl.hpp"
 #include "output.hpp"
 #include "shadecore/common/progress.hpp"
+#include "shadecore/common/subprocess.hpp"
 #include "shadecore/units/coef.hpp"
 #include "shadecore/configs.hpp"
 #include "shadecore/units/hard_cases.hpp"
+#include "shadecore/stimulus/specular.hpp"
 #include "shadecore/unit.hpp"
 
 namespace shadecore::cli {
@@ -78,56 +76,15 @@ std::map<std::string, std::string> simulators() {
 
 struct Shard {
   std::vector<std::string> argv;
-  pid_t pid = -1;
-  int out_fd = -1, err_fd = -1;
-  std::string out_partial, err;
   std::vector<std::string> lines;  // stdout lines other than COSIM-RESULT / COSIM-PROGRESS
   uint64_t progress = 0;
   int status = -1;
+  std::string err;
   nlohmann::json result;
 };
 
-void spawn(Shard& s) {
-  int outp[2], errp[2];
-  if (::pipe2(outp, O_CLOEXEC) != 0 || ::pipe2(errp, O_CLOEXEC) != 0)
-    throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
-  std::vector<char*> args;
-  for (auto& a : s.argv) args.push_back(a.data());
-  args.push_back(nullptr);
-  sigset_t all, old;
-  sigfillset(&all);
-  ::pthread_sigmask(SIG_BLOCK, &all, &old);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    // Ctrl-C reaches the whole process group: the simulators ignore it and are stopped (SIGTERM) by
-    // this process's handler, which also removes what they were writing.
-    ::signal(SIGINT, SIG_IGN);
-    ::signal(SIGTERM, SIG_DFL);
-    ::signal(SIGHUP, SIG_DFL);
-    ::signal(SIGPIPE, SIG_DFL);
-    ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
-    ::dup2(outp[1], 1);
-    ::dup2(errp[1], 2);
-    ::setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
-    ::execv(args[0], args.data());
-    std::fprintf(stderr, "cannot run %s: %s\n", args[0], std::strerror(errno));
-    ::_exit(127);
-  }
-  if (pid > 0) io::track_child(pid);
-  ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
-  ::close(outp[1]);
-  ::close(errp[1]);
-  if (pid < 0) {
-    ::close(outp[0]);
-    ::close(errp[0]);
-    throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
-  }
-  s.pid = pid;
-  s.out_fd = outp[0];
-  s.err_fd = errp[0];
-}
-
-void take_line(Shard& s, const std::string& line) {
+void take_line(Shard& s, std::string line) {
+  if (!line.empty() && line.back() == '\n') line.pop_back();
   if (line.rfind("COSIM-RESULT ", 0) == 0) {
     try {
       s.result = nlohmann::json::parse(line.substr(13));
@@ -142,52 +99,27 @@ void take_line(Shard& s, const std::string& line) {
   }
 }
 
-// Reads every shard's stdout and stderr until they close (one thread, poll), feeding the progress bar,
-// then reaps the processes.
+// Runs every shard at once through the common runner (shadecore/common/subprocess.hpp: SIGINT ignored in
+// the simulators, which this process's interrupt cleanup stops), feeding the progress bar from their
+// COSIM-PROGRESS lines.
 void run_all(std::vector<Shard>& shards, io::Progress& bar) {
-  for (;;) {
-    std::vector<pollfd> fds;
-    std::vector<std::pair<size_t, bool>> who;  // (shard, is stderr)
-    for (size_t i = 0; i < shards.size(); ++i) {
-      if (shards[i].out_fd >= 0) fds.push_back({shards[i].out_fd, POLLIN, 0}), who.push_back({i, false});
-      if (shards[i].err_fd >= 0) fds.push_back({shards[i].err_fd, POLLIN, 0}), who.push_back({i, true});
-    }
-    if (fds.empty()) break;
-    const int k = ::poll(fds.data(), fds.size(), 500);
-    if (k < 0 && errno != EINTR) throw std::runtime_error(std::string("poll: ") + std::strerror(errno));
-    for (size_t j = 0; k > 0 && j < fds.size(); ++j) {
-      if (!(fds[j].revents & (POLLIN | POLLHUP | POLLERR))) continue;
-      Shard& s = shards[who[j].first];
-      char buf[65536];
-      const ssize_t r = ::read(fds[j].fd, buf, sizeof buf);
-      if (r < 0 && errno == EINTR) continue;
-      if (r <= 0) {
-        ::close(fds[j].fd);
-        (who[j].second ? s.err_fd : s.out_fd) = -1;
-        if (!who[j].second && !s.out_partial.empty()) take_line(s, s.out_partial), s.out_partial.clear();
-        continue;
-      }
-      if (who[j].second) {
-        s.err.append(buf, static_cast<size_t>(r));
-        continue;
-      }
-      s.out_partial.append(buf, static_cast<size_t>(r));
-      size_t nl;
-      while ((nl = s.out_partial.find('\n')) != std::string::npos) {
-        take_line(s, s.out_partial.substr(0, nl));
-        s.out_partial.erase(0, nl + 1);
-      }
-    }
+  proc::Pool pool;
+  for (auto& s : shards) {
+    proc::Options o;
+    o.env = {{"SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1"}};
+    Shard* sp = &s;
+    o.on_line = [sp](const std::string& line) { take_line(*sp, line); };
+    pool.start(s.argv, o);
+  }
+  while (pool.running() > 0) {
+    pool.poll(500);
     uint64_t done = 0;
     for (const auto& s : shards) done += s.progress;
     bar.set(done);
   }
-  for (auto& s : shards) {
-    int st = 0;
-    while (::waitpid(s.pid, &st, 0) < 0 && errno == EINTR) {
-    }
-    io::untrack_child(s.pid);
-    s.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
+  for (size_t i = 0; i < shards.size(); ++i) {
+    shards[i].status = pool.result(i).status;
+    shards[i].err = pool.result(i).err;
   }
 }
 
@@ -283,7 +215,12 @@ void run_cosim(const CosimArgs& a) {
     } else {
       v.insert(v.end(), {"--count", std::to_string(a.count), "--seed", std::to_string(seed)});
     }
-    if (a.reset_at != -2) v.insert(v.end(), {"--reset-at", std::to_string(a.reset_at)});
+    // The mid-stream reset is a global transaction index: every shard gets the same one (random mode
+    // default: drawn from the seed in the middle half of the whole run), and only the shard holding it resets.
+    if (a.reset_at != -2)
+      v.insert(v.end(), {"--reset-at", std::to_string(a.reset_at)});
+    else if (a.mode == "random")
+      v.insert(v.end(), {"--reset-at", std::to_string(stimulus::default_reset_index(seed, a.count))});
     if (!trace_tmp.empty()) v.insert(v.end(), {"--trace", trace_tmp});
     if (a.norm) v.push_back("--norm");
     if (a.coef_model_given) v.insert(v.end(), {"--coef-model", a.coef_model});
@@ -304,7 +241,6 @@ void run_cosim(const CosimArgs& a) {
 
   const auto t0 = std::chrono::steady_clock::now();
   io::Progress bar(planned, a.progress.enabled(), "cosim");
-  for (auto& s : jobs) spawn(s);
   run_all(jobs, bar);
   bar.stop();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -431,11 +367,11 @@ void add_cosim(CLI::App& app) {
   sub->add_option("--out-stall", args->out_stall, "probability per cycle of out_ready low, in [0, 1)")
       ->check(Probability(false));
   sub->add_option("--mat-rate", args->mat_rate,
-                  "random mode: probability per cycle of a material change, in [0, 1) (default 0.01; a table "
-                  "unit's change is a load of E cycles, drawn only when no load is pending)")
+                  "random mode: probability per transaction of a material change before it, in [0, 1) (default "
+                  "0.01; a table unit's change is a load of E cycles); a function of (seed, transaction index)")
       ->check(Probability(false));
   sub->add_option("--reset-at", args->reset_at,
-                  "per shard: rst_ni pulse after this many accepted fragments (-1 none; default half way in random/directed)")
+                  "rst_ni pulse once, before the transaction of this global index (-1 none; default: random, drawn from the seed in the middle half; directed, half way)")
       ->check(ResetAt());
   auto* shards_opt = sub->add_option("--shards", args->shards, "parallel simulator processes (0 = one per core; at most 64)")
                          ->check(Int(0, kMaxParallel));

@@ -14,7 +14,8 @@ void add_eval(CLI::App& app);      // cmd_eval.cpp: one input through the C mode
 void add_vectors(CLI::App& app);   // cmd_vectors.cpp: hex test vectors from the C model
 void add_handoff(CLI::App& app);   // cmd_handoff.cpp: self-contained RTL bundle
 void add_light_sweep(CLI::App& app);  // cmd_light.cpp: lighting core error against the exact reference
-void add_render(CLI::App& app);    // cmd_render.cpp: a scene through the lighting core (docs/scenes.md)
+void add_render(CLI::App& app);
+void add_regress(CLI::App& app);   // cmd_regress.cpp: plans, shards, local / Slurm backends, merge (docs/regress.md)    // cmd_render.cpp: a scene through the lighting core (docs/scenes.md)
 // Further subcommands (cosim, fit, ...) add a line here and in main.cpp.
 
 }  // namespace shadecore::cli

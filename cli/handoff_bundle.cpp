@@ -19,95 +19,33 @@
 #include <fmt/core.h>
 
 #include "output.hpp"
+#include "shadecore/common/subprocess.hpp"
 #include "unit_spec.hpp"
 
 namespace shadecore::cli::handoff {
 
 // ---------------------------------------------------------------------------- child processes
-// Children run in their own process group so an interrupt can stop a whole tool tree (make, g++).
+// The common runner (shadecore/common/subprocess.hpp): children in their own process group so an interrupt
+// can stop a whole tool tree (make, g++); its InterruptScope records the signal and stops them.
 namespace {
-std::atomic<pid_t> g_child{0};
-volatile sig_atomic_t g_signal = 0;
-
-extern "C" void on_handoff_signal(int sig) {
-  g_signal = sig;
-  const pid_t p = g_child.load();
-  if (p > 0) ::kill(-p, SIGTERM);
-}
-
-// Installs on_handoff_signal for the run; restore() puts the previous handlers back (idempotent).
-struct SignalGuard {
-  struct sigaction old[3];
-  const int sigs[3] = {SIGINT, SIGTERM, SIGHUP};
-  bool active = true;
-  SignalGuard() {
-    struct sigaction sa {};
-    sa.sa_handler = on_handoff_signal;
-    sigemptyset(&sa.sa_mask);
-    for (int i = 0; i < 3; ++i) ::sigaction(sigs[i], &sa, &old[i]);
-  }
-  void restore() {
-    if (!active) return;
-    for (int i = 0; i < 3; ++i) ::sigaction(sigs[i], &old[i], nullptr);
-    active = false;
-  }
-  ~SignalGuard() { restore(); }
-};
+using SignalGuard = proc::InterruptScope;
 
 void check_interrupt() {
-  if (g_signal) throw Interrupted(fmt::format("interrupted by signal {}", int(g_signal)));
+  if (const int sig = proc::interrupt_signal()) throw Interrupted(fmt::format("interrupted by signal {}", sig));
 }
 }  // namespace
 
 Proc run_proc(const std::vector<std::string>& argv, const fs::path& cwd, const ProcOptions& opt) {
   check_interrupt();
-  int fds[2];
-  if (::pipe(fds) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
-  std::vector<char*> args;
-  std::vector<std::string> copy = argv;
-  for (auto& s : copy) args.push_back(s.data());
-  args.push_back(nullptr);
-  const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
-  if (pid == 0) {
-    if (opt.own_group) ::setpgid(0, 0);
-    ::dup2(fds[1], 1);
-    ::dup2(fds[1], 2);
-    ::close(fds[0]);
-    ::close(fds[1]);
-    if (::chdir(cwd.c_str()) != 0) ::_exit(126);
-    ::execvp(args[0], args.data());
-    std::fprintf(stderr, "cannot run %s: %s\n", args[0], std::strerror(errno));
-    ::_exit(127);
-  }
-  if (opt.own_group) {
-    ::setpgid(pid, pid);
-    g_child = pid;
-  }
-  ::close(fds[1]);
-  Proc r;
-  char buf[65536];
-  size_t shown = 0;  // r.out[0, shown) has been passed to opt.on_line
-  for (;;) {
-    const ssize_t k = ::read(fds[0], buf, sizeof buf);
-    if (k > 0) {
-      r.out.append(buf, static_cast<size_t>(k));
-      if (opt.on_line)
-        for (size_t nl; (nl = r.out.find('\n', shown)) != std::string::npos; shown = nl + 1)
-          opt.on_line(r.out.substr(shown, nl + 1 - shown));
-    } else if (k == 0 || errno != EINTR) {
-      break;
-    }
-  }
-  if (opt.on_line && shown < r.out.size()) opt.on_line(r.out.substr(shown));
-  ::close(fds[0]);
-  int st = 0;
-  while (::waitpid(pid, &st, 0) < 0 && errno == EINTR) {
-  }
-  g_child = 0;
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
+  proc::Options o;
+  o.cwd = cwd.string();
+  o.merge_stderr = true;
+  o.own_group = opt.own_group;
+  o.ignore_sigint = false;  // not in its own group: a terminal's ^C reaches it directly
+  o.on_line = opt.on_line;
+  const proc::Result r = proc::run(argv, o);
   check_interrupt();
-  return r;
+  return Proc{r.status, r.out};
 }
 
 namespace {
@@ -154,7 +92,7 @@ void make_bundle(const std::string& out, bool force, const std::function<void(co
   std::reverse(created.begin(), created.end());
 
   SignalGuard guard;
-  g_signal = 0;
+  proc::clear_interrupt();
   fs::path staging;
   bool committed = false;
   auto cleanup = [&] {
@@ -224,8 +162,8 @@ void make_bundle(const std::string& out, bool force, const std::function<void(co
                      std::count(man.begin(), man.end(), '\n')));
   } catch (...) {
     cleanup();
-    if (g_signal) {  // interrupted: nothing is left behind; end the way the signal would have
-      const int sig = g_signal;
+    if (proc::interrupt_signal()) {  // interrupted: nothing is left behind; end the way the signal would have
+      const int sig = proc::interrupt_signal();
       guard.restore();
       fmt::print(stderr, "shadecore: error: handoff interrupted by signal {}; nothing written\n", sig);
       ::signal(sig, SIG_DFL);

@@ -13,6 +13,7 @@ PACKAGES=(
   verilator libsystemc-dev yosys iverilog
   z3 sollya gappa
   python3 python3-numpy python3-matplotlib zlib1g-dev
+  slurm-wlm munge
   "$@"
 )
 

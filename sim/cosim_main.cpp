@@ -106,8 +106,9 @@ int run(const Options& o, const Unit& unit, const RunConfig& rc, std::string& ca
   pins.bind(dut);
   Scoreboard sb(unit, o.show);
   Stimulus stim(o, unit);
-  // Stalls, material writes and the reset point come from the driver's own generators, seeded per run:
-  // a shard starting at transaction `first` gets its own streams (shard 0 / an unsharded run: the seed).
+  // Stalls come from the driver's own generators, seeded per run: a shard starting at transaction `first`
+  // gets its own streams (shard 0 / an unsharded run: the seed). Codes, materials and the reset point are
+  // functions of (seed, transaction index): the stimulus.
   Options timing = o;
   if (o.first != 0) timing.seed = mix64(o.seed ^ mix64(o.first));
   Driver drv("driver", pins, stim, unit, timing);
@@ -189,6 +190,7 @@ int run(const Options& o, const Unit& unit, const RunConfig& rc, std::string& ca
       {"protocol_errors", sb.protocol_errors_},
       {"dropped_by_reset", sb.dropped_by_reset_},
       {"resets", drv.resets()},
+      {"replayed_after_reset", drv.replayed()},
       {"table_writes", drv.table_writes()},
       {"material_writes", sb.material_writes_},
       {"latency_spec", unit.latency()},
@@ -262,13 +264,17 @@ int main_impl(int argc, char** argv) {
   app.add_option("--in-stall", o.in_stall, "probability per cycle of an input gap, in [0, 1)")->check(Probability(false));
   app.add_option("--out-stall", o.out_stall, "probability per cycle of out_ready_i low, in [0, 1)")
       ->check(Probability(false));
-  auto* mat_opt = app.add_option("--mat-rate", o.mat_rate, "random mode: probability per cycle of a material write")
+  auto* mat_opt = app.add_option("--mat-rate", o.mat_rate, "random mode: probability per transaction of a material change before it (default 0.01)")
                       ->check(Probability(true));
   auto* reset_opt = app.add_option("--reset-at", o.reset_at,
-                                   "pulse rst_ni low after this many accepted fragments (-1 none; default: half way "
-                                   "in random/directed, none in exhaustive)")
+                                   "pulse rst_ni low once, before the transaction of this index (random: global index, so only "
+                                   "the shard holding it resets; -1 none; default: random, drawn from the seed in the "
+                                   "middle half of this run; directed, half way; none in exhaustive)")
                         ->check(ResetAt());
   app.add_option("--reset-cycles", o.reset_cycles, "length of each reset pulse")->check(Int(1, 1000));
+  bool no_resend = false;
+  app.add_flag("--no-resend", no_resend,
+               "do not send again the transactions the reset flushes (they are dropped: the run checks fewer)");
   app.add_option("--trace", o.trace, "write an FST waveform to this file (also: +trace, +trace=FILE)")
       ->check(NonEmpty("path"));
   app.add_option("--show", o.show, "errors printed in full per kind")->check(Int(0, 1000000));
@@ -295,6 +301,7 @@ int main_impl(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return fail(std::string(e.what()) + " (see " + g_prog + " --help)");
   }
+  o.resend = !no_resend;
   if (plus_trace_given && !o.trace.empty()) return fail("give the waveform file once: --trace or +trace, not both");
   if (plus_trace_given) o.trace = plus_trace;
   try {
@@ -335,7 +342,10 @@ int main_impl(int argc, char** argv) {
       o.reset_at = -1;
       if (o.mode != Mode::Exhaustive && !reset_opt->count()) {
         Stimulus probe(o, unit);
-        o.reset_at = static_cast<int64_t>(probe.planned() / 2);
+        // random: a global index in the middle half drawn from the seed; directed: half way
+        o.reset_at = o.mode == Mode::Random
+                         ? static_cast<int64_t>(o.first + stimulus::default_reset_index(o.seed, o.count))
+                         : static_cast<int64_t>(probe.planned() / 2);
       }
     }
     // The command that replays this run exactly: every option resolved (the seed picked, the reset
@@ -356,6 +366,7 @@ int main_impl(int argc, char** argv) {
       if (o.mode == Mode::Random) add("--mat-rate", shortest(o.mat_rate));
       add("--reset-at", std::to_string(o.reset_at));
       add("--reset-cycles", std::to_string(o.reset_cycles));
+      if (!o.resend) r += " --no-resend";
       if (norm) {
         r += " --norm";
         if (!coef_model.empty()) add("--coef-model", coef_model);

@@ -2,16 +2,18 @@
 // shadecore sim — driver: owns every input pin of the unit. One SC_METHOD per rising clock edge:
 // it first sees whether the fragment it presented was taken at that edge (in_valid & in_ready,
 // pre-edge values), then sets the pins for the next edge:
-//   * rst_ni: low for `reset_cycles` at start and once mid-stream after `reset_at` accepted
-//     fragments (the fragment being presented is held and goes in after the reset);
-//   * material: before a fragment that needs another n, one cycle with mat_we_i and a bubble
-//     (exhaustive, directed); in random mode material writes at random cycles instead, independent
-//     of the stream (the scoreboard uses whatever was registered before each acceptance edge);
+//   * rst_ni: low for `reset_cycles` at start and once mid-stream before transaction `reset_at`
+//     (random mode: a global transaction index, so only the shard holding it resets). The transactions
+//     the reset flushes (accepted, not yet out) and the one being presented are sent again after it, in
+//     order with new tags, so every transaction is checked exactly once whatever the timing;
+//   * material: before a fragment that needs another n, one cycle with mat_we_i and a bubble (every
+//     mode: in random mode the n of each transaction comes from the stimulus, a function of
+//     (seed, index));
 //   * table units (docs/spec.md §9): a material change is a table load of E cycles — mat_we_i (n, for
 //     the reports) with the write of entry 0, then entries 1..E−1 through tab_we_i/tab_addr_i/
 //     tab_value_i/tab_delta_i, one per edge. The host rule is obeyed: no fragment is presented during
-//     a load (in_valid_i low), and a load starts only when no raised in_valid_i waits to be taken
-//     (random mode defers a drawn material change until then); fragments in flight need no drain;
+//     a load (in_valid_i low), and a load starts only when no raised in_valid_i waits to be taken;
+//     fragments in flight need no drain;
 //   * in_valid_i with random gaps (StallGen), held until taken once raised (AXI-Stream rule);
 //   * out_ready_i low with probability out_stall (backpressure).
 // Tags are consecutive in presentation order = acceptance order.
@@ -20,6 +22,7 @@
 #include <systemc.h>
 
 #include <cstdint>
+#include <deque>
 
 #include "shadecore/unit.hpp"
 #include "tb_options.hpp"
@@ -37,15 +40,11 @@ class Driver : public sc_core::sc_module {
         pins_(pins),
         stim_(stim),
         unit_(unit),
-        random_mode_(o.mode == Mode::Random),
-        n_lo_(o.n_lo),
-        n_hi_(o.n_hi),
-        reset_at_(o.reset_at),
+        reset_at_(local_reset(o, stim.planned())),
         reset_cycles_(o.reset_cycles),
+        resend_(o.resend),
         in_stall_(o.in_stall, o.seed * 0x9E3779B97F4A7C15ull + 1),
         out_stall_(o.out_stall, o.seed * 0xD1B54A32D192ED03ull + 2),
-        mat_gen_(o.mat_rate, o.seed * 0x8CB92BA72F3D8DD7ull + 3),
-        rng_(o.seed * 0xA0761D6478BD642Full + 4),
         code_mask_((uint32_t{1} << unit.format().in_bits()) - 1),
         entries_(unit.entries()),
         rst_left_(o.reset_cycles) {
@@ -54,12 +53,23 @@ class Driver : public sc_core::sc_module {
     dont_initialize();
   }
 
-  [[nodiscard]] bool done() const { return finished_ && !have_; }
+  [[nodiscard]] bool done() const { return finished_ && !have_ && replay_.empty(); }
+  // Transactions sent again after the mid-stream reset flushed them.
+  [[nodiscard]] uint64_t replayed() const { return replayed_; }
   [[nodiscard]] uint64_t accepted() const { return accepted_; }
   [[nodiscard]] uint64_t resets() const { return resets_; }
   [[nodiscard]] uint64_t table_writes() const { return table_writes_; }
 
  private:
+  // The mid-stream reset as a count of this run's transactions: random mode gives a global index
+  // (o.first is this shard's first), outside this shard's range none.
+  static int64_t local_reset(const Options& o, uint64_t planned) {
+    if (o.reset_at < 0) return -1;
+    const uint64_t r = static_cast<uint64_t>(o.reset_at);
+    if (r < o.first || r - o.first > planned) return -1;  // (= planned: after the last one is accepted)
+    return static_cast<int64_t>(r - o.first);
+  }
+
   void begin_load(const UnitMaterial& m) {
     load_words_ = m.tab;
     load_addr_ = 0;
@@ -69,14 +79,24 @@ class Driver : public sc_core::sc_module {
   void on_clk() {
     // --- what happened at this edge
     const bool took = rst_q_ && valid_q_ && pins_.in_ready.read();
+    // What is in flight (accepted, not yet out), as the monitor counts it: an output taken at this edge
+    // (a reset edge too) leaves, an input accepted here enters; a reset edge flushes the rest.
+    if (pins_.out_valid.read() && ready_q_ && !in_flight_.empty()) in_flight_.pop_front();
     if (took) {
       have_ = false;
       ++accepted_;
+      if (reset_at_ >= 0 && resend_) in_flight_.push_back(item_);
+    }
+    if (!rst_q_ && !in_flight_.empty() && resend_) {
+      // Flushed: sent again after the reset, in their order, with new tags (after the one being
+      // presented, which is held through the reset; the material registers keep their value).
+      replayed_ += in_flight_.size();
+      replay_.insert(replay_.end(), in_flight_.begin(), in_flight_.end());
+      in_flight_.clear();
     }
     // --- reset for the next edge
     if (rst_left_ > 0) --rst_left_;
-    if (rst_left_ == 0 && !mid_reset_done_ && reset_at_ >= 0 &&
-        accepted_ >= static_cast<uint64_t>(reset_at_)) {
+    if (rst_left_ == 0 && !mid_reset_done_ && reset_at_ >= 0 && accepted_ >= static_cast<uint64_t>(reset_at_)) {
       rst_left_ = reset_cycles_;
       mid_reset_done_ = true;
       ++resets_;
@@ -87,19 +107,13 @@ class Driver : public sc_core::sc_module {
     // --- material
     bool we = false;
     UnitMaterial m;
-    // A material change is drawn only while none is pending or loading: a table load takes E edges, and
-    // changes drawn during it would queue up and starve the fragments (table1024 at --mat-rate 0.01).
-    if (random_mode_ && !pending_load_ && load_left_ == 0 && (!any_material_ || mat_gen_.stall())) {
-      if (entries_ > 0) {
-        pending_load_ = true;  // a table load waits until no raised fragment is held (below)
-      } else {
-        m = unit_.setup(rng_.uniform(n_lo_, n_hi_));
-        we = true;
-      }
-      any_material_ = true;
-    }
-    // --- next fragment
-    if (!have_ && !finished_) {
+    // --- next fragment: a flushed one first, then the stimulus
+    if (!have_ && !replay_.empty()) {
+      item_ = replay_.front();
+      replay_.pop_front();
+      have_ = true;
+      tag_ = next_tag_++;
+    } else if (!have_ && !finished_) {
       if (stim_.next(item_)) {
         have_ = true;
         tag_ = next_tag_++;
@@ -108,12 +122,6 @@ class Driver : public sc_core::sc_module {
       }
     }
     const bool held = valid_q_ && !took;  // a raised in_valid_i not yet taken must stay raised
-    if (pending_load_ && load_left_ == 0 && !held) {
-      m = unit_.setup(rng_.uniform(n_lo_, n_hi_));
-      we = true;
-      begin_load(m);
-      pending_load_ = false;
-    }
     bool valid = false;
     if (have_ && load_left_ == 0) {
       if (item_.n >= 0 && item_.n != rtl_n_) {
@@ -152,18 +160,17 @@ class Driver : public sc_core::sc_module {
       pins_.in_tag.write(tag_);
     }
     valid_q_ = valid;
-    pins_.out_ready.write(!out_stall_.stall());
+    ready_q_ = !out_stall_.stall();
+    pins_.out_ready.write(ready_q_);
   }
 
   Pins& pins_;
   Stimulus& stim_;
   const Unit& unit_;
-  const bool random_mode_;
-  const int n_lo_, n_hi_;
   const int64_t reset_at_;
   const int reset_cycles_;
-  StallGen in_stall_, out_stall_, mat_gen_;
-  Rng rng_;
+  const bool resend_;
+  StallGen in_stall_, out_stall_;
   const uint32_t code_mask_;
   const int entries_;  // table units: E; 0 otherwise
 
@@ -172,14 +179,15 @@ class Driver : public sc_core::sc_module {
   bool rst_q_ = false;  // rst_ni as driven for the coming edge (low at start)
   int rst_left_;
   bool mid_reset_done_ = false;
-  bool any_material_ = false;
+  bool ready_q_ = false;  // out_ready_i as driven for the coming edge
+  std::deque<Item> in_flight_, replay_;
+  uint64_t replayed_ = 0;
   int rtl_n_ = -1;
   uint32_t tag_ = 0, next_tag_ = 0;
   uint64_t accepted_ = 0, resets_ = 0;
   // table load in progress
   std::shared_ptr<const std::vector<uint64_t>> load_words_;
   uint32_t load_addr_ = 0, load_left_ = 0;
-  bool pending_load_ = false;
   uint64_t table_writes_ = 0;
 };
 

@@ -22,9 +22,12 @@ struct Options {
   uint64_t first = 0;
   double in_stall = 0.0;        // probability per cycle that the driver withholds in_valid_i
   double out_stall = 0.0;       // probability per cycle that out_ready_i is low
-  double mat_rate = 0.01;       // random mode: probability per cycle of a material write
-  int64_t reset_at = -2;        // accepted-transaction count at which rst_ni pulses low; -1 none, -2 auto
+  double mat_rate = 0.01;       // random mode: probability per transaction of a material change before it
+  // rst_ni pulses low once, before the transaction of this index (random: global index, so a shard holding it
+  // resets there and the others do not); -1 none, -2 auto (half way through the run)
+  int64_t reset_at = -2;
   int reset_cycles = 3;
+  bool resend = true;           // the transactions a reset flushes are sent again (false: --no-resend, dropped)
   std::string trace;            // FST file ("" = no trace)
   int show = 10;                // mismatches printed in full
   // Self-test of the checks (must make the run FAIL): corrupt what the monitor reports for the

@@ -5,10 +5,14 @@
 //   random:     `count` codes from the one specular generator, stimulus::random_code
 //               (stimulus/include/shadecore/stimulus/specular.hpp, shared with `shadecore vectors`):
 //               70 % uniform in [0, 2^F], 10 % over the whole signed input word, 20 % within ±4 of a
-//               special point; the material changes at random cycles (the driver), so no n is attached.
-//               The code of transaction i (i = first, first+1, ...) is a function of (seed, i) only, so
-//               one seeded run split into shards by index gives the same codes whatever the shard count. (Stalls, material
-//               writes and the reset come from the driver's per-run generators: timing, not stimulus.)
+//               special point; the material (n) of each transaction from stimulus::material_change /
+//               material_n: a change before transaction i with probability mat_rate per transaction
+//               (always before the first), the driver writing it in a bubble before that transaction.
+//               Code and material of transaction i (i = first, first+1, ...) are functions of (seed, i)
+//               only, and so is the mid-stream reset (before global index reset_at, the driver), so one
+//               seeded run split into shards by index drives the same transactions whatever the shard
+//               count; the transactions a reset flushes are sent again, so each index is checked once.
+//               (Input gaps and backpressure come from per-shard generators: timing, not stimulus.)
 //   directed:   shadecore::hard_cases() — the list the C model tests use — repeated until `count`
 //               items (at least once).
 // No allocation per item; the directed list is built once.
@@ -34,6 +38,10 @@ class Stimulus {
  public:
   Stimulus(const Options& o, const Unit& unit)
       : o_(o), unit_(unit), f_(unit.format()), n_(o.n_lo) {
+    if (o_.mode == Mode::Random) {
+      const uint64_t c = stimulus::last_material_change(o_.seed, o_.first, o_.mat_rate);
+      mat_n_ = stimulus::material_n(o_.seed, c, o_.n_lo, o_.n_hi);
+    }
     const int64_t one = f_.one();
     extras_[0] = f_.in_min();
     extras_[1] = -1;
@@ -75,7 +83,8 @@ class Stimulus {
         more = next_directed(it);
         break;
     }
-    if (more) digest_ += item_digest(index, it);
+    // Random mode: the digest covers the codes (n = -1), as `shadecore vectors --mode random` computes it.
+    if (more) digest_ += item_digest(index, o_.mode == Mode::Random ? Item{-1, it.code} : it);
     return more;
   }
 
@@ -104,9 +113,12 @@ class Stimulus {
   bool next_random(Item& it) {
     if (done_ == o_.count) return false;
     // The one specular generator (stimulus/specular.hpp): `shadecore vectors` draws the same codes.
-    it.code = stimulus::random_code(unit_, o_.seed, o_.first + done_, o_.n_lo, o_.n_hi);
+    const uint64_t index = o_.first + done_;
+    it.code = stimulus::random_code(unit_, o_.seed, index, o_.n_lo, o_.n_hi);
+    if (done_ > 0 && stimulus::material_change(o_.seed, index, o_.mat_rate))
+      mat_n_ = stimulus::material_n(o_.seed, index, o_.n_lo, o_.n_hi);
     ++done_;
-    it.n = -1;
+    it.n = mat_n_;
     return true;
   }
 
@@ -128,6 +140,7 @@ class Stimulus {
   int64_t idx_ = 0;
   int64_t extras_[kExtras] = {};
   uint64_t done_ = 0;
+  int mat_n_ = -1;  // random mode: the material in force
   std::vector<HardCase> directed_;
   uint64_t repeats_ = 1, rep_ = 0;
   uint64_t digest_ = 0;

@@ -27,6 +27,7 @@ struct Slot {
 };
 Slot g_slots[kSlots];
 std::atomic<pid_t> g_children[64];
+std::atomic<bool> g_child_group[64];
 std::atomic<unsigned> g_seq{0};
 std::atomic<int> g_progress_line{0};  // a progress bar is drawn on stderr (clear it first)
 char g_prog[64] = "shadecore";
@@ -38,11 +39,15 @@ void write_str(const char* s) {
   (void)r;
 }
 
-extern "C" void on_fatal_signal(int sig) {
-  for (auto& c : g_children) {
-    const pid_t p = c.load();
-    if (p > 0) ::kill(p, SIGTERM);
+void kill_children(int sig) {
+  for (int i = 0; i < 64; ++i) {
+    const pid_t p = g_children[i].load();
+    if (p > 0) ::kill(g_child_group[i].load() ? -p : p, sig);
   }
+}
+
+extern "C" void on_fatal_signal(int sig) {
+  kill_children(SIGTERM);
   for (auto& c : g_children) {
     const pid_t p = c.load();
     if (p > 0) ::waitpid(p, nullptr, 0);
@@ -101,12 +106,16 @@ int track(const std::string& path, int kind) {
 void untrack(int slot) {
   if (slot >= 0) detail::g_slots[slot].kind.store(0, std::memory_order_release);
 }
-void track_child(pid_t pid) {
-  for (auto& c : detail::g_children) {
+void track_child(pid_t pid, bool group) {
+  for (int i = 0; i < 64; ++i) {
     pid_t z = 0;
-    if (c.compare_exchange_strong(z, pid)) return;
+    if (detail::g_children[i].compare_exchange_strong(z, pid)) {
+      detail::g_child_group[i].store(group);  // (callers register with signals blocked)
+      return;
+    }
   }
 }
+void signal_children(int sig) { detail::kill_children(sig); }
 void untrack_child(pid_t pid) {
   for (auto& c : detail::g_children) {
     pid_t p = pid;

@@ -48,9 +48,12 @@ void install_interrupt_cleanup(const char* prog);
 // Registers a path to remove on a signal (kind 1 file, 2 directory); returns its slot (−1: none free).
 int track(const std::string& path, int kind);
 void untrack(int slot);
-// Registers a child process to terminate (SIGTERM, then wait) on a signal.
-void track_child(pid_t pid);
+// Registers a child process to terminate (SIGTERM, then wait) on a signal; group: it leads its own process
+// group, and the whole group is sent the signal.
+void track_child(pid_t pid, bool group = false);
 void untrack_child(pid_t pid);
+// Sends sig to every registered child (their groups where they lead one); async-signal-safe.
+void signal_children(int sig);
 // A progress line is drawn on stderr (the handler clears it before its message).
 void set_progress_line(bool on);
 

@@ -8,6 +8,11 @@
 // of a special point (0, 2^F, the unit's threshold — cs16's θcr code or a table entry boundary — at a random
 // n' of the range, or the last code whose cs16 base is <= 0).
 //
+// The material of random transaction i is a function of (seed, i) too (random_material): a material
+// change comes before transaction i with probability `rate` per transaction (always before transaction 0),
+// its exponent drawn uniform in [n_lo, n_hi] from the change's own stream; a shard that starts at index
+// `first` finds the material in force by looking back to the last change (about 1/rate steps).
+//
 // stimulus_digest: a sum over the transactions of a hash of (global index, n, code), n = −1 where the
 // material is whatever is loaded (random mode): equal for two runs that drive the same transactions, however
 // they are split (the shards' sums add up). `shadecore vectors` and `shadecore cosim` print it.
@@ -50,6 +55,35 @@ inline int64_t random_code(const Unit& unit, uint64_t seed, uint64_t index, int 
   if (code < f.in_min()) code = f.in_min();
   if (code > f.in_max()) code = f.in_max();
   return code;
+}
+
+// Whether a material change comes before random transaction `index` (rate: probability per transaction).
+inline bool material_change(uint64_t seed, uint64_t index, double rate) {
+  if (index == 0) return true;
+  if (rate <= 0.0) return false;
+  if (rate >= 1.0) return true;
+  const uint64_t threshold = static_cast<uint64_t>(rate * 18446744073709551616.0);
+  return Rng::for_item(seed ^ 0x6D6174657269616Cull, index).next() < threshold;
+}
+
+// The exponent a material change before transaction `index` writes.
+inline int material_n(uint64_t seed, uint64_t index, int n_lo, int n_hi) {
+  Rng rng = Rng::for_item(seed ^ 0x4D41545F4E5F5F5Full, index);
+  return static_cast<int>(rng.uniform(n_lo, n_hi));
+}
+
+// The index of the last material change at or before `index` (the one in force for that transaction).
+inline uint64_t last_material_change(uint64_t seed, uint64_t index, double rate) {
+  if (rate <= 0.0) return 0;
+  while (!material_change(seed, index, rate)) --index;  // terminates: index 0 always changes
+  return index;
+}
+
+// The default mid-stream reset of a random run of `count` transactions: before a transaction drawn from the
+// seed in the middle half of the run, [count/4, 3·count/4] — a global index, so every shard agrees, and not
+// tied to a shard boundary (a reset at a shard's first index would catch nothing in flight).
+inline uint64_t default_reset_index(uint64_t seed, uint64_t count) {
+  return count / 4 + mix64(seed ^ 0x5245534554415421ull) % (count / 2 + 1);
 }
 
 // One transaction's term of the stimulus digest.
