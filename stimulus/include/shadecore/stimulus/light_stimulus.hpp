@@ -9,8 +9,9 @@
 //             20 % raw random codes over the whole input words, 35 % hard cases built on the current
 //             registers (see hard_fragment()). With probability `write_rate` per fragment a burst of
 //             register writes comes first: a new material, a new light, raw random data to any register
-//             but n/thr/coef (mode registers and reserved ones included, so modes that name absent
-//             capabilities occur), new modes, or a write to a non-register address.
+//             but n/thr/coef/mat_unit (the unit contract: material_writes sets them together; mode and
+//             reserved registers included, so modes that name absent capabilities occur), new modes, or a
+//             write to a non-register address.
 //   directed: the hard-case programs and fragments of docs/lighting.md §7, each at least once, then every
 //             global mode × every unit × enable patterns (none, one, every other, all), repeated until
 //             `count` fragments.
@@ -174,7 +175,9 @@ class LightStimulus {
         std::vector<RegWrite> ws;
         for (int i = 0; i < k; ++i) {
           const auto& reg = kRegisters[rng_.next() % kRegisters.size()];
-          if (reg.format == "n" || reg.format == "thr" || reg.format == "coef") continue;  // unit contract
+          // unit contract: n, thr, coef and the unit they were set up for (mat_unit) are written together
+          // by material_writes (a cs16 unit with another unit's thr is outside its contract)
+          if (reg.format == "n" || reg.format == "thr" || reg.format == "coef" || reg.format == "unit") continue;
           uint32_t addr = reg.addr + static_cast<uint32_t>(rng_.uniform(0, reg.count - 1));
           if (reg.per_light) addr += kLightStride * static_cast<uint32_t>(rng_.uniform(0, nl - 1));
           uint32_t data;
