@@ -40,7 +40,7 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
   for (uint64_t prog = 0; prog < programs; ++prog) {
     LightRegs regs;
     auto apply = [&](const std::vector<RegWrite>& ws) {
-      for (const auto& w : ws) regs.write(F, w.addr, w.data);
+      for (const auto& w : ws) regs.write(core.widths(), w.addr, w.data);
     };
     double ga[3] = {u(0, 0.2), u(0, 0.2), u(0, 0.2)};
     apply(global_writes(core, ga));
@@ -98,6 +98,7 @@ void add_light_sweep(CLI::App& app) {
   struct A {
     std::string features = "full", specular = "own", json;
     uint64_t programs = 200, per_program = 2000, seed = 0;
+    int spec_guard = -1;
   };
   auto a = std::make_shared<A>();
   sub->add_option("--features", a->features, "named feature set of config/configs.json or a JSON file")
@@ -121,6 +122,10 @@ void add_light_sweep(CLI::App& app) {
                   "programs and fragments")
       ->check(UInt(0).description(""))
       ->type_name("SEED");
+  sub->add_option("--spec-guard", a->spec_guard,
+                  "override the set's spec_guard: extra fraction bits of the specular path, 0..8")
+      ->check(UInt(0, kSpecGuardMax).description(""))
+      ->type_name("BITS");
   sub->add_option("--json", a->json, "write the results as JSON (atomically)")->check(NonEmpty("path"))->type_name("FILE");
   sub->callback([a]() {
     if (!a->json.empty()) check_writable_file(a->json);
@@ -131,7 +136,11 @@ void add_light_sweep(CLI::App& app) {
       seed = (static_cast<uint64_t>(std::random_device{}()) << 32) ^ std::random_device{}();
       if (seed == 0) seed = 1;
     }
-    const FeatureSet base = feature_set_named_or_file(a->features);
+    FeatureSet base = feature_set_named_or_file(a->features);
+    if (a->spec_guard >= 0) {
+      base.spec_guard = a->spec_guard;
+      validate(base.unit_format());  // F + spec_guard within the units' formats
+    }
     std::vector<FeatureSet> sets;
     if (a->specular == "own") {
       sets.push_back(base);

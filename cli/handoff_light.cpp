@@ -100,14 +100,13 @@ struct Record {
 // register write goes into a LightRegs, every fragment is shaded with the registers written before it.
 std::vector<Record> make_records(const LightCore& core, sim::LightMode mode, uint64_t count, uint64_t seed) {
   sim::LightStimulus stim(core, mode, count, seed, kWriteRate);
-  const int F = core.format().frac;
   LightRegs regs;
   std::vector<Record> v;
   sim::CoreCommand c;
   while (stim.next(c)) {
     Record r{c.is_write, c.w, c.f, {}, 0};
     if (c.is_write) {
-      regs.write(F, c.w.addr, c.w.data);
+      regs.write(core.widths(), c.w.addr, c.w.data);
     } else {
       r.c = core.eval(regs, c.f);
       r.latency = core.latency(regs);
@@ -185,12 +184,14 @@ std::string tb_dut_vh(const LightBundle& b) {
 
 // ---------------------------------------------------------------------------- interface.md
 std::string register_table(const FeatureSet& fs) {
-  const int F = fs.format().frac;
+  const int F = fs.format().frac, UF = fs.unit_format().frac;  // UF: the units' format (F + spec_guard)
   auto fmt_of = [&](std::string_view f) -> std::string {
     if (f == "colour") return fmt::format("colour: unsigned {} bits, 1.0 = 2^F, [0, 2)", F + 1);
     if (f == "n") return "exponent n: unsigned 11 bits, 16..1024";
-    if (f == "thr") return fmt::format("thr(n) = ⌈cos(6/√n)·2^F⌉, unsigned {} bits (cs16 θcr only)", F + 1);
-    if (f == "coef") return fmt::format("energy-normalisation coefficient ⌊coef(n)·2^F + ½⌋, unsigned {} bits (norm only)", F + 8);
+    if (f == "thr") return fmt::format("thr(n) = ⌈cos(6/√n)·2^{}⌉, unsigned {} bits (cs16 θcr only)", UF, UF + 1);
+    if (f == "coef")
+      return fmt::format("energy-normalisation coefficient ⌊coef(n)·2^{} + ½⌋, unsigned {} bits (norm only)", UF,
+                         light_coef_bits(UF));
     if (f == "position") return fmt::format("two's complement {} bits, [−128, 128): point light position, or the unit direction "
                                             "code of a directional light", F + 8);
     if (f == "att_coef") return fmt::format("unsigned {} bits, [0, 256) (point_att lights only)", F + 8);
@@ -237,7 +238,7 @@ std::string write_list(const std::vector<RegWrite>& ws) {
 
 std::string unit_contract(const FeatureSet& fs) {
   if (!fs.specular) return "no specular unit in this feature set.";
-  const int F = fs.format().frac;
+  const int F = fs.unit_format().frac;  // the units run at F + spec_guard: their ulp is 2^−(F + spec_guard)
   std::string s;
   switch (fs.variant) {
     case VariantId::cs16:
@@ -255,7 +256,7 @@ std::string unit_contract(const FeatureSet& fs) {
     case VariantId::cs16_faithful:
     case VariantId::cs16_compact: {
       const SquarerForm* form = squarer_form(fs.variant);
-      const Cs16Contract c = cs16_contract(form->contract, fs.format());
+      const Cs16Contract c = cs16_contract(form->contract, fs.unit_format());
       s = fmt::format("{} (folded truncated squarers, '{}' contract): {:.5f} {} out − 2^F·cs16(x) ≤ {:.5f} ulp against "
                       "the double cs16 of the same input code (docs/spec.md §3.4)",
                       variant_name(fs.variant), form->contract, c.lo, c.lo_strict ? "<" : "≤", c.hi);
@@ -367,6 +368,8 @@ All synchronous to the rising edge of `clk_i`.
 - Colours (material emission/ambient/diffuse/specular, light ambient/diffuse/specular, global ambient):
   unsigned {cw} bits, [0, 2).
 - kc, kl, kq: unsigned {pw} bits, [0, 256). n: 11 bits, 16..1024; thr, coef: as the specular unit.
+- Specular path (N̂, V̂, L̂, Ĥ, N̂·L, R, x and the units): {uf} fraction bits (F + spec_guard {sg}); the units
+  run at that format, so `mat_thr` and `mat_coef` are in it (thr {uf1} bits, coef {ucw} bits).
 - Output colour `out_r_o`, `out_g_o`, `out_b_o`: unsigned {cw} bits, saturated to [0, 2^F] (never wraps){mono}.
 
 ## Register map
@@ -464,12 +467,14 @@ input and output delays of 30 % of the period as stated assumptions.
       fmt::arg("top", b.top), fmt::arg("name", fs.name), fmt::arg("cmd", command_line()), fmt::arg("date", utc_now()),
       fmt::arg("summary", fs.summary()), fmt::arg("params", params), fmt::arg("ports", concrete_port_table(b.ports)),
       fmt::arg("F", F), fmt::arg("one", uint64_t{1} << F), fmt::arg("nw", F + 2), fmt::arg("pw", F + 8),
+      fmt::arg("uf", fs.unit_format().frac), fmt::arg("sg", fs.spec_guard), fmt::arg("uf1", fs.unit_format().frac + 1),
+      fmt::arg("ucw", light_coef_bits(fs.unit_format().frac)),
       fmt::arg("cw", F + 1), fmt::arg("nnorm", fs.normalize ? ": the core renormalises N" : "; without `normalize` N is used as given"),
       fmt::arg("mono", fs.channels == 1 ? "; mono core: `out_g_o` = `out_b_o` = 0" : ""), fmt::arg("stride", kLightStride),
       fmt::arg("nlm1", fs.num_lights() - 1), fmt::arg("regs", register_table(fs)),
-      fmt::arg("iterready", iter ? " && (issue interval: schlick_iter takes one fragment per F+4 clocks)" : ""),
+      fmt::arg("iterready", iter ? " && (issue interval: schlick_iter takes one pass per F+spec_guard+4 clocks)" : ""),
       fmt::arg("lat", lat),
-      fmt::arg("thru", iter ? fmt::format("schlick_iter: one pass every {} clocks", schlick_iter_interval(F))
+      fmt::arg("thru", iter ? fmt::format("schlick_iter: one pass every {} clocks", schlick_iter_interval(fs.unit_format().frac))
                             : "while `out_ready_i` is high"),
       fmt::arg("lanes", fs.lanes), fmt::arg("nl", fs.num_lights()),
       fmt::arg("units", [&] {

@@ -19,6 +19,9 @@
 // values stop elaboration with a message, in Icarus, Verilator and Yosys):
 //   FRAC          F, fraction bits of every code (1.0 = 2^F)                8 <= F <= 16 (default 16)
 //   GUARD         G of the cs16 unit (checked there: 4..8)                               (default 5)
+//   SGUARD        extra fraction bits of the specular path: N̂, V̂, L̂, Ĥ, N̂·L, R, x and the
+//                 units run at VF = F + SGUARD (mat_thr, mat_coef in the units' format), 0..8,
+//                 F + SGUARD <= 24 (feature-set key spec_guard)                          (default 0)
 //   LIGHTS        light slots, 1..8 (MAX_LIGHTS of sc_light_regs.vh)                    (default 1)
 //   SLOT_KINDS    3 bits per slot, slot j at [3j+2:3j]: bit k = the slot can take kind k
 //                 (KIND_* of sc_light_regs.vh: 0 directional, 1 point, 2 point_att)   (default 1)
@@ -64,7 +67,7 @@
 //             slot order, LANES per pass: ⌈k/LANES⌉ passes for k lights, one pass (the scene term)
 //             for none; with LANES = LIGHTS lane j always serves slot j. The fragment is accepted
 //             with its first pass; while further passes issue (one per front-advancing edge,
-//             schlick_iter: one per F+4) in_ready_o is low. Per pass each lane adds its light's term;
+//             schlick_iter: one per VF+4) in_ready_o is low. Per pass each lane adds its light's term;
 //             the accumulator adds every pass's terms to the scene term and saturates: all terms are
 //             >= 0, so this equals the exact sum saturated once to 2^F (the only rounding is each
 //             product's truncation, docs/spec.md §10.4).
@@ -83,7 +86,7 @@
 //               NB   = 3 + ANY_ATT
 //               LATENCY_P = T_F + (UNITS ? L_unit : 0) + NB, L_unit = the material's unit's
 //                           Unit::latency(): cs16 7, cs16 forms 5, schlick_nr 10, schlick_div /
-//                           schlick_iter F+4; +2 with NORM
+//                           schlick_iter VF+4; +2 with NORM
 //             and the last pass issues (passes − 1)·interval edges after the acceptance:
 //             LightCore::latency(regs) = LATENCY_P + (passes − 1)·interval. Under backpressure the
 //             front, the units and the back are elastic segments (as sc_specular with NORM = 1): a
@@ -99,6 +102,7 @@
 module sc_light #(
     parameter integer FRAC         = 16,
     parameter integer GUARD        = 5,
+    parameter integer SGUARD       = 0,
     parameter integer LIGHTS       = 1,
     parameter integer SLOT_KINDS   = 1,
     parameter integer LANES        = 1,
@@ -157,7 +161,8 @@ module sc_light #(
   function integer unit_latency(input integer v);
     unit_latency = ((v == VARIANT_CS16) ? 7 : (cs16_sq_param(v, 0) == 1) ? 5 :
                     (v == VARIANT_SCHLICK_NR) ? 10 :
-                    (v == VARIANT_SCHLICK_DIV || v == VARIANT_SCHLICK_ITER) ? FRAC + 4 : 0) + ((NORM != 0) ? 2 : 0);
+                    (v == VARIANT_SCHLICK_DIV || v == VARIANT_SCHLICK_ITER) ? FRAC + SGUARD + 4 : 0) +
+                   ((NORM != 0) ? 2 : 0);
   endfunction
   function integer max_unit_latency(input integer dummy);
     integer v;
@@ -180,7 +185,9 @@ module sc_light #(
   endfunction
 
   // ---------------------------------------------------------------------------- derived parameters
-  localparam integer NW  = FRAC + 2;   // normal component, normalised vectors, unit input x
+  localparam integer NW  = FRAC + 2;   // normal component (the input N)
+  localparam integer VF  = FRAC + SGUARD;   // fraction bits of the specular path
+  localparam integer NV  = VF + 2;     // normalised vectors N̂, V̂ (and the lanes' L̂, Ĥ, x)
   localparam integer PW  = FRAC + 8;   // position component (and directional L), kc/kl/kq, coef
   localparam integer CL  = FRAC + 1;   // colour
   localparam integer AW  = REG_ADDR_BITS;
@@ -215,10 +222,10 @@ module sc_light #(
   localparam integer T_F   = sc_max(sc_max(1, (NEED_N != 0) ? T_A + 1 : 0),
                                   sc_max((SPECULAR != 0) ? T_X : 0, (ANY_ATT != 0) ? T_ATT : 0));
   localparam integer NB    = (ANY_ATT != 0) ? 4 : 3;                      // back pipeline stages
-  localparam integer SPW   = (NORM != 0) ? FRAC + 8 : FRAC + 1;           // unit output width
+  localparam integer SPW   = (NORM != 0) ? VF + 8 : VF + 1;               // unit output width
   localparam integer CNTW  = sc_bits(T_F + max_unit_latency(0) + NB + 3);   // fragments in flight
   localparam integer ITER  = (UNITS == (1 << VARIANT_SCHLICK_ITER)) ? 1 : 0;
-  localparam integer GAP   = FRAC + 3;                                    // schlick_iter: interval F+4, minus 1
+  localparam integer GAP   = VF + 3;                                      // schlick_iter: interval VF+4, minus 1
   localparam integer IDENT = (NLN == NLT) ? 1 : 0;                        // lane j serves slot j
   // per-lane sideband through the units: {att (point_att), diff (DIFFUSE), f, slot, lane valid}
   localparam integer OFF_V = 0;
@@ -239,6 +246,9 @@ module sc_light #(
   generate
     if (FRAC < 8 || FRAC > 16) begin : g_check_frac
       sc_light_error_illegal_FRAC_legal_range_is_8_to_16 u_error ();
+    end
+    if (SGUARD < 0 || SGUARD > 8 || FRAC + SGUARD > 24) begin : g_check_sguard
+      sc_light_error_illegal_SGUARD_legal_range_is_0_to_8_and_FRAC_plus_SGUARD_at_most_24 u_error ();
     end
     if (LIGHTS < 1 || LIGHTS > MAX_LIGHTS) begin : g_check_lights
       sc_light_error_illegal_LIGHTS_legal_range_is_1_to_8 u_error ();
@@ -318,12 +328,12 @@ module sc_light #(
   wire [NCH*CL-1:0]      scene_w, mdif_w, mspec_w;
   wire                   mat_we_u;
   wire [10:0]            mat_n_u;
-  wire [FRAC:0]          mat_thr_u;
-  wire [FRAC+7:0]        mat_coef_u;
+  wire [VF:0]            mat_thr_u;
+  wire [VF+7:0]          mat_coef_u;
   wire [7:0]             unit_sel;
   wire                   unit_kill, lv_mode, phong_mode, norm_mode;
   sc_light_regfile #(
-      .FRAC(FRAC), .SLOT_KINDS(SLOT_KINDS), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
+      .FRAC(FRAC), .UFRAC(VF), .SLOT_KINDS(SLOT_KINDS), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
       .UNITS(UNITS), .NORM(NORM), .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER),
       .NORMALIZE(NORMALIZE), .NLT(NLT), .NCH(NCH), .AW(AW)
   ) u_regs (
@@ -466,45 +476,56 @@ module sc_light #(
   sc_delay #(.W(NLN), .DEPTH(T_F)) u_dly_lv (
       .clk_i(clk_i), .en_i(adv_f), .d_i(lane_v), .q_o(lv_f));
 
-  // N̂ (the normalize mode) or N at T_NN, then at T_A (N̂·L), T_H+NL (Blinn's x), T_A+1 (Phong's R)
-  wire [3*NW-1:0] nn_a, nn_b, nn_p;
+  // N̂ (the normalize mode) or N·2^SGUARD at T_NN, then at T_A (N̂·L), T_H+NL (Blinn's x), T_A+1
+  // (Phong's R); VF fraction bits
+  wire [3*NV-1:0] nn_a, nn_b, nn_p;
   generate
     if (NEED_N != 0) begin : g_nn
-      wire [3*NW-1:0] nn0;
+      wire [3*NV-1:0] nn0;
+      wire [3*NW-1:0] n_raw;     // N as given (through the normaliser's delay line with NORMALIZE)
+      wire [3*NV-1:0] n_raw_v;   // N·2^SGUARD
+      for (gi = 0; gi < 3; gi = gi + 1) begin : g_nv
+        if (SGUARD > 0) begin : g_sh
+          assign n_raw_v[gi*NV +: NV] = {n_raw[gi*NW +: NW], {SGUARD{1'b0}}};
+        end else begin : g_id
+          assign n_raw_v[gi*NV +: NV] = n_raw[gi*NW +: NW];
+        end
+      end
       if (NORMALIZE != 0) begin : g_norm_n
-        wire [3*NW-1:0] n_norm, n_pass;
-        sc_normalize #(.FRAC(FRAC), .VW(NW)) u_norm_n (
-            .clk_i(clk_i), .en_i(adv_f), .v_i(n_in), .u_o(n_norm), .v_o(n_pass));
-        assign nn0 = norm_mode ? n_norm : n_pass;
+        wire [3*NV-1:0] n_norm;
+        sc_normalize #(.FRAC(VF), .VW(NW)) u_norm_n (
+            .clk_i(clk_i), .en_i(adv_f), .v_i(n_in), .u_o(n_norm), .v_o(n_raw));
+        assign nn0 = norm_mode ? n_norm : n_raw_v;
       end else begin : g_raw_n
-        assign nn0 = n_in;
+        assign n_raw = n_in;
+        assign nn0 = n_raw_v;
         wire unused_norm_mode = &{1'b0, norm_mode};
       end
-      sc_delay #(.W(3*NW), .DEPTH(T_A - T_NN)) u_dly_nn_a (
+      sc_delay #(.W(3*NV), .DEPTH(T_A - T_NN)) u_dly_nn_a (
           .clk_i(clk_i), .en_i(adv_f), .d_i(nn0), .q_o(nn_a));
       if (HAS_B != 0) begin : g_nn_b
-        sc_delay #(.W(3*NW), .DEPTH(T_H + NL - T_A)) u_dly_nn_b (
+        sc_delay #(.W(3*NV), .DEPTH(T_H + NL - T_A)) u_dly_nn_b (
             .clk_i(clk_i), .en_i(adv_f), .d_i(nn_a), .q_o(nn_b));
       end else begin : g_no_nn_b
-        assign nn_b = {3*NW{1'b0}};
+        assign nn_b = {3*NV{1'b0}};
       end
       if (HAS_P != 0) begin : g_nn_p
-        sc_delay #(.W(3*NW), .DEPTH(1)) u_dly_nn_p (
+        sc_delay #(.W(3*NV), .DEPTH(1)) u_dly_nn_p (
             .clk_i(clk_i), .en_i(adv_f), .d_i(nn_a), .q_o(nn_p));
       end else begin : g_no_nn_p
-        assign nn_p = {3*NW{1'b0}};
+        assign nn_p = {3*NV{1'b0}};
       end
     end else begin : g_no_nn
-      assign nn_a = {3*NW{1'b0}};
-      assign nn_b = {3*NW{1'b0}};
-      assign nn_p = {3*NW{1'b0}};
+      assign nn_a = {3*NV{1'b0}};
+      assign nn_b = {3*NV{1'b0}};
+      assign nn_p = {3*NV{1'b0}};
       wire unused_n = &{1'b0, n_in, norm_mode};
     end
   endgenerate
 
   // V̂ = normalise(−P) (local-viewer mode) or (0, 0, 1), at T_H (Blinn) and T_RV (Phong)
-  wire [3*NW-1:0] v_h, v_p;
-  localparam [3*NW-1:0] V_INF = {{1'b0, ONE}, {NW{1'b0}}, {NW{1'b0}}};
+  wire [3*NV-1:0] v_h, v_p;
+  localparam [3*NV-1:0] V_INF = {{2'b01, {VF{1'b0}}}, {NV{1'b0}}, {NV{1'b0}}};
   generate
     if (LV != 0) begin : g_view
       wire [3*(PW+1)-1:0] mp;   // −P, F+9 bits per component (−(−2^(F+7)) = 2^(F+7))
@@ -512,19 +533,19 @@ module sc_light #(
         wire [PW-1:0] pc = p_in[gi*PW +: PW];
         assign mp[gi*(PW+1) +: PW+1] = {(PW+1){1'b0}} - {pc[PW-1], pc};
       end
-      wire [3*NW-1:0]     v_norm;
+      wire [3*NV-1:0]     v_norm;
       wire [3*(PW+1)-1:0] mp_pass_unused;
-      sc_normalize #(.FRAC(FRAC), .VW(PW+1)) u_norm_v (
+      sc_normalize #(.FRAC(VF), .VW(PW+1)) u_norm_v (
           .clk_i(clk_i), .en_i(adv_f), .v_i(mp), .u_o(v_norm), .v_o(mp_pass_unused));
-      wire [3*NW-1:0] v0 = lv_mode ? v_norm : V_INF;
+      wire [3*NV-1:0] v0 = lv_mode ? v_norm : V_INF;
       if (HAS_B != 0) begin : g_v_blinn
-        sc_delay #(.W(3*NW), .DEPTH(T_H - T_V)) u_dly_vh (
+        sc_delay #(.W(3*NV), .DEPTH(T_H - T_V)) u_dly_vh (
             .clk_i(clk_i), .en_i(adv_f), .d_i(v0), .q_o(v_h));
       end else begin : g_no_v_blinn
         assign v_h = V_INF;
       end
       if (HAS_P != 0) begin : g_v_phong
-        sc_delay #(.W(3*NW), .DEPTH(T_RV - T_V)) u_dly_vp (
+        sc_delay #(.W(3*NV), .DEPTH(T_RV - T_V)) u_dly_vp (
             .clk_i(clk_i), .en_i(adv_f), .d_i(v0), .q_o(v_p));
       end else begin : g_no_v_phong
         assign v_p = V_INF;
@@ -547,13 +568,13 @@ module sc_light #(
 
   generate
     for (j = 0; j < NLN; j = j + 1) begin : g_lane
-      wire [NW-1:0]   x_f;
+      wire [NV-1:0]   x_f;
       wire [CL-1:0]   diff_f;
       wire            f_f;
       wire [PW-1:0]   att_f;
       wire [2:0]      idx_f;
       sc_light_lane #(
-          .FRAC(FRAC), .NLT(NLT), .CAN_DIR(CAN_DIR), .CAN_PT(CAN_PT), .CAN_ATT(ANY_ATT),
+          .FRAC(FRAC), .SG(SGUARD), .NLT(NLT), .CAN_DIR(CAN_DIR), .CAN_PT(CAN_PT), .CAN_ATT(ANY_ATT),
           .NEED_N(NEED_N), .SPECULAR(SPECULAR), .DIFFUSE(DIFFUSE), .BLINN(BLINN), .PHONG(PHONG),
           .LV(LV), .T_L(T_L), .T_A(T_A), .T_H(T_H), .T_RV(T_RV), .T_XB(T_XB), .T_XP(T_XP),
           .T_ATT(T_ATT), .T_F(T_F)
@@ -596,7 +617,7 @@ module sc_light #(
           if (((UNITS >> u) & 1) != 0) begin : g_on
             sc_specular #(
                 .VARIANT(u),
-                .FRAC   (FRAC),
+                .FRAC   (VF),
                 .GUARD  (GUARD),
                 .CUTOFF (CUTOFF),
                 .TAGW   (UTW),
@@ -610,8 +631,8 @@ module sc_light #(
                 .mat_coef_i (mat_coef_u),
                 .tab_we_i   (1'b0),
                 .tab_addr_i (10'd0),
-                .tab_value_i({(FRAC+1){1'b0}}),
-                .tab_delta_i({(FRAC+1){1'b0}}),
+                .tab_value_i({(VF+1){1'b0}}),
+                .tab_delta_i({(VF+1){1'b0}}),
                 .in_valid_i (vf_last && unit_sel[u]),
                 .in_ready_o (u_in_ready_all[8*j + u]),
                 .in_cos_i   (x_f),
@@ -666,7 +687,7 @@ module sc_light #(
         assign bk_att = {PW{1'b0}};
       end
       sc_light_shade #(
-          .FRAC(FRAC), .NLT(NLT), .NCH(NCH), .SPW(SPW), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
+          .FRAC(FRAC), .NLT(NLT), .NCH(NCH), .SPW(SPW), .SG(SGUARD), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
           .SPECULAR(SPECULAR), .CAN_ATT(ANY_ATT)
       ) u_shade (
           .clk_i(clk_i), .en_i(adv_b), .spec_i(spec_b), .f_i(ut_b[OFF_F]), .diff_i(bk_diff),

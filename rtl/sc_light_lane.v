@@ -5,18 +5,20 @@
 //            it, the unit direction L̂, the attenuation 1/q, N̂·L and the specular unit's input x,
 //            bit for bit as LightCore::eval() (cmodel/include/shadecore/light.hpp). One global
 //            enable (en_i, the core's front-advancing condition); every box a register stage.
+//            Vectors, N̂·L, R and x carry VF = F + SG fraction bits (SG = SGUARD of rtl/sc_light.v,
+//            the specular path's extra bits); the distance, diff and att have F.
 //
 //   Slot registers are read through the slot index that travels with the pass (idx_i at stage 0,
 //   delayed here to every stage that reads a register; they cannot change while a pass is in flight).
-//   L̂     directional: the position register (a unit direction code, F+8 bits);
-//          point: sc_normalize(P_j − P) (P_j − P F+9 bits, also passed through for the distance)
-//   att    A1 d = max(⌊(P_j−P)·L̂ / 2^F⌋, 0); A2 dd = ⌊d²/2^F⌋, ⌊kl·d/2^F⌋; A3 q = kc + ⌊kl·d/2^F⌋ +
+//   L̂     directional: the position register (a unit direction code, F+8 bits) · 2^SG;
+//          point: sc_normalize(P_j − P) at VF (P_j − P F+9 bits, also passed through for the distance)
+//   att    A1 d = max(⌊(P_j−P)·L̂ / 2^VF⌋, 0); A2 dd = ⌊d²/2^F⌋, ⌊kl·d/2^F⌋; A3 q = kc + ⌊kl·d/2^F⌋ +
 //          ⌊kq·dd/2^F⌋; sc_recip(q) — for point_att; 2^F for every other kind
-//   ndl    ⌊N̂·L / 2^F⌋ → diff = clamp(ndl, 0, 2^F), f = ndl > 0
-//   x      Blinn: Ĥ = sc_normalize(L̂ + V̂), x = ⌊N̂·Ĥ / 2^F⌋; Phong: R = ⌊ndl·N̂ / 2^(F−1)⌋ − L̂,
-//          x = ⌊R·V̂ / 2^F⌋ (= R_z when only V = (0, 0, 1) exists); saturated to the unit's F+2-bit
+//   ndl    ⌊N̂·L / 2^VF⌋ → diff = clamp(⌊ndl / 2^SG⌋, 0, 2^F), f = ndl > 0
+//   x      Blinn: Ĥ = sc_normalize(L̂ + V̂), x = ⌊N̂·Ĥ / 2^VF⌋; Phong: R = ⌊ndl·N̂ / 2^(VF−1)⌋ − L̂,
+//          x = ⌊R·V̂ / 2^VF⌋ (= R_z when only V = (0, 0, 1) exists); saturated to the unit's VF+2-bit
 //          word; with both reflections both are computed and phong_i chooses at T_F.
-// Parameters: FRAC, NLT (slots), capabilities CAN_DIR / CAN_PT (point or point_att) / CAN_ATT, NEED_N,
+// Parameters: FRAC, SG, NLT (slots), capabilities CAN_DIR / CAN_PT (point or point_att) / CAN_ATT, NEED_N,
 //             SPECULAR, DIFFUSE, BLINN, PHONG, LV, and the stage times of rtl/sc_light.v's header
 //             (T_L, T_A, T_H, T_RV, T_XB, T_XP, T_ATT, T_F).
 // Ports     : clk_i, en_i; idx_i (slot, stage 0); p_i (fragment position, stage 0); nn_a_i (N̂ at
@@ -28,6 +30,7 @@
 
 module sc_light_lane #(
     parameter integer FRAC     = 16,
+    parameter integer SG       = 0,
     parameter integer NLT      = 1,
     parameter integer CAN_DIR  = 1,
     parameter integer CAN_PT   = 0,
@@ -51,16 +54,16 @@ module sc_light_lane #(
     input  wire                      en_i,
     input  wire [2:0]                idx_i,
     input  wire [3*(FRAC+8)-1:0]     p_i,
-    input  wire [3*(FRAC+2)-1:0]     nn_a_i,
-    input  wire [3*(FRAC+2)-1:0]     nn_b_i,
-    input  wire [3*(FRAC+2)-1:0]     nn_p_i,
-    input  wire [3*(FRAC+2)-1:0]     v_h_i,
-    input  wire [3*(FRAC+2)-1:0]     v_p_i,
+    input  wire [3*(FRAC+SG+2)-1:0]  nn_a_i,
+    input  wire [3*(FRAC+SG+2)-1:0]  nn_b_i,
+    input  wire [3*(FRAC+SG+2)-1:0]  nn_p_i,
+    input  wire [3*(FRAC+SG+2)-1:0]  v_h_i,
+    input  wire [3*(FRAC+SG+2)-1:0]  v_p_i,
     input  wire                      phong_i,
     input  wire [NLT*3*(FRAC+8)-1:0] pos_i,
     input  wire [NLT*3*(FRAC+8)-1:0] katt_i,
     input  wire [NLT*2-1:0]          kind_i,
-    output wire [FRAC+1:0]           x_o,
+    output wire [FRAC+SG+1:0]        x_o,
     output wire [FRAC:0]             diff_o,
     output wire                      f_o,
     output wire [FRAC+7:0]           att_o,
@@ -70,18 +73,19 @@ module sc_light_lane #(
 `include "sc_light_regs.vh"
 
   localparam integer F   = FRAC;
-  localparam integer NW  = FRAC + 2;
+  localparam integer VF  = FRAC + SG;                        // fraction bits of the specular path
+  localparam integer NW  = VF + 2;                           // normalised vectors, x
   localparam integer PW  = FRAC + 8;
   localparam integer CL  = FRAC + 1;
-  localparam integer LW  = (CAN_DIR != 0) ? PW : NW;         // component width of L
+  localparam integer LW  = (CAN_DIR != 0) ? PW + SG : NW;    // component width of L
   localparam integer HVW = LW + 1;                           // of H = L + V
   localparam integer NDW = LW + 4;                           // of ⌊N̂·L / 2^F⌋
   localparam integer RVW = NDW + 4;                          // of R = 2(N̂·L)N̂ − L
   localparam integer NEED_L = (NEED_N != 0 || CAN_ATT != 0) ? 1 : 0;
   localparam integer POINT_L = (CAN_PT != 0 && NEED_L != 0) ? 1 : 0;   // an L̂ = normalise(P_j − P)
   localparam [CL-1:0] ONE   = {1'b1, {FRAC{1'b0}}};
-  localparam [NW-1:0] X_MAX = {2'b01, {FRAC{1'b1}}};
-  localparam [NW-1:0] X_MIN = {2'b10, {FRAC{1'b0}}};
+  localparam [NW-1:0] X_MAX = {2'b01, {VF{1'b1}}};
+  localparam [NW-1:0] X_MIN = {2'b10, {VF{1'b0}}};
   localparam [PW-1:0] ATT_ONE = {{7{1'b0}}, 1'b1, {FRAC{1'b0}}};
 
   genvar gi, k;
@@ -117,7 +121,7 @@ module sc_light_lane #(
         wire [PW-1:0] pf = p_i[gi*PW +: PW];
         assign dv[gi*(PW+1) +: PW+1] = {pj[PW-1], pj} - {pf[PW-1], pf};
       end
-      sc_normalize #(.FRAC(FRAC), .VW(PW+1)) u_norm_l (
+      sc_normalize #(.FRAC(VF), .VW(PW+1)) u_norm_l (
           .clk_i(clk_i), .en_i(en_i), .v_i(dv), .u_o(l_pt), .v_o(dv_d));
     end else begin : g_no_point
       assign l_pt = {3*NW{1'b0}};
@@ -127,13 +131,20 @@ module sc_light_lane #(
     for (gi = 0; gi < 3; gi = gi + 1) begin : g_lsel
       wire [NW-1:0] lp = l_pt[gi*NW +: NW];
       wire [LW-1:0] lp_w = {{(LW-NW){lp[NW-1]}}, lp};
+      wire [PW+SG-1:0] ld_w;   // directional: the register · 2^SG (LW = PW+SG where used)
+      if (SG > 0) begin : g_ld_sg
+        assign ld_w = {pos_l[gi*PW +: PW], {SG{1'b0}}};
+      end else begin : g_ld
+        assign ld_w = pos_l[gi*PW +: PW];
+      end
       if (CAN_DIR != 0 && POINT_L != 0) begin : g_both
-        assign l[gi*LW +: LW] = (kind_l == KIND_DIRECTIONAL[1:0]) ? pos_l[gi*PW +: PW] : lp_w;
+        assign l[gi*LW +: LW] = (kind_l == KIND_DIRECTIONAL[1:0]) ? ld_w : lp_w;
       end else if (CAN_DIR != 0) begin : g_dir
-        assign l[gi*LW +: LW] = pos_l[gi*PW +: PW];
+        assign l[gi*LW +: LW] = ld_w;
         wire unused_lp = &{1'b0, lp_w};
       end else begin : g_pt
         assign l[gi*LW +: LW] = lp_w;
+        wire unused_ld = &{1'b0, ld_w};
       end
     end
     if (CAN_DIR == 0 || POINT_L == 0) begin : g_kind_unused
@@ -153,13 +164,13 @@ module sc_light_lane #(
       wire [PW-1:0] kl = katt_i[(3*idx_a1 + 1)*PW +: PW];
       wire [PW-1:0] kc = katt_i[(3*idx_a2 + 0)*PW +: PW];
       wire [PW-1:0] kq = katt_i[(3*idx_a2 + 2)*PW +: PW];
-      // A1 (T_L+1): dl = ⌊(P_j − P)·L̂ / 2^F⌋, d = max(dl, 0)
+      // A1 (T_L+1): dl = ⌊(P_j − P)·L̂ / 2^VF⌋, d = max(dl, 0)
       wire signed [PW+NW:0] dp0 = $signed(dv_d[0 +: PW+1]) * $signed(l_pt[0 +: NW]);
       wire signed [PW+NW:0] dp1 = $signed(dv_d[PW+1 +: PW+1]) * $signed(l_pt[NW +: NW]);
       wire signed [PW+NW:0] dp2 = $signed(dv_d[2*(PW+1) +: PW+1]) * $signed(l_pt[2*NW +: NW]);
       wire [PW+NW+2:0] dsum = {{2{dp0[PW+NW]}}, dp0} + {{2{dp1[PW+NW]}}, dp1} + {{2{dp2[PW+NW]}}, dp2};
-      wire [DW-1:0] d_d = dsum[PW+NW+2] ? {DW{1'b0}} : dsum[F+DW-1:F];
-      wire unused_dsum = &{1'b0, dsum[PW+NW+1:F+DW], dsum[F-1:0]};
+      wire [DW-1:0] d_d = dsum[PW+NW+2] ? {DW{1'b0}} : dsum[VF+DW-1:VF];
+      wire unused_dsum = &{1'b0, dsum[PW+NW+1:VF+DW], dsum[VF-1:0]};
       reg [DW-1:0] a1_d_q;
       always @(posedge clk_i) begin
         if (en_i) a1_d_q <= d_d;
@@ -215,15 +226,17 @@ module sc_light_lane #(
       wire signed [NW+LW-1:0] np2 = $signed(nn_a_i[2*NW +: NW]) * $signed(l_a[2*LW +: LW]);
       wire [NW+LW+1:0] nsum = {{2{np0[NW+LW-1]}}, np0} + {{2{np1[NW+LW-1]}}, np1}
                             + {{2{np2[NW+LW-1]}}, np2};
-      wire unused_nsum = &{1'b0, nsum[F-1:0]};
+      wire unused_nsum = &{1'b0, nsum[VF-1:0]};
       reg [NDW-1:0] ndl_q;
       always @(posedge clk_i) begin
-        if (en_i) ndl_q <= nsum[NW+LW+1:F];
+        if (en_i) ndl_q <= nsum[NW+LW+1:VF];
       end
       assign ndl = ndl_q;
+      localparam integer NSW = NDW - SG;   // ⌊ndl / 2^SG⌋: F fraction bits
+      wire [NSW-1:0] ndl_s = ndl_q[NDW-1:SG];
       wire          neg   = ndl_q[NDW-1];
-      wire          big   = !neg && (ndl_q > {{(NDW-CL){1'b0}}, ONE});
-      wire [CL-1:0] diff1 = neg ? {CL{1'b0}} : (big ? ONE : ndl_q[CL-1:0]);
+      wire          big   = !neg && (ndl_s > {{(NSW-CL){1'b0}}, ONE});
+      wire [CL-1:0] diff1 = neg ? {CL{1'b0}} : (big ? ONE : ndl_s[CL-1:0]);
       wire          f1    = !neg && (ndl_q != {NDW{1'b0}});
       if (DIFFUSE != 0) begin : g_diff
         sc_delay #(.W(CL), .DEPTH(T_F - T_A - 1)) u_dly_diff (
@@ -266,17 +279,17 @@ module sc_light_lane #(
       end
       wire [3*NW-1:0]  hn;
       wire [3*HVW-1:0] h_pass_unused;
-      sc_normalize #(.FRAC(FRAC), .VW(HVW)) u_norm_h (
+      sc_normalize #(.FRAC(VF), .VW(HVW)) u_norm_h (
           .clk_i(clk_i), .en_i(en_i), .v_i(h), .u_o(hn), .v_o(h_pass_unused));
-      // x = ⌊N̂·Ĥ / 2^F⌋ (T_XB = T_H+NL+1)
+      // x = ⌊N̂·Ĥ / 2^VF⌋ (T_XB = T_H+NL+1)
       wire signed [2*NW-1:0] xp0 = $signed(nn_b_i[0 +: NW]) * $signed(hn[0 +: NW]);
       wire signed [2*NW-1:0] xp1 = $signed(nn_b_i[NW +: NW]) * $signed(hn[NW +: NW]);
       wire signed [2*NW-1:0] xp2 = $signed(nn_b_i[2*NW +: NW]) * $signed(hn[2*NW +: NW]);
       wire [2*NW+1:0] xsum = {{2{xp0[2*NW-1]}}, xp0} + {{2{xp1[2*NW-1]}}, xp1}
                            + {{2{xp2[2*NW-1]}}, xp2};
-      localparam integer XFW = 2 * NW + 2 - FRAC;
-      wire [XFW-1:0] xs = xsum[2*NW+1:F];
-      wire unused_xsum = &{1'b0, xsum[F-1:0]};
+      localparam integer XFW = 2 * NW + 2 - VF;
+      wire [XFW-1:0] xs = xsum[2*NW+1:VF];
+      wire unused_xsum = &{1'b0, xsum[VF-1:0]};
       wire in_rng = (xs[XFW-1:NW-1] == {(XFW-NW+1){1'b0}}) || (xs[XFW-1:NW-1] == {(XFW-NW+1){1'b1}});
       reg [NW-1:0] x_q;
       always @(posedge clk_i) begin
@@ -289,20 +302,20 @@ module sc_light_lane #(
       wire unused_b = &{1'b0, nn_b_i, v_h_i};
     end
     if (SPECULAR != 0 && PHONG != 0) begin : g_phong
-      // R = ((ndl·N̂) >> (F−1)) − L at T_A+1 (L delayed to T_A+1), registered at T_A+2
+      // R = ((ndl·N̂) >> (VF−1)) − L at T_A+1 (L delayed to T_A+1), registered at T_A+2
       wire [3*LW-1:0] l1;
       sc_delay #(.W(3*LW), .DEPTH(1)) u_dly_l1 (
           .clk_i(clk_i), .en_i(en_i), .d_i(l_a), .q_o(l1));
       wire [3*RVW-1:0] rv;
       for (gi = 0; gi < 3; gi = gi + 1) begin : g_r
         wire signed [NDW+NW-1:0] rp = $signed(ndl) * $signed(nn_p_i[gi*NW +: NW]);
-        wire [NDW+2:0] rs = rp[NDW+NW-1:F-1];
-        wire unused_rp = &{1'b0, rp[F-2:0]};
+        wire [NDW+2:0] rs = rp[NDW+NW-1:VF-1];
+        wire unused_rp = &{1'b0, rp[VF-2:0]};
         wire [LW-1:0] lc = l1[gi*LW +: LW];
         assign rv[gi*RVW +: RVW] = {{(RVW-NDW-3){rs[NDW+2]}}, rs} - {{(RVW-LW){lc[LW-1]}}, lc};
       end
       if (LV != 0) begin : g_lv
-        // x = ⌊R·V̂ / 2^F⌋ at T_RV+1 (V̂ = (0, 0, 2^F) without the local-viewer mode: x = R_z)
+        // x = ⌊R·V̂ / 2^VF⌋ at T_RV+1 (V̂ = (0, 0, 2^F) without the local-viewer mode: x = R_z)
         reg [3*RVW-1:0] rv_q;
         always @(posedge clk_i) begin
           if (en_i) rv_q <= rv;
@@ -315,9 +328,9 @@ module sc_light_lane #(
         wire signed [RVW+NW-1:0] xp2 = $signed(rv_d[2*RVW +: RVW]) * $signed(v_p_i[2*NW +: NW]);
         wire [RVW+NW+1:0] xsum = {{2{xp0[RVW+NW-1]}}, xp0} + {{2{xp1[RVW+NW-1]}}, xp1}
                                + {{2{xp2[RVW+NW-1]}}, xp2};
-        localparam integer XFW = RVW + NW + 2 - FRAC;
-        wire [XFW-1:0] xs = xsum[RVW+NW+1:F];
-        wire unused_xsum = &{1'b0, xsum[F-1:0]};
+        localparam integer XFW = RVW + NW + 2 - VF;
+        wire [XFW-1:0] xs = xsum[RVW+NW+1:VF];
+        wire unused_xsum = &{1'b0, xsum[VF-1:0]};
         wire in_rng = (xs[XFW-1:NW-1] == {(XFW-NW+1){1'b0}}) || (xs[XFW-1:NW-1] == {(XFW-NW+1){1'b1}});
         reg [NW-1:0] x_q;
         always @(posedge clk_i) begin

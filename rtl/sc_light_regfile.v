@@ -18,7 +18,8 @@
 //   first unit for transport with its specular term forced to 0 (unit_kill_o).
 //
 // Parameters: as rtl/sc_light.v (FRAC, SLOT_KINDS, AMBIENT, DIFFUSE, UNITS, NORM, BLINN,
-//             PHONG, LOCAL_VIEWER, NORMALIZE, CHANNELS); NLT, NCH, AW as the core computes them.
+//             PHONG, LOCAL_VIEWER, NORMALIZE, CHANNELS); NLT, NCH, AW as the core computes them;
+//             UFRAC = FRAC + SGUARD, the units' format (mat_thr UFRAC+1 bits, mat_coef UFRAC+8).
 // Ports     : clk_i; wr_i, addr_i[AW-1:0], data_i[31:0] (a write this edge);
 //             per slot j, packed at j: pos_o (3 × F+8), katt_o (kc, kl, kq × F+8), kind_o (2 bits, the
 //             register's kind), on_o (1 bit), lamb_o (per channel (a_c·Ia_jc) >> F, F+2 bits),
@@ -31,6 +32,7 @@
 
 module sc_light_regfile #(
     parameter integer FRAC         = 16,
+    parameter integer UFRAC        = 16,
     parameter integer SLOT_KINDS   = 1,
     parameter integer AMBIENT      = 1,
     parameter integer DIFFUSE      = 1,
@@ -60,8 +62,8 @@ module sc_light_regfile #(
     output wire [NCH*(FRAC+1)-1:0] mspec_o,
     output wire                  mat_we_o,
     output wire [10:0]           mat_n_o,
-    output wire [FRAC:0]         mat_thr_o,
-    output wire [FRAC+7:0]       mat_coef_o,
+    output wire [UFRAC:0]        mat_thr_o,
+    output wire [UFRAC+7:0]      mat_coef_o,
     output wire [7:0]            unit_sel_o,
     output wire                  unit_kill_o,
     output wire                  lv_o,
@@ -172,10 +174,10 @@ module sc_light_regfile #(
       wire hit_n = wr_i && (addr_i == REG_MAT_N);
       wire hit_t = wr_i && (addr_i == REG_MAT_THR);
       reg [10:0]   mat_n_q;
-      reg [FRAC:0] mat_thr_q;
+      reg [UFRAC:0] mat_thr_q;
       reg [3:0]    unit_q;
       assign mat_n_o   = hit_n ? data_i[10:0] : mat_n_q;
-      assign mat_thr_o = hit_t ? data_i[FRAC:0] : mat_thr_q;
+      assign mat_thr_o = hit_t ? data_i[UFRAC:0] : mat_thr_q;
       always @(posedge clk_i) begin
         mat_n_q   <= mat_n_o;
         mat_thr_q <= mat_thr_o;
@@ -183,14 +185,14 @@ module sc_light_regfile #(
       end
       if (NORM != 0) begin : g_coef
         wire hit_c = wr_i && (addr_i == REG_MAT_COEF);
-        reg [FRAC+7:0] mat_coef_q;
-        assign mat_coef_o = hit_c ? data_i[FRAC+7:0] : mat_coef_q;
+        reg [UFRAC+7:0] mat_coef_q;
+        assign mat_coef_o = hit_c ? data_i[UFRAC+7:0] : mat_coef_q;
         always @(posedge clk_i) begin
           mat_coef_q <= mat_coef_o;
         end
         assign mat_we_o = hit_n || hit_t || hit_c;
       end else begin : g_no_coef
-        assign mat_coef_o = {(FRAC+8){1'b0}};
+        assign mat_coef_o = {(UFRAC+8){1'b0}};
         assign mat_we_o   = hit_n || hit_t;
       end
       // one-hot over variant ids 0..7; an absent variant: the first unit, specular forced to 0
@@ -208,8 +210,8 @@ module sc_light_regfile #(
     end else begin : g_no_unit_mat
       assign mat_we_o    = 1'b0;
       assign mat_n_o     = 11'd0;
-      assign mat_thr_o   = {(FRAC+1){1'b0}};
-      assign mat_coef_o  = {(FRAC+8){1'b0}};
+      assign mat_thr_o   = {(UFRAC+1){1'b0}};
+      assign mat_coef_o  = {(UFRAC+8){1'b0}};
       assign unit_sel_o  = 8'd0;
       assign unit_kill_o = 1'b1;
     end

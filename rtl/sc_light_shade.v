@@ -3,14 +3,15 @@
 // Filename : rtl/sc_light_shade.v
 // Purpose  : one lane of the lighting core's back end (rtl/sc_light.v): a light's colour products,
 //            sum and attenuation per channel, bit for bit as LightCore::eval():
-//   B1  ⌊diff·d_c / 2^F⌋, ⌊spec·s_c / 2^F⌋ (spec = 0 unless f)
+//   B1  ⌊diff·d_c / 2^F⌋, ⌊spec·s_c / 2^(F+SG)⌋ (spec = 0 unless f; spec has F+SG fraction bits)
 //   B2  sum = ⌊a_c·Ia_jc / 2^F⌋ + ⌊·Id_jc / 2^F⌋ + ⌊·Is_jc / 2^F⌋ (0 for a lane with no light this pass)
 //   B3  term = ⌊att·sum / 2^F⌋ (the stage exists only with the point_att capability; att = 2^F for
 //       the other kinds, so term = sum exactly)
 //   term_o is the lane's term saturated to 2^F: every term is >= 0, so the core's saturating sum of
 //   saturated terms is exactly min(Σ, 2^F) of the unsaturated ones.
 //   Light registers are read through the slot index that travels with the pass (idx_i at B0).
-// Parameters: FRAC, NLT, NCH, SPW (unit output width), AMBIENT, DIFFUSE, SPECULAR, CAN_ATT.
+// Parameters: FRAC, NLT, NCH, SPW (unit output width), SG (the unit's extra fraction bits, SGUARD of
+//             rtl/sc_light.v), AMBIENT, DIFFUSE, SPECULAR, CAN_ATT.
 // Ports     : clk_i, en_i (the back-advancing condition); at B0 (the unit's output): spec_i, f_i,
 //             diff_i, att_i, idx_i, v_i (a light in this lane); material mdif_i, mspec_i; every slot's
 //             lamb_i, ldif_i, lspec_i (packed as sc_light_regfile.v); term_o at the last stage.
@@ -22,6 +23,7 @@ module sc_light_shade #(
     parameter integer NLT      = 1,
     parameter integer NCH      = 3,
     parameter integer SPW      = 17,
+    parameter integer SG       = 0,
     parameter integer AMBIENT  = 1,
     parameter integer DIFFUSE  = 1,
     parameter integer SPECULAR = 1,
@@ -45,7 +47,8 @@ module sc_light_shade #(
 
   localparam integer F    = FRAC;
   localparam integer CL   = FRAC + 1;
-  localparam integer SUMW = ((SPW + 2 > FRAC + 3) ? SPW + 2 : FRAC + 3) + 2;   // per-light sum
+  localparam integer SPF  = SPW - SG;   // width of spec at F fraction bits
+  localparam integer SUMW = ((SPF + 2 > FRAC + 3) ? SPF + 2 : FRAC + 3) + 2;   // per-light sum
   localparam [CL-1:0] ONE = {1'b1, {FRAC{1'b0}}};
 
   genvar c;
@@ -86,9 +89,9 @@ module sc_light_shade #(
       wire unused_amb = &{1'b0, lamb_i};
     end
     for (c = 0; c < NCH; c = c + 1) begin : g_ch
-      // B1: pd = ⌊diff·d_c / 2^F⌋, ps = ⌊spec·s_c / 2^F⌋
+      // B1: pd = ⌊diff·d_c / 2^F⌋, ps = ⌊spec·s_c / 2^(F+SG)⌋
       wire [CL+1:0]   td;    // ⌊pd·Id_c / 2^F⌋ (B2 input)
-      wire [SPW+1:0]  ts;    // ⌊ps·Is_c / 2^F⌋
+      wire [SPF+1:0]  ts;    // ⌊ps·Is_c / 2^F⌋
       wire [CL:0]     amb = lamb_i[(NCH*b1_idx_q + c)*(CL+1) +: CL+1];
       if (DIFFUSE != 0) begin : g_d
         wire [2*CL-1:0] pd_p = {{CL{1'b0}}, diff_i} * {{CL{1'b0}}, mdif_i[c*CL +: CL]};
@@ -106,21 +109,21 @@ module sc_light_shade #(
       end
       if (SPECULAR != 0) begin : g_s
         wire [SPW+CL-1:0] ps_p = {{CL{1'b0}}, spec_e} * {{SPW{1'b0}}, mspec_i[c*CL +: CL]};
-        wire unused_ps = &{1'b0, ps_p[F-1:0]};
-        reg  [SPW:0] b1_ps_q;
+        wire unused_ps = &{1'b0, ps_p[F+SG-1:0]};
+        reg  [SPF:0] b1_ps_q;
         always @(posedge clk_i) begin
-          if (en_i) b1_ps_q <= ps_p[SPW+CL-1:F];
+          if (en_i) b1_ps_q <= ps_p[SPW+CL-1:F+SG];
         end
         wire [CL-1:0] ls = lspec_i[(NCH*b1_idx_q + c)*CL +: CL];
-        wire [SPW+CL:0] ts_p = {{CL{1'b0}}, b1_ps_q} * {{(SPW+1){1'b0}}, ls};
+        wire [SPF+CL:0] ts_p = {{CL{1'b0}}, b1_ps_q} * {{(SPF+1){1'b0}}, ls};
         wire unused_ts = &{1'b0, ts_p[F-1:0]};
-        assign ts = ts_p[SPW+CL:F];
+        assign ts = ts_p[SPF+CL:F];
       end else begin : g_no_s
-        assign ts = {(SPW+2){1'b0}};
+        assign ts = {(SPF+2){1'b0}};
       end
       // B2: sum = amb + td + ts (0 without a light in this lane)
       wire [SUMW-1:0] sum_d = {{(SUMW-CL-1){1'b0}}, amb} + {{(SUMW-CL-2){1'b0}}, td}
-                            + {{(SUMW-SPW-2){1'b0}}, ts};
+                            + {{(SUMW-SPF-2){1'b0}}, ts};
       reg  [SUMW-1:0] b2_sum_q;
       always @(posedge clk_i) begin
         if (en_i) b2_sum_q <= b1_v_q ? sum_d : {SUMW{1'b0}};

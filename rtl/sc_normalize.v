@@ -10,7 +10,8 @@
 //            global-enable pipeline of rtl/sc_light.v (en_i = that pipeline's enable).
 //
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
-//   FRAC  F, fraction bits of the result (1.0 = 2^F)                 8 <= F <= 16 (default 16)
+//   FRAC  F, fraction bits of the result (1.0 = 2^F)                 8 <= F <= 24 (default 16)
+//         (the lighting core uses F + SGUARD of rtl/sc_light.v)
 //   VW    width of each signed input component (any common fraction: the result does not
 //         depend on it)                                              2 <= VW <= 41 (default 18)
 //
@@ -38,7 +39,8 @@
 //          S5   y1 = ⌊y0·2^(R−T)·c0 / 2^(R+1)⌋ = ⌊y0·c0 / 2^(T+1)⌋     R+1 bits
 //          S6   a1 = ⌊y1² / 2^R⌋                              R+2 bits
 //          S7   c1 = 3·2^R − ⌊m·a1 / 2^MB⌋                   R+2 bits
-//          S8   y2 = ⌊y1·c1 / 2^(R+1)⌋                        R+1 bits (< 2^R for every m, F = 8..16)
+//          S8   y2 = ⌊y1·c1 / 2^(R+1)⌋                        R+1 bits (< 2^R for every m, F = 8..22;
+//                                                            F = 23, 24: every 4th m and each run's ends)
 //          S9   p_i = v_i·y2                                 kept modulo 2^(HW+F+7) (two's complement:
 //                                                            only those low bits reach the result)
 //          S10  u_i = ⌊(v_i·y2 + 2^(sh−1)) / 2^sh⌋, sh = HW + 5 − k (= R + MB/2 − F − e2/2 of the
@@ -78,8 +80,8 @@ module sc_normalize #(
   // Portable Verilog-2005 elaboration error: a failing check instantiates a module that does not
   // exist, named after the message; every tool stops with "unknown module <message>".
   generate
-    if (FRAC < 8 || FRAC > 16) begin : g_check_frac
-      sc_normalize_error_illegal_FRAC_legal_range_is_8_to_16 u_error ();
+    if (FRAC < 8 || FRAC > 24) begin : g_check_frac
+      sc_normalize_error_illegal_FRAC_legal_range_is_8_to_24 u_error ();
     end
     if (VW < 2 || VW > 41) begin : g_check_vw
       sc_normalize_error_illegal_VW_legal_range_is_2_to_41 u_error ();

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """Cost against throughput of the lighting core (issue 18): docs/lighting_cost.json.
 
-One row per (feature set, lanes): Yosys generic cells counted hierarchically (`synth -top sc_light; abc;
+One row per (feature set, lanes, spec_guard): Yosys generic cells counted hierarchically (`synth -top sc_light; abc;
 stat -top sc_light`, as docs/lighting.md §8), `synth_xilinx -family xc7 -flatten` LUT / FF / DSP48E1,
 `synth_ecp5` LUT4 / MULT18X18D, the latency (LightCore::latency, every slot on, the slowest unit), the
 fragments per clock for 0, 1, 2, 4 and 8 enabled lights (⌈k/lanes⌉ passes, one pass per clock: the
@@ -12,6 +12,7 @@ Verilog parameters come from the CLI (`shadecore light-sweep --json`: FeatureSet
 nothing here restates the feature-set rules.
 
     scripts/lighting_cost.py --build build --sets full --lanes 1,2,4,8 --steps generic,xc7,ecp5,cosim
+    scripts/lighting_cost.py --build build --sets full --spec-guard 0,5 --steps xc7
     scripts/lighting_cost.py --build build --sets diffuse,gl_default,phong_point,mono_spec
 
 Rows are cached in the output file by (set, lanes, step, source hash): rerunning resumes, an edited RTL
@@ -128,6 +129,7 @@ def main():
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
     ap.add_argument("--sets", default="full")
     ap.add_argument("--lanes", default="", help="lanes to try for every set (default: the set's own)")
+    ap.add_argument("--spec-guard", default="", help="spec_guard values to try for every set (default: the set's own)")
     ap.add_argument("--steps", default="generic,xc7,ecp5,cosim")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "lighting_cost.json"))
     ap.add_argument("--cosim-count", type=int, default=100000)
@@ -153,12 +155,15 @@ def main():
             sys.exit(f"lighting_cost.py: error: unknown feature set '{name}' (named: {', '.join(named)})")
         base = dict(named[name])
         lanes_list = [int(x) for x in a.lanes.split(",")] if a.lanes else [base.get("lanes", 1)]
-        for lanes in lanes_list:
+        sg_list = [int(x) for x in a.spec_guard.split(",")] if a.spec_guard else [None]
+        for lanes, sg in [(l, g) for l in lanes_list for g in sg_list]:
             slots = len(base["lights"])
             if lanes > slots:
                 continue
             fs = dict(base)
             fs["lanes"] = lanes
+            if sg is not None:
+                fs["spec_guard"] = sg
             fs.pop("_comment", None)
             with tempfile.TemporaryDirectory() as tmp:
                 fs_file = os.path.join(tmp, f"{name}_lanes{lanes}.json")
@@ -167,12 +172,15 @@ def main():
                 run([shadecore, "light-sweep", "--features", fs_file, "--programs", "1", "--per-program", "1",
                      "--json", sweep], 600)
                 info = json.load(open(sweep))
-                row = next((r for r in doc["rows"] if r["set"] == name and r["lanes"] == lanes), None)
+                guard = info["feature_set"]["spec_guard"]
+                row = next((r for r in doc["rows"] if r["set"] == name and r["lanes"] == lanes
+                            and r.get("spec_guard", 0) == guard), None)
                 if row is None:
-                    row = {"set": name, "lanes": lanes}
+                    row = {"set": name, "lanes": lanes, "spec_guard": guard}
                     doc["rows"].append(row)
                 row.update({
-                    "design_point": "one light per lane per clock",
+                    "spec_guard": guard,
+                    "design_point": f"one light per lane per clock, spec_guard {guard}",
                     "feature_key": info["feature_key"],
                     "verilog_params": info["verilog_params"],
                     "slots": slots,
@@ -205,6 +213,7 @@ def main():
                     row[st + "_s"] = round(time.time() - t0, 1)
                     row.setdefault("source", {})[st] = src
                     row.setdefault("when", {})[st] = datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC")
+                    row.setdefault("command", {})[st] = "scripts/lighting_cost.py " + " ".join(sys.argv[1:])
                     doc.update({
                         "command": "scripts/lighting_cost.py " + " ".join(sys.argv[1:]),
                         "machine": machine, "yosys": yosys_v,

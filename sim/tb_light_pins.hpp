@@ -31,7 +31,7 @@ class LightScoreboard : public ScoreboardT<LightModel> {
  public:
   LightScoreboard(const LightCore& core, int show) : ScoreboardT<LightModel>(LightModel{&core, {}, false}, show) {}
   void on_write(uint32_t addr, uint32_t data) {
-    model_.regs.write(model_.core->format().frac, addr, data);
+    model_.regs.write(model_.core->widths(), addr, data);
     model_.written = true;
     ++material_writes_;
   }

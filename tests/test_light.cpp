@@ -40,9 +40,10 @@ TEST(LightOps, RsqrtSeedTable) {
 
 // Bound (docs/lighting.md §3.1): every component within 0.55 output ulps of the exact v_i/|v|.
 // Exhaustive over every mantissa of s at F = 8 and 16 (v = (a, 0, 0) and (a, a, 0), a < 2^20 covers
-// each even/odd exponent with all its mantissas), plus dense random 3-vectors of every magnitude.
+// each even/odd exponent with all its mantissas), plus dense random 3-vectors of every magnitude; the
+// same vectors at F = 20 and 24, the lighting core's specular path with spec_guard 4 and 8.
 TEST(LightOps, NormalizeBoundExhaustiveAndDense) {
-  for (int F : {8, 16}) {
+  for (int F : {8, 16, 20, 24}) {
     double worst = 0;
     for (int64_t a = 1; a < (int64_t{1} << 20); ++a) {
       const int64_t v1[3] = {a, 0, 0}, v2[3] = {a, a, 0}, v3[3] = {-a, a, a};
@@ -109,7 +110,7 @@ struct Rig {
     apply(material_writes(core, m));
   }
   void apply(const std::vector<RegWrite>& ws) {
-    for (const auto& w : ws) regs.write(F, w.addr, w.data);
+    for (const auto& w : ws) regs.write(core.widths(), w.addr, w.data);
   }
 };
 }  // namespace
@@ -222,7 +223,7 @@ TEST(LightHardCases, SaturatesNeverWraps) {
     for (auto& reg : kRegisters) {
       if (reg.format != "colour") continue;
       for (int j = 0; j < (reg.per_light ? kMaxLights : 1); ++j)
-        for (int c = 0; c < reg.count; ++c) r.regs.write(r.F, reg.addr + c + (reg.per_light ? j * kLightStride : 0), cmax);
+        for (int c = 0; c < reg.count; ++c) r.regs.write(r.core.widths(), reg.addr + c + (reg.per_light ? j * kLightStride : 0), cmax);
     }
     for (int j = 0; j < r.core.features().num_lights(); ++j) {
       r.regs.light[j].kc = 1;  // att saturates
@@ -361,34 +362,34 @@ TEST(LightModes, AbsentCapabilitiesDecodeAsDocumented) {
   const LightCore core(fs);
   LightRegs r;
   const int F = core.format().frac;
-  r.write(F, kReg_light_model, kModelLocalViewer | kModelNormalize);  // both absent; bit 1 clear but only Phong exists
-  r.write(F, kReg_mat_unit, static_cast<uint32_t>(VariantId::cs16));
-  r.write(F, kReg_light_mode, light_mode_word(true, LightKind::Point));  // slot 0 cannot be a point light
-  r.write(F, kLightStride + kReg_light_mode, light_mode_word(true, LightKind::Point));
+  r.write(core.widths(), kReg_light_model, kModelLocalViewer | kModelNormalize);  // both absent; bit 1 clear but only Phong exists
+  r.write(core.widths(), kReg_mat_unit, static_cast<uint32_t>(VariantId::cs16));
+  r.write(core.widths(), kReg_light_mode, light_mode_word(true, LightKind::Point));  // slot 0 cannot be a point light
+  r.write(core.widths(), kLightStride + kReg_light_mode, light_mode_word(true, LightKind::Point));
   LightModes m = core.modes(r);
   EXPECT_FALSE(m.local_viewer);
   EXPECT_FALSE(m.normalize);
   EXPECT_TRUE(m.phong);
   EXPECT_EQ(m.on, 2u);
   EXPECT_EQ(m.unit, 0);
-  r.write(F, kLightStride + kReg_light_mode, (3u << 1) | 1u);  // spot: reserved
+  r.write(core.widths(), kLightStride + kReg_light_mode, (3u << 1) | 1u);  // spot: reserved
   EXPECT_EQ(core.modes(r).on, 0u);
   EXPECT_EQ(core.passes(r), 1);
   // mat_unit names schlick_nr, which this core lacks: the specular term is 0 (f false), nothing else changes
-  r.write(F, kReg_light_mode, light_mode_word(true, LightKind::Directional));
+  r.write(core.widths(), kReg_light_mode, light_mode_word(true, LightKind::Directional));
   for (int c = 0; c < 3; ++c) {
-    r.write(F, kReg_mat_specular + c, 1u << F);
-    r.write(F, kReg_light_specular + c, 1u << F);
-    r.write(F, kReg_mat_diffuse + c, 1u << (F - 1));
-    r.write(F, kReg_light_diffuse + c, 1u << F);
+    r.write(core.widths(), kReg_mat_specular + c, 1u << F);
+    r.write(core.widths(), kReg_light_specular + c, 1u << F);
+    r.write(core.widths(), kReg_mat_diffuse + c, 1u << (F - 1));
+    r.write(core.widths(), kReg_light_diffuse + c, 1u << F);
   }
-  r.write(F, kReg_mat_n, 16);
-  r.write(F, kReg_light_position + 2, 1u << F);  // L = (0, 0, 1)
+  r.write(core.widths(), kReg_mat_n, 16);
+  r.write(core.widths(), kReg_light_position + 2, 1u << F);  // L = (0, 0, 1)
   Fragment fr;
   fr.n[2] = int64_t{1} << F;  // N = L = V: x = 1, spec = 1
   LightCoreTrace with, without;
   const Colour a = core.eval(r, fr, &with);
-  r.write(F, kReg_mat_unit, static_cast<uint32_t>(VariantId::schlick_nr));
+  r.write(core.widths(), kReg_mat_unit, static_cast<uint32_t>(VariantId::schlick_nr));
   EXPECT_EQ(core.modes(r).unit, -1);
   const Colour b = core.eval(r, fr, &without);
   EXPECT_TRUE(with.light[0].f);

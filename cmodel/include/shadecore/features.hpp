@@ -34,6 +34,10 @@ inline constexpr uint8_t kind_bit(LightKind k) { return static_cast<uint8_t>(1u 
 inline constexpr uint8_t kAllKinds = 0x7;
 
 inline constexpr int kLightFracMax = 16;  // the core's widest format (every product stays within 64 bits)
+inline constexpr int kSpecGuardMax = 8;    // spec_guard: F + spec_guard <= kFracMax (the units' widest format)
+// Default spec_guard: the smallest with the quantisation contract (|fixed − double core with the same
+// unit| <= 128 LSB of 2^−16 on every F = 16 named set) met with margin (docs/lighting.md §7).
+inline constexpr int kSpecGuardDefault = 5;
 
 // Capabilities of a lighting core: what hardware exists. The register file chooses among what exists
 // at run time (light enable and kind, local viewer, reflection, normalize, the material's unit);
@@ -55,8 +59,16 @@ struct FeatureSet {
   bool normalize = true;                // GL_NORMALIZE: the normal normaliser exists
   int channels = 3;                     // 1 (mono, channel 0 only) or 3 (RGB)
   int lanes = 1;                        // per-light datapaths; enabled lights take ⌈k/lanes⌉ passes
+  int spec_guard = kSpecGuardDefault;   // extra fraction bits of the specular path: N̂, V̂, L̂, Ĥ, R, x and the
+                                        // unit run at F + spec_guard fraction bits (docs/lighting.md §7)
 
   [[nodiscard]] Format format() const { return config_named(config).format; }
+  // The format of the specular path and its units: F + spec_guard fraction bits, the same guard.
+  [[nodiscard]] Format unit_format() const {
+    Format f = format();
+    f.frac += spec_guard;
+    return f;
+  }
   [[nodiscard]] int num_lights() const { return static_cast<int>(slots.size()); }
   [[nodiscard]] bool slot_can(int j, LightKind k) const { return (slots[static_cast<size_t>(j)] & kind_bit(k)) != 0; }
   // The first kind slot j can take (the only one for a specialised slot).
@@ -231,6 +243,10 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
         fs_fail(where, "'lanes' must be an integer 1.." + std::to_string(kMaxLights));
       fs.lanes = v.get<int>();
       lanes_given = true;
+    } else if (k == "spec_guard") {
+      if (!v.is_number_integer() || v.get<int>() < 0 || v.get<int>() > kSpecGuardMax)
+        fs_fail(where, "'spec_guard' must be an integer 0.." + std::to_string(kSpecGuardMax));
+      fs.spec_guard = v.get<int>();
     } else {
       fs_fail(where, "unknown key '" + k + "'");
     }
@@ -240,6 +256,7 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
     if (f.frac > kLightFracMax)
       fs_fail(where, "config '" + fs.config + "' has frac " + std::to_string(f.frac) +
                          "; the lighting core supports frac <= " + std::to_string(kLightFracMax));
+    validate(fs.unit_format());  // F + spec_guard <= 24, F + spec_guard + guard <= 31
   } catch (const std::invalid_argument& e) {
     if (std::string(e.what()).rfind(where, 0) == 0) throw;
     fs_fail(where, e.what());
@@ -321,6 +338,7 @@ inline nlohmann::ordered_json FeatureSet::canonical() const {
   j["normalize"] = normalize;
   j["channels"] = channels;
   j["lanes"] = lanes;
+  j["spec_guard"] = spec_guard;
   return j;
 }
 
@@ -347,6 +365,7 @@ inline std::vector<std::string> FeatureSet::verilog_params(int tagw) const {
       "LIGHTS=" + std::to_string(slots.size()),
       "SLOT_KINDS=" + std::to_string(kinds),
       "LANES=" + std::to_string(lanes),
+      "SGUARD=" + std::to_string(spec_guard),
       "AMBIENT=" + std::to_string(ambient ? 1 : 0),
       "DIFFUSE=" + std::to_string(diffuse ? 1 : 0),
       "UNITS=" + std::to_string(unit_mask),
@@ -378,6 +397,7 @@ inline std::string FeatureSet::summary() const {
       first = false;
     }
     if (norm) s += "+norm";
+    if (spec_guard) s += " at F+" + std::to_string(spec_guard);
     s += blinn && phong ? ", blinn|phong" : (blinn ? ", blinn" : ", phong");
     s += local_viewer ? ", local viewer" : ", infinite viewer";
   } else {

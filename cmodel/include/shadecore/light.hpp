@@ -65,6 +65,12 @@ inline constexpr uint32_t light_mode_word(bool enable, LightKind k) {
   return (enable ? kModeEnable : 0u) | (static_cast<uint32_t>(k) << 1);
 }
 
+// The widths a register write needs: F (colours, positions, attenuation) and the unit's UF = F +
+// spec_guard (mat_thr, mat_coef: the unit's material formats). LightCore::widths().
+struct LightWidths {
+  int F = 16, UF = 16;
+};
+
 struct LightRegs {
   uint32_t global_ambient[3] = {};
   uint32_t light_model = 0, mat_unit = 0;
@@ -81,7 +87,8 @@ struct LightRegs {
   // What a write of `data` to `addr` does: the register takes the low bits of its width (signed
   // formats sign-extended); an address that is no register (or a reserved one) is ignored. Returns
   // false for those.
-  bool write(int F, uint32_t addr, uint32_t data) {
+  bool write(const LightWidths& w, uint32_t addr, uint32_t data) {
+    const int F = w.F;
     const uint32_t col = static_cast<uint32_t>(data & mask_bits(light_colour_bits(F)));
     const uint32_t attc = static_cast<uint32_t>(data & mask_bits(light_attc_bits(F)));
     for (int c = 0; c < 3; ++c) {
@@ -94,8 +101,8 @@ struct LightRegs {
     if (addr == kReg_light_model) return light_model = data & mask_bits(kLightModelBits), true;
     if (addr == kReg_mat_unit) return mat_unit = data & mask_bits(kMatUnitBits), true;
     if (addr == kReg_mat_n) return mat_n = data & 0x7FF, true;
-    if (addr == kReg_mat_thr) return mat_thr = static_cast<uint32_t>(data & mask_bits(F + 1)), true;
-    if (addr == kReg_mat_coef) return mat_coef = static_cast<uint32_t>(data & mask_bits(light_coef_bits(F))), true;
+    if (addr == kReg_mat_thr) return mat_thr = static_cast<uint32_t>(data & mask_bits(w.UF + 1)), true;
+    if (addr == kReg_mat_coef) return mat_coef = static_cast<uint32_t>(data & mask_bits(light_coef_bits(w.UF))), true;
     if (addr < kReg_light_position) return false;
     const uint32_t j = (addr - kReg_light_position) / kLightStride;
     const uint32_t off = addr - j * kLightStride;
@@ -134,15 +141,15 @@ struct Colour {
 struct LightTrace {
   bool on = false;     // enabled with a kind its slot can take
   LightKind kind = LightKind::Directional;
-  int64_t l[3] = {};   // unit direction to the light (F fraction bits)
+  int64_t l[3] = {};   // unit direction to the light (VF = F + spec_guard fraction bits)
   uint64_t d = 0;      // distance, F fraction bits (point_att)
   uint64_t q = 0;      // kc + kl·d + kq·d² (point_att)
   uint64_t att = 0;    // 1/q, F fraction bits, saturated (point_att); 2^F otherwise
-  int64_t ndl = 0;     // ⌊N̂·L / 2^F⌋, signed
-  uint32_t diff = 0;   // clamp(ndl, 0, 2^F)
+  int64_t ndl = 0;     // ⌊N̂·L / 2^VF⌋, signed, VF fraction bits
+  uint32_t diff = 0;   // clamp(⌊ndl / 2^(VF−F)⌋, 0, 2^F)
   bool f = false;      // ndl > 0 (and the material's unit exists)
-  int64_t x = 0;       // the specular unit's input code (clamped to its signed F+2-bit word)
-  uint32_t spec = 0;   // the unit's output (F+1 bits, or F+8 bits with norm)
+  int64_t x = 0;       // the specular unit's input code (clamped to its signed VF+2-bit word)
+  uint32_t spec = 0;   // the unit's output (VF+1 bits, or VF+8 bits with norm)
   uint64_t term[3] = {};  // the light's contribution per channel (after attenuation)
 };
 struct LightCoreTrace {
@@ -167,16 +174,19 @@ struct LightModes {
 
 class LightCore {
  public:
-  explicit LightCore(FeatureSet fs) : fs_(std::move(fs)), f_(fs_.format()) {
+  explicit LightCore(FeatureSet fs) : fs_(std::move(fs)), f_(fs_.format()), uf_(fs_.unit_format()) {
     for (VariantId v : fs_.units()) {
-      units_.emplace_back(v, f_, fs_.cutoff);
+      units_.emplace_back(v, uf_, fs_.cutoff);
       if (fs_.norm) units_.back().set_norm(true, 0);  // the coefficient comes from mat_coef; the model index is unused
     }
-    if (units_.empty()) units_.emplace_back(fs_.variant, f_, fs_.cutoff);  // latency / setup only
+    if (units_.empty()) units_.emplace_back(fs_.variant, uf_, fs_.cutoff);  // latency / setup only
   }
 
   [[nodiscard]] const FeatureSet& features() const { return fs_; }
   [[nodiscard]] const Format& format() const { return f_; }
+  // The specular path's format (F + spec_guard fraction bits): N̂, V̂, L̂, Ĥ, R, x and the units.
+  [[nodiscard]] const Format& unit_format() const { return uf_; }
+  [[nodiscard]] LightWidths widths() const { return {f_.frac, uf_.frac}; }
   // The first unit (the only one of a specialised core).
   [[nodiscard]] const Unit& unit() const { return units_.front(); }
   [[nodiscard]] const std::vector<Unit>& units() const { return units_; }
@@ -220,20 +230,21 @@ class LightCore {
   // The per-fragment datapath, for the register values the core holds.
   [[nodiscard]] Colour eval(const LightRegs& r, const Fragment& fr, LightCoreTrace* tr = nullptr) const {
     const int F = f_.frac;
+    const int VF = uf_.frac, E = VF - F;  // the specular path carries E = spec_guard more fraction bits
     const int64_t one = int64_t{1} << F;
     const LightModes md = modes(r);
     LightCoreTrace t;
     t.passes = md.enabled == 0 ? 1 : (md.enabled + fs_.lanes - 1) / fs_.lanes;
     // N̂ (GL_NORMALIZE) — rtl/sc_normalize.v
-    if (md.normalize) normalize3(F, fr.n, t.nn);
-    else std::copy(fr.n, fr.n + 3, t.nn);
+    if (md.normalize) normalize3(VF, fr.n, t.nn);
+    else for (int i = 0; i < 3; ++i) t.nn[i] = fr.n[i] * (int64_t{1} << E);
     // V̂: local viewer normalise(−P), else (0, 0, 1)
     if (md.local_viewer) {
       const int64_t mp[3] = {-fr.p[0], -fr.p[1], -fr.p[2]};
-      normalize3(F, mp, t.v);
+      normalize3(VF, mp, t.v);
     } else {
       t.v[0] = t.v[1] = 0;
-      t.v[2] = one;
+      t.v[2] = int64_t{1} << VF;
     }
     const UnitMaterial mat{static_cast<int>(r.mat_n), r.mat_thr, r.mat_coef};
     const int ch = fs_.channels;
@@ -248,41 +259,41 @@ class LightCore {
       lt.kind = kind;
       lt.att = static_cast<uint64_t>(one);
       if (kind == LightKind::Directional) {
-        std::copy(L.pos, L.pos + 3, lt.l);
+        for (int i = 0; i < 3; ++i) lt.l[i] = L.pos[i] * (int64_t{1} << E);
       } else {
         const int64_t dv[3] = {L.pos[0] - fr.p[0], L.pos[1] - fr.p[1], L.pos[2] - fr.p[2]};  // F+9 bits
-        normalize3(F, dv, lt.l);
+        normalize3(VF, dv, lt.l);
         if (kind == LightKind::PointAtt) {
-          const int64_t dl = dot3(dv, lt.l) >> F;                 // |D| = D·L̂
+          const int64_t dl = dot3(dv, lt.l) >> VF;                // |D| = D·L̂
           lt.d = dl < 0 ? 0 : static_cast<uint64_t>(dl);
           const uint64_t dd = (lt.d * lt.d) >> F;
           lt.q = uint64_t{L.kc} + ((uint64_t{L.kl} * lt.d) >> F) + ((uint64_t{L.kq} * dd) >> F);
           lt.att = recip_att(F, lt.q);
         }
       }
-      lt.ndl = dot3(t.nn, lt.l) >> F;
-      lt.diff = static_cast<uint32_t>(std::clamp<int64_t>(lt.ndl, 0, one));
+      lt.ndl = dot3(t.nn, lt.l) >> VF;  // VF fraction bits
+      lt.diff = static_cast<uint32_t>(std::clamp<int64_t>(lt.ndl >> E, 0, one));
       lt.f = lt.ndl > 0 && md.unit >= 0;
       if (fs_.specular) {
         int64_t x;
         if (!md.phong) {
           const int64_t h[3] = {lt.l[0] + t.v[0], lt.l[1] + t.v[1], lt.l[2] + t.v[2]};
           int64_t hn[3];
-          normalize3(F, h, hn);
-          x = dot3(t.nn, hn) >> F;
+          normalize3(VF, h, hn);
+          x = dot3(t.nn, hn) >> VF;
         } else {
           int64_t rv[3];
-          for (int i = 0; i < 3; ++i) rv[i] = ((lt.ndl * t.nn[i]) >> (F - 1)) - lt.l[i];  // 2(N̂·L)N̂ − L
-          x = dot3(rv, t.v) >> F;
+          for (int i = 0; i < 3; ++i) rv[i] = ((lt.ndl * t.nn[i]) >> (VF - 1)) - lt.l[i];  // 2(N̂·L)N̂ − L
+          x = dot3(rv, t.v) >> VF;
         }
-        lt.x = std::clamp<int64_t>(x, f_.in_min(), f_.in_max());  // the unit's signed F+2-bit word, saturated
+        lt.x = std::clamp<int64_t>(x, uf_.in_min(), uf_.in_max());  // the unit's signed VF+2-bit word, saturated
         lt.spec = units_[static_cast<size_t>(md.unit < 0 ? 0 : md.unit)].eval(mat, lt.x);
       }
       for (int c = 0; c < ch; ++c) {
         uint64_t sum = 0;
         if (fs_.ambient) sum += (uint64_t{r.ambient[c]} * L.ambient[c]) >> F;
         if (fs_.diffuse) sum += (((uint64_t{lt.diff} * r.diffuse[c]) >> F) * L.diffuse[c]) >> F;
-        if (fs_.specular && lt.f) sum += (((uint64_t{lt.spec} * r.specular[c]) >> F) * L.specular[c]) >> F;
+        if (fs_.specular && lt.f) sum += (((uint64_t{lt.spec} * r.specular[c]) >> VF) * L.specular[c]) >> F;
         lt.term[c] = (lt.att * sum) >> F;  // att = 2^F unless point_att: exactly sum
       }
     }
@@ -308,7 +319,7 @@ class LightCore {
 
  private:
   FeatureSet fs_;
-  Format f_;
+  Format f_, uf_;
   std::vector<Unit> units_;
 };
 
@@ -345,7 +356,7 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
 }  // namespace detail
 
 inline int LightCore::pass_interval() const {
-  return fs_.specular && fs_.variant == VariantId::schlick_iter ? f_.frac + 4 : 1;
+  return fs_.specular && fs_.variant == VariantId::schlick_iter ? uf_.frac + 4 : 1;
 }
 inline int LightCore::pass_latency(int unit_index) const {
   const detail::LightPipe p = detail::light_pipe(fs_);
@@ -434,7 +445,7 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
       else if (var == VariantId::cs16 || squarer_form(var))  // cs16 and its forms
         spec = fs_.cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(x, n) : golden::cs16_sign_clamp(x, n);
       else spec = golden::schlick(x, n);
-      if (fs_.norm) spec *= v(r.mat_coef);
+      if (fs_.norm) spec *= std::ldexp(static_cast<double>(r.mat_coef), -uf_.frac);  // the units' format
     }
     const double diff = std::clamp(ndl, 0.0, 1.0);
     for (int c = 0; c < fs_.channels; ++c) {
@@ -504,7 +515,7 @@ inline std::vector<RegWrite> material_writes(const LightCore& core, const Materi
   if (fs.specular && !fs.has_unit(var))
     throw std::invalid_argument(std::string("specular unit ") + std::string(variant_name(var)) + " is not in this core (" +
                                 fs.summary() + ")");
-  Unit u(var, core.format(), core.unit().cutoff());
+  Unit u(var, core.unit_format(), core.unit().cutoff());
   const bool norm = fs.norm && m.norm_model >= 0;
   if (norm) u.set_norm(true, m.norm_model, m.norm_kind);
   const UnitMaterial um = u.setup(m.shininess);
@@ -512,7 +523,7 @@ inline std::vector<RegWrite> material_writes(const LightCore& core, const Materi
   w.push_back({kReg_mat_n, static_cast<uint32_t>(um.n)});
   w.push_back({kReg_mat_thr, um.thr});
   // with the norm hardware and no normalisation: coef = 1.0 (sc_norm then passes the unit's value)
-  w.push_back({kReg_mat_coef, norm ? um.coef : (fs.norm ? (uint32_t{1} << F) : um.coef)});
+  w.push_back({kReg_mat_coef, norm ? um.coef : (fs.norm ? (uint32_t{1} << core.unit_format().frac) : um.coef)});
   for (uint32_t c = 0; c < 3; ++c) {
     w.push_back({kReg_mat_emission + c, detail::colour_code(F, m.emission[c], "material emission")});
     w.push_back({kReg_mat_ambient + c, detail::colour_code(F, m.ambient[c], "material ambient")});

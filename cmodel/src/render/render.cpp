@@ -678,12 +678,11 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
 
 std::vector<Colour> run_cmodel(const CoreGroup& g) {
   const LightCore core(g.fs);
-  const int F = core.format().frac;
   LightRegs regs;
   std::vector<Colour> out;
   out.reserve(g.dests.size());
   for (const auto& c : g.cmds) {
-    if (c.is_write) regs.write(F, c.w.addr, c.w.data);
+    if (c.is_write) regs.write(core.widths(), c.w.addr, c.w.data);
     else out.push_back(core.eval(regs, c.f));
   }
   return out;
@@ -691,12 +690,11 @@ std::vector<Colour> run_cmodel(const CoreGroup& g) {
 
 std::vector<std::array<double, 3>> run_reference(const CoreGroup& g, LightCore::SpecRef ref) {
   const LightCore core(g.fs);
-  const int F = core.format().frac;
   LightRegs regs;
   std::vector<std::array<double, 3>> out;
   out.reserve(g.dests.size());
   for (const auto& c : g.cmds) {
-    if (c.is_write) regs.write(F, c.w.addr, c.w.data);
+    if (c.is_write) regs.write(core.widths(), c.w.addr, c.w.data);
     else out.push_back(core.eval_double(regs, c.f, ref));
   }
   return out;

@@ -36,7 +36,7 @@ class LightStimulus {
  public:
   LightStimulus(const LightCore& core, LightMode mode, uint64_t count, uint64_t seed, double write_rate,
                 std::vector<CoreCommand> stream = {})
-      : core_(core), f_(core.format()), F_(f_.frac), mode_(mode), count_(count), write_rate_(write_rate),
+      : core_(core), f_(core.format()), F_(f_.frac), W_(core.widths()), mode_(mode), count_(count), write_rate_(write_rate),
         rng_(seed ^ 0x11647c0deull), stream_(std::move(stream)) {
     if (mode_ == LightMode::Stream) {
       for (const auto& c : stream_)
@@ -95,7 +95,7 @@ class LightStimulus {
       c.is_write = true;
       c.w = w;
       pending_.push_back(c);
-      shadow_.write(F_, w.addr, w.data);
+      shadow_.write(W_, w.addr, w.data);
     }
   }
   std::vector<RegWrite> random_material() {
@@ -295,7 +295,7 @@ class LightStimulus {
       c.is_write = true;
       c.w = w;
       directed_.push_back(c);
-      shadow_.write(F_, w.addr, w.data);
+      shadow_.write(W_, w.addr, w.data);
     }
   }
   void build_directed() {
@@ -443,6 +443,7 @@ class LightStimulus {
   const LightCore& core_;
   Format f_;
   int F_;
+  LightWidths W_;
   LightMode mode_;
   uint64_t count_;
   double write_rate_;
