@@ -323,7 +323,8 @@ module sc_light #(
   wire [NLT*3*PW-1:0]    pos_all, katt_all;
   wire [NLT*2-1:0]       kind_all;
   wire [NLT-1:0]         on_all;
-  wire [NLT*NCH*(CL+1)-1:0] lamb_all;
+  wire [NLT*NCH*CL-1:0]  lamb_all;
+  wire [NCH*CL-1:0]      mamb_w;
   wire [NLT*NCH*CL-1:0]  ldif_all, lspec_all;
   wire [NCH*CL-1:0]      scene_w, mdif_w, mspec_w;
   wire                   mat_we_u;
@@ -339,7 +340,7 @@ module sc_light #(
   ) u_regs (
       .clk_i(clk_i), .wr_i(wr), .addr_i(reg_addr_i[AW-1:0]), .data_i(reg_data_i),
       .pos_o(pos_all), .katt_o(katt_all), .kind_o(kind_all), .on_o(on_all),
-      .lamb_o(lamb_all), .ldif_o(ldif_all), .lspec_o(lspec_all),
+      .lamb_o(lamb_all), .mamb_o(mamb_w), .ldif_o(ldif_all), .lspec_o(lspec_all),
       .scene_o(scene_w), .mdif_o(mdif_w), .mspec_o(mspec_w),
       .mat_we_o(mat_we_u), .mat_n_o(mat_n_u), .mat_thr_o(mat_thr_u), .mat_coef_o(mat_coef_u),
       .unit_sel_o(unit_sel), .unit_kill_o(unit_kill),
@@ -692,7 +693,7 @@ module sc_light #(
       ) u_shade (
           .clk_i(clk_i), .en_i(adv_b), .spec_i(spec_b), .f_i(ut_b[OFF_F]), .diff_i(bk_diff),
           .att_i(bk_att), .idx_i(ut_b[OFF_I +: 3]), .v_i(ut_b[OFF_V]),
-          .mdif_i(mdif_w), .mspec_i(mspec_w), .lamb_i(lamb_all), .ldif_i(ldif_all),
+          .mamb_i(mamb_w), .mdif_i(mdif_w), .mspec_i(mspec_w), .lamb_i(lamb_all), .ldif_i(ldif_all),
           .lspec_i(lspec_all), .term_o(term_all[j*NCH*CL +: NCH*CL]));
     end
   endgenerate

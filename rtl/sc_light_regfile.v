@@ -7,9 +7,10 @@
 //
 //   A write (wr_i: the core's reg_we_i && reg_ready_o) stores the low bits of the register's width;
 //   other addresses, reserved ones and the registers of absent capabilities are ignored. Registers
-//   are not reset. Register-only products (the scene term e + a·A and, per slot, a·Ia) are
-//   recomputed into registers at every edge: one edge behind a write, before any fragment needs them
-//   (a write only happens with the core empty, and the first fragment after it needs them later).
+//   are not reset. The register-only scene term e + a·A is recomputed into a register at every edge:
+//   one edge behind a write, before any fragment needs it (a write only happens with the core empty,
+//   and the first fragment after it needs it later). The per-light ambient product a·Ia_j is formed
+//   per pass in rtl/sc_light_shade.v (one multiplier per lane and channel, not one per slot).
 //
 //   Mode decode (docs/lighting.md §4): a light slot is on when its mode's enable bit is set and its
 //   kind is one the slot can take (SLOT_KINDS); local viewer and normalize are on only where the
@@ -22,7 +23,7 @@
 //             UFRAC = FRAC + SGUARD, the units' format (mat_thr UFRAC+1 bits, mat_coef UFRAC+8).
 // Ports     : clk_i; wr_i, addr_i[AW-1:0], data_i[31:0] (a write this edge);
 //             per slot j, packed at j: pos_o (3 × F+8), katt_o (kc, kl, kq × F+8), kind_o (2 bits, the
-//             register's kind), on_o (1 bit), lamb_o (per channel (a_c·Ia_jc) >> F, F+2 bits),
+//             register's kind), on_o (1 bit), lamb_o (per channel Ia_jc, F+1 bits),
 //             ldif_o, lspec_o (per channel F+1); material: scene_o (min(e + a·A >> F, 2^F)), mdif_o,
 //             mspec_o; unit: mat_we_o, mat_n_o, mat_thr_o, mat_coef_o (the values after this edge's
 //             write, with mat_we_o at the write edge), unit_sel_o (one-hot over variant ids),
@@ -54,7 +55,8 @@ module sc_light_regfile #(
     output wire [NLT*3*(FRAC+8)-1:0] katt_o,
     output wire [NLT*2-1:0]      kind_o,
     output wire [NLT-1:0]        on_o,
-    output wire [NLT*NCH*(FRAC+2)-1:0] lamb_o,
+    output wire [NLT*NCH*(FRAC+1)-1:0] lamb_o,
+    output wire [NCH*(FRAC+1)-1:0] mamb_o,
     output wire [NLT*NCH*(FRAC+1)-1:0] ldif_o,
     output wire [NLT*NCH*(FRAC+1)-1:0] lspec_o,
     output wire [NCH*(FRAC+1)-1:0] scene_o,
@@ -270,18 +272,12 @@ module sc_light_regfile #(
         localparam integer A_LS = reg_at(REG_LIGHT_SPECULAR, ABASE + c);
         if (AMBIENT != 0) begin : g_amb
           reg [CL-1:0] lamb_q;
-          reg [CL:0]   amb_q;
           always @(posedge clk_i) begin
             if (wr_i && addr_i == A_LA[AW-1:0]) lamb_q <= data_i[CL-1:0];
           end
-          wire [2*CL-1:0] aa = {{CL{1'b0}}, mamb_w[c*CL +: CL]} * {{CL{1'b0}}, lamb_q};
-          wire unused_aa = &{1'b0, aa[F-1:0]};
-          always @(posedge clk_i) begin
-            amb_q <= aa[2*CL-1:F];
-          end
-          assign lamb_o[(NCH*j + c)*(CL+1) +: CL+1] = amb_q;
+          assign lamb_o[(NCH*j + c)*CL +: CL] = lamb_q;
         end else begin : g_no_amb
-          assign lamb_o[(NCH*j + c)*(CL+1) +: CL+1] = {(CL+1){1'b0}};
+          assign lamb_o[(NCH*j + c)*CL +: CL] = {CL{1'b0}};
         end
         if (DIFFUSE != 0) begin : g_dif
           reg [CL-1:0] ldif_q;
@@ -303,10 +299,8 @@ module sc_light_regfile #(
         end
       end
     end
-    if (AMBIENT == 0) begin : g_mamb_unused
-      wire unused_mamb = &{1'b0, mamb_w};
-    end
   endgenerate
+  assign mamb_o = mamb_w;
 
 endmodule
 

@@ -4,7 +4,8 @@
 // Purpose  : one lane of the lighting core's back end (rtl/sc_light.v): a light's colour products,
 //            sum and attenuation per channel, bit for bit as LightCore::eval():
 //   B1  ⌊diff·d_c / 2^F⌋, ⌊spec·s_c / 2^(F+SG)⌋ (spec = 0 unless f; spec has F+SG fraction bits)
-//   B2  sum = ⌊a_c·Ia_jc / 2^F⌋ + ⌊·Id_jc / 2^F⌋ + ⌊·Is_jc / 2^F⌋ (0 for a lane with no light this pass)
+//   B2  sum = ⌊a_c·Ia_jc / 2^F⌋ + ⌊·Id_jc / 2^F⌋ + ⌊·Is_jc / 2^F⌋ (0 for a lane with no light this pass;
+//       the ambient product is formed here, per lane, from the slot's Ia_jc register)
 //   B3  term = ⌊att·sum / 2^F⌋ (the stage exists only with the point_att capability; att = 2^F for
 //       the other kinds, so term = sum exactly)
 //   term_o is the lane's term saturated to 2^F: every term is >= 0, so the core's saturating sum of
@@ -13,7 +14,7 @@
 // Parameters: FRAC, NLT, NCH, SPW (unit output width), SG (the unit's extra fraction bits, SGUARD of
 //             rtl/sc_light.v), AMBIENT, DIFFUSE, SPECULAR, CAN_ATT.
 // Ports     : clk_i, en_i (the back-advancing condition); at B0 (the unit's output): spec_i, f_i,
-//             diff_i, att_i, idx_i, v_i (a light in this lane); material mdif_i, mspec_i; every slot's
+//             diff_i, att_i, idx_i, v_i (a light in this lane); material mamb_i, mdif_i, mspec_i; every slot's
 //             lamb_i, ldif_i, lspec_i (packed as sc_light_regfile.v); term_o at the last stage.
 // ============================================================================================
 `default_nettype none
@@ -37,9 +38,10 @@ module sc_light_shade #(
     input  wire [FRAC+7:0]               att_i,
     input  wire [2:0]                    idx_i,
     input  wire                          v_i,
+    input  wire [NCH*(FRAC+1)-1:0]       mamb_i,
     input  wire [NCH*(FRAC+1)-1:0]       mdif_i,
     input  wire [NCH*(FRAC+1)-1:0]       mspec_i,
-    input  wire [NLT*NCH*(FRAC+2)-1:0]   lamb_i,
+    input  wire [NLT*NCH*(FRAC+1)-1:0]   lamb_i,
     input  wire [NLT*NCH*(FRAC+1)-1:0]   ldif_i,
     input  wire [NLT*NCH*(FRAC+1)-1:0]   lspec_i,
     output wire [NCH*(FRAC+1)-1:0]       term_o
@@ -86,13 +88,21 @@ module sc_light_shade #(
       wire unused_diff = &{1'b0, diff_i, mdif_i, ldif_i};
     end
     if (AMBIENT == 0) begin : g_amb_unused
-      wire unused_amb = &{1'b0, lamb_i};
+      wire unused_amb = &{1'b0, lamb_i, mamb_i};
     end
     for (c = 0; c < NCH; c = c + 1) begin : g_ch
       // B1: pd = ⌊diff·d_c / 2^F⌋, ps = ⌊spec·s_c / 2^(F+SG)⌋
       wire [CL+1:0]   td;    // ⌊pd·Id_c / 2^F⌋ (B2 input)
       wire [SPF+1:0]  ts;    // ⌊ps·Is_c / 2^F⌋
-      wire [CL:0]     amb = lamb_i[(NCH*b1_idx_q + c)*(CL+1) +: CL+1];
+      wire [CL:0]     amb;   // ⌊a_c·Ia_jc / 2^F⌋
+      if (AMBIENT != 0) begin : g_a
+        wire [CL-1:0]   la   = lamb_i[(NCH*b1_idx_q + c)*CL +: CL];
+        wire [2*CL-1:0] pa_p = {{CL{1'b0}}, mamb_i[c*CL +: CL]} * {{CL{1'b0}}, la};
+        wire unused_pa = &{1'b0, pa_p[F-1:0]};
+        assign amb = pa_p[2*CL-1:F];
+      end else begin : g_no_a
+        assign amb = {(CL+1){1'b0}};
+      end
       if (DIFFUSE != 0) begin : g_d
         wire [2*CL-1:0] pd_p = {{CL{1'b0}}, diff_i} * {{CL{1'b0}}, mdif_i[c*CL +: CL]};
         wire unused_pd = &{1'b0, pd_p[F-1:0]};
