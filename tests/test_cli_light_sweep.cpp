@@ -104,6 +104,7 @@ TEST(LightSweep, BadValuesAreOneLineErrors) {
       {"light-sweep --features ''", "empty feature set"},
       {"light-sweep --specular ''", "empty --specular"},
       {"light-sweep --json ''", "empty path"},
+      {"light-sweep --spec-guard 9", "--spec-guard"},
       {"light-sweep --features nosuch --programs 1 --per-program 1", "nosuch"},
       {"light-sweep --specular bogus --programs 1 --per-program 1", "unknown --specular 'bogus'"},
       {"light-sweep --specular table256 --programs 1 --per-program 1", "the lighting core has no table units"},
@@ -116,10 +117,36 @@ TEST(LightSweep, BadValuesAreOneLineErrors) {
     EXPECT_EQ(r.status, 1) << args << "\n" << r.err;
     EXPECT_EQ(lines(r.err), 1) << args << "\n" << r.err;
     EXPECT_NE(r.err.find(needle), std::string::npos) << args << "\n" << r.err;
-    if (i < 9) {  // usage errors (not the unknown names or the unwritable output) name the subcommand's help
+    if (i < 10) {  // usage errors (not the unknown names or the unwritable output) name the subcommand's help
       EXPECT_NE(r.err.find("(see shadecore light-sweep --help)"), std::string::npos) << args << "\n" << r.err;
     }
     EXPECT_TRUE(r.out.empty()) << args << "\n" << r.out;
     EXPECT_TRUE(d.entries().empty()) << args;
   }
+}
+
+// The quantisation contract of docs/lighting.md §7 (issue 18): with the default spec_guard every F = 16
+// named set's core − the same equation in double with the same unit stays within ±128 LSB of 2^−16, for
+// every lighting-core unit; with spec_guard 0 (the specular path at F bits) it does not on `full` — so
+// this test tells the two apart. Seeded (a reproducible sample, as in §7's table).
+TEST(LightSweep, QuantisationContractAtTheDefaultGuard) {
+  for (const char* set : {"full", "gl_default", "phong_point"}) {
+    const TempDir d;
+    const CliRun r = run_cli(std::string("light-sweep --features ") + set +
+                             " --specular all --programs 30 --per-program 1000 --seed 3 --json " + (d / "o.json"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(slurp(d / "o.json"));
+    EXPECT_EQ(j["feature_set"]["spec_guard"].get<int>(), 5);
+    for (const auto& u : j["units"]) {
+      EXPECT_GE(u["quant_min_lsb"].get<double>(), -128.0) << set << " " << u["specular"];
+      EXPECT_LE(u["quant_max_lsb"].get<double>(), 128.0) << set << " " << u["specular"];
+    }
+  }
+  const TempDir d;
+  const CliRun r = run_cli(std::string("light-sweep --features full --specular cs16 --spec-guard 0 --programs 30 ") +
+                           "--per-program 1000 --seed 3 --json " + (d / "o.json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(d / "o.json"));
+  EXPECT_EQ(j["feature_set"]["spec_guard"].get<int>(), 0);
+  EXPECT_LT(j["units"][0]["quant_min_lsb"].get<double>(), -128.0) << "spec_guard 0 should break the contract on full";
 }
