@@ -195,6 +195,13 @@ std::string register_table(const FeatureSet& fs) {
     if (f == "position") return fmt::format("two's complement {} bits, [−128, 128): point light position, or the unit direction "
                                             "code of a directional light", F + 8);
     if (f == "att_coef") return fmt::format("unsigned {} bits, [0, 256) (point_att lights only)", F + 8);
+    if (f == "light_model")
+      return std::string("mode: bit 0 local viewer, bit 1 reflection (0 Blinn N·H, 1 Phong R·V), bit 2 normalize; "
+                         "a bit naming absent hardware reads as off (with one reflection bit 1 is ignored)");
+    if (f == "unit") return std::string("mode: 4 bits, the variant id of the material's specular unit; an absent unit gives specular 0");
+    if (f == "light_mode")
+      return std::string("mode: bit 0 enable, bits 3:1 kind (0 directional, 1 point, 2 point_att; 3 spot is reserved); "
+                         "a kind the slot cannot take turns the light off");
     return std::string(f);
   };
   // Which registers this feature set reads (the others exist in the map but are ignored here).
@@ -417,12 +424,15 @@ every register the feature set uses before the first fragment.
 ## Programming sequence
 
 1. Hold `rst_ni` low for at least one rising edge, then high.
-2. Global: `global_ambient` (3 writes).
-3. Material: `mat_n`, `mat_thr`, `mat_coef` (as the specular unit computes them from n: `shadecore eval`
-   prints them), `mat_emission`, `mat_ambient`, `mat_diffuse`, `mat_specular` (3 writes each).
-4. Each light j: `light_position` (3), `light_ambient`, `light_diffuse`, `light_specular` (3 each), and for
-   `point_att` lights `light_kc`, `light_kl`, `light_kq` (never all three 0: the host setup rejects it; the
-   hardware then saturates the attenuation).
+2. Global: `global_ambient` (3 writes) and the mode register `light_model` (local viewer, reflection,
+   normalize).
+3. Material: `mat_unit` (the variant id of its unit), `mat_n`, `mat_thr`, `mat_coef` (as that unit computes
+   them from n: `shadecore eval` prints them; the four are one contract, written together), `mat_emission`,
+   `mat_ambient`, `mat_diffuse`, `mat_specular` (3 writes each).
+4. Each light j: `light_mode` (enable, kind: a disabled light costs no cycle), `light_position` (3),
+   `light_ambient`, `light_diffuse`, `light_specular` (3 each), and for `point_att` lights `light_kc`,
+   `light_kl`, `light_kq` (never all three 0: the host setup rejects it; the hardware then saturates the
+   attenuation).
 5. Stream fragments, take colours. To change any register, write it at any time: the write waits
    until the core is empty (no draining by the host needed, but the write stalls the input).
 
