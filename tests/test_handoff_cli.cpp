@@ -314,7 +314,7 @@ TEST(VectorsCli, LightingRecordsReplayThroughTheModel) {
       std::vector<uint64_t> w;
       ASSERT_TRUE(read_record(line, w)) << line;
       if (w[0] == 0) {
-        regs.write(F, static_cast<uint32_t>(w[1]), static_cast<uint32_t>(w[2]));
+        regs.write(core.widths(), static_cast<uint32_t>(w[1]), static_cast<uint32_t>(w[2]));
         continue;
       }
       const shadecore::Colour col = core.eval(regs, record_fragment(w, F));
@@ -431,7 +431,7 @@ TEST(HandoffLighting, DiffuseBundlePassesAndACorruptedCopyFails) {
     ASSERT_TRUE(read_record(line, w)) << line;
     ++records;
     if (w[0] == 0) {
-      regs.write(F, static_cast<uint32_t>(w[1]), static_cast<uint32_t>(w[2]));
+      regs.write(core.widths(), static_cast<uint32_t>(w[1]), static_cast<uint32_t>(w[2]));
       ++writes;
       continue;
     }
