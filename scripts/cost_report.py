@@ -646,6 +646,20 @@ def check_out_dir(out):
         raise Failure(f"cannot write to {d}")
 
 
+def lighting_rows():
+    """The lighting core's rows (docs/lighting_cost.json, measured by scripts/lighting_cost.py): the same table
+    as docs/lighting.md §8.1, from the same function."""
+    path = os.path.join(ROOT, "docs", "lighting_cost.json")
+    if not os.path.exists(path):
+        return []
+    import lighting_cost  # noqa: E402  scripts/lighting_cost.py
+    doc = json.load(open(path))
+    return ["## Lighting core: cost against throughput", "",
+            f"Rows of docs/lighting_cost.json (`scripts/lighting_cost.py`; machine {doc.get('machine', '?')}, each row's "
+            "date and RTL source hash in its last column; docs/lighting.md §8.1 reads them):", "",
+            lighting_cost.report_markdown(doc), ""]
+
+
 def write_report(rows, cmd, out, baseline="schlick_div", run_seconds=None, loads=()):
     """OUT/tradeoffs.md, .json and .png from the rows: all three or none (OUT and missing parents are created
     and removed again when anything fails)."""
@@ -754,6 +768,7 @@ def _write_report(rows, cmd, out, baseline, run_seconds, loads):
               + "; ".join(f"{m}: {', '.join(v) if len(v) < len(rows) else 'every row'}" for m, v in missing.items())
               + ".", ""]
     L += guidance(rows, baseline)
+    L += lighting_rows()
     L += ["## Pareto plot", "",
           "![error against area](tradeoffs.png)", "",
           "One point per unit × contract × width; y: the worst |cos^n − output| over the swept n range; x: generic "
