@@ -146,7 +146,8 @@ def _fpc(v):
 def report_markdown(doc):
     """The cost/throughput table of docs/lighting_cost.json (one row per set, lanes, spec_guard), for
     docs/lighting.md §8.1 and docs/tradeoffs.md: one source for both."""
-    rows = sorted(doc["rows"], key=lambda r: (r["set"] != "full", r["set"], r["lanes"], r.get("spec_guard", 0)))
+    rows = sorted(doc["rows"], key=lambda r: (r["set"] != "full", r["set"], not r.get("superseded"), r["lanes"],
+                                             r.get("spec_guard", 0)))
     L = ["| set | lanes | spec_guard | generic cells | xc7 LUT / FF / DSP48E1 | fits XC7A35T | ECP5 LUT4 / MULT18 | "
          "latency | fragments per clock at 0 / 1 / 2 / 4 / 8 lights | cosim fragments/s | measured |",
          "|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -161,7 +162,7 @@ def report_markdown(doc):
             gen = "not finished"
         when = sorted(set(v[:10] for v in r.get("when", {}).values()))
         src = sorted(set(r.get("source", {}).values()))
-        L.append(f"| {r['set']} | {r['lanes']} | {r.get('spec_guard', 0)} | {gen} | "
+        L.append(f"| {r['set']}{' (first RTL)' if r.get('superseded') else ''} | {r['lanes']} | {r.get('spec_guard', 0)} | {gen} | "
                  f"{_fmt(r.get('x7_lut'))} / {_fmt(r.get('x7_ff'))} / {_fmt(r.get('x7_dsp48'))} | {fits} | "
                  f"{_fmt(r.get('ecp5_lut4'))} / {_fmt(r.get('ecp5_mult18'))} | {r.get('latency', '—')} | "
                  f"{' / '.join(_fpc(fpc.get(k)) for k in ('0', '1', '2', '4', '8') if k in fpc)} | "
@@ -278,8 +279,9 @@ def main():
                      "--json", sweep], 600)
                 info = json.load(open(sweep))
                 guard = info["feature_set"]["spec_guard"]
+                # rows of an earlier RTL kept for the record (`superseded`) are never updated
                 row = next((r for r in doc["rows"] if r["set"] == name and r["lanes"] == lanes
-                            and r.get("spec_guard", 0) == guard), None)
+                            and r.get("spec_guard", 0) == guard and not r.get("superseded")), None)
                 if row is None:
                     row = {"set": name, "lanes": lanes, "spec_guard": guard}
                     doc["rows"].append(row)
