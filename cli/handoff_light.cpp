@@ -291,8 +291,10 @@ std::string operator_contract(const FeatureSet& fs) {
   if (!v.empty()) {
     std::string list;
     for (size_t i = 0; i < v.size(); ++i) list += (i ? ", " : "") + v[i];
-    s += "- Every normalisation (" + list + ") is a reciprocal square root by table + two Newton–Raphson steps:\n"
-         "  |u_i − 2^F·v_i/|v|| ≤ 0.55 ulp; v = 0 gives 0.\n";
+    const int VF = fs.unit_format().frac;  // the normalisers' output format: the specular path's
+    s += "- Every normalisation (" + list + ") is a reciprocal square root by table + two Newton–Raphson steps,\n"
+         "  with " + std::to_string(VF) + " fraction bits (F + spec_guard): |u_i − 2^" + std::to_string(VF) +
+         "·v_i/|v|| ≤ " + (VF <= 22 ? "0.55" : "0.70") + " ulp; v = 0 gives 0.\n";
   } else {
     s += "- No normalisation in this feature set (directional lights, normals used as given).\n";
   }
