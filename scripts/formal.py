@@ -35,6 +35,14 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RTL = os.path.join(ROOT, "rtl")
 HARNESS = os.path.join(ROOT, "formal", "sc_formal_unit.v")
 CTRL_HARNESS = os.path.join(ROOT, "formal", "sc_formal_ctrl.v")
+LIGHT_HARNESS = os.path.join(ROOT, "formal", "sc_formal_light.v")
+# The lighting core (docs/formal.md §7): a small and the full feature set. Their Verilog parameters and
+# latency come from the CLI (`shadecore light-sweep --json`: FeatureSet::verilog_params, LightCore::latency),
+# one source; --shadecore EXE or $SHADECORE names the binary (ctest passes the built one).
+LIGHT_SETS = ("diffuse", "gl_default", "full")
+# BMC depth of the bounded group: from reset, deep enough for a write of every slot's light_mode, a
+# fragment of 8 passes through the longest pipeline (full: latency 44) and the ones queued behind it.
+LIGHT_BMC_DEPTH = {"diffuse": 24, "gl_default": 40, "full": 60}
 # Every property is 1-step (or made inductive by a strengthening invariant, docs/formal.md), so a short
 # k-induction closes: base case PROOF_DEPTH steps from reset, induction step of the same length.
 PROOF_DEPTH = 4
@@ -77,6 +85,72 @@ def latency(variant, frac):
     raise ValueError("unknown variant " + name)
 
 
+_LIGHT_CACHE = {}
+
+
+def shadecore_exe():
+    exe = os.environ.get("SHADECORE") or os.path.join(ROOT, "build", "cli", "shadecore")
+    return exe
+
+
+def light_info(fs):
+    """verilog_params and latency of feature set fs from `shadecore light-sweep --json`."""
+    if fs in _LIGHT_CACHE:
+        return _LIGHT_CACHE[fs]
+    exe = shadecore_exe()
+    if not os.path.exists(exe):
+        raise RuntimeError("formal: the lighting jobs need the shadecore CLI (--shadecore EXE or $SHADECORE); "
+                           "%s does not exist" % exe)
+    d = tempfile.mkdtemp(prefix="sc_light_params_")
+    f = os.path.join(d, "s.json")
+    subprocess.run([exe, "light-sweep", "--features", fs, "--programs", "1", "--per-program", "1", "--seed", "1",
+                    "--json", f], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    j = json.load(open(f))
+    shutil.rmtree(d)
+    params = {}
+    for kv in j["verilog_params"]:
+        k, v = kv.split("=")
+        params[k] = int(v)
+    _LIGHT_CACHE[fs] = dict(params=params, latency=int(j["latency"]), latency_min=int(j["latency_min"]))
+    return _LIGHT_CACHE[fs]
+
+
+def light_files(cfg):
+    r = cfg["rtl"]
+    files = list(r["sc_light"]["files"]) + list(r["sc_light"]["normalize"]) + list(r["sc_light"]["recip"])
+    files += unit_files(cfg)
+    out = []
+    for f in files:
+        if f not in out:
+            out.append(f)
+    return out
+
+
+def light_jobs(cfg):
+    out = {}
+    files = light_files(cfg)
+    for fs in LIGHT_SETS:
+        # parameters are resolved lazily (the CLI is only needed when a lighting job runs)
+        base = dict(top="sc_formal_light", files=files, harness=LIGHT_HARNESS, light=fs)
+        out["light.%s" % fs] = dict(base, depth=PROOF_DEPTH, reach=None)
+        out["light_bmc.%s" % fs] = dict(base, depth=LIGHT_BMC_DEPTH[fs], reach=None, bmc_only=True,
+                                        defines=["LIGHT_BMC"])
+    return out
+
+
+def resolve(job):
+    """Fill in a lighting job's parameters (from the CLI)."""
+    if "light" in job and "params" not in job:
+        info = light_info(job["light"])
+        p = dict(info["params"])
+        # harness bounds: fragments in flight <= the stage count <= latency(); clocks to an output <= latency()
+        p["MAXF"] = info["latency"]
+        p["LMAX"] = info["latency"]
+        job["params"] = p
+        job["reach"] = info["latency"] + 8
+    return job
+
+
 def jobs():
     """name -> dict(top, params, files, depth)."""
     cfg = load_config()
@@ -106,6 +180,7 @@ def jobs():
             p = dict(p, NORM=0, CUTOFF=1)
             out["unit_sign_clamp.%s.%s" % (v["name"], dflt["name"])] = dict(
                 top="sc_formal_unit", params=p, files=files, harness=HARNESS, depth=PROOF_DEPTH, reach=lat, drop_ctrl_asserts=True)
+    out.update(light_jobs(cfg))
     return out
 
 
@@ -113,6 +188,8 @@ def is_long(name):
     """Jobs the default test suite leaves out (ctest label long): the deep control proofs (the popcount of
     pc_count at DEPTH 20 and 28 takes z3 from seconds to minutes), the cs16 forms at the wide width (Yosys
     spends ~20-45 s elaborating sc_square's constant functions there) and the NORM = 1 / sign_clamp repeats."""
+    if name.startswith("light"):
+        return name.endswith(".full")
     return (name in ("pipe_ctrl.d20", "pipe_ctrl.d28", "unit.cs16_faithful.wide", "unit.cs16_compact.wide") or
             name.startswith(("unit_norm.", "unit_sign_clamp.")))
 
@@ -183,7 +260,28 @@ ABSTRACT = "select -set arith %s; select -set wide r:A_WIDTH>=8 r:B_WIDTH>=8 r:Y
            "cutpoint @arith @wide %%i; " % _ARITH
 
 
+# The lighting core's abstraction (docs/formal.md §7.3). Before flattening, every instance of the lane
+# (L, attenuation, N.L, x), the shade (colour products) and the normaliser modules is a cut point as a
+# whole (yosys `cutpoint` on a whole module removes its contents and drives every output from $anyseq).
+# After flattening, the wide arithmetic cells (ABSTRACT's list, >= 8 bits) of the units, the register file
+# and sc_light.v are cut too, except sc_light.v's narrow ones (< 12 bits: the pass deal's m & (m - 1) over
+# the 8 slots, the in-flight counter, the issue gap), the register file's shifts (the mode decode's
+# (KINDS >> kind) & 1, the unit selection) and none of the harness's. Every register of sc_light.v
+# (valid bits, hold/pass state, tag lines, accumulator, counter), the units' control and the register
+# file's registers and mode decode are real.
+LIGHT_CUT_MODULES = "*sc_light_lane* *sc_light_shade* *sc_normalize*"
+LIGHT_ABSTRACT = ("cutpoint %s; " % LIGHT_CUT_MODULES) + "flatten; " + \
+    "select -set arith %s; select -set wide r:A_WIDTH>=8 r:B_WIDTH>=8 r:Y_WIDTH>=8; " \
+    "select -set light c:*sc_light.v:*; select -set lightwide r:A_WIDTH>=12 r:B_WIDTH>=12 r:Y_WIDTH>=12; " \
+    "select -set harness c:*sc_formal_light.v:*; " \
+    "select -set decode c:*sc_light_regfile.v:* t:$shr t:$shl t:$shift t:$shiftx %%u %%u %%u %%i; " \
+    "cutpoint @arith @wide %%i @light @lightwide %%d %%d @harness %%d @decode %%d; " % _ARITH
+
+
 def build_smt2(job, work, rtl_dir, abstract):
+    resolve(job)
+    if "light" in job:
+        return build_light_smt2(job, work, rtl_dir, abstract)
     files = [os.path.join(rtl_dir, f) for f in job["files"]]
     files.append(job["harness"])
     chp = " ".join("-set %s %d" % (k, v) for k, v in job["params"].items())
@@ -206,6 +304,29 @@ def build_smt2(job, work, rtl_dir, abstract):
     if m:
         cells = int(m[-1])
     return dt, cells
+
+
+def build_light_smt2(job, work, rtl_dir, abstract):
+    files = [os.path.join(rtl_dir, f) for f in job["files"]]
+    files.append(job["harness"])
+    chp = " ".join("-set %s %d" % (k, v) for k, v in job["params"].items())
+    defs = " ".join("-D%s" % d for d in job.get("defines", []))
+    # the units' own properties (sc_pipe_ctrl, material registers) are proved on the units (jobs unit.*,
+    # pipe_ctrl.*): removed here, as the unit jobs remove sc_pipe_ctrl's; only the harness's (labels l_*) are
+    # checked. (Cells are selected by name: after flatten a cell's src also names its instance's line.)
+    drop = "chformal -assert -remove t:$assert c:l_* %d; "
+    script = ("read_verilog -formal -DFORMAL %s -I%s %s; chparam %s %s; prep -top %s; %s%s"
+              "opt_clean; async2sync; dffunmap; stat; write_smt2 -wires %s" %
+              (defs, rtl_dir, " ".join(files), chp, job["top"], job["top"],
+               LIGHT_ABSTRACT if abstract else "flatten; ", drop, os.path.join(work, "design.smt2")))
+    rc, out, dt = run(["yosys", "-q", "-l", os.path.join(work, "yosys.log"), "-p", script],
+                      os.path.join(work, "yosys.out"), work)
+    log = open(os.path.join(work, "yosys.log")).read()
+    if rc != 0 or re.search(r"implicitly declared", out + log):
+        sys.stderr.write(out[-3000:])
+        raise RuntimeError("yosys failed (or an identifier was implicitly declared), see %s" % work)
+    m = re.findall(r"Number of cells:\s+(\d+)", log)
+    return dt, int(m[-1]) if m else 0
 
 
 def smtbmc(work, depth, induction, vcd=None):
@@ -233,6 +354,16 @@ def prove(name, depth=None, abstract=True, keep=None):
     t_y, cells = build_smt2(job, work, RTL, abstract)
     ok_b, t_b, _, out_b, fail_b = smtbmc(work, depth, False, os.path.join(work, "base.vcd"))
     ok_i, t_i, k, out_i, fail_i = (False, 0.0, None, "", [])
+    if job.get("bmc_only"):
+        # the bounded group (docs/formal.md §7): BMC from reset only, reported as bounded
+        res = dict(job=name, top=job["top"], params=job["params"], depth=depth, abstract=abstract, cells=cells,
+                   base=ok_b, induction=None, k=None, t_yosys=round(t_y, 2), t_base=round(t_b, 2),
+                   t_induction=0.0, failed=fail_b, work=work,
+                   status="bounded" if ok_b else "base failed")
+        if keep is None and ok_b:
+            shutil.rmtree(work)
+            res["work"] = None
+        return res
     if ok_b:
         ok_i, t_i, k, out_i, fail_i = smtbmc(work, depth, True, os.path.join(work, "induction.vcd"))
     res = dict(job=name, top=job["top"], params=job["params"], depth=depth, abstract=abstract, cells=cells,
@@ -292,7 +423,10 @@ def main():
     a.add_argument("--json")
     a.add_argument("--filter", default=".")
     a.add_argument("--no-abstract", action="store_true")
+    ap.add_argument("--shadecore", help="the shadecore CLI (lighting jobs: feature-set parameters)")
     args = ap.parse_args()
+    if args.shadecore:
+        os.environ["SHADECORE"] = args.shadecore
 
     if args.cmd == "table":
         rows = json.load(open(args.json))
@@ -301,7 +435,8 @@ def main():
         for r in rows:
             p = " ".join("%s=%s" % kv for kv in r["params"].items())
             print("| `%s` | %s | %s | %s | %d | %s | %.1f | %.1f | %.1f |" % (
-                r["job"], r["top"], p, "**proved** (k-induction)" if r["status"] == "proved" else r["status"],
+                r["job"], r["top"], p, "**proved** (k-induction)" if r["status"] == "proved" else
+                ("bounded (BMC, passed)" if r["status"] == "bounded" else r["status"]),
                 r["depth"], r["k"], r["t_yosys"], r["t_base"], r["t_induction"]))
         return 0
     if args.cmd == "mutants":
@@ -313,7 +448,8 @@ def main():
             if args.ctest:
                 print("%s %s" % (n, "long" if is_long(n) else "quick"))
             else:
-                print(n, j["top"], j["params"], "depth", j["depth"], "long" if is_long(n) else "quick")
+                print(n, j["top"], j.get("params", "feature set " + j.get("light", "")), "depth", j["depth"],
+                      "bmc" if j.get("bmc_only") else "k-induction", "long" if is_long(n) else "quick")
         return 0
     if args.cmd == "prove":
         if args.job not in jobs():
@@ -323,11 +459,11 @@ def main():
         if args.json:
             json.dump(r, open(args.json, "w"), indent=1)
         print("formal: %s %s: %s (depth %d, induction k=%s, base %.1f s, induction %.1f s%s)" %
-              ("PASS" if r["status"] == "proved" else "FAIL", args.job, r["status"], r["depth"], r["k"],
+              ("PASS" if r["status"] in ("proved", "bounded") else "FAIL", args.job, r["status"], r["depth"], r["k"],
                r["t_base"], r["t_induction"], "" if not r["failed"] else ", failed: " + " ".join(r["failed"])))
         if r["work"]:
             print("formal: logs and VCD in %s" % r["work"])
-        return 0 if r["status"] == "proved" else 1
+        return 0 if r["status"] in ("proved", "bounded") else 1
     if args.cmd == "mutant":
         r = mutant(args.job, args.mutation, args.vcd, args.depth)
         vcd_info = "none"
@@ -349,7 +485,7 @@ def main():
                 continue
             r = prove(n, None, not args.no_abstract)
             res.append(r)
-            fail |= r["status"] != "proved"
+            fail |= r["status"] not in ("proved", "bounded")
             print("%-36s %-16s depth %3d k %3s  yosys %5.1f s  base %6.1f s  induction %6.1f s" %
                   (n, r["status"], r["depth"], r["k"], r["t_yosys"], r["t_base"], r["t_induction"]), flush=True)
         if args.json:
