@@ -201,7 +201,16 @@ CTEST_MUTANTS = [("drop_transfer", "pipe_ctrl.d7"), ("spurious_after_reset", "pi
                  ("material_new_at_write", "unit.cs16.default"), ("release_held", "unit.schlick_div.narrow"),
                  ("iter_accept_in_reset", "unit.schlick_iter.default"),
                  ("iter_release_held", "unit.schlick_iter.default"), ("iter_drop_held", "unit.schlick_iter.default"),
-                 ("iter_drop_transfer", "unit.schlick_iter.default")]
+                 ("iter_drop_transfer", "unit.schlick_iter.default"),
+                 # the lighting core (docs/formal.md §7.4): each mutant edits a temporary copy of rtl/sc_light.v
+                 ("light_accept_in_reset", "light.diffuse"), ("light_write_in_reset", "light.diffuse"),
+                 ("light_accept_during_write", "light.diffuse"), ("light_release_held", "light.diffuse"),
+                 ("light_release_held", "light.gl_default"),
+                 ("light_write_in_flight", "light_bmc.diffuse"), ("light_drop_transfer", "light_bmc.diffuse"),
+                 ("light_spurious_after_reset", "light_bmc.diffuse"), ("light_extra_pass", "light_bmc.diffuse")]
+# BMC depth of a lighting mutant (default: the job's latency + 8, from reset)
+MUTANT_DEPTH = {"light_accept_in_reset": 4, "light_write_in_reset": 4, "light_accept_during_write": 4,
+                "light_extra_pass": 8}
 
 
 # Mutations: (file, exact text, replacement, assertions one of which must fail). Each text must occur
@@ -237,6 +246,33 @@ MUTATIONS = {
                        "end else begin\n        out_valid_q <= 1'b0;", ["it_hold", "it_count", "u_hold_valid"]),
     "iter_drop_transfer": ("sc_schlick_iter.v", "if (accept) begin\n        busy_q <= 1'b1;",
                            "if (accept && in_cos_i[0]) begin\n        busy_q <= 1'b1;", ["it_count"]),
+    # the lighting core: accepts in reset / takes a register write in reset / accepts while reg_we_i
+    "light_accept_in_reset": ("sc_light.v", "assign in_ready_o  = rst_ni && adv_f && !reg_we_i && gap_ok && !hold_q;",
+                              "assign in_ready_o  = adv_f && !reg_we_i && gap_ok && !hold_q;", ["l_in_ready_reset"]),
+    "light_write_in_reset": ("sc_light.v", "assign reg_ready_o = rst_ni && (cnt_q == {CNTW{1'b0}});",
+                             "assign reg_ready_o = (cnt_q == {CNTW{1'b0}});", ["l_reg_ready_reset"]),
+    "light_accept_during_write": ("sc_light.v",
+                                  "assign in_ready_o  = rst_ni && adv_f && !reg_we_i && gap_ok && !hold_q;",
+                                  "assign in_ready_o  = rst_ni && adv_f && gap_ok && !hold_q;", ["l_in_ready_we"]),
+    # a held colour is released (the back advances while the output is held, if in_valid_i)
+    "light_release_held": ("sc_light.v", "assign adv_b       = !out_valid_o || out_ready_i;",
+                           "assign adv_b       = !out_valid_o || out_ready_i || in_valid_i;",
+                           ["l_hold_valid", "l_hold_r", "l_hold_g", "l_hold_b", "l_hold_tag"]),
+    # a register write is taken with one fragment still in flight
+    "light_write_in_flight": ("sc_light.v", "assign reg_ready_o = rst_ni && (cnt_q == {CNTW{1'b0}});",
+                              "assign reg_ready_o = rst_ni && (cnt_q[CNTW-1:1] == 0);", ["l_reg_ready_idle"]),
+    # a pass entering the back is dropped when its tag's top bit is set (the fragment is never output)
+    "light_drop_transfer": ("sc_light.v", "else if (adv_b) vb_q <= {vb_q[NB-2:0], b_in_valid};",
+                            "else if (adv_b) vb_q <= {vb_q[NB-2:0], b_in_valid && !bk_ftag[FTW-1]};",
+                            ["l_order", "l_live"]),
+    # reset leaves the back's first valid bit set: a colour nothing was accepted for
+    "light_spurious_after_reset": ("sc_light.v", "if (!rst_ni) vb_q <= {NB{1'b0}};",
+                                   "if (!rst_ni) vb_q <= {{(NB-1){1'b0}}, 1'b1};",
+                                   ["l_no_spurious", "l_order", "l_reg_ready_idle"]),
+    # an accepted fragment with an odd tag takes one issue slot more than its lights need
+    "light_extra_pass": ("sc_light.v", "else if (issue) hold_q <= !pass_last;",
+                         "else if (issue) hold_q <= !pass_last || (accept && in_tag_i[0]);",
+                         ["l_tput_free", "l_no_spurious", "l_order"]),
 }
 
 
@@ -393,6 +429,8 @@ def mutant(name, mname, vcd=None, depth=None):
     build_smt2(job, work, rtl, True)
     vcd = vcd or os.path.join(work, "cex.vcd")
     # deep enough to reach a held output and the edge after it (the proof depth is what induction needs)
+    if depth is None and "light" in job:
+        depth = MUTANT_DEPTH.get(mname, job["reach"])
     ok_b, t_b, _, out_b, fail_b = smtbmc(work, depth or job["reach"] + 4, False, vcd)
     have_vcd = os.path.exists(vcd) and "$enddefinitions" in open(vcd).read()
     hit = [a for a in fail_b if any(a.endswith(e) or ("." + e) in a or e in a for e in expect)]
@@ -441,7 +479,7 @@ def main():
         return 0
     if args.cmd == "mutants":
         for m, j in CTEST_MUTANTS:
-            print(m, j)
+            print(m, j, "long" if is_long(j) else "quick")
         return 0
     if args.cmd == "list":
         for n, j in jobs().items():
