@@ -212,7 +212,8 @@ CTEST_MUTANTS = [("drop_transfer", "pipe_ctrl.d7"), ("spurious_after_reset", "pi
                  ("light_accept_during_write", "light.diffuse"), ("light_release_held", "light.diffuse"),
                  ("light_release_held", "light.gl_default"),
                  ("light_write_in_flight", "light_bmc.diffuse"), ("light_drop_transfer", "light_bmc.diffuse"),
-                 ("light_spurious_after_reset", "light_bmc.diffuse"), ("light_extra_pass", "light_bmc.diffuse")]
+                 ("light_spurious_after_reset", "light_bmc.diffuse"), ("light_extra_pass", "light_bmc.diffuse"),
+                 ("light_lost_output", "light_bmc.diffuse")]
 # BMC depth of a lighting mutant (default: the job's latency + 8, from reset)
 MUTANT_DEPTH = {"light_accept_in_reset": 4, "light_write_in_reset": 4, "light_accept_during_write": 4,
                 "light_extra_pass": 8,
@@ -276,6 +277,9 @@ MUTATIONS = {
     "light_spurious_after_reset": ("sc_light.v", "if (!rst_ni) vb_q <= {NB{1'b0}};",
                                    "if (!rst_ni) vb_q <= {{(NB-1){1'b0}}, 1'b1};",
                                    ["l_no_spurious", "l_order", "l_reg_ready_idle"]),
+    # no colour is ever presented (the passes leave the back unseen): every accepted fragment is lost
+    "light_lost_output": ("sc_light.v", "assign out_valid_o = vb_q[NB-1] && out_last;",
+                          "assign out_valid_o = vb_q[NB-1] && out_last && 1'b0;", ["l_live", "l_count_bound"]),
     # an accepted fragment with an odd tag takes one issue slot more than its lights need
     "light_extra_pass": ("sc_light.v", "else if (issue) hold_q <= !pass_last;",
                          "else if (issue) hold_q <= !pass_last || (accept && in_tag_i[0]);",

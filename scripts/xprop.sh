@@ -61,10 +61,11 @@ icarus() {
 }
 # verilator DIR -> 0 when every seed passes every vector file
 verilator_x() {
-  local d=$1 st=0 f n s
+  local d=$1 st=0 f n s t0=$SECONDS
   (cd "$d" && verilator --binary -j 2 -Wno-fatal -Wno-lint -Wno-style --x-assign unique --x-initial unique -Itb \
       -f filelist.f --top-module $top -Mdir obj_x -o Vtb "tb/$top.v") >"$d/verilator_build.log" 2>&1 ||
     { tail -n 20 "$d/verilator_build.log"; return 2; }
+  echo "xprop: verilator --x-assign unique --x-initial unique build of $top: $((SECONDS - t0)) s"
   for s in $seeds; do
     for f in "$d"/vectors/*.hex; do
       n=$(grep -c '^[0-9a-fA-F]' "$f")
