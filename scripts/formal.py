@@ -39,13 +39,19 @@ LIGHT_HARNESS = os.path.join(ROOT, "formal", "sc_formal_light.v")
 # The lighting core (docs/formal.md §7): a small and the full feature set. Their Verilog parameters and
 # latency come from the CLI (`shadecore light-sweep --json`: FeatureSet::verilog_params, LightCore::latency),
 # one source; --shadecore EXE or $SHADECORE names the binary (ctest passes the built one).
-LIGHT_SETS = ("diffuse", "gl_default", "full")
+LIGHT_SETS = ("diffuse", "gl_default", "full", "tput_l3", "tput_l3x2")
+# two small sets of formal/ (feature-set JSON files the CLI reads like a named set): diffuse with three
+# directional slots, one and two lanes, so that l_tput_* sees 1..3 passes within a short BMC
+LIGHT_FILES = {"tput_l3": os.path.join(ROOT, "formal", "light_tput_l3.json"),
+               "tput_l3x2": os.path.join(ROOT, "formal", "light_tput_l3x2.json")}
 # BMC depth of the bounded group, from reset. z3's time roughly doubles per step beyond ~12 (l_order's
 # any-constant fragment), so these are what fits this 2-core machine (docs/formal.md §7): diffuse (latency 4)
-# covers several fragments in flight with stalls and resets; gl_default (latency 21) and full (latency 44)
-# do not reach a first output at their depth, so there l_order / l_live / l_no_spurious are checked only
-# over the cycles before any colour can be out (the throughput and count properties are not vacuous).
-LIGHT_BMC_DEPTH = {"diffuse": 14, "gl_default": 12, "full": 8}
+# covers several fragments in flight with stalls and resets; gl_default (latency 21) does not reach a first
+# colour at depth 12, so there l_order / l_live / l_no_spurious only cover the cycles before one can be out
+# (l_tput_free, l_count_bound and l_reg_ready_idle are not vacuous). No bounded job for full: its 4-step base
+# case alone takes ~2 min here, and the depth that would fit (~8) reaches neither a colour nor (8 light_mode
+# writes first) a throughput check; tput_l3 / tput_l3x2 check the multi-pass scheduling instead.
+LIGHT_BMC_DEPTH = {"diffuse": 14, "gl_default": 12, "tput_l3": 12, "tput_l3x2": 12}
 # Every property is 1-step (or made inductive by a strengthening invariant, docs/formal.md), so a short
 # k-induction closes: base case PROOF_DEPTH steps from reset, induction step of the same length.
 PROOF_DEPTH = 4
@@ -106,7 +112,7 @@ def light_info(fs):
                            "%s does not exist" % exe)
     d = tempfile.mkdtemp(prefix="sc_light_params_")
     f = os.path.join(d, "s.json")
-    subprocess.run([exe, "light-sweep", "--features", fs, "--programs", "1", "--per-program", "1", "--seed", "1",
+    subprocess.run([exe, "light-sweep", "--features", LIGHT_FILES.get(fs, fs), "--programs", "1", "--per-program", "1", "--seed", "1",
                     "--json", f], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     j = json.load(open(f))
     shutil.rmtree(d)
@@ -136,8 +142,9 @@ def light_jobs(cfg):
         # parameters are resolved lazily (the CLI is only needed when a lighting job runs)
         base = dict(top="sc_formal_light", files=files, harness=LIGHT_HARNESS, light=fs)
         out["light.%s" % fs] = dict(base, depth=PROOF_DEPTH, reach=None)
-        out["light_bmc.%s" % fs] = dict(base, depth=LIGHT_BMC_DEPTH[fs], reach=None, bmc_only=True,
-                                        defines=["LIGHT_BMC"])
+        if fs in LIGHT_BMC_DEPTH:
+            out["light_bmc.%s" % fs] = dict(base, depth=LIGHT_BMC_DEPTH[fs], reach=None, bmc_only=True,
+                                            defines=["LIGHT_BMC"])
     return out
 
 
@@ -213,7 +220,8 @@ CTEST_MUTANTS = [("drop_transfer", "pipe_ctrl.d7"), ("spurious_after_reset", "pi
                  ("light_release_held", "light.gl_default"),
                  ("light_write_in_flight", "light_bmc.diffuse"), ("light_drop_transfer", "light_bmc.diffuse"),
                  ("light_spurious_after_reset", "light_bmc.diffuse"), ("light_extra_pass", "light_bmc.diffuse"),
-                 ("light_lost_output", "light_bmc.diffuse")]
+                 ("light_lost_output", "light_bmc.diffuse"), ("light_short_pass", "light_bmc.tput_l3"),
+                 ("light_extra_pass", "light_bmc.tput_l3x2")]
 # BMC depth of a lighting mutant (default: the job's latency + 8, from reset)
 MUTANT_DEPTH = {"light_accept_in_reset": 4, "light_write_in_reset": 4, "light_accept_during_write": 4,
                 "light_extra_pass": 8,
@@ -280,6 +288,9 @@ MUTATIONS = {
     # no colour is ever presented (the passes leave the back unseen): every accepted fragment is lost
     "light_lost_output": ("sc_light.v", "assign out_valid_o = vb_q[NB-1] && out_last;",
                           "assign out_valid_o = vb_q[NB-1] && out_last && 1'b0;", ["l_live", "l_count_bound"]),
+    # a pass is taken as its fragment's last when the input tag's bit 0 is set: fewer passes than lights
+    "light_short_pass": ("sc_light.v", "wire pass_last  = (rem_next == {NLT{1'b0}});",
+                         "wire pass_last  = (rem_next == {NLT{1'b0}}) || in_tag_i[0];", ["l_tput_busy"]),
     # an accepted fragment with an odd tag takes one issue slot more than its lights need
     "light_extra_pass": ("sc_light.v", "else if (issue) hold_q <= !pass_last;",
                          "else if (issue) hold_q <= !pass_last || (accept && in_tag_i[0]);",
