@@ -37,7 +37,7 @@
 //                        keeps in_ready_o low for P - 1 clocks, P = max(1, ceil(k / LANES)), and
 //                        (out_ready_i and rst_ni high in the P clocks after it, reg_we_i low in the
 //                        P-th) in_ready_o is high again P clocks after the acceptance (non-iterative
-//                        units only: ITER = 0 here)
+//                        units only: ITER = 0 in every set run)
 //
 // Mutants (scripts/formal.py MUTATIONS, light_*) edit a temporary copy of rtl/sc_light.v.
 // Not a synthesizable module: only for `read_verilog -formal` (scripts/formal.py).
