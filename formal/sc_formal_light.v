@@ -232,6 +232,31 @@ module sc_formal_light #(
       if (f_tp_j == f_tp_p && f_tp_run && out_ready_i && rst_ni && !reg_we_i) l_tput_free: assert (in_ready_o);
     end
   end
+`ifdef LIGHT_INV
+  // ---------------------------------------------------------------------------- strengthening (diffuse)
+  // Job light_inv.diffuse (docs/formal.md §7.2): invariants over the core's internal state that make the
+  // count properties above k-inductive for the diffuse core (LIGHTS = 1, UNITS = 0: front T_F = 1 stage,
+  // back NB = 3 stages, CNTW = 3, one pass per fragment). The o_* wires are left undriven here; after
+  // flattening scripts/formal.py connects each to the named register of sc_light (yosys connect -set), so
+  // they observe the real state. Only for that parameter set.
+  (* keep *) wire        o_vf;      // dut.vf_q
+  (* keep *) wire [2:0]  o_vb;      // dut.vb_q
+  (* keep *) wire        o_hold;    // dut.hold_q
+  (* keep *) wire [2:0]  o_cnt;     // dut.cnt_q
+  (* keep *) wire [TAGW+1:0] o_ftag;  // dut.u_dly_tag's register {tag, first, last}
+  (* keep *) wire [3*(TAGW+1)-1:0] o_btag;  // dut.u_dly_btag's line, stage k = {tag, last} at k*(TAGW+1)
+  wire [2:0] f_inflight = o_vf + o_vb[0] + o_vb[1] + o_vb[2];
+  always @* begin
+    if (f_past) begin
+      i_hold:  assert (!o_hold);                       // one light: every pass is its fragment's last
+      i_front: assert (!o_vf || o_ftag[0]);
+      i_back0: assert (!o_vb[0] || o_btag[0]);
+      i_back1: assert (!o_vb[1] || o_btag[TAGW+1]);
+      i_back2: assert (!o_vb[2] || o_btag[2*(TAGW+1)]);
+      i_cnt:   assert (f_cnt == {{(CW-3){1'b0}}, f_inflight} && o_cnt == f_inflight);
+    end
+  end
+`endif
 `endif
 
 endmodule

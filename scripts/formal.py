@@ -145,7 +145,17 @@ def light_jobs(cfg):
         if fs in LIGHT_BMC_DEPTH:
             out["light_bmc.%s" % fs] = dict(base, depth=LIGHT_BMC_DEPTH[fs], reach=None, bmc_only=True,
                                             defines=["LIGHT_BMC"])
+    # diffuse: the count properties made k-inductive by invariants over sc_light's registers (LIGHT_INV)
+    out["light_inv.diffuse"] = dict(base, light="diffuse", depth=PROOF_DEPTH, reach=None,
+                                    defines=["LIGHT_BMC", "LIGHT_INV"], connect=LIGHT_INV_CONNECT,
+                                    keep_asserts="l_no_spurious l_count_bound l_reg_ready_idle i_*")
     return out
+
+
+# the observation wires of LIGHT_INV (formal/sc_formal_light.v) and the diffuse core's registers they alias
+LIGHT_INV_CONNECT = [("o_vf", "dut.vf_q"), ("o_vb", "dut.vb_q"), ("o_hold", "dut.hold_q"), ("o_cnt", "dut.cnt_q"),
+                     ("o_ftag", "dut.u_dly_tag.genblk3.g_one.q_q"),
+                     ("o_btag", "dut.u_dly_btag.genblk3.g_line.line_q")]
 
 
 def resolve(job):
@@ -221,7 +231,9 @@ CTEST_MUTANTS = [("drop_transfer", "pipe_ctrl.d7"), ("spurious_after_reset", "pi
                  ("light_write_in_flight", "light_bmc.diffuse"), ("light_drop_transfer", "light_bmc.diffuse"),
                  ("light_spurious_after_reset", "light_bmc.diffuse"), ("light_extra_pass", "light_bmc.diffuse"),
                  ("light_lost_output", "light_bmc.diffuse"), ("light_short_pass", "light_bmc.tput_l3"),
-                 ("light_extra_pass", "light_bmc.tput_l3x2")]
+                 ("light_extra_pass", "light_bmc.tput_l3x2"),
+                 ("light_write_in_flight", "light_inv.diffuse"), ("light_drop_transfer", "light_inv.diffuse"),
+                 ("light_spurious_after_reset", "light_inv.diffuse")]
 # BMC depth of a lighting mutant (default: the job's latency + 8, from reset)
 MUTANT_DEPTH = {"light_accept_in_reset": 4, "light_write_in_reset": 4, "light_accept_during_write": 4,
                 "light_extra_pass": 8,
@@ -276,15 +288,15 @@ MUTATIONS = {
                            ["l_hold_valid", "l_hold_r", "l_hold_g", "l_hold_b", "l_hold_tag"]),
     # a register write is taken with one fragment still in flight
     "light_write_in_flight": ("sc_light.v", "assign reg_ready_o = rst_ni && (cnt_q == {CNTW{1'b0}});",
-                              "assign reg_ready_o = rst_ni && (cnt_q[CNTW-1:1] == 0);", ["l_reg_ready_idle"]),
+                              "assign reg_ready_o = rst_ni && (cnt_q[CNTW-1:1] == 0);", ["l_reg_ready_idle", "i_cnt"]),
     # a pass entering the back is dropped when its tag's top bit is set (the fragment is never output)
     "light_drop_transfer": ("sc_light.v", "else if (adv_b) vb_q <= {vb_q[NB-2:0], b_in_valid};",
                             "else if (adv_b) vb_q <= {vb_q[NB-2:0], b_in_valid && !bk_ftag[FTW-1]};",
-                            ["l_order", "l_live"]),
+                            ["l_order", "l_live", "i_cnt"]),
     # reset leaves the back's first valid bit set: a colour nothing was accepted for
     "light_spurious_after_reset": ("sc_light.v", "if (!rst_ni) vb_q <= {NB{1'b0}};",
                                    "if (!rst_ni) vb_q <= {{(NB-1){1'b0}}, 1'b1};",
-                                   ["l_no_spurious", "l_order", "l_reg_ready_idle"]),
+                                   ["l_no_spurious", "l_order", "l_reg_ready_idle", "i_cnt", "i_back0"]),
     # no colour is ever presented (the passes leave the back unseen): every accepted fragment is lost
     "light_lost_output": ("sc_light.v", "assign out_valid_o = vb_q[NB-1] && out_last;",
                           "assign out_valid_o = vb_q[NB-1] && out_last && 1'b0;", ["l_live", "l_count_bound"]),
@@ -373,10 +385,15 @@ def build_light_smt2(job, work, rtl_dir, abstract):
     # pipe_ctrl.*): removed here, as the unit jobs remove sc_pipe_ctrl's; only the harness's (labels l_*) are
     # checked. (Cells are selected by name: after flatten a cell's src also names its instance's line.)
     drop = "chformal -assert -remove t:$assert c:l_* %d; "
+    if job.get("keep_asserts"):
+        # only these are checked (the rest of the bounded group is not inductive)
+        keep = " ".join("c:%s" % a for a in job["keep_asserts"].split())
+        drop = "chformal -assert -remove t:$assert %s %s; " % (keep, "%u " * (len(job["keep_asserts"].split()) - 1) + "%d")
+    conn = "".join("connect -set %s %s; " % c for c in job.get("connect", []))
     script = ("read_verilog -formal -DFORMAL %s -I%s %s; chparam %s %s; prep -top %s; %s%s"
               "opt_clean; async2sync; dffunmap; stat; write_smt2 -wires %s" %
               (defs, rtl_dir, " ".join(files), chp, job["top"], job["top"],
-               LIGHT_ABSTRACT if abstract else "flatten; ", drop, os.path.join(work, "design.smt2")))
+               (LIGHT_ABSTRACT if abstract else "flatten; ") + conn, drop, os.path.join(work, "design.smt2")))
     rc, out, dt = run(["yosys", "-q", "-l", os.path.join(work, "yosys.log"), "-p", script],
                       os.path.join(work, "yosys.out"), work)
     log = open(os.path.join(work, "yosys.log")).read()
