@@ -39,6 +39,10 @@
 //                        P-th) in_ready_o is high again P clocks after the acceptance (non-iterative
 //                        units only: ITER = 0 in every set run)
 //
+//   `ifdef LIGHT_INV (with LIGHT_BMC; diffuse only): invariants over sc_light's registers, observed through
+//   wires scripts/formal.py connects after flattening, that make l_no_spurious, l_count_bound and
+//   l_reg_ready_idle k-inductive there (job light_inv.diffuse)
+//
 // Mutants (scripts/formal.py MUTATIONS, light_*) edit a temporary copy of rtl/sc_light.v.
 // Not a synthesizable module: only for `read_verilog -formal` (scripts/formal.py).
 // ============================================================================================
