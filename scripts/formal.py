@@ -46,12 +46,11 @@ LIGHT_FILES = {"tput_l3": os.path.join(ROOT, "formal", "light_tput_l3.json"),
                "tput_l3x2": os.path.join(ROOT, "formal", "light_tput_l3x2.json")}
 # BMC depth of the bounded group, from reset. z3's time roughly doubles per step beyond ~12 (l_order's
 # any-constant fragment), so these are what fits this 2-core machine (docs/formal.md §7): diffuse (latency 4)
-# covers several fragments in flight with stalls and resets; gl_default (latency 21) does not reach a first
-# colour at depth 10, so there l_order / l_live / l_no_spurious only cover the cycles before one can be out
-# (l_tput_free, l_count_bound and l_reg_ready_idle are not vacuous). No bounded job for full: its 4-step base
-# case alone takes ~2 min here, and the depth that would fit (~8) reaches neither a colour nor (8 light_mode
-# writes first) a throughput check; tput_l3 / tput_l3x2 check the multi-pass scheduling instead.
-LIGHT_BMC_DEPTH = {"diffuse": 14, "gl_default": 10, "tput_l3": 12, "tput_l3x2": 12}
+# covers several fragments in flight with stalls and resets. No bounded job for gl_default (latency 21: a
+# depth-10 BMC, which reaches no colour, was stopped after 15 min of z3 CPU) nor for full (its 4-step base case
+# alone takes ~2 min here; a depth that fits reaches neither a colour nor, after 8 light_mode writes, a
+# throughput check); tput_l3 / tput_l3x2 check the multi-pass scheduling instead.
+LIGHT_BMC_DEPTH = {"diffuse": 14, "tput_l3": 12, "tput_l3x2": 12}
 # Every property is 1-step (or made inductive by a strengthening invariant, docs/formal.md), so a short
 # k-induction closes: base case PROOF_DEPTH steps from reset, induction step of the same length.
 PROOF_DEPTH = 4
