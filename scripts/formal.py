@@ -35,6 +35,22 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RTL = os.path.join(ROOT, "rtl")
 HARNESS = os.path.join(ROOT, "formal", "sc_formal_unit.v")
 CTRL_HARNESS = os.path.join(ROOT, "formal", "sc_formal_ctrl.v")
+LIGHT_HARNESS = os.path.join(ROOT, "formal", "sc_formal_light.v")
+# The lighting core (docs/formal.md §7): a small and the full feature set. Their Verilog parameters and
+# latency come from the CLI (`shadecore light-sweep --json`: FeatureSet::verilog_params, LightCore::latency),
+# one source; --shadecore EXE or $SHADECORE names the binary (ctest passes the built one).
+LIGHT_SETS = ("diffuse", "gl_default", "full", "tput_l3", "tput_l3x2")
+# two small sets of formal/ (feature-set JSON files the CLI reads like a named set): diffuse with three
+# directional slots, one and two lanes, so that l_tput_* sees 1..3 passes within a short BMC
+LIGHT_FILES = {"tput_l3": os.path.join(ROOT, "formal", "light_tput_l3.json"),
+               "tput_l3x2": os.path.join(ROOT, "formal", "light_tput_l3x2.json")}
+# BMC depth of the bounded group, from reset. z3's time roughly doubles per step beyond ~12 (l_order's
+# any-constant fragment), so these are what fits this 2-core machine (docs/formal.md §7): diffuse (latency 4)
+# covers several fragments in flight with stalls and resets. No bounded job for gl_default (latency 21: a
+# depth-10 BMC, which reaches no colour, was stopped after 15 min of z3 CPU) nor for full (its 4-step base case
+# alone takes ~2 min here; a depth that fits reaches neither a colour nor, after 8 light_mode writes, a
+# throughput check); tput_l3 / tput_l3x2 check the multi-pass scheduling instead.
+LIGHT_BMC_DEPTH = {"diffuse": 14, "tput_l3": 12, "tput_l3x2": 12}
 # Every property is 1-step (or made inductive by a strengthening invariant, docs/formal.md), so a short
 # k-induction closes: base case PROOF_DEPTH steps from reset, induction step of the same length.
 PROOF_DEPTH = 4
@@ -77,6 +93,83 @@ def latency(variant, frac):
     raise ValueError("unknown variant " + name)
 
 
+_LIGHT_CACHE = {}
+
+
+def shadecore_exe():
+    exe = os.environ.get("SHADECORE") or os.path.join(ROOT, "build", "cli", "shadecore")
+    return exe
+
+
+def light_info(fs):
+    """verilog_params and latency of feature set fs from `shadecore light-sweep --json`."""
+    if fs in _LIGHT_CACHE:
+        return _LIGHT_CACHE[fs]
+    exe = shadecore_exe()
+    if not os.path.exists(exe):
+        raise RuntimeError("formal: the lighting jobs need the shadecore CLI (--shadecore EXE or $SHADECORE); "
+                           "%s does not exist" % exe)
+    d = tempfile.mkdtemp(prefix="sc_light_params_")
+    f = os.path.join(d, "s.json")
+    subprocess.run([exe, "light-sweep", "--features", LIGHT_FILES.get(fs, fs), "--programs", "1", "--per-program", "1", "--seed", "1",
+                    "--json", f], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    j = json.load(open(f))
+    shutil.rmtree(d)
+    params = {}
+    for kv in j["verilog_params"]:
+        k, v = kv.split("=")
+        params[k] = int(v)
+    _LIGHT_CACHE[fs] = dict(params=params, latency=int(j["latency"]), latency_min=int(j["latency_min"]))
+    return _LIGHT_CACHE[fs]
+
+
+def light_files(cfg):
+    r = cfg["rtl"]
+    files = list(r["sc_light"]["files"]) + list(r["sc_light"]["normalize"]) + list(r["sc_light"]["recip"])
+    files += unit_files(cfg)
+    out = []
+    for f in files:
+        if f not in out:
+            out.append(f)
+    return out
+
+
+def light_jobs(cfg):
+    out = {}
+    files = light_files(cfg)
+    for fs in LIGHT_SETS:
+        # parameters are resolved lazily (the CLI is only needed when a lighting job runs)
+        base = dict(top="sc_formal_light", files=files, harness=LIGHT_HARNESS, light=fs)
+        out["light.%s" % fs] = dict(base, depth=PROOF_DEPTH, reach=None)
+        if fs in LIGHT_BMC_DEPTH:
+            out["light_bmc.%s" % fs] = dict(base, depth=LIGHT_BMC_DEPTH[fs], reach=None, bmc_only=True,
+                                            defines=["LIGHT_BMC"])
+    # diffuse: the count properties made k-inductive by invariants over sc_light's registers (LIGHT_INV)
+    out["light_inv.diffuse"] = dict(base, light="diffuse", depth=PROOF_DEPTH, reach=None,
+                                    defines=["LIGHT_BMC", "LIGHT_INV"], connect=LIGHT_INV_CONNECT,
+                                    keep_asserts="l_no_spurious l_count_bound l_reg_ready_idle i_*")
+    return out
+
+
+# the observation wires of LIGHT_INV (formal/sc_formal_light.v) and the diffuse core's registers they alias
+LIGHT_INV_CONNECT = [("o_vf", "dut.vf_q"), ("o_vb", "dut.vb_q"), ("o_hold", "dut.hold_q"), ("o_cnt", "dut.cnt_q"),
+                     ("o_ftag", "dut.u_dly_tag.genblk3.g_one.q_q"),
+                     ("o_btag", "dut.u_dly_btag.genblk3.g_line.line_q")]
+
+
+def resolve(job):
+    """Fill in a lighting job's parameters (from the CLI)."""
+    if "light" in job and "params" not in job:
+        info = light_info(job["light"])
+        p = dict(info["params"])
+        # harness bounds: fragments in flight <= the stage count <= latency(); clocks to an output <= latency()
+        p["MAXF"] = info["latency"]
+        p["LMAX"] = info["latency"]
+        job["params"] = p
+        job["reach"] = info["latency"] + 8
+    return job
+
+
 def jobs():
     """name -> dict(top, params, files, depth)."""
     cfg = load_config()
@@ -106,6 +199,7 @@ def jobs():
             p = dict(p, NORM=0, CUTOFF=1)
             out["unit_sign_clamp.%s.%s" % (v["name"], dflt["name"])] = dict(
                 top="sc_formal_unit", params=p, files=files, harness=HARNESS, depth=PROOF_DEPTH, reach=lat, drop_ctrl_asserts=True)
+    out.update(light_jobs(cfg))
     return out
 
 
@@ -113,6 +207,10 @@ def is_long(name):
     """Jobs the default test suite leaves out (ctest label long): the deep control proofs (the popcount of
     pc_count at DEPTH 20 and 28 takes z3 from seconds to minutes), the cs16 forms at the wide width (Yosys
     spends ~20-45 s elaborating sc_square's constant functions there) and the NORM = 1 / sign_clamp repeats."""
+    if name.startswith("light"):
+        # the full set's proof (~5 min) and every bounded job (BMC to depth 8-14: 2-10 min) are long;
+        # light.diffuse and light.gl_default take 5-20 s
+        return name.endswith(".full") or name.startswith("light_bmc.")
     return (name in ("pipe_ctrl.d20", "pipe_ctrl.d28", "unit.cs16_faithful.wide", "unit.cs16_compact.wide") or
             name.startswith(("unit_norm.", "unit_sign_clamp.")))
 
@@ -124,7 +222,22 @@ CTEST_MUTANTS = [("drop_transfer", "pipe_ctrl.d7"), ("spurious_after_reset", "pi
                  ("material_new_at_write", "unit.cs16.default"), ("release_held", "unit.schlick_div.narrow"),
                  ("iter_accept_in_reset", "unit.schlick_iter.default"),
                  ("iter_release_held", "unit.schlick_iter.default"), ("iter_drop_held", "unit.schlick_iter.default"),
-                 ("iter_drop_transfer", "unit.schlick_iter.default")]
+                 ("iter_drop_transfer", "unit.schlick_iter.default"),
+                 # the lighting core (docs/formal.md §7.4): each mutant edits a temporary copy of rtl/sc_light.v
+                 ("light_accept_in_reset", "light.diffuse"), ("light_write_in_reset", "light.diffuse"),
+                 ("light_accept_during_write", "light.diffuse"), ("light_release_held", "light.diffuse"),
+                 ("light_release_held", "light.gl_default"),
+                 ("light_write_in_flight", "light_bmc.diffuse"), ("light_drop_transfer", "light_bmc.diffuse"),
+                 ("light_spurious_after_reset", "light_bmc.diffuse"), ("light_extra_pass", "light_bmc.diffuse"),
+                 ("light_lost_output", "light_bmc.diffuse"), ("light_short_pass", "light_bmc.tput_l3"),
+                 ("light_extra_pass", "light_bmc.tput_l3x2"),
+                 ("light_write_in_flight", "light_inv.diffuse"), ("light_drop_transfer", "light_inv.diffuse"),
+                 ("light_spurious_after_reset", "light_inv.diffuse")]
+# BMC depth of a lighting mutant (default: the job's latency + 8, from reset)
+MUTANT_DEPTH = {"light_accept_in_reset": 4, "light_write_in_reset": 4, "light_accept_during_write": 4,
+                "light_extra_pass": 8,
+                # gl_default: a held colour needs a fragment through its 21-edge pipeline first
+                ("light_release_held", "light.gl_default"): 28}
 
 
 # Mutations: (file, exact text, replacement, assertions one of which must fail). Each text must occur
@@ -160,6 +273,39 @@ MUTATIONS = {
                        "end else begin\n        out_valid_q <= 1'b0;", ["it_hold", "it_count", "u_hold_valid"]),
     "iter_drop_transfer": ("sc_schlick_iter.v", "if (accept) begin\n        busy_q <= 1'b1;",
                            "if (accept && in_cos_i[0]) begin\n        busy_q <= 1'b1;", ["it_count"]),
+    # the lighting core: accepts in reset / takes a register write in reset / accepts while reg_we_i
+    "light_accept_in_reset": ("sc_light.v", "assign in_ready_o  = rst_ni && adv_f && !reg_we_i && gap_ok && !hold_q;",
+                              "assign in_ready_o  = adv_f && !reg_we_i && gap_ok && !hold_q;", ["l_in_ready_reset"]),
+    "light_write_in_reset": ("sc_light.v", "assign reg_ready_o = rst_ni && (cnt_q == {CNTW{1'b0}});",
+                             "assign reg_ready_o = (cnt_q == {CNTW{1'b0}});", ["l_reg_ready_reset"]),
+    "light_accept_during_write": ("sc_light.v",
+                                  "assign in_ready_o  = rst_ni && adv_f && !reg_we_i && gap_ok && !hold_q;",
+                                  "assign in_ready_o  = rst_ni && adv_f && gap_ok && !hold_q;", ["l_in_ready_we"]),
+    # a held colour is released (the back advances while the output is held, if in_valid_i)
+    "light_release_held": ("sc_light.v", "assign adv_b       = !out_valid_o || out_ready_i;",
+                           "assign adv_b       = !out_valid_o || out_ready_i || in_valid_i;",
+                           ["l_hold_valid", "l_hold_r", "l_hold_g", "l_hold_b", "l_hold_tag"]),
+    # a register write is taken with one fragment still in flight
+    "light_write_in_flight": ("sc_light.v", "assign reg_ready_o = rst_ni && (cnt_q == {CNTW{1'b0}});",
+                              "assign reg_ready_o = rst_ni && (cnt_q[CNTW-1:1] == 0);", ["l_reg_ready_idle", "i_cnt"]),
+    # a pass entering the back is dropped when its tag's top bit is set (the fragment is never output)
+    "light_drop_transfer": ("sc_light.v", "else if (adv_b) vb_q <= {vb_q[NB-2:0], b_in_valid};",
+                            "else if (adv_b) vb_q <= {vb_q[NB-2:0], b_in_valid && !bk_ftag[FTW-1]};",
+                            ["l_order", "l_live", "i_cnt"]),
+    # reset leaves the back's first valid bit set: a colour nothing was accepted for
+    "light_spurious_after_reset": ("sc_light.v", "if (!rst_ni) vb_q <= {NB{1'b0}};",
+                                   "if (!rst_ni) vb_q <= {{(NB-1){1'b0}}, 1'b1};",
+                                   ["l_no_spurious", "l_order", "l_reg_ready_idle", "i_cnt", "i_back0"]),
+    # no colour is ever presented (the passes leave the back unseen): every accepted fragment is lost
+    "light_lost_output": ("sc_light.v", "assign out_valid_o = vb_q[NB-1] && out_last;",
+                          "assign out_valid_o = vb_q[NB-1] && out_last && 1'b0;", ["l_live", "l_count_bound"]),
+    # a pass is taken as its fragment's last when the input tag's bit 0 is set: fewer passes than lights
+    "light_short_pass": ("sc_light.v", "wire pass_last  = (rem_next == {NLT{1'b0}});",
+                         "wire pass_last  = (rem_next == {NLT{1'b0}}) || in_tag_i[0];", ["l_tput_busy"]),
+    # an accepted fragment with an odd tag takes one issue slot more than its lights need
+    "light_extra_pass": ("sc_light.v", "else if (issue) hold_q <= !pass_last;",
+                         "else if (issue) hold_q <= !pass_last || (accept && in_tag_i[0]);",
+                         ["l_tput_free", "l_no_spurious", "l_order"]),
 }
 
 
@@ -183,7 +329,28 @@ ABSTRACT = "select -set arith %s; select -set wide r:A_WIDTH>=8 r:B_WIDTH>=8 r:Y
            "cutpoint @arith @wide %%i; " % _ARITH
 
 
+# The lighting core's abstraction (docs/formal.md §7.3). Before flattening, every instance of the lane
+# (L, attenuation, N.L, x), the shade (colour products) and the normaliser modules is a cut point as a
+# whole (yosys `cutpoint` on a whole module removes its contents and drives every output from $anyseq).
+# After flattening, the wide arithmetic cells (ABSTRACT's list, >= 8 bits) of the units, the register file
+# and sc_light.v are cut too, except sc_light.v's narrow ones (< 12 bits: the pass deal's m & (m - 1) over
+# the 8 slots, the in-flight counter, the issue gap), the register file's shifts (the mode decode's
+# (KINDS >> kind) & 1, the unit selection) and none of the harness's. Every register of sc_light.v
+# (valid bits, hold/pass state, tag lines, accumulator, counter), the units' control and the register
+# file's registers and mode decode are real.
+LIGHT_CUT_MODULES = "*sc_light_lane* *sc_light_shade* *sc_normalize*"
+LIGHT_ABSTRACT = ("cutpoint %s; " % LIGHT_CUT_MODULES) + "flatten; " + \
+    "select -set arith %s; select -set wide r:A_WIDTH>=8 r:B_WIDTH>=8 r:Y_WIDTH>=8; " \
+    "select -set light c:*sc_light.v:*; select -set lightwide r:A_WIDTH>=12 r:B_WIDTH>=12 r:Y_WIDTH>=12; " \
+    "select -set harness c:*sc_formal_light.v:*; " \
+    "select -set decode c:*sc_light_regfile.v:* t:$shr t:$shl t:$shift t:$shiftx %%u %%u %%u %%i; " \
+    "cutpoint @arith @wide %%i @light @lightwide %%d %%d @harness %%d @decode %%d; " % _ARITH
+
+
 def build_smt2(job, work, rtl_dir, abstract):
+    resolve(job)
+    if "light" in job:
+        return build_light_smt2(job, work, rtl_dir, abstract)
     files = [os.path.join(rtl_dir, f) for f in job["files"]]
     files.append(job["harness"])
     chp = " ".join("-set %s %d" % (k, v) for k, v in job["params"].items())
@@ -206,6 +373,34 @@ def build_smt2(job, work, rtl_dir, abstract):
     if m:
         cells = int(m[-1])
     return dt, cells
+
+
+def build_light_smt2(job, work, rtl_dir, abstract):
+    files = [os.path.join(rtl_dir, f) for f in job["files"]]
+    files.append(job["harness"])
+    chp = " ".join("-set %s %d" % (k, v) for k, v in job["params"].items())
+    defs = " ".join("-D%s" % d for d in job.get("defines", []))
+    # the units' own properties (sc_pipe_ctrl, material registers) are proved on the units (jobs unit.*,
+    # pipe_ctrl.*): removed here, as the unit jobs remove sc_pipe_ctrl's; only the harness's (labels l_*) are
+    # checked. (Cells are selected by name: after flatten a cell's src also names its instance's line.)
+    drop = "chformal -assert -remove t:$assert c:l_* %d; "
+    if job.get("keep_asserts"):
+        # only these are checked (the rest of the bounded group is not inductive)
+        keep = " ".join("c:%s" % a for a in job["keep_asserts"].split())
+        drop = "chformal -assert -remove t:$assert %s %s; " % (keep, "%u " * (len(job["keep_asserts"].split()) - 1) + "%d")
+    conn = "".join("connect -set %s %s; " % c for c in job.get("connect", []))
+    script = ("read_verilog -formal -DFORMAL %s -I%s %s; chparam %s %s; prep -top %s; %s%s"
+              "opt_clean; async2sync; dffunmap; stat; write_smt2 -wires %s" %
+              (defs, rtl_dir, " ".join(files), chp, job["top"], job["top"],
+               (LIGHT_ABSTRACT if abstract else "flatten; ") + conn, drop, os.path.join(work, "design.smt2")))
+    rc, out, dt = run(["yosys", "-q", "-l", os.path.join(work, "yosys.log"), "-p", script],
+                      os.path.join(work, "yosys.out"), work)
+    log = open(os.path.join(work, "yosys.log")).read()
+    if rc != 0 or re.search(r"implicitly declared", out + log):
+        sys.stderr.write(out[-3000:])
+        raise RuntimeError("yosys failed (or an identifier was implicitly declared), see %s" % work)
+    m = re.findall(r"Number of cells:\s+(\d+)", log)
+    return dt, int(m[-1]) if m else 0
 
 
 def smtbmc(work, depth, induction, vcd=None):
@@ -233,6 +428,16 @@ def prove(name, depth=None, abstract=True, keep=None):
     t_y, cells = build_smt2(job, work, RTL, abstract)
     ok_b, t_b, _, out_b, fail_b = smtbmc(work, depth, False, os.path.join(work, "base.vcd"))
     ok_i, t_i, k, out_i, fail_i = (False, 0.0, None, "", [])
+    if job.get("bmc_only"):
+        # the bounded group (docs/formal.md §7): BMC from reset only, reported as bounded
+        res = dict(job=name, top=job["top"], params=job["params"], depth=depth, abstract=abstract, cells=cells,
+                   base=ok_b, induction=None, k=None, t_yosys=round(t_y, 2), t_base=round(t_b, 2),
+                   t_induction=0.0, failed=fail_b, work=work,
+                   status="bounded" if ok_b else "base failed")
+        if keep is None and ok_b:
+            shutil.rmtree(work)
+            res["work"] = None
+        return res
     if ok_b:
         ok_i, t_i, k, out_i, fail_i = smtbmc(work, depth, True, os.path.join(work, "induction.vcd"))
     res = dict(job=name, top=job["top"], params=job["params"], depth=depth, abstract=abstract, cells=cells,
@@ -262,6 +467,8 @@ def mutant(name, mname, vcd=None, depth=None):
     build_smt2(job, work, rtl, True)
     vcd = vcd or os.path.join(work, "cex.vcd")
     # deep enough to reach a held output and the edge after it (the proof depth is what induction needs)
+    if depth is None and "light" in job:
+        depth = MUTANT_DEPTH.get((mname, name), MUTANT_DEPTH.get(mname, job["reach"]))
     ok_b, t_b, _, out_b, fail_b = smtbmc(work, depth or job["reach"] + 4, False, vcd)
     have_vcd = os.path.exists(vcd) and "$enddefinitions" in open(vcd).read()
     hit = [a for a in fail_b if any(a.endswith(e) or ("." + e) in a or e in a for e in expect)]
@@ -292,7 +499,10 @@ def main():
     a.add_argument("--json")
     a.add_argument("--filter", default=".")
     a.add_argument("--no-abstract", action="store_true")
+    ap.add_argument("--shadecore", help="the shadecore CLI (lighting jobs: feature-set parameters)")
     args = ap.parse_args()
+    if args.shadecore:
+        os.environ["SHADECORE"] = args.shadecore
 
     if args.cmd == "table":
         rows = json.load(open(args.json))
@@ -301,19 +511,22 @@ def main():
         for r in rows:
             p = " ".join("%s=%s" % kv for kv in r["params"].items())
             print("| `%s` | %s | %s | %s | %d | %s | %.1f | %.1f | %.1f |" % (
-                r["job"], r["top"], p, "**proved** (k-induction)" if r["status"] == "proved" else r["status"],
+                r["job"], r["top"], p, "**proved** (k-induction)" if r["status"] == "proved" else
+                ("bounded (BMC, passed)" if r["status"] == "bounded" else r["status"]),
                 r["depth"], r["k"], r["t_yosys"], r["t_base"], r["t_induction"]))
         return 0
     if args.cmd == "mutants":
         for m, j in CTEST_MUTANTS:
-            print(m, j)
+            # every mutant runs a short BMC (4-28 steps, < 30 s), so none is long, except on the full set
+            print(m, j, "long" if j.endswith(".full") else "quick")
         return 0
     if args.cmd == "list":
         for n, j in jobs().items():
             if args.ctest:
                 print("%s %s" % (n, "long" if is_long(n) else "quick"))
             else:
-                print(n, j["top"], j["params"], "depth", j["depth"], "long" if is_long(n) else "quick")
+                print(n, j["top"], j.get("params", "feature set " + j.get("light", "")), "depth", j["depth"],
+                      "bmc" if j.get("bmc_only") else "k-induction", "long" if is_long(n) else "quick")
         return 0
     if args.cmd == "prove":
         if args.job not in jobs():
@@ -323,11 +536,11 @@ def main():
         if args.json:
             json.dump(r, open(args.json, "w"), indent=1)
         print("formal: %s %s: %s (depth %d, induction k=%s, base %.1f s, induction %.1f s%s)" %
-              ("PASS" if r["status"] == "proved" else "FAIL", args.job, r["status"], r["depth"], r["k"],
+              ("PASS" if r["status"] in ("proved", "bounded") else "FAIL", args.job, r["status"], r["depth"], r["k"],
                r["t_base"], r["t_induction"], "" if not r["failed"] else ", failed: " + " ".join(r["failed"])))
         if r["work"]:
             print("formal: logs and VCD in %s" % r["work"])
-        return 0 if r["status"] == "proved" else 1
+        return 0 if r["status"] in ("proved", "bounded") else 1
     if args.cmd == "mutant":
         r = mutant(args.job, args.mutation, args.vcd, args.depth)
         vcd_info = "none"
@@ -349,7 +562,7 @@ def main():
                 continue
             r = prove(n, None, not args.no_abstract)
             res.append(r)
-            fail |= r["status"] != "proved"
+            fail |= r["status"] not in ("proved", "bounded")
             print("%-36s %-16s depth %3d k %3s  yosys %5.1f s  base %6.1f s  induction %6.1f s" %
                   (n, r["status"], r["depth"], r["k"], r["t_yosys"], r["t_base"], r["t_induction"]), flush=True)
         if args.json:

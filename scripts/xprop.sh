@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
-# X-propagation runs of one specular unit (issue 21, docs/formal.md §4), on its handoff bundle:
+# X-propagation runs of one specular unit or of the lighting core (issue 21, docs/formal.md §5, §7.5), on its
+# handoff bundle:
 #
-#   scripts/xprop.sh SHADECORE WORKDIR [--seeds "1 2 3"] -- HANDOFF-ARGS...     (e.g. --variant cs16 --config narrow)
+#   scripts/xprop.sh SHADECORE WORKDIR [--seeds "1 2 3"] -- HANDOFF-ARGS...     (e.g. --variant cs16 --config narrow,
+#                                                                               or --core lighting --features diffuse)
 #
 # 1. `shadecore handoff HANDOFF-ARGS` writes the bundle (RTL, self-checking testbench, vectors from the C model).
 # 2. Icarus (4-state): the bundle's testbench with every register of the unit X until the reset (Icarus starts
@@ -37,6 +39,9 @@ else
   [ $rc -eq 0 ] || fail "handoff exited $rc"
 fi
 top=tb_shadecore
+# the lighting core's bundle has its own testbench (tb/tb_shadecore_light.v: register writes, fragments, colours)
+light=0
+if [ -f "$b/tb/tb_shadecore_light.v" ] && grep -q "sc_light.v" "$b/filelist.f"; then top=tb_shadecore_light; light=1; fi
 
 # icarus DIR -> 0 when every vector file passes; prints the testbench's lines
 icarus() {
@@ -56,10 +61,11 @@ icarus() {
 }
 # verilator DIR -> 0 when every seed passes every vector file
 verilator_x() {
-  local d=$1 st=0 f n s
+  local d=$1 st=0 f n s t0=$SECONDS
   (cd "$d" && verilator --binary -j 2 -Wno-fatal -Wno-lint -Wno-style --x-assign unique --x-initial unique -Itb \
       -f filelist.f --top-module $top -Mdir obj_x -o Vtb "tb/$top.v") >"$d/verilator_build.log" 2>&1 ||
     { tail -n 20 "$d/verilator_build.log"; return 2; }
+  echo "xprop: verilator --x-assign unique --x-initial unique build of $top: $((SECONDS - t0)) s"
   for s in $seeds; do
     for f in "$d"/vectors/*.hex; do
       n=$(grep -c '^[0-9a-fA-F]' "$f")
@@ -83,17 +89,21 @@ verilator_x "$work/run" || fail "Verilator --x-assign unique --x-initial unique 
 cp -r "$b" "$work/mut" || fail "copy"
 ctl="$work/mut/rtl/sc_pipe_ctrl.v"
 old="v_q <= {DEPTH{1'b0}};"
-if [ -f "$work/mut/rtl/sc_schlick_iter.v" ] && grep -q "sc_schlick_iter" "$work/mut/filelist.f" &&
+new=""
+if [ $light -eq 1 ]; then
+  # the lighting core: its back's valid bits (the output stage among them) are not cleared in reset
+  ctl="$work/mut/rtl/sc_light.v"; old="vb_q <= {NB{1'b0}};"; new="vb_q <= vb_q;"
+elif [ -f "$work/mut/rtl/sc_schlick_iter.v" ] && grep -q "sc_schlick_iter" "$work/mut/filelist.f" &&
    ! grep -q "sc_pipe_ctrl" "$work/mut/filelist.f"; then
   ctl="$work/mut/rtl/sc_schlick_iter.v"; old="out_valid_q <= 1'b0;"
 fi
 [ "$(grep -cF "$old" "$ctl")" -ge 1 ] || fail "mutation text not found in $ctl"
-python3 - "$ctl" "$old" <<'EOF' || fail "mutation"
+python3 - "$ctl" "$old" "$new" <<'EOF' || fail "mutation"
 import sys
-p, old = sys.argv[1], sys.argv[2]
+p, old, new = sys.argv[1], sys.argv[2], sys.argv[3]
 s = open(p).read()
 i = s.index(old)
-s = s[:i] + "// mutated: valid not cleared in reset" + s[i + len(old):]
+s = s[:i] + new + "// mutated: valid not cleared in reset" + s[i + len(old):]
 open(p, "w").write(s)
 EOF
 if icarus "$work/mut" >/dev/null; then fail "a control that keeps X valid bits through reset passed the Icarus run"; fi
