@@ -181,26 +181,30 @@ def plot(doc, path, footer_text):
     import matplotlib.pyplot as plt
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import figures
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for ax, key, label in ((axes[0], "cells", "Yosys generic cells (hierarchical)"),
-                           (axes[1], "x7_dsp48", "xc7 DSP48E1")):
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
+    for ax, key, label in ((axes[0], "cells", "Yosys generic cells"), (axes[1], "x7_dsp48", "xc7 DSP48E1"),):
         for r in doc["rows"]:
             v = r.get(key)
             if v is None:
                 continue
             x = r["fragments_per_clock"].get("8", r["fragments_per_clock"].get("1"))
+            colour = "C0" if r["set"] == "full" else "C1"
             mk = "o" if r.get("spec_guard", 0) else "s"
-            ax.scatter([x], [v], marker=mk, color="C0" if r["set"] == "full" else "C1")
-            ax.annotate(f"{r['set']} L{r['lanes']} g{r.get('spec_guard', 0)}", (x, v), fontsize=6,
-                        xytext=(3, 3), textcoords="offset points")
+            ax.scatter([x], [v], marker=mk, facecolors="none" if r.get("superseded") else colour, edgecolors=colour)
+            ax.annotate(f"{r['set']} L{r['lanes']} g{r.get('spec_guard', 0)}{' (first RTL)' if r.get('superseded') else ''}",
+                        (x, v), fontsize=6, xytext=(3, 3), textcoords="offset points")
         if key == "x7_dsp48":
             ax.axhline(XC7A35T["dsp"], color="0.5", ls="--", lw=0.8)
-            ax.text(0.01, XC7A35T["dsp"], " XC7A35T: 90 DSP48E1", fontsize=6, va="bottom", color="0.4")
+            ax.text(0.02, XC7A35T["dsp"], "XC7A35T: 90 DSP48E1", fontsize=6, va="bottom", color="0.4",
+                    transform=ax.get_yaxis_transform())
         ax.set_xscale("log", base=2)
         ax.set_yscale("log")
-        ax.set_xlabel("fragments per clock with every slot's light enabled")
+        ax.set_xlim(0.09, 1.6)
+        ax.set_xlabel("fragments per clock, every light slot enabled")
         ax.set_ylabel(label)
-        ax.set_title(f"lighting core: {label} against throughput (o spec_guard > 0, ■ 0)")
+        ax.set_title(f"{label} against throughput")
+    fig.suptitle("lighting core (docs/lighting_cost.json): ○ spec_guard 5, □ spec_guard 0; hollow = first "
+                 "programmable RTL; blue full, orange the other named sets", fontsize=8)
     figures.save(fig, path, footer_text)
 
 
@@ -237,6 +241,9 @@ def main():
                     help="only write docs/lighting.md §8.1's table and docs/lighting_cost.png from --out")
     a = ap.parse_args()
     if a.report:
+        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        import figures
+        figures.require("matplotlib")
         if not os.path.exists(a.out):
             sys.exit(f"lighting_cost.py: error: {a.out} does not exist")
         write_report(json.load(open(a.out)), a.out)
