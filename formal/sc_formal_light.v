@@ -51,6 +51,7 @@
 module sc_formal_light #(
     parameter integer FRAC         = 16,
     parameter integer GUARD        = 5,
+    parameter integer SGUARD       = 0,
     parameter integer LIGHTS       = 1,
     parameter integer SLOT_KINDS   = 1,
     parameter integer LANES        = 1,
@@ -93,7 +94,7 @@ module sc_formal_light #(
   wire [TAGW-1:0] out_tag_o;
 
   sc_light #(
-      .FRAC(FRAC), .GUARD(GUARD), .LIGHTS(LIGHTS), .SLOT_KINDS(SLOT_KINDS), .LANES(LANES),
+      .FRAC(FRAC), .GUARD(GUARD), .SGUARD(SGUARD), .LIGHTS(LIGHTS), .SLOT_KINDS(SLOT_KINDS), .LANES(LANES),
       .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE), .UNITS(UNITS), .CUTOFF(CUTOFF), .NORM(NORM),
       .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER), .NORMALIZE(NORMALIZE),
       .CHANNELS(CHANNELS), .TAGW(TAGW)
