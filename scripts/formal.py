@@ -291,7 +291,8 @@ MUTATIONS = {
     # a pass entering the back is dropped when its tag's top bit is set (the fragment is never output)
     "light_drop_transfer": ("sc_light.v", "else if (adv_b) vb_q <= {vb_q[NB-2:0], b_in_valid};",
                             "else if (adv_b) vb_q <= {vb_q[NB-2:0], b_in_valid && !bk_ftag[FTW-1]};",
-                            ["l_order", "l_live", "i_cnt"]),
+                            # a dropped fragment is never taken: accepted − taken grows past the bound too
+                            ["l_order", "l_live", "i_cnt", "l_count_bound"]),
     # reset leaves the back's first valid bit set: a colour nothing was accepted for
     "light_spurious_after_reset": ("sc_light.v", "if (!rst_ni) vb_q <= {NB{1'b0}};",
                                    "if (!rst_ni) vb_q <= {{(NB-1){1'b0}}, 1'b1};",
