@@ -26,6 +26,7 @@
 #include "output.hpp"
 #include "shadecore/common/rtl_files.hpp"
 #include "shadecore/units/cs16_forms.hpp"
+#include "shadecore/units/normalize.hpp"
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
 #include "shadecore/units/normalize.hpp"
@@ -294,7 +295,7 @@ std::string operator_contract(const FeatureSet& fs) {
     const int VF = fs.unit_format().frac;  // the normalisers' output format: the specular path's
     s += "- Every normalisation (" + list + ") is a reciprocal square root by table + two Newton–Raphson steps,\n"
          "  with " + std::to_string(VF) + " fraction bits (F + spec_guard): |u_i − 2^" + std::to_string(VF) +
-         "·v_i/|v|| ≤ " + (VF <= 22 ? "0.55" : "0.70") + " ulp; v = 0 gives 0.\n";
+         "·v_i/|v|| ≤ " + fmt::format("{:.2f}", normalize3_bound_ulp(VF)) + " ulp; v = 0 gives 0.\n";
   } else {
     s += "- No normalisation in this feature set (directional lights, normals used as given).\n";
   }

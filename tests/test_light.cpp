@@ -38,7 +38,7 @@ TEST(LightOps, RsqrtSeedTable) {
   EXPECT_EQ(rsqrt_seed(127), 513u);
 }
 
-// Bound (docs/lighting.md §3.1): every component within 0.55 output ulps of the exact v_i/|v|.
+// Bound (docs/lighting.md §3.1): every component within normalize3_bound_ulp(F) output ulps of the exact v_i/|v|.
 // Exhaustive over every mantissa of s at F = 8 and 16 (v = (a, 0, 0) and (a, a, 0), a < 2^20 covers
 // each even/odd exponent with all its mantissas), plus dense random 3-vectors of every magnitude; the
 // same vectors at F = 21, 22 (the specular path at F = 16 with spec_guard 5, the default, and 6) and 24
@@ -46,7 +46,7 @@ TEST(LightOps, RsqrtSeedTable) {
 // at 24 output bits their residue shows (0.694 measured; docs/lighting.md §3.1).
 TEST(LightOps, NormalizeBoundExhaustiveAndDense) {
   for (int F : {8, 16, 21, 22, 24}) {
-    const double bound = F <= 22 ? 0.55 : 0.70;
+    const double bound = normalize3_bound_ulp(F);
     double worst = 0;
     for (int64_t a = 1; a < (int64_t{1} << 20); ++a) {
       const int64_t v1[3] = {a, 0, 0}, v2[3] = {a, a, 0}, v3[3] = {-a, a, a};

@@ -61,6 +61,11 @@ inline uint64_t rsqrt_nr_step(int R, int MB, uint64_t m, uint64_t y) {
   return (y * c) >> (R + 1);
 }
 
+// The stated bound of normalize3 in output ulps (docs/lighting.md §3.1): 0.55 up to F = 22; above it the two
+// Newton steps from the 7-bit seed (about 24 bits) show, 0.70 (0.694 measured at F = 24). One source for
+// the test (LightOps.NormalizeBoundExhaustiveAndDense) and the handoff's interface.md.
+inline constexpr double normalize3_bound_ulp(int F) { return F <= 22 ? 0.55 : 0.70; }
+
 // u = v / |v| as signed codes with F fraction bits (1.0 = 2^F), each component rounded half up
 // (toward +∞ on ties). v = 0 gives u = 0. The components of v are signed integers (any common
 // fraction: the result does not depend on it) with |v_i| < 2^40.
