@@ -769,7 +769,7 @@ def light_section(g):
                 S, n, _fmt_iv(lo, hi, 2), float(P["x step (F ulps)"][1]), float(P["att step (F ulps)"][1]),
                 float(t[0]) - 1, float(t[1])))
     L.append("")
-    L.append("| set | proved bound over n = 16..1024 (LSB) | measured quant min..max (LSB), cs16 | command | date |")
+    L.append("| set | composed bound over n = 16..1024, under H1–H6 (LSB) | measured quant min..max (LSB), cs16 (the cs16 row of `--specular all`) | command | date |")
     L.append("|---|---|---|---|---|")
     for S in ("gl_default", "full"):
         (lo, hi), _, _ = light_bound(S, 1024)
@@ -872,6 +872,7 @@ def main():
     rp = sub.add_parser("report", help="rewrite docs/bounds.md from §3 on (§1, §2 are scripts/bounds.py's) from the JSON of run")
     rp.add_argument("--json", required=True)
     rp.add_argument("--doc", default=os.path.join(ROOT, "docs", "bounds.md"))
+    rp.add_argument("--sections", choices=["3-5", "4-5"], default="3-5")
     rp.add_argument("--measured", action="append", default=[],
                     help="SET=RANGE=DATE=COMMAND: a measured quant range of light-sweep (cs16) for §5")
     args = ap.parse_args()
@@ -890,9 +891,15 @@ def main():
             meas[S] = dict(range=rng, date=date, command=cmd)
         g["measured"] = meas
         doc = open(args.doc).read()
-        k = doc.index("## 3. Quantisation contracts")
+        # with --sections 4-5 only §4 and §5 are rewritten (§3 then stays as the last full run wrote it)
+        if args.sections == "4-5":
+            k = doc.index("## 4. Lighting operators") if "## 4. Lighting operators" in doc else len(doc)
+            text = doc[:k].rstrip() + "\n\n" + operator_section(g).rstrip() + "\n\n" + light_section(g).rstrip() + "\n"
+        else:
+            k = doc.index("## 3. Quantisation contracts")
+            text = doc[:k] + report_section(g).rstrip() + "\n"
         with open(args.doc + ".tmp", "w") as f:
-            f.write(doc[:k] + report_section(g).rstrip() + "\n")
+            f.write(text)
         os.replace(args.doc + ".tmp", args.doc)
         print("gappa: wrote %s from §3 on" % args.doc)
         return 0
