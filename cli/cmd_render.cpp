@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // shadecore render — a scene through the lighting core (docs/scenes.md).
 //
-//   shadecore render SCENE --out DIR [--rtl] [--full-core] [--lanes K] [--json FILE] [--size WxH]
+//   shadecore render SCENE --out DIR [--rtl] [--full-core] [--lanes K] [--share S] [--json FILE] [--size WxH]
 //
 // Derives the smallest feature set(s) that render the scene exactly (one core per specular unit in use),
 // prints them, rasterises on the host (shadecore/render/raster.hpp: host software, not RTL), and writes into DIR:
@@ -63,6 +63,7 @@ struct RenderArgs {
   std::string scene, out, json_path, size;
   bool rtl = false, full_core = false, json_given = false, size_given = false;
   int lanes = 1;
+  int share = 1;
 };
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -320,6 +321,7 @@ void run_render(const RenderArgs& a) {
   render::Settings st;
   st.full_core = a.full_core;
   st.lanes = a.lanes;
+  st.share = a.share;
   if (a.size_given) std::tie(st.width, st.height) = parse_size(a.size);
   const bool sheet = sc.contact_sheet.has_value();
   std::vector<std::string> names = {"cmodel.png", "exact.png", "diff_exact.png"};
@@ -550,6 +552,7 @@ void run_render(const RenderArgs& a) {
     j["height"] = img_h;
     j["full_core"] = a.full_core;
     j["lanes"] = a.lanes;
+    j["share"] = a.share;
     j["features"] = features;
     j["fragments"] = total_frags;
     j["error_vs_exact"] = stats_json(err_exact);
@@ -602,10 +605,17 @@ void add_render(CLI::App& app) {
                   "lanes of every core (per-light datapaths; enabled lights take ceil(k/lanes) passes), clamped to "
                   "its light slots")
       ->check(CLI::Range(1, kMaxLights));
+  auto* share_opt = sub->add_option("--share", args->share,
+                                    "clocks per pass of every core (1..4: its normalisers and dot-product multipliers "
+                                    "shared over that many clocks; > 1 needs --lanes 1)")
+                        ->check(CLI::Range(1, kShareMax));
   auto* json_opt = sub->add_option("--json", args->json_path, "write a JSON report (atomically)")->check(cliargs::NonEmpty("path"));
   auto* size_opt = sub->add_option("--size", args->size, "render at WxH instead of the scene's image size (e.g. 64x64)")
                        ->check(cliargs::NonEmpty("size (expected WxH, e.g. 64x64)"));
-  sub->callback([args, json_opt, size_opt] {
+  sub->callback([args, json_opt, size_opt, share_opt] {
+    if (share_opt->count() > 0 && args->share > 1 && args->lanes > 1)
+      throw std::invalid_argument("--share " + std::to_string(args->share) +
+                                  " needs --lanes 1 (the shared normalisers serve one lane)");
     args->json_given = json_opt->count() > 0;
     args->size_given = size_opt->count() > 0;
     run_render(*args);

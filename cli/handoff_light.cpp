@@ -421,8 +421,8 @@ every register the feature set uses before the first fragment.
 
 - Latency: {lat} (`LightCore::latency(regs)`, the formula in the header of `rtl/sc_light.v`: per pass,
   plus one issue interval per further pass; the figures above are the largest over every register state.)
-- Cycles per fragment: ⌈k/{lanes}⌉ passes for k enabled lights (one pass with none), one pass per clock
-  ({thru}); the core has {lanes} lane(s) for {nl} light slot(s).
+- Cycles per fragment: ⌈k/{lanes}⌉ passes for k enabled lights (one pass with none), one pass every
+  {interval} clock(s) ({thru}); the core has {lanes} lane(s) for {nl} light slot(s){sharenote}.
 
 ## Programming sequence
 
@@ -485,7 +485,12 @@ input and output delays of 30 % of the period as stated assumptions.
       fmt::arg("cw", F + 1), fmt::arg("nnorm", fs.normalize ? ": the core renormalises N" : "; without `normalize` N is used as given"),
       fmt::arg("mono", fs.channels == 1 ? "; mono core: `out_g_o` = `out_b_o` = 0" : ""), fmt::arg("stride", kLightStride),
       fmt::arg("nlm1", fs.num_lights() - 1), fmt::arg("regs", register_table(fs)),
-      fmt::arg("iterready", iter ? " && (issue interval: schlick_iter takes one pass per F+spec_guard+4 clocks)" : ""),
+      fmt::arg("iterready", std::string(iter ? " && (issue interval: schlick_iter takes one pass per F+spec_guard+4 clocks)" : "") +
+                                (fs.share > 1 ? fmt::format(" && (phase: a pass issues every {}th clock)", fs.share) : "")),
+      fmt::arg("interval", core.pass_interval()),
+      fmt::arg("sharenote", fs.share > 1 ? fmt::format(", its vector normalisers and dot-product multipliers shared over "
+                                                       "{} clocks per pass (`SHARE` = {}, docs/lighting.md §2.1)", fs.share, fs.share)
+                                         : std::string()),
       fmt::arg("lat", lat),
       fmt::arg("thru", iter ? fmt::format("schlick_iter: one pass every {} clocks", schlick_iter_interval(fs.unit_format().frac))
                             : "while `out_ready_i` is high"),

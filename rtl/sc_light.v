@@ -26,6 +26,11 @@
 //   SLOT_KINDS    3 bits per slot, slot j at [3j+2:3j]: bit k = the slot can take kind k
 //                 (KIND_* of sc_light_regs.vh: 0 directional, 1 point, 2 point_att)   (default 1)
 //   LANES         per-light datapaths, 1..LIGHTS: k enabled lights take ⌈k/LANES⌉ passes (default 1)
+//   SHARE         clocks per pass, 1..4 (feature-set key share): passes issue only every SHARE-th
+//                 front-advancing edge (a phase counter), and the vector normalisations of a pass
+//                 (N̂, V̂, L̂, Ĥ, those that exist) share ⌈ops/SHARE⌉ sc_normalize instances, op k
+//                 entering instance ⌊k/SHARE⌋ at a stage ≡ k (mod SHARE). SHARE > 1 needs LANES = 1
+//                 (default 1)
 //   AMBIENT       0/1: emission + global ambient + per-light ambient terms            (default 1)
 //   DIFFUSE       0/1: max(N̂·L, 0)·d·Id                                               (default 1)
 //   UNITS         bit v = the specular unit with variant id v (config/configs.json "variants",
@@ -76,26 +81,32 @@
 //               NL = 10 (sc_normalize), RL = 7 (sc_recip), NEED_N = DIFFUSE | UNITS,
 //               LV = UNITS & LOCAL_VIEWER, ANY_ATT = some slot can be point_att,
 //               ANY_PL = ANY_ATT | (NEED_N & some slot can be point)
+//               the normalisations N (NEED_N & NORMALIZE), V (LV), L (ANY_PL), H (UNITS & BLINN) that
+//               exist are numbered k = 0, 1, ... in that order: K_V, K_L, K_H; S = SHARE
 //               T_NN = (NEED_N & NORMALIZE) ? NL : 0      N̂
-//               T_V  = LV ? NL : 0                         V̂
-//               T_L  = ANY_PL ? NL : 0                     L̂ of point lights
+//               T_V  = LV ? K_V mod S + NL : 0             V̂
+//               T_L  = ANY_PL ? K_L mod S + NL : 0         L̂ of point lights
 //               T_A  = max(T_NN, T_L)                      N̂·L → diff, f at T_A+1
-//               T_H  = max(T_L, T_V);  T_RV = max(T_A+2, T_V)
+//               T_H  = the first t >= max(T_L, T_V) with t ≡ K_H (mod S);  T_RV = max(T_A+2, T_V)
 //               T_XB = T_H+NL+1 (BLINN), T_XP = LV ? T_RV+1 : T_A+2 (PHONG)      unit input x
-//               T_F  = max(1, NEED_N ? T_A+1 : 0, UNITS ? max(T_XB, T_XP) : 0, ANY_ATT ? NL+3+RL : 0)
+//               T_ATT = T_L+3+RL                           att (point_att)
+//               T_F  = max(1, NEED_N ? T_A+1 : 0, UNITS ? max(T_XB, T_XP) : 0, ANY_ATT ? T_ATT : 0)
+//               (with S = 1 every op enters at stage 0: T_V = T_L = NL, T_H = max(T_L, T_V))
 //               NB   = 3 + ANY_ATT
 //               LATENCY_P = T_F + (UNITS ? L_unit : 0) + NB, L_unit = the material's unit's
 //                           Unit::latency(): cs16 7, cs16 forms 5, schlick_nr 10, schlick_div /
 //                           schlick_iter VF+4; +2 with NORM
-//             and the last pass issues (passes − 1)·interval edges after the acceptance:
+//             and the last pass issues (passes − 1)·interval edges after the acceptance (interval = S,
+//             schlick_iter: VF+4 rounded up to a multiple of S):
 //             LightCore::latency(regs) = LATENCY_P + (passes − 1)·interval. Under backpressure the
 //             front, the units and the back are elastic segments (as sc_specular with NORM = 1): a
 //             fragment takes LightCore::latency_min() = NB+1 .. latency(regs) advancing edges;
 //             without units the core is one global-enable pipeline (exactly latency(regs)).
-// Throughput: one pass per clock while out_ready_i is high: one fragment per ⌈k/LANES⌉ clocks with
-//             k enabled lights (per F+4 clocks per pass with schlick_iter).
+// Throughput: one pass per SHARE clocks while out_ready_i is high: one fragment per SHARE·⌈k/LANES⌉
+//             clocks with k enabled lights (per interval clocks per pass with schlick_iter).
 // Handshake : in_ready_o = rst_ni && !reg_we_i && front enable && no pass pending (&& issue
-//             interval with schlick_iter); the path out_ready_i → in_ready_o is combinational.
+//             interval with schlick_iter, && phase 0 with SHARE > 1); the path out_ready_i → in_ready_o is
+//             combinational.
 // ============================================================================================
 `default_nettype none
 
@@ -106,6 +117,7 @@ module sc_light #(
     parameter integer LIGHTS       = 1,
     parameter integer SLOT_KINDS   = 1,
     parameter integer LANES        = 1,
+    parameter integer SHARE        = 1,
     parameter integer AMBIENT      = 1,
     parameter integer DIFFUSE      = 1,
     parameter integer UNITS        = 1,
@@ -208,17 +220,30 @@ module sc_light #(
   localparam integer HAS_B   = (SPECULAR != 0 && BLINN != 0) ? 1 : 0;
   localparam integer HAS_P   = (SPECULAR != 0 && PHONG != 0) ? 1 : 0;
   localparam integer ANY_PL  = (ANY_ATT != 0 || (NEED_N != 0 && ((KINDS >> 1) & 1) != 0)) ? 1 : 0;
+  // the normalisations of a pass (N̂, V̂, L̂, Ĥ: those that exist), numbered k in that order; with
+  // SHARE > 1, op k enters shared instance ⌊k/SHARE⌋ at a stage ≡ k (mod SHARE) (LightCore's light_pipe)
+  localparam integer SH    = (SHARE < 1) ? 1 : ((SHARE > 4) ? 4 : SHARE);
+  localparam integer OP_N  = (NEED_N != 0 && NORMALIZE != 0) ? 1 : 0;
+  localparam integer OP_V  = LV;
+  localparam integer OP_L  = ANY_PL;
+  localparam integer OP_H  = HAS_B;
+  localparam integer K_V   = OP_N;
+  localparam integer K_L   = OP_N + OP_V;
+  localparam integer K_H   = OP_N + OP_V + OP_L;
+  localparam integer NOPS  = K_H + OP_H;
+  localparam integer NPOOL = (NOPS + SH - 1) / SH;                        // shared sc_normalize instances
   // front pipeline: the time (enabled edges after the issue) at which each value is registered
-  localparam integer T_NN  = (NEED_N != 0 && NORMALIZE != 0) ? NL : 0;   // N̂ (0: the input N)
-  localparam integer T_V   = (LV != 0) ? NL : 0;                          // V̂ (0: constant)
-  localparam integer T_L   = (ANY_PL != 0) ? NL : 0;                      // L̂ of point lights
+  localparam integer T_NN  = (OP_N != 0) ? NL : 0;                        // N̂ (0: the input N)
+  localparam integer T_V   = (LV != 0) ? (K_V % SH) + NL : 0;             // V̂ (0: constant)
+  localparam integer T_L   = (ANY_PL != 0) ? (K_L % SH) + NL : 0;         // L̂ of point lights
   localparam integer T_A   = sc_max(T_NN, T_L);                             // N̂·L operands
-  localparam integer T_H   = sc_max(T_L, T_V);                              // H = L + V (Blinn)
+  localparam integer T_H0  = sc_max(T_L, T_V);
+  localparam integer T_H   = T_H0 + (((K_H % SH) - (T_H0 % SH)) + SH) % SH;   // H = L + V (Blinn)
   localparam integer T_RV  = sc_max(T_A + 2, T_V);                          // R·V operands (Phong, local viewer)
   localparam integer T_XB  = T_H + NL + 1;                                // x, Blinn
   localparam integer T_XP  = (LV != 0) ? T_RV + 1 : T_A + 2;              // x, Phong
   localparam integer T_X   = sc_max((HAS_B != 0) ? T_XB : 0, (HAS_P != 0) ? T_XP : 0);
-  localparam integer T_ATT = NL + 3 + RL;                                 // att (point_att)
+  localparam integer T_ATT = T_L + 3 + RL;                                // att (point_att; T_L = NL with SHARE 1)
   localparam integer T_F   = sc_max(sc_max(1, (NEED_N != 0) ? T_A + 1 : 0),
                                   sc_max((SPECULAR != 0) ? T_X : 0, (ANY_ATT != 0) ? T_ATT : 0));
   localparam integer NB    = (ANY_ATT != 0) ? 4 : 3;                      // back pipeline stages
@@ -255,6 +280,12 @@ module sc_light #(
     end
     if (LANES < 1 || LANES > LIGHTS) begin : g_check_lanes
       sc_light_error_illegal_LANES_legal_range_is_1_to_LIGHTS u_error ();
+    end
+    if (SHARE < 1 || SHARE > 4) begin : g_check_share
+      sc_light_error_illegal_SHARE_legal_range_is_1_to_4 u_error ();
+    end
+    if (SHARE > 1 && LANES != 1) begin : g_check_share_lanes
+      sc_light_error_illegal_SHARE_above_1_needs_LANES_1 u_error ();
     end
     for (j = 0; j < NLT; j = j + 1) begin : g_check_kind
       if (((SLOT_KINDS >> (3 * j)) & 7) == 0) begin : g_bad
@@ -366,9 +397,11 @@ module sc_light #(
 
   assign out_valid_o = vb_q[NB-1] && out_last;
   assign adv_b       = !out_valid_o || out_ready_i;   // a pass that is not its fragment's last leaves at once
-  assign in_ready_o  = rst_ni && adv_f && !reg_we_i && gap_ok && !hold_q;
+  wire   ph_ok;                    // SHARE > 1: the phase at which a pass may issue
+  wire [1:0] ph;                   // the phase: front-advancing edges since the last issue slot, mod SHARE
+  assign in_ready_o  = rst_ni && adv_f && !reg_we_i && gap_ok && ph_ok && !hold_q;
   wire   accept      = in_valid_i && in_ready_o;
-  wire   issue       = accept || (rst_ni && hold_q && adv_f && gap_ok);
+  wire   issue       = accept || (rst_ni && hold_q && adv_f && gap_ok && ph_ok);
   wire   take        = out_valid_o && out_ready_i;
 
   // the pass's lanes: the lowest NLN lights of what remains (identity with NLN = NLT)
@@ -445,6 +478,22 @@ module sc_light #(
     end else begin : g_no_gap
       assign gap_ok = 1'b1;
     end
+    if (SH > 1) begin : g_phase
+      // a pass at front stage s is there when ph ≡ s (mod SHARE): the shared normalisers' inputs are
+      // chosen by ph, and their outputs reach each consumer at its own stage without a selection
+      localparam integer PH_LASTI = SH - 1;
+      localparam [1:0] PH_LAST = PH_LASTI[1:0];
+      reg [1:0] ph_q;
+      always @(posedge clk_i) begin
+        if (!rst_ni) ph_q <= 2'd0;
+        else if (adv_f) ph_q <= (ph_q == PH_LAST) ? 2'd0 : ph_q + 2'd1;
+      end
+      assign ph    = ph_q;
+      assign ph_ok = (ph_q == 2'd0);
+    end else begin : g_no_phase
+      assign ph    = 2'd0;
+      assign ph_ok = 1'b1;
+    end
   endgenerate
 
   always @(posedge clk_i) begin
@@ -464,6 +513,8 @@ module sc_light #(
   wire unused_addr = &{1'b0, reg_addr_i};
 
   // ---------------------------------------------------------------------------- front: the pass's operands
+  // the shared normalisers' results (SHARE > 1; see "shared normalisers" below)
+  wire [3*NV-1:0] pool_nhat, pool_vhat, pool_lhat, pool_hhat;
   wire [3*NW-1:0] n_in   = hold_q ? hold_n_q : {in_nz_i, in_ny_i, in_nx_i};
   wire [3*PW-1:0] p_in   = hold_q ? hold_p_q : {in_pz_i, in_py_i, in_px_i};
   wire [TAGW-1:0] tag_in = hold_q ? hold_tag_q : in_tag_i;
@@ -492,15 +543,21 @@ module sc_light #(
           assign n_raw_v[gi*NV +: NV] = n_raw[gi*NW +: NW];
         end
       end
-      if (NORMALIZE != 0) begin : g_norm_n
+      if (NORMALIZE != 0 && SH > 1) begin : g_pool_n
+        // N̂ from the shared normalisers (op 0), N as given delayed beside it
+        sc_delay #(.W(3*NW), .DEPTH(T_NN)) u_dly_nraw (
+            .clk_i(clk_i), .en_i(adv_f), .d_i(n_in), .q_o(n_raw));
+        assign nn0 = norm_mode ? pool_nhat : n_raw_v;
+      end else if (NORMALIZE != 0) begin : g_norm_n
         wire [3*NV-1:0] n_norm;
         sc_normalize #(.FRAC(VF), .VW(NW)) u_norm_n (
             .clk_i(clk_i), .en_i(adv_f), .v_i(n_in), .u_o(n_norm), .v_o(n_raw));
         assign nn0 = norm_mode ? n_norm : n_raw_v;
+        wire unused_pool_n = &{1'b0, pool_nhat};
       end else begin : g_raw_n
         assign n_raw = n_in;
         assign nn0 = n_raw_v;
-        wire unused_norm_mode = &{1'b0, norm_mode};
+        wire unused_norm_mode = &{1'b0, norm_mode, pool_nhat};
       end
       sc_delay #(.W(3*NV), .DEPTH(T_A - T_NN)) u_dly_nn_a (
           .clk_i(clk_i), .en_i(adv_f), .d_i(nn0), .q_o(nn_a));
@@ -520,12 +577,13 @@ module sc_light #(
       assign nn_a = {3*NV{1'b0}};
       assign nn_b = {3*NV{1'b0}};
       assign nn_p = {3*NV{1'b0}};
-      wire unused_n = &{1'b0, n_in, norm_mode};
+      wire unused_n = &{1'b0, n_in, norm_mode, pool_nhat};
     end
   endgenerate
 
   // V̂ = normalise(−P) (local-viewer mode) or (0, 0, 1), at T_H (Blinn) and T_RV (Phong)
   wire [3*NV-1:0] v_h, v_p;
+  wire [3*(PW+1)-1:0] mp_w;   // −P (the shared normalisers' V input with SHARE > 1)
   localparam [3*NV-1:0] V_INF = {{2'b01, {VF{1'b0}}}, {NV{1'b0}}, {NV{1'b0}}};
   generate
     if (LV != 0) begin : g_view
@@ -535,9 +593,15 @@ module sc_light #(
         assign mp[gi*(PW+1) +: PW+1] = {(PW+1){1'b0}} - {pc[PW-1], pc};
       end
       wire [3*NV-1:0]     v_norm;
-      wire [3*(PW+1)-1:0] mp_pass_unused;
-      sc_normalize #(.FRAC(VF), .VW(PW+1)) u_norm_v (
-          .clk_i(clk_i), .en_i(adv_f), .v_i(mp), .u_o(v_norm), .v_o(mp_pass_unused));
+      assign mp_w = mp;
+      if (SH > 1) begin : g_pool_v
+        assign v_norm = pool_vhat;
+      end else begin : g_own_v
+        wire [3*(PW+1)-1:0] mp_pass_unused;
+        sc_normalize #(.FRAC(VF), .VW(PW+1)) u_norm_v (
+            .clk_i(clk_i), .en_i(adv_f), .v_i(mp), .u_o(v_norm), .v_o(mp_pass_unused));
+        wire unused_pool_v = &{1'b0, pool_vhat};
+      end
       wire [3*NV-1:0] v0 = lv_mode ? v_norm : V_INF;
       if (HAS_B != 0) begin : g_v_blinn
         sc_delay #(.W(3*NV), .DEPTH(T_H - T_V)) u_dly_vh (
@@ -554,7 +618,8 @@ module sc_light #(
     end else begin : g_no_view
       assign v_h = V_INF;
       assign v_p = V_INF;
-      wire unused_lv = &{1'b0, lv_mode};
+      assign mp_w = {3*(PW+1){1'b0}};
+      wire unused_lv = &{1'b0, lv_mode, pool_vhat};
     end
     if (ANY_PL == 0 && LV == 0) begin : g_no_pos
       wire unused_p = &{1'b0, p_in};
@@ -562,6 +627,9 @@ module sc_light #(
   endgenerate
 
   // ---------------------------------------------------------------------------- lanes
+  localparam integer HVW_T = ((CAN_DIR != 0) ? PW + SGUARD : NV) + 1;   // H = L + V (sc_light_lane's HVW)
+  wire [NLN*3*(PW+1)-1:0] lv_all;    // lane j's P_j − P at stage 0 (SHARE > 1)
+  wire [NLN*3*HVW_T-1:0]  hv_all;    // lane j's H at T_H (SHARE > 1)
   wire [NLN*NCH*CL-1:0] term_all;    // lane l's saturated term of channel c at (l*NCH + c)*CL
   wire [NLN*8-1:0]      u_in_ready_all, u_out_valid_all;   // per lane and variant id
   wire [FTW-1:0]        bk_ftag;     // {fragment tag, first, last} as the back takes it
@@ -578,12 +646,14 @@ module sc_light #(
           .FRAC(FRAC), .SG(SGUARD), .NLT(NLT), .CAN_DIR(CAN_DIR), .CAN_PT(CAN_PT), .CAN_ATT(ANY_ATT),
           .NEED_N(NEED_N), .SPECULAR(SPECULAR), .DIFFUSE(DIFFUSE), .BLINN(BLINN), .PHONG(PHONG),
           .LV(LV), .T_L(T_L), .T_A(T_A), .T_H(T_H), .T_RV(T_RV), .T_XB(T_XB), .T_XP(T_XP),
-          .T_ATT(T_ATT), .T_F(T_F)
+          .T_ATT(T_ATT), .T_F(T_F), .EXT_NORM((SH > 1) ? 1 : 0), .SH(SH)
       ) u_lane (
           .clk_i(clk_i), .en_i(adv_f), .idx_i(lane_idx[3*j +: 3]), .p_i(p_in),
           .nn_a_i(nn_a), .nn_b_i(nn_b), .nn_p_i(nn_p), .v_h_i(v_h), .v_p_i(v_p), .phong_i(phong_mode),
           .pos_i(pos_all), .katt_i(katt_all), .kind_i(kind_all),
-          .x_o(x_f), .diff_o(diff_f), .f_o(f_f), .att_o(att_f), .idx_o(idx_f));
+          .x_o(x_f), .diff_o(diff_f), .f_o(f_f), .att_o(att_f), .idx_o(idx_f),
+          .lv_o(lv_all[j*3*(PW+1) +: 3*(PW+1)]), .hv_o(hv_all[j*3*HVW_T +: 3*HVW_T]),
+          .lhat_i(pool_lhat), .hhat_i(pool_hhat), .ph_i(ph));
 
       // sideband through the units
       wire [SBW-1:0] sb_f;
@@ -701,6 +771,104 @@ module sc_light #(
   assign u_in_ready  = |(u_in_ready_all[7:0] & unit_sel);
   assign u_out_valid = |(u_out_valid_all[7:0] & unit_sel);
   wire unused_units = &{1'b0, u_in_ready_all, u_out_valid_all, unit_sel};
+
+  // ---------------------------------------------------------------------------- shared normalisers
+  // SHARE > 1 (LANES = 1): op k of {N, V, L, H} (those that exist, in that order) enters instance
+  // ⌊k/SHARE⌋ at front stage E_k ≡ k (mod SHARE) — N at 0, V at K_V mod SHARE, L at K_L mod SHARE, H at
+  // T_H — so at phase ph each instance takes the op with k ≡ ph and no two ops of one pass, nor of two
+  // passes (issued SHARE edges apart), meet in an instance. Each result is read at its own stage.
+  // Inputs are sign-extended to the instance's widest op: the normaliser's result does not depend on
+  // the input width (rtl/sc_normalize.v), so outputs are bit-identical to SHARE = 1.
+  localparam integer VWX = sc_max(sc_max(NW, PW + 1), HVW_T);
+  function integer op_vw(input integer k);
+    op_vw = (k < K_V) ? NW : ((k < K_H) ? PW + 1 : HVW_T);
+  endfunction
+  function integer pool_vw(input integer i);
+    integer k;
+    begin
+      pool_vw = 2;
+      for (k = i * SH; k < (i + 1) * SH; k = k + 1) begin
+        if (k < NOPS) pool_vw = sc_max(pool_vw, op_vw(k));
+      end
+    end
+  endfunction
+  generate
+    if (SH > 1) begin : g_pool
+      wire [4*3*VWX-1:0] ops;   // op k's vector at its entry stage, components sign-extended to VWX
+      wire [3*(PW+1)-1:0] mp_e;  // −P at V's entry stage
+      if (OP_V != 0) begin : g_op_v
+        sc_delay #(.W(3*(PW+1)), .DEPTH(K_V % SH)) u_dly_mp (
+            .clk_i(clk_i), .en_i(adv_f), .d_i(mp_w), .q_o(mp_e));
+      end else begin : g_no_op_v
+        assign mp_e = {3*(PW+1){1'b0}};
+        wire unused_mp = &{1'b0, mp_e, mp_w};
+      end
+      for (gi = 0; gi < 3; gi = gi + 1) begin : g_ops
+        if (OP_N != 0) begin : g_op_n
+          wire [NW-1:0] e = n_in[gi*NW +: NW];
+          assign ops[gi*VWX +: VWX] = {{(VWX-NW){e[NW-1]}}, e};
+        end
+        if (OP_V != 0) begin : g_op_v
+          wire [PW:0] e = mp_e[gi*(PW+1) +: PW+1];
+          assign ops[(3*K_V + gi)*VWX +: VWX] = {{(VWX-PW-1){e[PW]}}, e};
+        end
+      end
+      wire [3*(PW+1)-1:0] lv_e;   // P_j − P at its entry stage
+      if (OP_L != 0) begin : g_op_l
+        sc_delay #(.W(3*(PW+1)), .DEPTH(K_L % SH)) u_dly_lv (
+            .clk_i(clk_i), .en_i(adv_f), .d_i(lv_all[3*(PW+1)-1:0]), .q_o(lv_e));
+        for (gi = 0; gi < 3; gi = gi + 1) begin : g_c
+          wire [PW:0] e = lv_e[gi*(PW+1) +: PW+1];
+          assign ops[(3*K_L + gi)*VWX +: VWX] = {{(VWX-PW-1){e[PW]}}, e};
+        end
+      end else begin : g_no_op_l
+        assign lv_e = {3*(PW+1){1'b0}};
+        wire unused_lv_e = &{1'b0, lv_e, lv_all};
+      end
+      if (OP_H != 0) begin : g_op_h
+        for (gi = 0; gi < 3; gi = gi + 1) begin : g_c
+          wire [HVW_T-1:0] e = hv_all[gi*HVW_T +: HVW_T];
+          assign ops[(3*K_H + gi)*VWX +: VWX] = (VWX > HVW_T) ? {{(VWX-HVW_T){e[HVW_T-1]}}, e} : e;
+        end
+      end else begin : g_no_op_h
+        wire unused_hv = &{1'b0, hv_all};
+      end
+      if (NOPS < 4) begin : g_ops_pad
+        assign ops[4*3*VWX-1:NOPS*3*VWX] = {((4-NOPS)*3*VWX){1'b0}};
+      end
+      wire [4*3*NV-1:0] pu;   // instance i's result at [3*NV*i +: 3*NV]
+      for (u = 0; u < NPOOL; u = u + 1) begin : g_inst
+        localparam integer PVW = pool_vw(u);
+        reg [3*PVW-1:0] pin;
+        integer k, cc;
+        always @* begin
+          pin = {3*PVW{1'b0}};
+          for (k = u * SH; k < (u + 1) * SH; k = k + 1) begin
+            if (k < NOPS && {30'd0, ph} == k % SH) begin
+              for (cc = 0; cc < 3; cc = cc + 1) pin[cc*PVW +: PVW] = ops[(3*k + cc)*VWX +: PVW];
+            end
+          end
+        end
+        wire [3*PVW-1:0] pass_unused;
+        sc_normalize #(.FRAC(VF), .VW(PVW)) u_norm (
+            .clk_i(clk_i), .en_i(adv_f), .v_i(pin), .u_o(pu[u*3*NV +: 3*NV]), .v_o(pass_unused));
+      end
+      if (NPOOL < 4) begin : g_pu_pad
+        assign pu[4*3*NV-1:NPOOL*3*NV] = {((4-NPOOL)*3*NV){1'b0}};
+      end
+      assign pool_nhat = pu[(0 / SH)*3*NV +: 3*NV];
+      assign pool_vhat = pu[(K_V / SH)*3*NV +: 3*NV];
+      assign pool_lhat = pu[(K_L / SH)*3*NV +: 3*NV];
+      assign pool_hhat = pu[(K_H / SH)*3*NV +: 3*NV];
+      wire unused_ops = &{1'b0, ops, pu};
+    end else begin : g_no_pool
+      assign pool_nhat = {3*NV{1'b0}};
+      assign pool_vhat = {3*NV{1'b0}};
+      assign pool_lhat = {3*NV{1'b0}};
+      assign pool_hhat = {3*NV{1'b0}};
+      wire unused_pool = &{1'b0, lv_all, hv_all, mp_w};
+    end
+  endgenerate
 
   // ---------------------------------------------------------------------------- back: accumulate, clamp
   // {tag, last} to the output stage (NB), first to its input (NB-1)

@@ -20,11 +20,17 @@
 //          word; with both reflections both are computed and phong_i chooses at T_F.
 // Parameters: FRAC, SG, NLT (slots), capabilities CAN_DIR / CAN_PT (point or point_att) / CAN_ATT, NEED_N,
 //             SPECULAR, DIFFUSE, BLINN, PHONG, LV, and the stage times of rtl/sc_light.v's header
-//             (T_L, T_A, T_H, T_RV, T_XB, T_XP, T_ATT, T_F).
+//             (T_L, T_A, T_H, T_RV, T_XB, T_XP, T_ATT, T_F); SH (SHARE of rtl/sc_light.v: the lane's
+//             dot-product multipliers are shared by ops whose stages differ mod SH, chosen by the
+//             phase ph_i; "dot-product multipliers" below); EXT_NORM = 1 (rtl/sc_light.v's SHARE > 1):
+//             L̂ and Ĥ are normalised outside the lane by the core's shared normalisers — the lane
+//             hands out P_j − P (stage 0, lv_o) and H (stage T_H, hv_o) and takes L̂ (T_L, lhat_i) and
+//             Ĥ (T_H+NL, hhat_i); with EXT_NORM = 0 these ports are unused and the lane has its own.
 // Ports     : clk_i, en_i; idx_i (slot, stage 0); p_i (fragment position, stage 0); nn_a_i (N̂ at
 //             T_A), nn_b_i (N̂ at T_H+NL), nn_p_i (N̂ at T_A+1), v_h_i (V̂ at T_H), v_p_i (V̂ at T_RV);
 //             phong_i (mode); pos_i, katt_i, kind_i (every slot's registers, packed as
-//             sc_light_regfile.v); outputs at T_F: x_o, diff_o, f_o, att_o, idx_o.
+//             sc_light_regfile.v); outputs at T_F: x_o, diff_o, f_o, att_o, idx_o; EXT_NORM's
+//             lv_o, hv_o, lhat_i, hhat_i (above).
 // ============================================================================================
 `default_nettype none
 
@@ -48,7 +54,9 @@ module sc_light_lane #(
     parameter integer T_XB     = 0,
     parameter integer T_XP     = 0,
     parameter integer T_ATT    = 0,
-    parameter integer T_F      = 1
+    parameter integer T_F      = 1,
+    parameter integer EXT_NORM = 0,
+    parameter integer SH       = 1
 ) (
     input  wire                      clk_i,
     input  wire                      en_i,
@@ -67,7 +75,12 @@ module sc_light_lane #(
     output wire [FRAC:0]             diff_o,
     output wire                      f_o,
     output wire [FRAC+7:0]           att_o,
-    output wire [2:0]                idx_o
+    output wire [2:0]                idx_o,
+    output wire [3*(FRAC+9)-1:0]     lv_o,
+    output wire [3*(((CAN_DIR != 0) ? FRAC+8+SG : FRAC+SG+2)+1)-1:0] hv_o,
+    input  wire [3*(FRAC+SG+2)-1:0]  lhat_i,
+    input  wire [3*(FRAC+SG+2)-1:0]  hhat_i,
+    input  wire [1:0]                ph_i
 );
 
 `include "sc_light_regs.vh"
@@ -88,7 +101,121 @@ module sc_light_lane #(
   localparam [NW-1:0] X_MIN = {2'b10, {VF{1'b0}}};
   localparam [PW-1:0] ATT_ONE = {{7{1'b0}}, 1'b1, {FRAC{1'b0}}};
 
-  genvar gi, k;
+  genvar gi, k, mi;
+
+  // ---------------------------------------------------------------------------- dot-product multipliers
+  // Five triplets of signed products, op: the NW-bit side × the other side, at a stage:
+  //   0 A1  L̂ · (P_j − P)   at T_L      (point_att)     1 NL  N̂ · L        at T_A   (N̂·L)
+  //   2 R   N̂ · ndl         at T_A+1    (Phong)         3 RV  V̂ · R        at T_RV  (Phong, local viewer)
+  //   4 NH  N̂ · Ĥ           at T_XB−1   (Blinn)
+  // Each op k that exists joins the first multiplier instance with no op at a stage ≡ its stage
+  // (mod SH): with SH = 1 every op has its own three multipliers (the products as written out
+  // before); with SHARE > 1 an instance multiplies, at phase ph_i, the operands of its op whose
+  // stage ≡ ph_i — the pass at that stage is exactly there — and every op reads its product
+  // combinationally at its own stage. Operands are sign-extended to the instance's widest op: the
+  // low bits of a product, all that a consumer reads, do not depend on that width.
+  localparam integer NOP = 5;
+  localparam integer BMX = RVW;                 // the widest other side (RVW >= NDW, LW, PW+1, NW)
+  localparam integer PMX = NW + BMX;
+  function integer op_on(input integer o);
+    op_on = (o == 0) ? CAN_ATT : (o == 1) ? NEED_N : (o == 2) ? ((SPECULAR != 0 && PHONG != 0) ? 1 : 0) :
+            (o == 3) ? ((SPECULAR != 0 && PHONG != 0 && LV != 0) ? 1 : 0) :
+            ((SPECULAR != 0 && BLINN != 0) ? 1 : 0);
+  endfunction
+  function integer op_stage(input integer o);
+    op_stage = (o == 0) ? T_L : (o == 1) ? T_A : (o == 2) ? T_A + 1 : (o == 3) ? T_RV : T_XB - 1;
+  endfunction
+  function integer op_bw(input integer o);
+    op_bw = (o == 0) ? PW + 1 : (o == 1) ? LW : (o == 2) ? NDW : (o == 3) ? RVW : NW;
+  endfunction
+  function integer op_inst(input integer o);
+    integer j, i, used, r, res, found;
+    begin
+      used = 0;
+      res = 0;
+      for (j = 0; j <= o; j = j + 1) begin
+        if (op_on(j) != 0) begin
+          r = op_stage(j) % SH;
+          found = -1;
+          for (i = NOP - 1; i >= 0; i = i - 1) begin
+            if (((used >> (i * 4 + r)) & 1) == 0) found = i;
+          end
+          used = used | (1 << (found * 4 + r));
+          if (j == o) res = found;
+        end
+      end
+      op_inst = res;
+    end
+  endfunction
+  function integer n_inst(input integer dummy);
+    integer o;
+    begin
+      n_inst = dummy;
+      for (o = 0; o < NOP; o = o + 1) begin
+        if (op_on(o) != 0 && op_inst(o) + 1 > n_inst) n_inst = op_inst(o) + 1;
+      end
+    end
+  endfunction
+  function integer inst_bw(input integer i);
+    integer o;
+    begin
+      inst_bw = 2;
+      for (o = 0; o < NOP; o = o + 1) begin
+        if (op_on(o) != 0 && op_inst(o) == i && op_bw(o) > inst_bw) inst_bw = op_bw(o);
+      end
+    end
+  endfunction
+  localparam integer NMI = n_inst(0);
+  wire [NOP*3*NW-1:0]  opa;    // op o, component c at [(3o+c)*NW +: NW]
+  wire [NOP*3*BMX-1:0] opb;    // sign-extended to BMX
+  wire [NOP*3*PMX-1:0] prod;   // its product, sign-extended to PMX
+  wire [5*3*PMX-1:0]   iprod;  // instance i's products
+  generate
+    for (k = 0; k < NOP; k = k + 1) begin : g_op_off
+      if (op_on(k) == 0) begin : g_off
+        assign opa[k*3*NW +: 3*NW]   = {3*NW{1'b0}};
+        assign opb[k*3*BMX +: 3*BMX] = {3*BMX{1'b0}};
+        assign prod[k*3*PMX +: 3*PMX] = {3*PMX{1'b0}};
+      end else begin : g_on
+        assign prod[k*3*PMX +: 3*PMX] = iprod[op_inst(k)*3*PMX +: 3*PMX];
+      end
+    end
+    for (mi = 0; mi < NMI; mi = mi + 1) begin : g_mi
+      localparam integer PB = inst_bw(mi);
+      for (gi = 0; gi < 3; gi = gi + 1) begin : g_c
+        wire [NOP*NW-1:0] a_t;
+        wire [NOP*PB-1:0] b_t;
+        for (k = 0; k < NOP; k = k + 1) begin : g_k
+          if (op_on(k) != 0 && op_inst(k) == mi) begin : g_sel
+            localparam integer RI = op_stage(k) % SH;
+            wire sel = (SH == 1) || (ph_i == RI[1:0]);
+            assign a_t[k*NW +: NW] = opa[(3*k + gi)*NW +: NW] & {NW{sel}};
+            assign b_t[k*PB +: PB] = opb[(3*k + gi)*BMX +: PB] & {PB{sel}};
+          end else begin : g_nosel
+            assign a_t[k*NW +: NW] = {NW{1'b0}};
+            assign b_t[k*PB +: PB] = {PB{1'b0}};
+          end
+        end
+        reg [NW-1:0] a;
+        reg [PB-1:0] b;
+        integer o;
+        always @* begin
+          a = {NW{1'b0}};
+          b = {PB{1'b0}};
+          for (o = 0; o < NOP; o = o + 1) begin
+            a = a | a_t[o*NW +: NW];
+            b = b | b_t[o*PB +: PB];
+          end
+        end
+        wire signed [NW+PB-1:0] p = $signed(a) * $signed(b);
+        assign iprod[(3*mi + gi)*PMX +: PMX] = {{(PMX-NW-PB){p[NW+PB-1]}}, p};
+      end
+    end
+    if (NMI < 5) begin : g_ipad
+      assign iprod[5*3*PMX-1:NMI*3*PMX] = {((5-NMI)*3*PMX){1'b0}};
+    end
+  endgenerate
+  wire unused_prod = &{1'b0, prod, iprod, opa, opb};
 
   // ---------------------------------------------------------------------------- slot index per stage
   wire [3*(T_F+1)-1:0] idx_s;   // the slot index at stage k at [3k +: 3]
@@ -121,12 +248,22 @@ module sc_light_lane #(
         wire [PW-1:0] pf = p_i[gi*PW +: PW];
         assign dv[gi*(PW+1) +: PW+1] = {pj[PW-1], pj} - {pf[PW-1], pf};
       end
-      sc_normalize #(.FRAC(VF), .VW(PW+1)) u_norm_l (
-          .clk_i(clk_i), .en_i(en_i), .v_i(dv), .u_o(l_pt), .v_o(dv_d));
+      if (EXT_NORM != 0) begin : g_ext_l
+        assign lv_o = dv;
+        assign l_pt = lhat_i;
+        sc_delay #(.W(3*(PW+1)), .DEPTH(T_L)) u_dly_dv (
+            .clk_i(clk_i), .en_i(en_i), .d_i(dv), .q_o(dv_d));
+      end else begin : g_own_l
+        assign lv_o = {3*(PW+1){1'b0}};
+        wire unused_lhat = &{1'b0, lhat_i};
+        sc_normalize #(.FRAC(VF), .VW(PW+1)) u_norm_l (
+            .clk_i(clk_i), .en_i(en_i), .v_i(dv), .u_o(l_pt), .v_o(dv_d));
+      end
     end else begin : g_no_point
       assign l_pt = {3*NW{1'b0}};
       assign dv_d = {3*(PW+1){1'b0}};
-      wire unused_pt = &{1'b0, l_pt, dv_d, p_i, pos_0};
+      assign lv_o = {3*(PW+1){1'b0}};
+      wire unused_pt = &{1'b0, l_pt, dv_d, p_i, pos_0, lhat_i};
     end
     for (gi = 0; gi < 3; gi = gi + 1) begin : g_lsel
       wire [NW-1:0] lp = l_pt[gi*NW +: NW];
@@ -165,9 +302,14 @@ module sc_light_lane #(
       wire [PW-1:0] kc = katt_i[(3*idx_a2 + 0)*PW +: PW];
       wire [PW-1:0] kq = katt_i[(3*idx_a2 + 2)*PW +: PW];
       // A1 (T_L+1): dl = ⌊(P_j − P)·L̂ / 2^VF⌋, d = max(dl, 0)
-      wire signed [PW+NW:0] dp0 = $signed(dv_d[0 +: PW+1]) * $signed(l_pt[0 +: NW]);
-      wire signed [PW+NW:0] dp1 = $signed(dv_d[PW+1 +: PW+1]) * $signed(l_pt[NW +: NW]);
-      wire signed [PW+NW:0] dp2 = $signed(dv_d[2*(PW+1) +: PW+1]) * $signed(l_pt[2*NW +: NW]);
+      for (gi = 0; gi < 3; gi = gi + 1) begin : g_op_a1
+        wire [PW:0] b = dv_d[gi*(PW+1) +: PW+1];
+        assign opa[(0 + gi)*NW +: NW]   = l_pt[gi*NW +: NW];
+        assign opb[(0 + gi)*BMX +: BMX] = {{(BMX-PW-1){b[PW]}}, b};
+      end
+      wire [PW+NW:0] dp0 = prod[0*PMX +: PW+NW+1];
+      wire [PW+NW:0] dp1 = prod[1*PMX +: PW+NW+1];
+      wire [PW+NW:0] dp2 = prod[2*PMX +: PW+NW+1];
       wire [PW+NW+2:0] dsum = {{2{dp0[PW+NW]}}, dp0} + {{2{dp1[PW+NW]}}, dp1} + {{2{dp2[PW+NW]}}, dp2};
       wire [DW-1:0] d_d = dsum[PW+NW+2] ? {DW{1'b0}} : dsum[VF+DW-1:VF];
       wire unused_dsum = &{1'b0, dsum[PW+NW+1:VF+DW], dsum[VF-1:0]};
@@ -221,9 +363,14 @@ module sc_light_lane #(
     if (NEED_N != 0) begin : g_ndl
       sc_delay #(.W(3*LW), .DEPTH(T_A - T_L)) u_dly_la (
           .clk_i(clk_i), .en_i(en_i), .d_i(l), .q_o(l_a));
-      wire signed [NW+LW-1:0] np0 = $signed(nn_a_i[0 +: NW]) * $signed(l_a[0 +: LW]);
-      wire signed [NW+LW-1:0] np1 = $signed(nn_a_i[NW +: NW]) * $signed(l_a[LW +: LW]);
-      wire signed [NW+LW-1:0] np2 = $signed(nn_a_i[2*NW +: NW]) * $signed(l_a[2*LW +: LW]);
+      for (gi = 0; gi < 3; gi = gi + 1) begin : g_op_nl
+        wire [LW-1:0] b = l_a[gi*LW +: LW];
+        assign opa[(3 + gi)*NW +: NW]   = nn_a_i[gi*NW +: NW];
+        assign opb[(3 + gi)*BMX +: BMX] = {{(BMX-LW){b[LW-1]}}, b};
+      end
+      wire [NW+LW-1:0] np0 = prod[3*PMX +: NW+LW];
+      wire [NW+LW-1:0] np1 = prod[4*PMX +: NW+LW];
+      wire [NW+LW-1:0] np2 = prod[5*PMX +: NW+LW];
       wire [NW+LW+1:0] nsum = {{2{np0[NW+LW-1]}}, np0} + {{2{np1[NW+LW-1]}}, np1}
                             + {{2{np2[NW+LW-1]}}, np2};
       wire unused_nsum = &{1'b0, nsum[VF-1:0]};
@@ -278,13 +425,25 @@ module sc_light_lane #(
         assign h[gi*HVW +: HVW] = {lc[LW-1], lc} + {{(HVW-NW){vc[NW-1]}}, vc};
       end
       wire [3*NW-1:0]  hn;
-      wire [3*HVW-1:0] h_pass_unused;
-      sc_normalize #(.FRAC(VF), .VW(HVW)) u_norm_h (
-          .clk_i(clk_i), .en_i(en_i), .v_i(h), .u_o(hn), .v_o(h_pass_unused));
+      if (EXT_NORM != 0) begin : g_ext_h
+        assign hv_o = h;
+        assign hn = hhat_i;
+      end else begin : g_own_h
+        assign hv_o = {3*HVW{1'b0}};
+        wire unused_hhat = &{1'b0, hhat_i};
+        wire [3*HVW-1:0] h_pass_unused;
+        sc_normalize #(.FRAC(VF), .VW(HVW)) u_norm_h (
+            .clk_i(clk_i), .en_i(en_i), .v_i(h), .u_o(hn), .v_o(h_pass_unused));
+      end
       // x = ⌊N̂·Ĥ / 2^VF⌋ (T_XB = T_H+NL+1)
-      wire signed [2*NW-1:0] xp0 = $signed(nn_b_i[0 +: NW]) * $signed(hn[0 +: NW]);
-      wire signed [2*NW-1:0] xp1 = $signed(nn_b_i[NW +: NW]) * $signed(hn[NW +: NW]);
-      wire signed [2*NW-1:0] xp2 = $signed(nn_b_i[2*NW +: NW]) * $signed(hn[2*NW +: NW]);
+      for (gi = 0; gi < 3; gi = gi + 1) begin : g_op_nh
+        wire [NW-1:0] b = hn[gi*NW +: NW];
+        assign opa[(12 + gi)*NW +: NW]   = nn_b_i[gi*NW +: NW];
+        assign opb[(12 + gi)*BMX +: BMX] = {{(BMX-NW){b[NW-1]}}, b};
+      end
+      wire [2*NW-1:0] xp0 = prod[12*PMX +: 2*NW];
+      wire [2*NW-1:0] xp1 = prod[13*PMX +: 2*NW];
+      wire [2*NW-1:0] xp2 = prod[14*PMX +: 2*NW];
       wire [2*NW+1:0] xsum = {{2{xp0[2*NW-1]}}, xp0} + {{2{xp1[2*NW-1]}}, xp1}
                            + {{2{xp2[2*NW-1]}}, xp2};
       localparam integer XFW = 2 * NW + 2 - VF;
@@ -299,7 +458,8 @@ module sc_light_lane #(
           .clk_i(clk_i), .en_i(en_i), .d_i(x_q), .q_o(xb_f));
     end else begin : g_no_blinn
       assign xb_f = {NW{1'b0}};
-      wire unused_b = &{1'b0, nn_b_i, v_h_i};
+      assign hv_o = {3*HVW{1'b0}};
+      wire unused_b = &{1'b0, nn_b_i, v_h_i, hhat_i};
     end
     if (SPECULAR != 0 && PHONG != 0) begin : g_phong
       // R = ((ndl·N̂) >> (VF−1)) − L at T_A+1 (L delayed to T_A+1), registered at T_A+2
@@ -308,7 +468,9 @@ module sc_light_lane #(
           .clk_i(clk_i), .en_i(en_i), .d_i(l_a), .q_o(l1));
       wire [3*RVW-1:0] rv;
       for (gi = 0; gi < 3; gi = gi + 1) begin : g_r
-        wire signed [NDW+NW-1:0] rp = $signed(ndl) * $signed(nn_p_i[gi*NW +: NW]);
+        assign opa[(6 + gi)*NW +: NW]   = nn_p_i[gi*NW +: NW];
+        assign opb[(6 + gi)*BMX +: BMX] = {{(BMX-NDW){ndl[NDW-1]}}, ndl};
+        wire [NDW+NW-1:0] rp = prod[(6 + gi)*PMX +: NDW+NW];
         wire [NDW+2:0] rs = rp[NDW+NW-1:VF-1];
         wire unused_rp = &{1'b0, rp[VF-2:0]};
         wire [LW-1:0] lc = l1[gi*LW +: LW];
@@ -323,9 +485,13 @@ module sc_light_lane #(
         wire [3*RVW-1:0] rv_d;
         sc_delay #(.W(3*RVW), .DEPTH(T_RV - T_A - 2)) u_dly_rv (
             .clk_i(clk_i), .en_i(en_i), .d_i(rv_q), .q_o(rv_d));
-        wire signed [RVW+NW-1:0] xp0 = $signed(rv_d[0 +: RVW]) * $signed(v_p_i[0 +: NW]);
-        wire signed [RVW+NW-1:0] xp1 = $signed(rv_d[RVW +: RVW]) * $signed(v_p_i[NW +: NW]);
-        wire signed [RVW+NW-1:0] xp2 = $signed(rv_d[2*RVW +: RVW]) * $signed(v_p_i[2*NW +: NW]);
+        for (gi = 0; gi < 3; gi = gi + 1) begin : g_op_rv
+          assign opa[(9 + gi)*NW +: NW]   = v_p_i[gi*NW +: NW];
+          assign opb[(9 + gi)*BMX +: BMX] = rv_d[gi*RVW +: RVW];
+        end
+        wire [RVW+NW-1:0] xp0 = prod[9*PMX +: RVW+NW];
+        wire [RVW+NW-1:0] xp1 = prod[10*PMX +: RVW+NW];
+        wire [RVW+NW-1:0] xp2 = prod[11*PMX +: RVW+NW];
         wire [RVW+NW+1:0] xsum = {{2{xp0[RVW+NW-1]}}, xp0} + {{2{xp1[RVW+NW-1]}}, xp1}
                                + {{2{xp2[RVW+NW-1]}}, xp2};
         localparam integer XFW = RVW + NW + 2 - VF;

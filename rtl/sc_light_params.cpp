@@ -86,6 +86,7 @@ FeatureSet random_set(SplitMix& rng, int index) {
     fs.local_viewer = rng.coin();
     fs.normalize = rng.coin();
     fs.channels = rng.coin() ? 3 : 1;
+    fs.share = fs.lanes == 1 ? 1 + rng.below(shadecore::kShareMax) : 1;  // drawn last: the earlier draws are as before
     try {
       FeatureSet checked = shadecore::feature_set_from_json(fs.canonical(), "random set");
       checked.name = "random" + std::to_string(index);

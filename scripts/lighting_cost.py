@@ -2,17 +2,18 @@
 # SPDX-License-Identifier: Apache-2.0
 """Cost against throughput of the lighting core (issue 18): docs/lighting_cost.json.
 
-One row per (feature set, lanes, spec_guard): Yosys generic cells counted hierarchically (`synth -top sc_light; abc;
+One row per (feature set, lanes, share, spec_guard): Yosys generic cells counted hierarchically (`synth -top sc_light; abc;
 stat -top sc_light`, as docs/lighting.md §8), `synth_xilinx -family xc7 -flatten` LUT / FF / DSP48E1,
 `synth_ecp5` LUT4 / MULT18X18D, the latency (LightCore::latency, every slot on, the slowest unit), the
-fragments per clock for 0, 1, 2, 4 and 8 enabled lights (⌈k/lanes⌉ passes, one pass per clock: the
-scheduler of rtl/sc_light.v, checked cycle for cycle by the co-simulation's latency checks) and the
-SystemC co-simulation speed. The feature set of a row is the named set with its `lanes` replaced; its
+fragments per clock for 0, 1, 2, 4 and 8 enabled lights (⌈k/lanes⌉ passes, one pass per `share` clocks:
+the scheduler of rtl/sc_light.v, checked cycle for cycle by the co-simulation's latency checks) and the
+SystemC co-simulation speed. The feature set of a row is the named set with its `lanes` (`share`) replaced; its
 Verilog parameters come from the CLI (`shadecore light-sweep --json`: FeatureSet::verilog_params), so
 nothing here restates the feature-set rules.
 
     scripts/lighting_cost.py --build build --sets full --lanes 1,2,4,8 --steps generic,xc7,ecp5,cosim
     scripts/lighting_cost.py --build build --sets full --spec-guard 0,5 --steps xc7
+    scripts/lighting_cost.py --build build --sets full --share 1,2,4 --steps xc7,cosim
     scripts/lighting_cost.py --build build --sets diffuse,gl_default,phong_point,mono_spec
 
 Rows are cached in the output file by (set, lanes, step, source hash): rerunning resumes, an edited RTL
@@ -147,10 +148,10 @@ def report_markdown(doc):
     """The cost/throughput table of docs/lighting_cost.json (one row per set, lanes, spec_guard), for
     docs/lighting.md §8.1 and docs/tradeoffs.md: one source for both."""
     rows = sorted(doc["rows"], key=lambda r: (r["set"] != "full", r["set"], not r.get("superseded"), r["lanes"],
-                                             r.get("spec_guard", 0)))
-    L = ["| set | lanes | spec_guard | generic cells | xc7 LUT / FF / DSP48E1 | fits XC7A35T | ECP5 LUT4 / MULT18 | "
+                                             r.get("share", 1), r.get("spec_guard", 0)))
+    L = ["| set | lanes | share | spec_guard | generic cells | xc7 LUT / FF / DSP48E1 | fits XC7A35T | ECP5 LUT4 / MULT18 | "
          "latency | fragments per clock at 0 / 1 / 2 / 4 / 8 lights | cosim fragments/s | measured |",
-         "|---|---|---|---|---|---|---|---|---|---|---|"]
+         "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         fpc = r.get("fragments_per_clock", {})
         fits = "—"
@@ -162,12 +163,12 @@ def report_markdown(doc):
             gen = "not finished"
         when = sorted(set(v[:10] for v in r.get("when", {}).values()))
         src = sorted(set(r.get("source", {}).values()))
-        L.append(f"| {r['set']}{' (first RTL)' if r.get('superseded') else ''} | {r['lanes']} | {r.get('spec_guard', 0)} | {gen} | "
+        L.append(f"| {r['set']}{' (first RTL)' if r.get('superseded') else ''} | {r['lanes']} | {r.get('share', 1)} | {r.get('spec_guard', 0)} | {gen} | "
                  f"{_fmt(r.get('x7_lut'))} / {_fmt(r.get('x7_ff'))} / {_fmt(r.get('x7_dsp48'))} | {fits} | "
                  f"{_fmt(r.get('ecp5_lut4'))} / {_fmt(r.get('ecp5_mult18'))} | {r.get('latency', '—')} | "
                  f"{' / '.join(_fpc(fpc.get(k)) for k in ('0', '1', '2', '4', '8') if k in fpc)} | "
                  f"{_fmt(r.get('cosim_fragments_per_s'))} | {', '.join(when)} (RTL {', '.join(src)}) |")
-    errs = [f"- {r['set']} lanes {r['lanes']} spec_guard {r.get('spec_guard', 0)}: {k[:-6]}: {r[k]}"
+    errs = [f"- {r['set']} lanes {r['lanes']} share {r.get('share', 1)} spec_guard {r.get('spec_guard', 0)}: {k[:-6]}: {r[k]}"
             for r in rows for k in sorted(r) if k.endswith("_error") and r[k]]
     if errs:
         L += ["", "Steps that failed or timed out (reported, not hidden):", ""] + errs
@@ -191,7 +192,7 @@ def plot(doc, path, footer_text):
             colour = "C0" if r["set"] == "full" else "C1"
             mk = "o" if r.get("spec_guard", 0) else "s"
             ax.scatter([x], [v], marker=mk, facecolors="none" if r.get("superseded") else colour, edgecolors=colour)
-            ax.annotate(f"{r['set']} L{r['lanes']} g{r.get('spec_guard', 0)}{' (first RTL)' if r.get('superseded') else ''}",
+            ax.annotate(f"{r['set']} L{r['lanes']}{'' if r.get('share', 1) == 1 else ' S' + str(r['share'])} g{r.get('spec_guard', 0)}{' (first RTL)' if r.get('superseded') else ''}",
                         (x, v), fontsize=6, xytext=(3, 3), textcoords="offset points")
         if key == "x7_dsp48":
             ax.axhline(XC7A35T["dsp"], color="0.5", ls="--", lw=0.8)
@@ -199,7 +200,7 @@ def plot(doc, path, footer_text):
                     transform=ax.get_yaxis_transform())
         ax.set_xscale("log", base=2)
         ax.set_yscale("log")
-        ax.set_xlim(0.09, 1.6)
+        ax.set_xlim(0.02, 1.6)
         ax.set_xlabel("fragments per clock, every light slot enabled")
         ax.set_ylabel(label)
         ax.set_title(f"{label} against throughput")
@@ -233,6 +234,7 @@ def main():
     ap.add_argument("--sets", default="full")
     ap.add_argument("--lanes", default="", help="lanes to try for every set (default: the set's own)")
     ap.add_argument("--spec-guard", default="", help="spec_guard values to try for every set (default: the set's own)")
+    ap.add_argument("--share", default="", help="share values (clocks per pass) to try for every set (default: the set's own)")
     ap.add_argument("--steps", default="generic,xc7,ecp5,cosim")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "lighting_cost.json"))
     ap.add_argument("--cosim-count", type=int, default=100000)
@@ -269,12 +271,14 @@ def main():
         base = dict(named[name])
         lanes_list = [int(x) for x in a.lanes.split(",")] if a.lanes else [base.get("lanes", 1)]
         sg_list = [int(x) for x in a.spec_guard.split(",")] if a.spec_guard else [None]
-        for lanes, sg in [(l, g) for l in lanes_list for g in sg_list]:
+        sh_list = [int(x) for x in a.share.split(",")] if a.share else [base.get("share", 1)]
+        for lanes, sg, share in [(l, g, h) for l in lanes_list for g in sg_list for h in sh_list]:
             slots = len(base["lights"])
-            if lanes > slots:
+            if lanes > slots or (share > 1 and lanes != 1):
                 continue
             fs = dict(base)
             fs["lanes"] = lanes
+            fs["share"] = share
             if sg is not None:
                 fs["spec_guard"] = sg
             fs.pop("_comment", None)
@@ -288,27 +292,31 @@ def main():
                 guard = info["feature_set"]["spec_guard"]
                 # rows of an earlier RTL kept for the record (`superseded`) are never updated
                 row = next((r for r in doc["rows"] if r["set"] == name and r["lanes"] == lanes
+                            and r.get("share", 1) == share
                             and r.get("spec_guard", 0) == guard and not r.get("superseded")), None)
                 if row is None:
-                    row = {"set": name, "lanes": lanes, "spec_guard": guard}
+                    row = {"set": name, "lanes": lanes, "share": share, "spec_guard": guard}
                     doc["rows"].append(row)
                 row.update({
                     "spec_guard": guard,
-                    "design_point": f"one light per lane per clock, spec_guard {guard}",
+                    "share": share,
+                    "design_point": (f"one light per lane per clock, spec_guard {guard}" if share == 1 else
+                                     f"one light per {share} clocks (normalisers and dot-product multipliers "
+                                     f"shared), spec_guard {guard}"),
                     "feature_key": info["feature_key"],
                     "verilog_params": info["verilog_params"],
                     "slots": slots,
-                    "cycles_per_light": 1.0 / lanes,
+                    "cycles_per_light": share / lanes,
                     "latency": info["latency"],
                     "latency_min": info["latency_min"],
-                    "fragments_per_clock": {str(k): 1.0 / max(1, math.ceil(k / lanes))
+                    "fragments_per_clock": {str(k): 1.0 / (share * max(1, math.ceil(k / lanes)))
                                             for k in (0, 1, 2, 4, 8) if k <= slots},
                 })
                 for st in steps:
                     if row.get("source", {}).get(st) == src and row.get(st + "_error") is None and st + "_s" in row:
-                        print(f"{name} lanes {lanes} {st}: cached", flush=True)
+                        print(f"{name} lanes {lanes} share {share} {st}: cached", flush=True)
                         continue
-                    print(f"{name} lanes {lanes} {st} ...", flush=True)
+                    print(f"{name} lanes {lanes} share {share} {st} ...", flush=True)
                     t0 = time.time()
                     try:
                         if st == "generic":

@@ -313,6 +313,10 @@ TEST(FeatureSets, StrictParsing) {
   bad(R"({"lights": [["point", "point"]]})", "names a kind twice");
   bad(R"({"lights": ["point"], "lanes": 2})", "exceeds the 1 light slots");
   bad(R"({"lanes": 0})", "'lanes' must be an integer 1..8");
+  bad(R"({"share": 0})", "'share' must be an integer 1..4");
+  bad(R"({"share": 5})", "'share' must be an integer 1..4");
+  bad(R"({"share": 2.5})", "'share' must be an integer 1..4");
+  bad(R"({"lights": ["point", "point"], "lanes": 2, "share": 2})", "'share' 2 needs 'lanes' 1");
   bad(R"({"specular": ["cs16", "cs16"]})", "named twice");
   bad(R"({"specular": ["cs16", "none"]})", "none cannot be listed");
   bad(R"({"specular": ["schlick_iter", "cs16"]})", "cannot share a core");
@@ -408,6 +412,7 @@ TEST(LightModes, PassesAndLatencyFollowTheEnabledLights) {
   for (int lanes : {1, 2, 3, 8}) {
     FeatureSet fs = named("full");
     fs.lanes = lanes;
+    fs.share = 1;
     const LightCore core(fs);
     LightRegs r;
     r.mat_unit = static_cast<uint32_t>(VariantId::cs16);
@@ -422,4 +427,41 @@ TEST(LightModes, PassesAndLatencyFollowTheEnabledLights) {
     r.mat_unit = static_cast<uint32_t>(VariantId::schlick_nr);  // 3 edges longer than cs16
     EXPECT_EQ(core.latency(r), base + 3 + (kMaxLights + lanes - 1) / lanes - 1);
   }
+}
+
+// share S (docs/lighting.md §2.1): a pass issues every S-th front-advancing edge, and the pass's
+// normalisations enter the shared normalisers at stages ≡ their number (mod S), which moves V̂, L̂ and
+// H = L + V later. The stage times of `full` (N, V, L, H all exist), worked out by hand from the rule:
+//   S = 1: V̂, L̂ at 10, H at 10, x (Blinn) at 21: front 21; + cs16 7 + norm 2 + back 4 = 34
+//   S = 2: V̂ at 11, L̂ at 10, H at 11 (≡ 1), x at 22: 35          S = 3: V̂ 11, L̂ 12, H 12 (≡ 0): 36
+//   S = 4: V̂ at 11, L̂ at 12, H at 15 (≡ 3), x at 26: 39
+// Each further pass adds S edges; schlick_iter's F+4 (25 at F = 16 + spec_guard 5) rounds up to S's multiple.
+TEST(LightModes, ShareSpacesThePassesAndMovesTheSharedNormalisations) {
+  const int expect_base[5] = {0, 34, 35, 36, 39};
+  for (int share = 1; share <= kShareMax; ++share) {
+    FeatureSet fs = named("full");
+    fs.lanes = 1;
+    fs.share = share;
+    const LightCore core(fs);
+    EXPECT_EQ(core.pass_interval(), share);
+    LightRegs r;
+    r.mat_unit = static_cast<uint32_t>(VariantId::cs16);
+    EXPECT_EQ(core.latency(r), expect_base[share]) << "share " << share;
+    for (int k = 1; k <= kMaxLights; ++k) {
+      r.light[static_cast<size_t>(k - 1)].mode = light_mode_word(true, LightKind::PointAtt);
+      EXPECT_EQ(core.latency(r), expect_base[share] + (k - 1) * share) << share << " " << k;
+    }
+    FeatureSet it = named("gl_default");
+    it.variant = VariantId::schlick_iter;
+    it.share = share;
+    EXPECT_EQ(LightCore(it).pass_interval(), (25 + share - 1) / share * share);
+  }
+  // the key and the Verilog parameters carry it
+  FeatureSet a = named("gl_default"), b = a;
+  b.share = 2;
+  EXPECT_NE(a.key(), b.key());
+  EXPECT_EQ(b.canonical()["share"], 2);
+  bool found = false;
+  for (const auto& p : b.verilog_params(8)) found = found || p == "SHARE=2";
+  EXPECT_TRUE(found);
 }

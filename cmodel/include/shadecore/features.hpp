@@ -38,6 +38,7 @@ inline constexpr int kSpecGuardMax = 8;    // spec_guard: F + spec_guard <= kFra
 // Default spec_guard: the smallest with the quantisation contract (|fixed − double core with the same
 // unit| <= 128 LSB of 2^−16 on every F = 16 named set) met with margin (docs/lighting.md §7).
 inline constexpr int kSpecGuardDefault = 5;
+inline constexpr int kShareMax = 4;        // SHARE of rtl/sc_light.v: 1..4 clocks per pass
 
 // Capabilities of a lighting core: what hardware exists. The register file chooses among what exists
 // at run time (light enable and kind, local viewer, reflection, normalize, the material's unit);
@@ -59,6 +60,8 @@ struct FeatureSet {
   bool normalize = true;                // GL_NORMALIZE: the normal normaliser exists
   int channels = 3;                     // 1 (mono, channel 0 only) or 3 (RGB)
   int lanes = 1;                        // per-light datapaths; enabled lights take ⌈k/lanes⌉ passes
+  int share = 1;                        // clocks per pass (1..kShareMax): the vector normalisations of a
+                                        // pass share ⌈ops/share⌉ normalisers (docs/lighting.md §2.1); > 1 needs lanes 1
   int spec_guard = kSpecGuardDefault;   // extra fraction bits of the specular path: N̂, V̂, L̂, Ĥ, R, x and the
                                         // unit run at F + spec_guard fraction bits (docs/lighting.md §7)
 
@@ -243,6 +246,10 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
         fs_fail(where, "'lanes' must be an integer 1.." + std::to_string(kMaxLights));
       fs.lanes = v.get<int>();
       lanes_given = true;
+    } else if (k == "share") {
+      if (!v.is_number_integer() || v.get<int>() < 1 || v.get<int>() > kShareMax)
+        fs_fail(where, "'share' must be an integer 1.." + std::to_string(kShareMax) + " (clocks per pass)");
+      fs.share = v.get<int>();
     } else if (k == "spec_guard") {
       if (!v.is_number_integer() || v.get<int>() < 0 || v.get<int>() > kSpecGuardMax)
         fs_fail(where, "'spec_guard' must be an integer 0.." + std::to_string(kSpecGuardMax));
@@ -268,6 +275,8 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
     fs_fail(where, "'lanes' " + std::to_string(fs.lanes) + " exceeds the " + std::to_string(fs.num_lights()) +
                        " light slots");
   if (fs.lanes > fs.num_lights()) fs.lanes = fs.num_lights();
+  if (fs.share > 1 && fs.lanes != 1)
+    fs_fail(where, "'share' " + std::to_string(fs.share) + " needs 'lanes' 1 (the shared normalisers serve one lane)");
   if (fs.specular && fs.has_unit(VariantId::schlick_iter) && fs.units().size() > 1)
     fs_fail(where, "schlick_iter (one fragment per F+4 clocks) cannot share a core with other units");
   return fs;
@@ -338,6 +347,7 @@ inline nlohmann::ordered_json FeatureSet::canonical() const {
   j["normalize"] = normalize;
   j["channels"] = channels;
   j["lanes"] = lanes;
+  j["share"] = share;
   j["spec_guard"] = spec_guard;
   return j;
 }
@@ -365,6 +375,7 @@ inline std::vector<std::string> FeatureSet::verilog_params(int tagw) const {
       "LIGHTS=" + std::to_string(slots.size()),
       "SLOT_KINDS=" + std::to_string(kinds),
       "LANES=" + std::to_string(lanes),
+      "SHARE=" + std::to_string(share),
       "SGUARD=" + std::to_string(spec_guard),
       "AMBIENT=" + std::to_string(ambient ? 1 : 0),
       "DIFFUSE=" + std::to_string(diffuse ? 1 : 0),
@@ -386,6 +397,7 @@ inline std::string FeatureSet::summary() const {
   for (size_t j = 0; j < slots.size(); ++j) s += (j ? ", " : "") + kinds_name(slots[j]);
   s += ")";
   s += lanes == 1 ? ", 1 lane" : ", " + std::to_string(lanes) + " lanes";
+  if (share > 1) s += ", " + std::to_string(share) + " clocks per pass";
   if (ambient) s += ", ambient+emission";
   if (diffuse) s += ", diffuse";
   if (specular) {

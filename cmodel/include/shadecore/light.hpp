@@ -223,7 +223,7 @@ class LightCore {
   [[nodiscard]] int latency_min(const LightRegs& r) const;
   [[nodiscard]] int latency() const;
   [[nodiscard]] int latency_min() const;
-  // Clocks between two passes (schlick_iter: F+4, else 1) and the latency of one pass.
+  // Clocks between two passes (share, schlick_iter: F+4 rounded up to a multiple of share) and the latency of one pass.
   [[nodiscard]] int pass_interval() const;
   [[nodiscard]] int pass_latency(int unit_index) const;
 
@@ -337,16 +337,22 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   const bool need_n = fs.diffuse || fs.specular;                    // N̂·L is computed
   const bool lv = fs.specular && fs.local_viewer;                    // V̂ = normalise(−P) exists
   const bool any_pl = any_att || (need_n && any_point);              // some L̂ = normalise(P_j − P)
-  const int t_nn = (need_n && fs.normalize) ? NL : 0;                // N̂
-  const int t_v = lv ? NL : 0;                                        // V̂
-  const int t_l = any_pl ? NL : 0;                                    // L̂ of point lights
+  // The normalisations of a pass (N̂, V̂, L̂, Ĥ: those that exist) are ops k = 0, 1, ...; with share S
+  // op k enters shared normaliser ⌊k/S⌋ at a front stage ≡ k (mod S) (rtl/sc_light.v "shared normalisers").
+  const int S = fs.share;
+  const int op_n = (need_n && fs.normalize) ? 1 : 0, op_v = lv ? 1 : 0, op_l = any_pl ? 1 : 0;
+  const int k_v = op_n, k_l = op_n + op_v, k_h = op_n + op_v + op_l;
+  const int t_nn = op_n ? NL : 0;                                     // N̂
+  const int t_v = lv ? k_v % S + NL : 0;                              // V̂
+  const int t_l = any_pl ? k_l % S + NL : 0;                          // L̂ of point lights
   const int t_a = std::max(t_nn, t_l);                                // N̂·L operands
-  const int t_h = std::max(t_l, t_v);                                 // H = L + V
+  const int t_h0 = std::max(t_l, t_v);
+  const int t_h = t_h0 + ((k_h % S - t_h0 % S) + S) % S;              // H = L + V
   const int t_rv = std::max(t_a + 2, t_v);                            // R·V operands
   int t_x = 0;                                                        // the unit input x
   if (fs.blinn) t_x = std::max(t_x, t_h + NL + 1);
   if (fs.phong) t_x = std::max(t_x, lv ? t_rv + 1 : t_a + 2);
-  const int t_att = NL + 3 + RL;                                      // att (distance, q, 1/q)
+  const int t_att = t_l + 3 + RL;                                     // att (distance, q, 1/q; t_l = NL at share 1)
   int t_f = 1;
   if (need_n) t_f = std::max(t_f, t_a + 1);
   if (fs.specular) t_f = std::max(t_f, t_x);
@@ -355,8 +361,11 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
 }
 }  // namespace detail
 
+// Passes issue every share-th front-advancing edge (a phase counter), schlick_iter at least F+4 apart.
 inline int LightCore::pass_interval() const {
-  return fs_.specular && fs_.variant == VariantId::schlick_iter ? uf_.frac + 4 : 1;
+  const int s = fs_.share;
+  const int iter = fs_.specular && fs_.variant == VariantId::schlick_iter ? uf_.frac + 4 : 1;
+  return (iter + s - 1) / s * s;
 }
 inline int LightCore::pass_latency(int unit_index) const {
   const detail::LightPipe p = detail::light_pipe(fs_);

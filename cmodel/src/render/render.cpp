@@ -178,7 +178,7 @@ static LightKind slot_kind_for(const FeatureSet& fs, int j, LightKind k) {
 
 Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used,
                            const std::vector<bool>& needs_normalize, bool full_core,
-                           std::optional<VariantId> unit_override, int lanes) {
+                           std::optional<VariantId> unit_override, int lanes, int share) {
   const int F = config_named(sc.config).format.frac;
   const size_t nm = sc.materials.size();
   std::vector<bool> used(nm, false);
@@ -305,12 +305,15 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
     fs.channels = grey ? 1 : 3;
     if (!fs.specular) g.unit_label = "none";
     fs.lanes = std::clamp(lanes, 1, fs.num_lights());
+    fs.share = fs.lanes == 1 ? std::clamp(share, 1, kShareMax) : 1;
     g.specialised = fs;
     if (full_core) {
       g.fs = full_core_for(fs, g.full_substitutions);
       g.fs.lanes = std::clamp(lanes, 1, g.fs.num_lights());
+      g.fs.share = g.fs.lanes == 1 ? std::clamp(share, 1, kShareMax) : 1;
       if (g.fs.lanes == g.fs.num_lights()) g.fs.name = "full_parallel";
       else if (g.fs.lanes != 1) g.fs.name = "full/lanes" + std::to_string(g.fs.lanes);
+      else if (g.fs.share != 1) g.fs.name = "full/share" + std::to_string(g.fs.share);
     } else {
       g.fs = fs;
     }
@@ -539,7 +542,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
     }
   }
 
-  const Derivation d = derive_features(sc, drawn, needs_normalize, s.full_core, s.unit, s.lanes);
+  const Derivation d = derive_features(sc, drawn, needs_normalize, s.full_core, s.unit, s.lanes, s.share);
   fr.groups = d.groups;
   for (int oi : drawn) fr.object_group[oi] = d.group_of_material[sc.objects[oi].material];
 

@@ -61,6 +61,7 @@ struct CoreGroup {
 struct Settings {
   bool full_core = false;
   int lanes = 1;                              // lanes of the cores (clamped to their light slots)
+  int share = 1;                              // clocks per pass of the cores with one lane (feature key share)
   int width = 0, height = 0;                  // 0: the scene's size
   std::optional<scene::Shading> mode;         // every object in this mode
   std::optional<VariantId> unit;              // every specular material through this unit
@@ -76,7 +77,7 @@ struct Derivation {
 };
 Derivation derive_features(const scene::Scene& sc, const std::vector<int>& objects_used,
                            const std::vector<bool>& phong_used_by_material, bool full_core,
-                           std::optional<VariantId> unit_override, int lanes = 1);
+                           std::optional<VariantId> unit_override, int lanes = 1, int share = 1);
 
 // The full core for a specialised set: config/configs.json 'full', programmed by register writes alone
 // (its capabilities include every mode of `spec`); only a width other than full's is substituted (a
