@@ -247,6 +247,13 @@ module sc_light #(
   localparam integer T_F   = sc_max(sc_max(1, (NEED_N != 0) ? T_A + 1 : 0),
                                   sc_max((SPECULAR != 0) ? T_X : 0, (ANY_ATT != 0) ? T_ATT : 0));
   localparam integer NB    = (ANY_ATT != 0) ? 4 : 3;                      // back pipeline stages
+  // channel-serial back (SHARE >= 4, RGB, units): a pass enters the back as three items, channels 0, 1, 2 on
+  // consecutive back-advancing edges, through one set of colour multipliers (rtl/sc_light_shade.v CSER):
+  // its colour is out two edges later (LightCore: back = NB + 2). SHARE >= 4 keeps the back (3 edges per
+  // pass) faster than the issue (one pass per SHARE edges), so passes a stall has bunched in the units
+  // drain and no fragment waits beyond LightCore::latency (at SHARE = 3 the co-simulation showed
+  // fragments 2..3 edges late after stalls: the backlog never drained).
+  localparam integer CSER  = (SH >= 4 && NCH == 3 && SPECULAR != 0) ? 1 : 0;
   localparam integer SPW   = (NORM != 0) ? VF + 8 : VF + 1;               // unit output width
   localparam integer CNTW  = sc_bits(T_F + max_unit_latency(0) + NB + 3);   // fragments in flight
   localparam integer ITER  = (UNITS == (1 << VARIANT_SCHLICK_ITER)) ? 1 : 0;
@@ -381,6 +388,8 @@ module sc_light #(
   // front: T_F stages, enable adv_f; back: NB stages, enable adv_b (the core's advancing condition)
   wire adv_f, adv_b;
   wire u_in_ready, u_out_valid;   // the selected unit's handshake (lane 0; the lanes run in lock-step)
+  wire u_out_ready;               // the back takes the units' output (CSER: not while it feeds channels 1, 2)
+  wire [1:0] ser;                 // CSER: 0 the back takes from the units, 1 / 2 it feeds the held pass's channel
   wire b_in_valid;                // what the back's first stage takes
   wire gap_ok;                    // schlick_iter: the issue interval has passed
   reg  [T_F-1:0] vf_q;            // front valid bits, stage k at bit k-1
@@ -443,12 +452,12 @@ module sc_light #(
     if (SPECULAR != 0) begin : g_hs_units
       // the front hands x and the sideband to the units; they hand results to the back
       assign adv_f      = !vf_last || u_in_ready;
-      assign b_in_valid = u_out_valid;
+      assign b_in_valid = u_out_valid || (ser != 2'd0);
     end else begin : g_hs_direct
       // no units: front and back are one global-enable pipeline
       assign adv_f      = adv_b;
       assign b_in_valid = vf_last;
-      wire unused_u_hs = &{1'b0, u_in_ready, u_out_valid};
+      wire unused_u_hs = &{1'b0, u_in_ready, u_out_valid, u_out_ready};
       // GUARD and CUTOFF configure the cs16 unit only; referenced so that lint of a wrapper that fixes
       // them (a handoff bundle, where sc_specular.v is absent) does not flag them as unused.
       wire unused_unit_cfg = (GUARD == 0) || (CUTOFF == 0);
@@ -500,6 +509,19 @@ module sc_light #(
     if (!rst_ni) vb_q <= {NB{1'b0}};
     else if (adv_b) vb_q <= {vb_q[NB-2:0], b_in_valid};
   end
+  generate
+    if (CSER != 0) begin : g_ser
+      reg [1:0] ser_q;
+      always @(posedge clk_i) begin
+        if (!rst_ni) ser_q <= 2'd0;
+        else if (adv_b) ser_q <= (ser_q == 2'd0) ? {1'b0, u_out_valid} : ((ser_q == 2'd2) ? 2'd0 : 2'd2);
+      end
+      assign ser = ser_q;
+    end else begin : g_no_ser
+      assign ser = 2'd0;
+    end
+  endgenerate
+  assign u_out_ready = adv_b && (ser == 2'd0);
 
   // Fragments in flight (front, units, back, output stage). reg_ready_o: none, so a register
   // write cannot affect a fragment; in_ready_o is low while reg_we_i is high (the core drains).
@@ -709,7 +731,7 @@ module sc_light #(
                 .in_cos_i   (x_f),
                 .in_tag_i   (ut_in),
                 .out_valid_o(u_out_valid_all[8*j + u]),
-                .out_ready_i(adv_b),
+                .out_ready_i(u_out_ready),
                 .out_spec_o (spec_all[u*SPW +: SPW]),
                 .out_tag_o  (ut_out_all[u*UTW +: UTW])
             );
@@ -741,28 +763,46 @@ module sc_light #(
         assign u_out_valid_all[8*j +: 8] = 8'd0;
         wire unused_x = &{1'b0, x_f, spec_b, mat_we_u, mat_n_u, mat_thr_u, mat_coef_u};
       end
+      // what the back's first stage takes: the units' output, or with CSER the held pass for channels 1, 2
+      wire [UTW-1:0] ut_x;
+      wire [SPW-1:0] spec_x;
+      if (CSER != 0) begin : g_hold_b
+        reg [UTW-1:0] ut_h_q;
+        reg [SPW-1:0] spec_h_q;
+        always @(posedge clk_i) begin
+          if (u_out_ready) begin
+            ut_h_q   <= ut_b;
+            spec_h_q <= spec_b;
+          end
+        end
+        assign ut_x   = (ser == 2'd0) ? ut_b : ut_h_q;
+        assign spec_x = (ser == 2'd0) ? spec_b : spec_h_q;
+      end else begin : g_direct_b
+        assign ut_x   = ut_b;
+        assign spec_x = spec_b;
+      end
       if (j == 0) begin : g_ftag_out
-        assign bk_ftag = ut_b[UTW-1:SBW];
+        assign bk_ftag = ut_x[UTW-1:SBW];
       end
 
       wire [CL-1:0] bk_diff;
       wire [PW-1:0] bk_att;
       if (DIFFUSE != 0) begin : g_bk_d
-        assign bk_diff = ut_b[OFF_D +: CL];
+        assign bk_diff = ut_x[OFF_D +: CL];
       end else begin : g_bk_no_d
         assign bk_diff = {CL{1'b0}};
       end
       if (ANY_ATT != 0) begin : g_bk_a
-        assign bk_att = ut_b[OFF_A +: PW];
+        assign bk_att = ut_x[OFF_A +: PW];
       end else begin : g_bk_no_a
         assign bk_att = {PW{1'b0}};
       end
       sc_light_shade #(
           .FRAC(FRAC), .NLT(NLT), .NCH(NCH), .SPW(SPW), .SG(SGUARD), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
-          .SPECULAR(SPECULAR), .CAN_ATT(ANY_ATT)
+          .SPECULAR(SPECULAR), .CAN_ATT(ANY_ATT), .CSER(CSER)
       ) u_shade (
-          .clk_i(clk_i), .en_i(adv_b), .spec_i(spec_b), .f_i(ut_b[OFF_F]), .diff_i(bk_diff),
-          .att_i(bk_att), .idx_i(ut_b[OFF_I +: 3]), .v_i(ut_b[OFF_V]),
+          .clk_i(clk_i), .en_i(adv_b), .spec_i(spec_x), .f_i(ut_x[OFF_F]), .diff_i(bk_diff),
+          .att_i(bk_att), .idx_i(ut_x[OFF_I +: 3]), .v_i(ut_x[OFF_V]), .ch_i(ser),
           .mamb_i(mamb_w), .mdif_i(mdif_w), .mspec_i(mspec_w), .lamb_i(lamb_all), .ldif_i(ldif_all),
           .lspec_i(lspec_all), .term_o(term_all[j*NCH*CL +: NCH*CL]));
     end
@@ -871,15 +911,18 @@ module sc_light #(
   endgenerate
 
   // ---------------------------------------------------------------------------- back: accumulate, clamp
-  // {tag, last} to the output stage (NB), first to its input (NB-1)
+  // {tag, last} to the output stage (NB), first (and with CSER the item's channel) to its input (NB-1);
+  // with CSER an item is its fragment's last only as the last pass's channel 2
   wire [TAGW:0] tl_out;
+  wire item_last = bk_ftag[0] && (CSER == 0 || ser == 2'd2);
   sc_delay #(.W(TAGW+1), .DEPTH(NB)) u_dly_btag (
-      .clk_i(clk_i), .en_i(adv_b), .d_i({bk_ftag[FTW-1:2], bk_ftag[0]}), .q_o(tl_out));
+      .clk_i(clk_i), .en_i(adv_b), .d_i({bk_ftag[FTW-1:2], item_last}), .q_o(tl_out));
   assign out_tag_o = tl_out[TAGW:1];
   assign out_last  = tl_out[0];
   wire first_acc;
-  sc_delay #(.W(1), .DEPTH(NB-1)) u_dly_bfirst (
-      .clk_i(clk_i), .en_i(adv_b), .d_i(bk_ftag[1]), .q_o(first_acc));
+  wire [1:0] ch_acc;   // CSER: the channel the accumulator adds this edge
+  sc_delay #(.W(3), .DEPTH(NB-1)) u_dly_bfirst (
+      .clk_i(clk_i), .en_i(adv_b), .d_i({ser, bk_ftag[1]}), .q_o({ch_acc, first_acc}));
   wire acc_en = adv_b && vb_q[NB-2];
 
   wire [NCH*CL-1:0] out_w;
@@ -889,14 +932,17 @@ module sc_light #(
       reg [CL-1:0]   acc_q;
       reg [TOTW-1:0] tot;
       integer        k;
+      localparam integer TC = (CSER != 0) ? 0 : c;   // where a lane's term of this channel is
+      localparam integer CI = c;
+      wire ch_on = (CSER == 0) || (ch_acc == CI[1:0]);
       always @* begin
         tot = {{(TOTW-CL){1'b0}}, first_acc ? scene_w[c*CL +: CL] : acc_q};
         for (k = 0; k < NLN; k = k + 1) begin
-          tot = tot + {{(TOTW-CL){1'b0}}, term_all[(k*NCH + c)*CL +: CL]};
+          tot = tot + {{(TOTW-CL){1'b0}}, term_all[(k*NCH + TC)*CL +: CL]};
         end
       end
       always @(posedge clk_i) begin
-        if (acc_en) acc_q <= (tot > {{(TOTW-CL){1'b0}}, ONE}) ? ONE : tot[CL-1:0];
+        if (acc_en && ch_on) acc_q <= (tot > {{(TOTW-CL){1'b0}}, ONE}) ? ONE : tot[CL-1:0];
       end
       assign out_w[c*CL +: CL] = acc_q;
     end

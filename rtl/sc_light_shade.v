@@ -11,11 +11,16 @@
 //   term_o is the lane's term saturated to 2^F: every term is >= 0, so the core's saturating sum of
 //   saturated terms is exactly min(Σ, 2^F) of the unsaturated ones.
 //   Light registers are read through the slot index that travels with the pass (idx_i at B0).
+//   CSER = 1 (channel-serial, rtl/sc_light.v with SHARE >= 4, RGB and units): the lane computes one channel per
+//   item — the core feeds a pass as three items, channels 0, 1, 2 on consecutive back-advancing edges
+//   (ch_i at B0, travelling with the item) — through one set of multipliers instead of three; the
+//   item's term is at term_o[CL-1:0] (the other channels' bits are 0).
 // Parameters: FRAC, NLT, NCH, SPW (unit output width), SG (the unit's extra fraction bits, SGUARD of
-//             rtl/sc_light.v), AMBIENT, DIFFUSE, SPECULAR, CAN_ATT.
+//             rtl/sc_light.v), AMBIENT, DIFFUSE, SPECULAR, CAN_ATT, CSER.
 // Ports     : clk_i, en_i (the back-advancing condition); at B0 (the unit's output): spec_i, f_i,
 //             diff_i, att_i, idx_i, v_i (a light in this lane); material mamb_i, mdif_i, mspec_i; every slot's
-//             lamb_i, ldif_i, lspec_i (packed as sc_light_regfile.v); term_o at the last stage.
+//             lamb_i, ldif_i, lspec_i (packed as sc_light_regfile.v); ch_i (CSER: the item's channel at
+//             B0); term_o at the last stage.
 // ============================================================================================
 `default_nettype none
 
@@ -28,7 +33,8 @@ module sc_light_shade #(
     parameter integer AMBIENT  = 1,
     parameter integer DIFFUSE  = 1,
     parameter integer SPECULAR = 1,
-    parameter integer CAN_ATT  = 0
+    parameter integer CAN_ATT  = 0,
+    parameter integer CSER     = 0
 ) (
     input  wire                          clk_i,
     input  wire                          en_i,
@@ -44,6 +50,7 @@ module sc_light_shade #(
     input  wire [NLT*NCH*(FRAC+1)-1:0]   lamb_i,
     input  wire [NLT*NCH*(FRAC+1)-1:0]   ldif_i,
     input  wire [NLT*NCH*(FRAC+1)-1:0]   lspec_i,
+    input  wire [1:0]                    ch_i,
     output wire [NCH*(FRAC+1)-1:0]       term_o
 );
 
@@ -52,16 +59,19 @@ module sc_light_shade #(
   localparam integer SPF  = SPW - SG;   // width of spec at F fraction bits
   localparam integer SUMW = ((SPF + 2 > FRAC + 3) ? SPF + 2 : FRAC + 3) + 2;   // per-light sum
   localparam [CL-1:0] ONE = {1'b1, {FRAC{1'b0}}};
+  localparam integer NPC = (CSER != 0) ? 1 : NCH;   // channels computed per item
 
   genvar c;
 
   // spec only counts when N̂·L > 0
   wire [SPW-1:0] spec_e = f_i ? spec_i : {SPW{1'b0}};
   reg  [2:0] b1_idx_q;
+  reg  [1:0] b1_ch_q;
   reg        b1_v_q, b2_v_q;
   always @(posedge clk_i) begin
     if (en_i) begin
       b1_idx_q <= idx_i;
+      b1_ch_q  <= ch_i;
       b1_v_q   <= v_i;
       b2_v_q   <= b1_v_q;
     end
@@ -90,27 +100,32 @@ module sc_light_shade #(
     if (AMBIENT == 0) begin : g_amb_unused
       wire unused_amb = &{1'b0, lamb_i, mamb_i};
     end
-    for (c = 0; c < NCH; c = c + 1) begin : g_ch
+    for (c = 0; c < NPC; c = c + 1) begin : g_ch
+      // the colour channel of this product set: c, or the item's channel (CSER) at B0 and B1
+      localparam integer CI = c;
+      wire [1:0] c0 = (CSER != 0) ? ch_i : CI[1:0];
+      wire [1:0] c1 = (CSER != 0) ? b1_ch_q : CI[1:0];
+      wire unused_c = &{1'b0, c0, c1};   // a term set may read neither
       // B1: pd = ⌊diff·d_c / 2^F⌋, ps = ⌊spec·s_c / 2^(F+SG)⌋
       wire [CL+1:0]   td;    // ⌊pd·Id_c / 2^F⌋ (B2 input)
       wire [SPF+1:0]  ts;    // ⌊ps·Is_c / 2^F⌋
       wire [CL:0]     amb;   // ⌊a_c·Ia_jc / 2^F⌋
       if (AMBIENT != 0) begin : g_a
-        wire [CL-1:0]   la   = lamb_i[(NCH*b1_idx_q + c)*CL +: CL];
-        wire [2*CL-1:0] pa_p = {{CL{1'b0}}, mamb_i[c*CL +: CL]} * {{CL{1'b0}}, la};
+        wire [CL-1:0]   la   = lamb_i[(NCH*b1_idx_q + {30'd0, c1})*CL +: CL];
+        wire [2*CL-1:0] pa_p = {{CL{1'b0}}, mamb_i[c1*CL +: CL]} * {{CL{1'b0}}, la};
         wire unused_pa = &{1'b0, pa_p[F-1:0]};
         assign amb = pa_p[2*CL-1:F];
       end else begin : g_no_a
         assign amb = {(CL+1){1'b0}};
       end
       if (DIFFUSE != 0) begin : g_d
-        wire [2*CL-1:0] pd_p = {{CL{1'b0}}, diff_i} * {{CL{1'b0}}, mdif_i[c*CL +: CL]};
+        wire [2*CL-1:0] pd_p = {{CL{1'b0}}, diff_i} * {{CL{1'b0}}, mdif_i[c0*CL +: CL]};
         wire unused_pd = &{1'b0, pd_p[F-1:0]};
         reg  [CL:0] b1_pd_q;
         always @(posedge clk_i) begin
           if (en_i) b1_pd_q <= pd_p[2*CL-1:F];
         end
-        wire [CL-1:0] ld = ldif_i[(NCH*b1_idx_q + c)*CL +: CL];
+        wire [CL-1:0] ld = ldif_i[(NCH*b1_idx_q + {30'd0, c1})*CL +: CL];
         wire [2*CL:0] td_p = {{CL{1'b0}}, b1_pd_q} * {{(CL+1){1'b0}}, ld};
         wire unused_td = &{1'b0, td_p[F-1:0]};
         assign td = td_p[2*CL:F];
@@ -118,13 +133,13 @@ module sc_light_shade #(
         assign td = {(CL+2){1'b0}};
       end
       if (SPECULAR != 0) begin : g_s
-        wire [SPW+CL-1:0] ps_p = {{CL{1'b0}}, spec_e} * {{SPW{1'b0}}, mspec_i[c*CL +: CL]};
+        wire [SPW+CL-1:0] ps_p = {{CL{1'b0}}, spec_e} * {{SPW{1'b0}}, mspec_i[c0*CL +: CL]};
         wire unused_ps = &{1'b0, ps_p[F+SG-1:0]};
         reg  [SPF:0] b1_ps_q;
         always @(posedge clk_i) begin
           if (en_i) b1_ps_q <= ps_p[SPW+CL-1:F+SG];
         end
-        wire [CL-1:0] ls = lspec_i[(NCH*b1_idx_q + c)*CL +: CL];
+        wire [CL-1:0] ls = lspec_i[(NCH*b1_idx_q + {30'd0, c1})*CL +: CL];
         wire [SPF+CL:0] ts_p = {{CL{1'b0}}, b1_ps_q} * {{(SPF+1){1'b0}}, ls};
         wire unused_ts = &{1'b0, ts_p[F-1:0]};
         assign ts = ts_p[SPF+CL:F];
@@ -150,6 +165,12 @@ module sc_light_shade #(
       end else begin : g_sat
         assign term_o[c*CL +: CL] = (b2_sum_q > {{(SUMW-CL){1'b0}}, ONE}) ? ONE : b2_sum_q[CL-1:0];
       end
+    end
+    if (NPC < NCH) begin : g_ser_pad
+      assign term_o[NCH*CL-1:NPC*CL] = {((NCH-NPC)*CL){1'b0}};
+    end
+    if (CSER == 0) begin : g_ch_unused
+      wire unused_ch = &{1'b0, ch_i, b1_ch_q};
     end
   endgenerate
   wire unused_b2_v = &{1'b0, b2_v_q};

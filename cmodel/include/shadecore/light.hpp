@@ -357,7 +357,11 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   if (need_n) t_f = std::max(t_f, t_a + 1);
   if (fs.specular) t_f = std::max(t_f, t_x);
   if (any_att) t_f = std::max(t_f, t_att);
-  return {t_f, any_att ? 4 : 3};
+  // The back: colour products, attenuation, sum, accumulator. With share >= 4 on an RGB core with units it
+  // is channel-serial (rtl/sc_light.v CSER): a pass enters it as three items, one per channel, on
+  // consecutive edges, so its colour is out two edges later.
+  const bool cser = S >= 4 && fs.channels == 3 && fs.specular;
+  return {t_f, (any_att ? 4 : 3) + (cser ? 2 : 0)};
 }
 }  // namespace detail
 
