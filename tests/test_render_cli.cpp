@@ -248,6 +248,8 @@ TEST_F(RenderCli, BadArgumentsOneLine) {
            {"render " + scene + " --out " + (dir_ / "o").string() + " --size big", "--size"},
            {"render " + scene, "--out"},
            {"render " + scene + " --out " + scene, "not a directory"},
+           {"render " + scene + " --out " + (dir_ / "o").string() + " --share 5", "--share"},
+           {"render " + scene + " --out " + (dir_ / "o").string() + " --share 2 --lanes 2", "--share 2 needs --lanes 1"},
        }) {
     SCOPED_TRACE(args);
     const auto r = run_cli(args);
