@@ -390,10 +390,21 @@ void add_cosim(CLI::App& app) {
   sub->add_option("--core", *core, "unit (default: rtl/sc_specular.v) | lighting (rtl/sc_light.v)")
       ->check(CLI::IsMember({"unit", "lighting"}));
   auto* feat_opt = sub->add_option("--features", *features, "--core lighting: a named feature set of config/configs.json or a JSON file")->check(NonEmpty("feature set"));
-  sub->callback([args, n_opt, count_opt, shards_opt, cm_opt, coef_opt, core, features, feat_opt, sub] {
+  auto harness = std::make_shared<std::string>("systemc");
+  auto* harness_opt = sub->add_option("--harness", *harness,
+                                      "--core lighting: systemc (default: the SystemC testbench) | bare (the same RTL, "
+                                      "stimulus and checks in a plain C++ loop without SystemC, for long random runs)")
+                          ->check(CLI::IsMember({"systemc", "bare"}));
+  auto first = std::make_shared<uint64_t>(0);
+  auto* first_opt = sub->add_option("--first", *first,
+                                    "--core lighting, random: global index of the first fragment (a shard of a longer run "
+                                    "with the same seed and --reset-at)")
+                        ->check(UInt(0, uint64_t{1} << 40));
+  sub->callback([args, n_opt, count_opt, shards_opt, cm_opt, coef_opt, core, features, feat_opt, harness, harness_opt,
+                 first, first_opt, sub] {
     if (*core == "lighting") {
       for (const char* unit_only : {"--variant", "--config", "--cutoff", "--n", "--norm", "--coef-model", "--coef",
-                                    "--shards", "--trace", "--reset-at", "--mat-rate"})
+                                    "--shards", "--trace", "--mat-rate"})
         if (sub->count(unit_only) > 0)
           throw std::invalid_argument(std::string(unit_only) + " does not apply to --core lighting (the feature set says it)");
       LightCosimArgs la;
@@ -404,10 +415,17 @@ void add_cosim(CLI::App& app) {
       la.in_stall = args->in_stall;
       la.out_stall = args->out_stall;
       la.json_path = args->json_path;
+      la.harness = *harness;
+      la.first = *first;
+      la.reset_at = sub->count("--reset-at") > 0 ? static_cast<int64_t>(args->reset_at) : -2;
+      if (la.first != 0 && la.mode != "random") throw std::invalid_argument("--first applies to --mode random only");
       if (lighting_cosim(la) != 0) throw CheckFailed("cosim: FAIL (lighting core '" + la.features + "')");
       return;
     }
     if (feat_opt->count() > 0) throw std::invalid_argument("--features needs --core lighting");
+    if (harness_opt->count() > 0)
+      throw std::invalid_argument("--harness needs --core lighting (the unit's bare harness is shadecore_bare_<config>)");
+    if (first_opt->count() > 0) throw std::invalid_argument("--first needs --core lighting (the unit's shards: --shards)");
     args->n_given = n_opt->count() > 0;
     args->count_given = count_opt->count() > 0;
     args->shards_given = shards_opt->count() > 0;

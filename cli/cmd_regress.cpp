@@ -138,7 +138,8 @@ const std::set<std::string>& keys_for(const std::string& kind) {
        {"name", "kind", "variant", "config", "cutoff", "mode", "n", "count", "seed", "in_stall", "out_stall", "mat_rate",
         "reset_at", "norm", "coef_model", "coef", "harness", "shards", "note"}},
       {"sweep", {"name", "kind", "variant", "config", "cutoff", "n", "shards", "note"}},
-      {"cosim_lighting", {"name", "kind", "features", "mode", "count", "seed", "in_stall", "out_stall", "note"}},
+      {"cosim_lighting", {"name", "kind", "features", "mode", "count", "seed", "in_stall", "out_stall", "reset_at", "harness",
+                          "shards", "note"}},
       {"command", {"name", "kind", "args", "json", "note"}},
   };
   const auto it = k.find(kind);
@@ -274,16 +275,43 @@ std::vector<ShardSpec> expand(const json& plan) {
             "json");
       }
     } else if (kind == "cosim_lighting") {
-      // One unsharded shard (the lighting stimulus is one sequential stream; docs/regress.md).
-      if (shards_req != 1) throw std::invalid_argument(fmt::format("plan: job '{}': a cosim_lighting job is one shard for now", name));
+      // Random mode shards by fragment index like the unit's random jobs: the lighting stimulus — register
+      // program, write bursts, fragments — is a function of (seed, index), every shard gets the job's global
+      // --reset-at, and the reset's flushed fragments are sent again, so the merged vectors, mismatches and
+      // stimulus digest equal the one-process run's. Directed is one shard.
       const uint64_t seed = get<uint64_t>(j, name, "seed", 1);
       if (seed == 0) throw std::invalid_argument(fmt::format("plan: job '{}': seed must be >= 1", name));
-      add(0, 1, "cli",
-          {self, "cosim", "--core", "lighting", "--features", get<std::string>(j, name, "features", "full"), "--mode",
-           get<std::string>(j, name, "mode", "random"), "--count", std::to_string(get<uint64_t>(j, name, "count", 10000)),
-           "--seed", std::to_string(seed), "--in-stall", num(get<double>(j, name, "in_stall", 0.0)), "--out-stall",
-           num(get<double>(j, name, "out_stall", 0.0)), "--no-progress"},
-          "json");
+      const std::string mode = get<std::string>(j, name, "mode", "random");
+      if (mode != "random" && mode != "directed")
+        throw std::invalid_argument(fmt::format("plan: job '{}': unknown mode '{}' (known: random, directed)", name, mode));
+      const std::string harness = get<std::string>(j, name, "harness", "systemc");
+      if (harness != "systemc" && harness != "bare")
+        throw std::invalid_argument(fmt::format("plan: job '{}': harness must be systemc or bare", name));
+      const uint64_t count = get<uint64_t>(j, name, "count", 10000);
+      if (count == 0) throw std::invalid_argument(fmt::format("plan: job '{}': count must be >= 1", name));
+      if (mode != "random" && shards_req != 1)
+        throw std::invalid_argument(fmt::format("plan: job '{}': a directed job is one shard", name));
+      std::vector<std::string> common = {
+          self, "cosim", "--core", "lighting", "--harness", harness, "--features", get<std::string>(j, name, "features", "full"),
+          "--mode", mode, "--seed", std::to_string(seed), "--in-stall", num(get<double>(j, name, "in_stall", 0.0)),
+          "--out-stall", num(get<double>(j, name, "out_stall", 0.0)), "--no-progress"};
+      if (mode == "directed") {
+        if (j.contains("reset_at")) common.insert(common.end(), {"--reset-at", std::to_string(get<int64_t>(j, name, "reset_at", -1))});
+        common.insert(common.end(), {"--count", std::to_string(count)});
+        add(0, 1, "cli", common, "json");
+      } else {
+        const int64_t reset_at =
+            get<int64_t>(j, name, "reset_at", static_cast<int64_t>(stimulus::default_reset_index(seed, count)));
+        const int shards = static_cast<int>(std::min<uint64_t>(shards_req, count));
+        for (int k = 0; k < shards; ++k) {
+          const uint64_t base = count / shards, extra = count % shards, kk = static_cast<uint64_t>(k);
+          const uint64_t c = base + (kk < extra ? 1 : 0), first = kk * base + std::min(kk, extra);
+          std::vector<std::string> v = common;
+          v.insert(v.end(), {"--count", std::to_string(c), "--reset-at", std::to_string(reset_at)});
+          if (first != 0) v.insert(v.end(), {"--first", std::to_string(first)});
+          add(k, shards, "cli", v, "json");
+        }
+      }
     } else {  // command: any shadecore command line, one shard; passes when it exits 0
       if (!j.contains("args") || !j["args"].is_array() || j["args"].empty())
         throw std::invalid_argument(fmt::format("plan: job '{}': \"args\" must be a non-empty array of strings", name));
@@ -378,6 +406,7 @@ json parse_outcome(const ShardSpec& s, int status, const std::string& out, const
         } else {
           r["vectors"] = j.value("vectors", uint64_t{0});
           r["mismatches"] = j.value("mismatches", uint64_t{0});
+          if (j.contains("stimulus_digest")) r["stimulus_digest"] = j.value("stimulus_digest", uint64_t{0});
         }
       }
     }

@@ -45,11 +45,13 @@ std::string sources_hash() {
   std::vector<fs::path> files = {src / "sim/light_core/CMakeLists.txt", src / "rtl/lint/verilator_waiver.vlt"};
   auto add = [&files](const fs::path& p) {
     const auto ext = p.extension();
-    if (ext == ".v" || ext == ".vh" || ext == ".hpp" || p.filename() == "light_main.cpp") files.push_back(p);
+    if (ext == ".v" || ext == ".vh" || ext == ".hpp" || p.filename() == "light_main.cpp" ||
+        p.filename() == "light_bare_main.cpp")
+      files.push_back(p);
   };
   for (const auto& dir : {src / "rtl", src / "sim", gen / "shadecore"})
     for (const auto& e : fs::directory_iterator(dir)) add(e.path());
-  for (const auto& inc : {src / "cmodel/include", src / "stimulus/include"})
+  for (const auto& inc : {src / "cmodel/include", src / "stimulus/include", src / "common/include"})
     for (const auto& e : fs::recursive_directory_iterator(inc)) add(e.path());
   std::sort(files.begin(), files.end());
   uint64_t h = 1469598103934665603ull;
@@ -106,7 +108,14 @@ struct Lock {
 
 }  // namespace
 
-CoreBuild ensure_core(const FeatureSet& feat, bool quiet) {
+Harness parse_harness(const std::string& name) {
+  if (name == "systemc") return Harness::SystemC;
+  if (name == "bare") return Harness::Bare;
+  throw std::invalid_argument("unknown harness '" + name + "' (known: systemc, bare)");
+}
+const char* harness_name(Harness h) { return h == Harness::Bare ? "bare" : "systemc"; }
+
+CoreBuild ensure_core(const FeatureSet& feat, bool quiet, Harness harness) {
   const char* env = std::getenv("SHADECORE_CORE_CACHE");
   const fs::path cache = env && *env ? fs::path(env) : fs::path(SHADECORE_BINARY_DIR) / "cores";
   const fs::path dir = cache / feat.key();
@@ -116,9 +125,12 @@ CoreBuild ensure_core(const FeatureSet& feat, bool quiet) {
   Lock lock(dir / ".lock");
   CoreBuild b;
   b.dir = dir.string();
-  b.exe = (dir / "shadecore_light_sim").string();
+  const std::string target = harness == Harness::Bare ? "shadecore_light_bare" : "shadecore_light_sim";
+  b.exe = (dir / target).string();
+  // One stamp per target: the two are built when first asked for, each against the sources of its time.
+  const fs::path stamp_file = dir / (harness == Harness::Bare ? "stamp.bare" : "stamp");
   const std::string stamp = sources_hash();
-  if (fs::exists(b.exe) && read_all(dir / "stamp") == stamp) return b;
+  if (fs::exists(b.exe) && read_all(stamp_file) == stamp) return b;
 
   // Build: the feature set's canonical JSON as a header, then the CMake project sim/light_core
   // (configure + build in the cache directory; the RTL files from config/configs.json "rtl").
@@ -143,9 +155,9 @@ CoreBuild ensure_core(const FeatureSet& feat, bool quiet) {
       "-DSHADECORE_SOURCE_DIR=" + src.string(), "-DSHADECORE_GENERATED_DIR=" SHADECORE_GENERATED_DIR,
       "-DSHADECORE_LIGHT_PARAMS=" + cmake_list(feat.verilog_params(32)),
       "-DSHADECORE_LIGHT_RTL=" + cmake_list(rtl::light_files(feat))};
-  const std::vector<std::string> build = {SHADECORE_CMAKE_COMMAND, "--build", dir.string(), "-j", "2"};
-  const fs::path log = dir / "build.log";
-  fs::remove(dir / "stamp", ec);
+  const std::vector<std::string> build = {SHADECORE_CMAKE_COMMAND, "--build", dir.string(), "--target", target, "-j", "2"};
+  const fs::path log = dir / (harness == Harness::Bare ? "build.bare.log" : "build.log");
+  fs::remove(stamp_file, ec);
   // A cache shared between source trees ($SHADECORE_CORE_CACHE): CMake refuses a binary directory
   // configured from another source directory, so such a configuration starts afresh.
   if (fs::exists(dir / "CMakeCache.txt") &&
@@ -158,7 +170,9 @@ CoreBuild ensure_core(const FeatureSet& feat, bool quiet) {
   int rc;
   std::string out;
   {
-    Ticker t(fmt::format("building the lighting core '{}' [{}] for {}", feat.name, feat.key(), feat.summary()), quiet);
+    Ticker t(fmt::format("building the lighting core '{}' [{}] ({} harness) for {}", feat.name, feat.key(),
+                         harness_name(harness), feat.summary()),
+             quiet);
     handoff::ProcOptions po;
     po.own_group = false;  // a terminal's ^C stops cmake, ninja, Verilator and the compiler too
     handoff::Proc p = handoff::run_proc(configure, fs::current_path(), po);
@@ -174,7 +188,7 @@ CoreBuild ensure_core(const FeatureSet& feat, bool quiet) {
   b.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (rc != 0 || !fs::exists(b.exe))
     throw std::runtime_error("building the lighting core failed (log: " + log.string() + ")");
-  std::ofstream(dir / "stamp") << stamp;
+  std::ofstream(stamp_file) << stamp;
   b.built_now = true;
   if (!quiet) fmt::print(stderr, "shadecore: built in {:.1f} s: {}\n", b.build_seconds, b.exe);
   return b;
@@ -242,10 +256,14 @@ int lighting_cosim(const LightCosimArgs& a) {
     seed = std::chrono::steady_clock::now().time_since_epoch().count() ^ (uint64_t(::getpid()) << 32);
     if (seed == 0) seed = 1;
   }
-  const CoreBuild b = ensure_core(feat, a.quiet);
-  const std::vector<std::string> argv = {
+  const Harness harness = parse_harness(a.harness);
+  if (a.first != 0 && a.mode != "random") throw std::invalid_argument("--first applies to --mode random only");
+  const CoreBuild b = ensure_core(feat, a.quiet, harness);
+  std::vector<std::string> argv = {
       b.exe, "--mode", a.mode, "--label", feat.name, "--count", std::to_string(a.count), "--seed",
       std::to_string(seed), "--in-stall", fmt::format("{}", a.in_stall), "--out-stall", fmt::format("{}", a.out_stall)};
+  if (a.first != 0) argv.insert(argv.end(), {"--first", std::to_string(a.first)});
+  if (a.reset_at != -2) argv.insert(argv.end(), {"--reset-at", std::to_string(a.reset_at)});
   ::setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
   nlohmann::json result;
   handoff::ProcOptions po;

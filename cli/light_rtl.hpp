@@ -2,7 +2,9 @@
 // shadecore CLI — the lighting core in RTL, built on demand for one feature set and cached by its key
 // (docs/lighting.md §6). Like Mesa's program cache keyed on the fixed-function state: the first use of a
 // feature set Verilates rtl/sc_light.v with exactly that set's parameters together with the SystemC
-// testbench (sim/light_main.cpp) into <cache>/<name>_<key>/; every later use reuses the executable.
+// testbench (sim/light_main.cpp) — or, for `--harness bare`, without SystemC together with the bare
+// harness (sim/light_bare_main.cpp) — into <cache>/<key>/ (one CMake project, sim/light_core, a target
+// per harness, each built when first asked for); every later use reuses the executable.
 //
 // The cache directory: $SHADECORE_CORE_CACHE if set, else <build dir>/cores.
 #pragma once
@@ -23,9 +25,15 @@ struct CoreBuild {
   double build_seconds = 0.0;
 };
 
-// Build (or find) the simulator of `fs`. Progress on stderr when building (it takes ~30–90 s).
-// Throws std::runtime_error with one line (and the log path) if Verilator or the compiler fails.
-CoreBuild ensure_core(const FeatureSet& fs, bool quiet = false);
+// The two harnesses of a feature set's build: the SystemC testbench (shadecore_light_sim; protocol-rich
+// runs, `render --rtl`) and the bare Verilated harness (shadecore_light_bare; long random regressions).
+enum class Harness { SystemC, Bare };
+Harness parse_harness(const std::string& name);  // "systemc" | "bare"; throws std::invalid_argument
+const char* harness_name(Harness h);
+
+// Build (or find) the simulator of `fs` for harness `h`. Progress on stderr when building (it takes
+// ~30–90 s). Throws std::runtime_error with one line (and the log path) if Verilator or the compiler fails.
+CoreBuild ensure_core(const FeatureSet& fs, bool quiet = false, Harness h = Harness::SystemC);
 
 struct RtlRunOptions {
   double in_stall = 0.0, out_stall = 0.0;
@@ -50,12 +58,15 @@ RtlRunResult run_core_rtl(const FeatureSet& fs, const std::vector<sim::CoreComma
 
 namespace shadecore::cli {
 
-// `shadecore cosim --core lighting`: build (or reuse) the core of `features` and co-simulate it in the
-// simulator's random or directed mode. Returns the exit status (0 pass, 2 FAIL); throws for errors.
+// `shadecore cosim --core lighting`: build (or reuse) the core of `features` for the chosen harness and
+// co-simulate it in the simulator's random or directed mode. Returns the exit status (0 pass, 2 FAIL); throws for errors.
 struct LightCosimArgs {
   std::string features = "full";  // a named set of config/configs.json or a JSON file
   std::string mode = "random";     // random | directed
+  std::string harness = "systemc"; // systemc | bare (parse_harness)
   uint64_t count = 100000;
+  uint64_t first = 0;              // random: global index of the first fragment (a shard of a longer run)
+  int64_t reset_at = -2;           // global fragment index of the mid-stream reset; -1 none; -2 the simulator's default
   uint64_t seed = 0;               // 0 = pick one (printed)
   double in_stall = 0.0, out_stall = 0.0;
   std::string json_path;

@@ -16,12 +16,21 @@
 //             global mode × every unit × enable patterns (none, one, every other, all), repeated until
 //             `count` fragments.
 //   stream:   a command file (stimulus/include/shadecore/stimulus/light_stream.hpp), e.g. a scene's fragments from `shadecore render`.
-// Deterministic from the seed: the whole sequence is a function of (seed, feature set, count).
+// Deterministic from the seed. Random mode is a function of (seed, feature set, fragment index), like the
+// specular unit's stimulus (specular.hpp), so a run can be split into shards by index (`first`): the
+// register program comes from the seed; fragment i, and whether a register-write burst comes before it
+// and what that burst writes, each come from their own stream Rng::for_item(seed ^ K, i). A shard that
+// starts at index `first` > 0 replays the burst decisions of indices 0..first−1 (one hash per index, no
+// simulation: ~2·10⁸ indices/s) and opens with the register state they leave — the last data written to
+// each address, in address order — so fragment i meets the same registers whatever the shard count.
+// Directed and stream modes are one sequence (not sharded).
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <map>
+#include <stdexcept>
 #include <vector>
 
 #include "shadecore/stimulus/light_stream.hpp"
@@ -34,10 +43,13 @@ enum class LightMode { Random, Directed, Stream };
 
 class LightStimulus {
  public:
+  // first: random mode only — the global index of this run's first fragment (a shard of a longer run).
   LightStimulus(const LightCore& core, LightMode mode, uint64_t count, uint64_t seed, double write_rate,
-                std::vector<CoreCommand> stream = {})
+                std::vector<CoreCommand> stream = {}, uint64_t first = 0)
       : core_(core), f_(core.format()), F_(f_.frac), W_(core.widths()), mode_(mode), count_(count), write_rate_(write_rate),
-        rng_(seed ^ 0x11647c0deull), stream_(std::move(stream)) {
+        rng_(seed ^ 0x11647c0deull), seed_(seed), first_(first), burst_threshold_(rate_threshold(write_rate)),
+        stream_(std::move(stream)) {
+    if (first_ != 0 && mode_ != LightMode::Random) throw std::invalid_argument("a first index applies to random mode only");
     if (mode_ == LightMode::Stream) {
       for (const auto& c : stream_)
         if (!c.is_write) ++planned_;
@@ -47,10 +59,21 @@ class LightStimulus {
     } else {
       planned_ = count_;
       program_random();
+      if (first_ > 0) replay_bursts();
     }
   }
 
   [[nodiscard]] uint64_t planned() const { return planned_; }
+  // Random mode: the global index of the first fragment.
+  [[nodiscard]] uint64_t first() const { return first_; }
+  // A sum over the fragments handed out of a hash of (global index, fragment): equal for two runs that
+  // drive the same fragments, however they are split into shards (the shards' sums add up).
+  [[nodiscard]] uint64_t digest() const { return digest_; }
+
+  // Whether a register-write burst comes before random fragment `index` (rate: probability per fragment).
+  static bool burst_before(uint64_t seed, uint64_t index, uint64_t threshold) {
+    return threshold != 0 && Rng::for_item(seed ^ 0x4255525354424546ull, index).next() < threshold;
+  }
 
   bool next(CoreCommand& c) {
     if (mode_ == LightMode::Stream) {
@@ -71,21 +94,61 @@ class LightStimulus {
       return true;
     }
     if (frags_ >= count_) return false;
-    if (u01() < write_rate_) {
-      random_writes();  // may come out empty (every raw pick was a unit-contract register)
-      if (!pending_.empty()) {
-        c = pending_.front();
-        pending_.pop_front();
-        return true;
+    const uint64_t index = first_ + frags_;
+    if (burst_pending_ != index + 1) {  // this fragment's burst is drawn once
+      burst_pending_ = index + 1;
+      if (burst_before(seed_, index, burst_threshold_)) {
+        rng_ = Rng::for_item(seed_ ^ 0x4255525354444154ull, index);
+        random_writes();  // may come out empty (every raw pick was a unit-contract register)
+        if (!pending_.empty()) {
+          c = pending_.front();
+          pending_.pop_front();
+          return true;
+        }
       }
     }
+    rng_ = Rng::for_item(seed_, index);
     c.is_write = false;
     c.f = random_fragment();
+    digest_ += fragment_digest(index, c.f);
     ++frags_;
     return true;
   }
 
+  static uint64_t fragment_digest(uint64_t index, const Fragment& f) {
+    uint64_t h = mix64(index + 0x9E3779B97F4A7C15ull);
+    for (int i = 0; i < 3; ++i) h = mix64(h ^ static_cast<uint64_t>(f.n[i])) ^ mix64(static_cast<uint64_t>(f.p[i]) + h);
+    return h;
+  }
+
  private:
+  static uint64_t rate_threshold(double rate) {
+    if (rate <= 0.0) return 0;
+    if (rate >= 1.0) return ~uint64_t{0};
+    return static_cast<uint64_t>(rate * 18446744073709551616.0);
+  }
+  // A shard's opening: the bursts of fragments 0..first−1 applied to the program's register state, written
+  // as the last data of every address written (address order; registers are plain storage, so the state
+  // is the same as after the whole sequence).
+  void replay_bursts() {
+    std::map<uint32_t, uint32_t> last;
+    for (const auto& c : pending_) last[c.w.addr] = c.w.data;
+    pending_.clear();
+    for (uint64_t i = 0; i < first_; ++i) {
+      if (!burst_before(seed_, i, burst_threshold_)) continue;
+      rng_ = Rng::for_item(seed_ ^ 0x4255525354444154ull, i);
+      random_writes();
+      for (const auto& c : pending_) last[c.w.addr] = c.w.data;
+      pending_.clear();
+    }
+    for (const auto& [addr, data] : last) {
+      CoreCommand c;
+      c.is_write = true;
+      c.w = {addr, data};
+      pending_.push_back(c);
+    }
+  }
+
   double u01() { return static_cast<double>(rng_.next() >> 11) * 0x1.0p-53; }
   double u(double lo, double hi) { return lo + (hi - lo) * u01(); }
 
@@ -448,6 +511,9 @@ class LightStimulus {
   uint64_t count_;
   double write_rate_;
   Rng rng_;
+  uint64_t seed_, first_, burst_threshold_;
+  uint64_t burst_pending_ = 0;  // 1 + the index whose burst was drawn last
+  uint64_t digest_ = 0;
   std::vector<CoreCommand> stream_;
   std::vector<CoreCommand> directed_;
   uint64_t directed_frags_ = 0;

@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: Apache-2.0
+// shadecore sim — the lighting core's bare harness: rtl/sc_light.v Verilated WITHOUT SystemC (--cc) for
+// ONE feature set, driven by a plain C++ clock loop (no scheduler, no signals, two evals per clock), for
+// long random regressions. Everything else is the SystemC testbench's (sim/light_main.cpp): the stimulus
+// (LightStimulus: register program, write bursts, fragments — a function of (seed, index)), the driver
+// (LightDriveLogic: reset and resend, input gaps, backpressure), the monitor (MonitorLogic: transfers,
+// tags, latency, protocol), the scoreboard (every output against LightCore::eval, bit for bit, lost /
+// duplicated / reordered fragments), the options, the report and the exit status (tb_light_run.hpp).
+// Built on demand per feature set by `shadecore cosim --core lighting --harness bare` (cli/light_rtl.cpp)
+// into the same cache as the SystemC testbench.
+//
+//   shadecore_light_bare --mode random --count 1000000 --in-stall 0.3 --out-stall 0.3 --seed 7
+//
+// The clock loop mirrors SystemC's evaluation order: at each rising edge the monitor and the driver see
+// the pre-edge values (inputs as driven for this edge, outputs settled from them); the driver's writes
+// are held (BareIn::pend) and applied after the edge, as an sc_signal's are; then the model settles.
+#include <verilated.h>
+
+#include <cstdint>
+#include <type_traits>
+
+#include "Vlight_bare.h"
+#include "light_features.hpp"
+#include "tb_light_logic.hpp"
+#include "tb_light_run.hpp"
+#include "tb_monitor_logic.hpp"
+
+namespace shadecore::sim {
+namespace {
+
+template <class F>
+using Field = std::remove_cv_t<std::remove_reference_t<F>>;
+
+// An input port of the Verilated model: read() is the value the model sees (pre-edge), write() takes
+// effect at commit(), after the edge.
+template <class T>
+struct BareIn {
+  T& f;
+  T pend;
+  explicit BareIn(T& field) : f(field), pend(field) {}
+  [[nodiscard]] T read() const { return f; }
+  void write(uint64_t v) { pend = static_cast<T>(v); }
+  void commit() { f = pend; }
+};
+// An output port: read() only.
+template <class T>
+struct BareOut {
+  const T& f;
+  [[nodiscard]] T read() const { return f; }
+};
+
+struct BarePins : LightPinOps<BarePins> {
+  using M = Vlight_bare;
+  explicit BarePins(M& t)
+      : rst_n(t.rst_ni), reg_we(t.reg_we_i), reg_addr(t.reg_addr_i), reg_data(t.reg_data_i), reg_ready{t.reg_ready_o},
+        in_valid(t.in_valid_i), in_ready{t.in_ready_o}, in_nx(t.in_nx_i), in_ny(t.in_ny_i), in_nz(t.in_nz_i),
+        in_px(t.in_px_i), in_py(t.in_py_i), in_pz(t.in_pz_i), in_tag(t.in_tag_i), out_valid{t.out_valid_o},
+        out_ready(t.out_ready_i), out_r{t.out_r_o}, out_g{t.out_g_o}, out_b{t.out_b_o}, out_tag{t.out_tag_o} {}
+  BareIn<Field<decltype(M::rst_ni)>> rst_n;
+  BareIn<Field<decltype(M::reg_we_i)>> reg_we;
+  BareIn<Field<decltype(M::reg_addr_i)>> reg_addr;
+  BareIn<Field<decltype(M::reg_data_i)>> reg_data;
+  BareOut<Field<decltype(M::reg_ready_o)>> reg_ready;
+  BareIn<Field<decltype(M::in_valid_i)>> in_valid;
+  BareOut<Field<decltype(M::in_ready_o)>> in_ready;
+  BareIn<Field<decltype(M::in_nx_i)>> in_nx, in_ny, in_nz;
+  BareIn<Field<decltype(M::in_px_i)>> in_px, in_py, in_pz;
+  BareIn<Field<decltype(M::in_tag_i)>> in_tag;
+  BareOut<Field<decltype(M::out_valid_o)>> out_valid;
+  BareIn<Field<decltype(M::out_ready_i)>> out_ready;
+  BareOut<Field<decltype(M::out_r_o)>> out_r, out_g, out_b;
+  BareOut<Field<decltype(M::out_tag_o)>> out_tag;
+  int frac = 16;
+  int in_bits = 0;  // unused (MonitorLogic::set_in_bits is for the unit)
+
+  void commit() {
+    rst_n.commit(), reg_we.commit(), reg_addr.commit(), reg_data.commit(), in_valid.commit();
+    in_nx.commit(), in_ny.commit(), in_nz.commit(), in_px.commit(), in_py.commit(), in_pz.commit();
+    in_tag.commit(), out_ready.commit();
+  }
+};
+
+LightHarnessStats run_bare(const LightOptions& o, const LightCore& core, LightStimulus& stim, int64_t reset_local,
+                           uint64_t timing_seed, LightScoreboard& sb) {
+  VerilatedContext ctx;
+  Vlight_bare top{&ctx};
+  top.clk_i = 0;
+  top.rst_ni = 0;
+  top.reg_we_i = 0;
+  top.in_valid_i = 0;
+  top.out_ready_i = 0;
+  BarePins pins(top);
+  pins.frac = core.format().frac;
+  using Drv = LightDriveLogic<BarePins>;
+  Drv drv(pins, stim, timing_seed, o.in_stall, o.out_stall, reset_local, o.reset_cycles, o.resend);
+  MonitorLogic<BarePins, LightScoreboard, Drv> mon(pins, sb, drv, o.inject, o.inject_at);
+  top.eval();
+  for (;;) {
+    const bool stop = mon.on_edge();  // pre-edge values
+    drv.on_edge();                    // pre-edge values in, next inputs held in pend
+    top.clk_i = 1;
+    top.eval();                       // the edge, on the pre-edge inputs
+    pins.commit();
+    top.clk_i = 0;
+    top.eval();                       // settle on the new inputs
+    if (stop) break;
+  }
+  top.final();
+  LightHarnessStats s;
+  s.cycles = mon.cycles();
+  s.watchdog = mon.watchdog_fired();
+  s.resets = drv.resets();
+  s.replayed = drv.replayed();
+  return s;
+}
+
+}  // namespace
+}  // namespace shadecore::sim
+
+int main(int argc, char** argv) {
+  return shadecore::sim::light_harness_main(argc, argv, "bare", kLightFeaturesJson, shadecore::sim::run_bare);
+}

@@ -1,0 +1,287 @@
+// SPDX-License-Identifier: Apache-2.0
+// shadecore sim — one co-simulation run of the lighting core, free of SystemC: the command line, the
+// stimulus, the scoreboard, the summary and the COSIM-RESULT line, shared by both harnesses of a feature
+// set's build (sim/light_core): the SystemC testbench (sim/light_main.cpp, `shadecore_light_sim`) and the
+// bare Verilated harness (sim/light_bare_main.cpp, `shadecore_light_bare`). A harness supplies only its
+// clock loop (LightHarnessFn); what is driven, checked and reported is the same, so the two give the same
+// verdict, the same counts and the same JSON fields for the same options (cycle counts may differ: none).
+//
+//   <harness> --mode random --count 200000 --in-stall 0.3 --out-stall 0.3 --seed 7
+//   <harness> --mode random --count 50000 --first 50000 --reset-at 61234 --seed 7     (a shard)
+//   <harness> --mode directed
+//   <harness> --mode stream --in cmds.bin --out colours.bin     (a scene's fragments)
+//
+// Exit status (docs/cli.md): 0 every output matched the C model bit for bit, nothing was lost, duplicated
+// or reordered, every latency was within the core's contract and the port protocol held; 2 the run
+// completed and FAILED (or checked nothing); 1 a bad argument or an error (one line on stderr).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "shadecore/common/args.hpp"
+#include "shadecore/features.hpp"
+#include "shadecore/light.hpp"
+#include "shadecore/stimulus/light_stimulus.hpp"
+#include "shadecore/stimulus/light_stream.hpp"
+#include "shadecore/stimulus/specular.hpp"
+#include "tb_light_logic.hpp"
+
+namespace shadecore::sim {
+
+struct LightOptions {
+  std::string mode = "random";
+  uint64_t count = 100000;
+  uint64_t seed = 1;
+  uint64_t first = 0;  // random: global index of this run's first fragment (a shard of a longer run)
+  double in_stall = 0.0, out_stall = 0.0, write_rate = 0.002;
+  int64_t reset_at = -2;  // global fragment index; -1 none; -2 auto
+  int reset_cycles = 3;
+  bool resend = true;
+  std::string in_file, out_file;
+  int show = 10;
+  std::string inject;
+  uint64_t inject_at = 100;
+  bool quiet = false;
+  std::string label = "custom";
+};
+
+// What a harness's clock loop reports back (the scoreboard holds the rest).
+struct LightHarnessStats {
+  uint64_t cycles = 0;
+  bool watchdog = false;
+  uint64_t resets = 0, replayed = 0;
+};
+
+// One harness: run the stimulus through the core until done. reset_local: the mid-stream reset as this
+// run's fragment count (light_local_reset); timing_seed: the stall generators' seed.
+using LightHarnessFn = std::function<LightHarnessStats(const LightOptions&, const LightCore&, LightStimulus&,
+                                                       int64_t reset_local, uint64_t timing_seed, LightScoreboard&)>;
+
+namespace detail {
+
+inline std::string light_shortest(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  for (int p = 1; p < 18; ++p) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%.*g", p, v);
+    if (std::strtod(t, nullptr) == v) return t;
+  }
+  return b;
+}
+
+inline int light_run(const LightOptions& o, const FeatureSet& fs, const std::string& harness, const std::string& repro,
+                     const LightHarnessFn& loop) {
+  const LightCore core(fs);
+  LightMode mode = LightMode::Random;
+  std::vector<CoreCommand> stream;
+  if (o.mode == "directed") mode = LightMode::Directed;
+  else if (o.mode == "stream") {
+    mode = LightMode::Stream;
+    stream = read_commands(o.in_file);
+  }
+  LightStimulus stim(core, mode, o.count, o.seed, o.write_rate, std::move(stream), o.first);
+  if (stim.planned() == 0) throw std::invalid_argument("nothing to simulate (0 fragments)");
+  const int64_t reset_local = light_local_reset(o.reset_at, o.first, stim.planned());
+  // Stalls from the harness's own generators, seeded per run: a shard starting at fragment `first` gets
+  // its own streams (shard 0 / an unsharded run: the seed), as the unit's testbench. What is driven and
+  // checked is a function of (seed, index): the stimulus.
+  const uint64_t timing_seed = o.first != 0 ? mix64(o.seed ^ mix64(o.first)) : o.seed;
+
+  LightScoreboard sb(core, o.show);
+  std::vector<Colour> got;
+  if (mode == LightMode::Stream) {
+    got.reserve(stim.planned());
+    sb.record(&got);
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const LightHarnessStats hs = loop(o, core, stim, reset_local, timing_seed, sb);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  sb.finish();
+
+  const bool ok = sb.ok() && !hs.watchdog && sb.checked_ > 0;
+  const double vps = wall > 0 ? static_cast<double>(sb.checked_) / wall : 0.0;
+  for (const auto& m : sb.first_)
+    std::printf("MISMATCH tag %u N=(%lld,%lld,%lld) P=(%lld,%lld,%lld) expected=(%u,%u,%u) got=(%u,%u,%u) cycle %llu\n",
+                m.tag, (long long)m.n[0], (long long)m.n[1], (long long)m.n[2], (long long)m.p[0], (long long)m.p[1],
+                (long long)m.p[2], m.expected.c[0], m.expected.c[1], m.expected.c[2], m.got.c[0], m.got.c[1],
+                m.got.c[2], (unsigned long long)m.cycle);
+  if (!o.quiet || !ok)
+    std::printf("cosim: %s: %llu fragments checked, %llu mismatches, %llu lost, %llu duplicated/reordered, "
+                "%llu latency errors, %llu protocol errors; %llu register writes; %llu flushed by %llu mid-stream "
+                "reset(s), %llu sent again; latency %llu..%llu cycles (spec %d..%d advancing); %llu cycles, "
+                "%.3f s, %.0f fragments/s (%s)\n",
+                ok ? "PASS" : "FAIL", (unsigned long long)sb.checked_, (unsigned long long)sb.mismatches_,
+                (unsigned long long)sb.lost_, (unsigned long long)sb.unexpected_,
+                (unsigned long long)sb.latency_errors_, (unsigned long long)sb.protocol_errors_,
+                (unsigned long long)sb.material_writes_, (unsigned long long)sb.dropped_by_reset_,
+                (unsigned long long)hs.resets, (unsigned long long)hs.replayed,
+                (unsigned long long)(sb.checked_ ? sb.lat_min_ : 0), (unsigned long long)sb.lat_max_,
+                core.latency_min(), core.latency(), (unsigned long long)hs.cycles, wall, vps, harness.c_str());
+  if (sb.checked_ == 0) std::printf("cosim: FAIL: no fragment was checked\n");
+  if (!ok) std::printf("cosim: reproduce with: %s\n", repro.c_str());
+  if (mode == LightMode::Stream && !o.out_file.empty()) {
+    std::vector<ResultRecord> res;
+    res.reserve(got.size());
+    for (size_t i = 0; i < got.size(); ++i) res.push_back({static_cast<uint32_t>(i), got[i]});
+    write_results(o.out_file, res);
+  }
+  nlohmann::json j = {
+      {"ok", ok},
+      {"core", "lighting"},
+      {"harness", harness},
+      {"features", fs.name},
+      {"feature_key", fs.key()},
+      {"feature_set", nlohmann::json::parse(fs.canonical().dump())},
+      {"mode", o.mode},
+      {"seed", o.seed},
+      {"first", o.first},
+      {"in_stall", o.in_stall},
+      {"out_stall", o.out_stall},
+      {"write_rate", o.write_rate},
+      {"reset_at", o.reset_at},
+      {"planned", stim.planned()},
+      {"accepted", sb.accepted_},
+      {"vectors", sb.checked_},
+      {"mismatches", sb.mismatches_},
+      {"lost", sb.lost_},
+      {"duplicated_or_reordered", sb.unexpected_},
+      {"latency_errors", sb.latency_errors_},
+      {"protocol_errors", sb.protocol_errors_},
+      {"dropped_by_reset", sb.dropped_by_reset_},
+      {"replayed", hs.replayed},
+      {"resets", hs.resets},
+      {"register_writes", sb.material_writes_},
+      {"latency_spec", core.latency()},
+      {"latency_spec_min", core.latency_min()},
+      {"latency_min", sb.checked_ ? sb.lat_min_ : 0},
+      {"latency_max", sb.lat_max_},
+      {"cycles", hs.cycles},
+      {"wall_s", wall},
+      {"vectors_per_s", vps},
+      {"watchdog", hs.watchdog},
+      {"reproduce", repro},
+  };
+  if (mode == LightMode::Random) j["stimulus_digest"] = stim.digest();
+  std::printf("COSIM-RESULT %s\n", j.dump().c_str());
+  std::fflush(stdout);
+  return ok ? 0 : 2;
+}
+
+}  // namespace detail
+
+// The whole program of a harness: options, the feature set the build was made for (its canonical JSON,
+// light_features.hpp), the run. `harness` names it in the report ("systemc" / "bare").
+inline int light_harness_main(int argc, char** argv, const char* harness, const char* features_json,
+                              const LightHarnessFn& loop) {
+  using namespace cliargs;
+  std::string prog = argv[0];
+  if (const auto slash = prog.rfind('/'); slash != std::string::npos) prog = prog.substr(slash + 1);
+  LightOptions o;
+  bool no_resend = false;
+  CLI::App app{std::string("co-simulation of rtl/sc_light.v (one feature set, built on demand) against LightCore; ") +
+               harness + " harness"};
+  app.add_option("--mode", o.mode, "random | directed | stream")->check(CLI::IsMember({"random", "directed", "stream"}));
+  auto* count_opt = app.add_option("--count", o.count, "random: fragments; directed: at least this many (list repeated)")
+                        ->check(UInt(1, uint64_t{1} << 40));
+  app.add_option("--seed", o.seed, "random seed (0 = pick one and print it)")->check(UInt(0));
+  auto* first_opt = app.add_option("--first", o.first,
+                                   "random: global index of the first fragment (a shard of a longer run with the same seed)")
+                        ->check(UInt(0, uint64_t{1} << 40));
+  app.add_option("--in-stall", o.in_stall, "probability per cycle of an input gap, in [0, 1)")->check(Probability(false));
+  app.add_option("--out-stall", o.out_stall, "probability per cycle of out_ready_i low, in [0, 1)")->check(Probability(false));
+  auto* rate_opt = app.add_option("--write-rate", o.write_rate, "random: probability per fragment of a register-write burst before it")
+                       ->check(Probability(true));
+  auto* reset_opt = app.add_option("--reset-at", o.reset_at,
+                                   "pulse rst_ni low once, before the fragment of this index (random: global index, so only the "
+                                   "shard holding it resets; -1 none; default: random, drawn from the seed in the middle half "
+                                   "of this run; directed, half way; none for a stream)")
+                        ->check(ResetAt());
+  app.add_option("--reset-cycles", o.reset_cycles, "length of each reset pulse")->check(Int(1, 1000));
+  app.add_flag("--no-resend", no_resend, "drop the fragments the reset flushes instead of sending them again");
+  auto* in_opt = app.add_option("--in", o.in_file, "stream: command file (shadecore/stimulus/light_stream.hpp)")->check(NonEmpty("path"));
+  auto* out_opt = app.add_option("--out", o.out_file, "stream: write the RTL's colours here")->check(NonEmpty("path"));
+  app.add_option("--show", o.show, "errors printed in full per kind")->check(Int(0, 1000000));
+  auto* inject_opt = app.add_option("--inject", o.inject, "self-test: corrupt one observed output (value | drop | dup); the run must FAIL")
+                         ->check(CLI::IsMember({"value", "drop", "dup"}));
+  auto* inject_at_opt = app.add_option("--inject-at", o.inject_at, "self-test: which output transfer (1-based)")
+                            ->check(UInt(1, uint64_t{1} << 40));
+  app.add_option("--label", o.label, "the feature set's name, for the report")->check(NonEmpty("label"));
+  app.add_flag("--quiet", o.quiet, "print only the COSIM-RESULT line when the run passes");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::fputs(app.help().c_str(), stdout);
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "%s: error: %s (see %s --help)\n", prog.c_str(), e.what(), prog.c_str());
+    return 1;
+  }
+  o.resend = !no_resend;
+  try {
+    // Options that the chosen mode would ignore are errors, not silently dropped.
+    if (o.mode != "random" && first_opt->count()) throw std::invalid_argument("--first applies to --mode random only");
+    if (o.mode != "random" && rate_opt->count()) throw std::invalid_argument("--write-rate applies to --mode random only");
+    if (o.mode == "stream" && count_opt->count()) throw std::invalid_argument("--count does not apply to --mode stream (the file says it)");
+    if (o.mode == "stream" && !in_opt->count()) throw std::invalid_argument("--mode stream needs --in FILE");
+    if (o.mode != "stream" && (in_opt->count() || out_opt->count())) throw std::invalid_argument("--in and --out apply to --mode stream only");
+    if (inject_at_opt->count() && !inject_opt->count()) throw std::invalid_argument("--inject-at needs --inject");
+    if (o.seed == 0) {
+      o.seed = (static_cast<uint64_t>(std::random_device{}()) << 32) ^ std::random_device{}();
+      if (o.seed == 0) o.seed = 1;
+    }
+    const FeatureSet fs = feature_set_from_json(nlohmann::json::parse(features_json), "built feature set");
+    FeatureSet named = fs;
+    named.name = o.label;
+    if (o.reset_at == -2) {
+      o.reset_at = -1;
+      if (!reset_opt->count() && o.mode == "random") {
+        o.reset_at = static_cast<int64_t>(o.first + stimulus::default_reset_index(o.seed, o.count));
+      } else if (!reset_opt->count() && o.mode == "directed") {
+        const LightCore probe(fs);
+        o.reset_at = static_cast<int64_t>(LightStimulus(probe, LightMode::Directed, o.count, o.seed, o.write_rate).planned() / 2);
+      }
+    }
+    // The command that replays this run exactly: every option resolved (the seed picked, the reset point).
+    std::string repro = argv[0];
+    const auto add = [&repro](const std::string& k, const std::string& v) { repro += " " + k + " " + v; };
+    add("--mode", o.mode);
+    if (o.mode != "stream") add("--count", std::to_string(o.count));
+    if (o.mode == "random" && o.first) add("--first", std::to_string(o.first));
+    add("--seed", std::to_string(o.seed));
+    add("--in-stall", detail::light_shortest(o.in_stall));
+    add("--out-stall", detail::light_shortest(o.out_stall));
+    if (o.mode == "random") add("--write-rate", detail::light_shortest(o.write_rate));
+    add("--reset-at", std::to_string(o.reset_at));
+    add("--reset-cycles", std::to_string(o.reset_cycles));
+    if (!o.resend) repro += " --no-resend";
+    if (o.mode == "stream") add("--in", o.in_file);
+    if (!o.inject.empty()) {
+      add("--inject", o.inject);
+      add("--inject-at", std::to_string(o.inject_at));
+    }
+    add("--label", o.label);
+    if (!o.quiet)
+      std::printf("cosim: lighting core '%s' [%s] (%s harness): %s; mode %s count %llu%s seed %llu in-stall %g "
+                  "out-stall %g reset-at %lld\n",
+                  named.name.c_str(), fs.key().c_str(), harness, fs.summary().c_str(), o.mode.c_str(),
+                  (unsigned long long)o.count, o.first ? (" first " + std::to_string(o.first)).c_str() : "",
+                  (unsigned long long)o.seed, o.in_stall, o.out_stall, (long long)o.reset_at);
+    return detail::light_run(o, named, harness, repro, loop);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: error: %s\n", prog.c_str(), e.what());
+    return 1;
+  }
+}
+
+}  // namespace shadecore::sim
