@@ -33,7 +33,9 @@
 
 namespace shadecore::sim {
 
-// The C model side of a lighting-core transaction: registers as written so far, LightCore::eval.
+// The C model side of a lighting-core transaction: registers as written so far, LightCore::eval. The
+// latency bounds depend on the registers only, so they are computed at each register write, not per
+// fragment (LightCore::latency(regs) decodes the modes: a measurable share of the bare harness's time).
 struct LightModel {
   using In = Fragment;
   using Out = Colour;
@@ -41,9 +43,10 @@ struct LightModel {
   const LightCore* core;
   LightRegs regs{};
   bool written = false;
+  int lat = 0, lat_min = 0;  // core->latency(regs), core->latency_min(regs)
   [[nodiscard]] bool ready() const { return written; }
-  [[nodiscard]] int latency() const { return core->latency(regs); }
-  [[nodiscard]] int latency_min() const { return core->latency_min(regs); }
+  [[nodiscard]] int latency() const { return lat; }
+  [[nodiscard]] int latency_min() const { return lat_min; }
   [[nodiscard]] Out expected(const In& in) const { return core->eval(regs, in); }
 };
 
@@ -53,6 +56,8 @@ class LightScoreboard : public ScoreboardT<LightModel> {
   void on_write(uint32_t addr, uint32_t data) {
     model_.regs.write(model_.core->widths(), addr, data);
     model_.written = true;
+    model_.lat = model_.core->latency(model_.regs);
+    model_.lat_min = model_.core->latency_min(model_.regs);
     ++material_writes_;
   }
 };
@@ -139,7 +144,8 @@ class LightDriveLogic {
         resend_(resend),
         in_stall_(in_stall, timing_seed * 0x9E3779B97F4A7C15ull + 1),
         out_stall_(out_stall, timing_seed * 0xD1B54A32D192ED03ull + 2),
-        rst_left_(reset_cycles) {}
+        rst_left_(reset_cycles),
+        track_(reset_at >= 0 && resend) {}
 
   [[nodiscard]] bool done() const { return finished_ && !have_ && replay_.empty(); }
   [[nodiscard]] uint64_t accepted() const { return accepted_; }
@@ -157,7 +163,7 @@ class LightDriveLogic {
         have_ = false;
         if (!cmd_.is_write) {
           ++accepted_;
-          if (reset_at_ >= 0 && resend_) in_flight_.push_back(cmd_);
+          if (track_) in_flight_.push_back(cmd_);
         }
       }
     }
@@ -180,6 +186,8 @@ class LightDriveLogic {
       mid_reset_done_ = true;
       ++resets_;
     }
+    // What is in flight matters only until the mid-stream reset has flushed it.
+    track_ = reset_at_ >= 0 && resend_ && !(mid_reset_done_ && rst_left_ == 0);
     const bool same_cmd = have_;  // the command presented at this edge is still to be taken
     rst_q_ = rst_left_ == 0;
     pins_.rst_n.write(rst_q_);
@@ -227,6 +235,7 @@ class LightDriveLogic {
   bool ready_q_ = false;  // out_ready_i as driven for the coming edge
   int rst_left_;
   bool mid_reset_done_ = false;
+  bool track_ = false;  // keep in_flight_ (a mid-stream reset with resend still to come or in progress)
   std::deque<CoreCommand> in_flight_, replay_;
   uint32_t tag_ = 0, next_tag_ = 0;
   uint64_t accepted_ = 0, resets_ = 0, replayed_ = 0;

@@ -26,6 +26,10 @@ class MonitorT : public sc_core::sc_module {
     dont_initialize();
   }
 
+  using Logic = MonitorLogic<PinsT, SbT, DrvT>;
+  static constexpr uint64_t kIdleLimit = Logic::kIdleLimit;
+  static constexpr uint64_t kTail = Logic::kTail;
+
   [[nodiscard]] uint64_t cycles() const { return logic_.cycles(); }
   [[nodiscard]] bool watchdog_fired() const { return logic_.watchdog_fired(); }
   void set_in_bits(int bits) { logic_.set_in_bits(bits); }
@@ -34,7 +38,7 @@ class MonitorT : public sc_core::sc_module {
   void on_clk() {
     if (logic_.on_edge()) sc_core::sc_stop();
   }
-  MonitorLogic<PinsT, SbT, DrvT> logic_;
+  Logic logic_;
 };
 
 }  // namespace shadecore::sim
