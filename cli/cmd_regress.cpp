@@ -159,6 +159,14 @@ T get(const json& j, const std::string& job, const char* key, T dflt) {
 
 std::string num(double v) { return fmt::format("{}", v); }
 
+// Shard k of `shards` of a random job of `count` transactions: its first global index and its count (the
+// first count % shards shards take one more).
+std::pair<uint64_t, uint64_t> index_range(uint64_t count, int shards, int k) {
+  const uint64_t base = count / static_cast<uint64_t>(shards), extra = count % static_cast<uint64_t>(shards);
+  const uint64_t kk = static_cast<uint64_t>(k);
+  return {kk * base + std::min(kk, extra), base + (kk < extra ? 1 : 0)};
+}
+
 // Expands the plan into shards (deterministic: a function of the plan and this build's simulators).
 std::vector<ShardSpec> expand(const json& plan) {
   if (!plan.is_object() || !plan.contains("jobs") || !plan["jobs"].is_array() || plan["jobs"].empty())
@@ -248,8 +256,7 @@ std::vector<ShardSpec> expand(const json& plan) {
             get<int64_t>(j, name, "reset_at", static_cast<int64_t>(stimulus::default_reset_index(seed, count)));
         const int shards = static_cast<int>(std::min<uint64_t>(shards_req, count));
         for (int k = 0; k < shards; ++k) {
-          const uint64_t base = count / shards, extra = count % shards, kk = static_cast<uint64_t>(k);
-          const uint64_t c = base + (kk < extra ? 1 : 0), first = kk * base + std::min(kk, extra);
+          const auto [first, c] = index_range(count, shards, k);
           std::vector<std::string> v = common;
           v.insert(v.end(), {"--n", fmt::format("{}..{}", n_lo, n_hi), "--count", std::to_string(c), "--first",
                              std::to_string(first), "--reset-at", std::to_string(reset_at)});
@@ -304,8 +311,7 @@ std::vector<ShardSpec> expand(const json& plan) {
             get<int64_t>(j, name, "reset_at", static_cast<int64_t>(stimulus::default_reset_index(seed, count)));
         const int shards = static_cast<int>(std::min<uint64_t>(shards_req, count));
         for (int k = 0; k < shards; ++k) {
-          const uint64_t base = count / shards, extra = count % shards, kk = static_cast<uint64_t>(k);
-          const uint64_t c = base + (kk < extra ? 1 : 0), first = kk * base + std::min(kk, extra);
+          const auto [first, c] = index_range(count, shards, k);
           std::vector<std::string> v = common;
           v.insert(v.end(), {"--count", std::to_string(c), "--reset-at", std::to_string(reset_at)});
           if (first != 0) v.insert(v.end(), {"--first", std::to_string(first)});

@@ -106,12 +106,7 @@ LightHarnessStats run_bare(const LightOptions& o, const LightCore& core, LightSt
     if (stop) break;
   }
   top.final();
-  LightHarnessStats s;
-  s.cycles = mon.cycles();
-  s.watchdog = mon.watchdog_fired();
-  s.resets = drv.resets();
-  s.replayed = drv.replayed();
-  return s;
+  return light_harness_stats(mon, drv);
 }
 
 }  // namespace

@@ -35,12 +35,7 @@ LightHarnessStats run_systemc(const LightOptions& o, const LightCore& core, Ligh
   sc_core::sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
   sc_core::sc_start();
   dut.final();
-  LightHarnessStats s;
-  s.cycles = mon.cycles();
-  s.watchdog = mon.watchdog_fired();
-  s.resets = drv.resets();
-  s.replayed = drv.replayed();
-  return s;
+  return light_harness_stats(mon, drv);
 }
 
 }  // namespace

@@ -62,6 +62,17 @@ struct LightHarnessStats {
   uint64_t resets = 0, replayed = 0;
 };
 
+// The stats of a finished run, from its monitor (cycles(), watchdog_fired()) and driver (resets(), replayed()).
+template <class Mon, class Drv>
+LightHarnessStats light_harness_stats(const Mon& mon, const Drv& drv) {
+  LightHarnessStats s;
+  s.cycles = mon.cycles();
+  s.watchdog = mon.watchdog_fired();
+  s.resets = drv.resets();
+  s.replayed = drv.replayed();
+  return s;
+}
+
 // One harness: run the stimulus through the core until done. reset_local: the mid-stream reset as this
 // run's fragment count (light_local_reset); timing_seed: the stall generators' seed.
 using LightHarnessFn = std::function<LightHarnessStats(const LightOptions&, const LightCore&, LightStimulus&,
