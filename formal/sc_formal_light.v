@@ -55,6 +55,7 @@ module sc_formal_light #(
     parameter integer LIGHTS       = 1,
     parameter integer SLOT_KINDS   = 1,
     parameter integer LANES        = 1,
+    parameter integer SHARE        = 1,   // passed through; the l_tput_* issue-slot properties assume 1
     parameter integer AMBIENT      = 1,
     parameter integer DIFFUSE      = 1,
     parameter integer UNITS        = 1,
@@ -94,7 +95,7 @@ module sc_formal_light #(
   wire [TAGW-1:0] out_tag_o;
 
   sc_light #(
-      .FRAC(FRAC), .GUARD(GUARD), .SGUARD(SGUARD), .LIGHTS(LIGHTS), .SLOT_KINDS(SLOT_KINDS), .LANES(LANES),
+      .FRAC(FRAC), .GUARD(GUARD), .SGUARD(SGUARD), .LIGHTS(LIGHTS), .SLOT_KINDS(SLOT_KINDS), .LANES(LANES), .SHARE(SHARE),
       .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE), .UNITS(UNITS), .CUTOFF(CUTOFF), .NORM(NORM),
       .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER), .NORMALIZE(NORMALIZE),
       .CHANNELS(CHANNELS), .TAGW(TAGW)

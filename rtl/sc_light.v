@@ -185,6 +185,14 @@ module sc_light #(
       end
     end
   endfunction
+  // number of set bits of the low 8 bits of m
+  function integer popcount8(input integer m);
+    integer b;
+    begin
+      popcount8 = 0;
+      for (b = 0; b < 8; b = b + 1) popcount8 = popcount8 + ((m >> b) & 1);
+    end
+  endfunction
   // index of the lowest set bit of m (0 for m = 0)
   function [2:0] lowest(input [7:0] m);
     integer b;
@@ -255,6 +263,10 @@ module sc_light #(
   // fragments 2..3 edges late after stalls: the backlog never drained).
   localparam integer CSER  = (SH >= 4 && NCH == 3 && SPECULAR != 0) ? 1 : 0;
   localparam integer SPW   = (NORM != 0) ? VF + 8 : VF + 1;               // unit output width
+  // with NORM and more than one unit, one sc_norm per lane after the unit selection instead of one per
+  // unit (only the selected unit has passes; its coefficient register cannot change while one is in flight)
+  localparam integer SNORM = (NORM != 0 && popcount8(UNITS) > 1) ? 1 : 0;
+  localparam integer UOW   = (NORM != 0 && SNORM == 0) ? VF + 8 : VF + 1;   // each unit's own output width
   localparam integer CNTW  = sc_bits(T_F + max_unit_latency(0) + NB + 3);   // fragments in flight
   localparam integer ITER  = (UNITS == (1 << VARIANT_SCHLICK_ITER)) ? 1 : 0;
   localparam integer GAP   = VF + 3;                                      // schlick_iter: interval VF+4, minus 1
@@ -654,6 +666,7 @@ module sc_light #(
   wire [NLN*3*HVW_T-1:0]  hv_all;    // lane j's H at T_H (SHARE > 1)
   wire [NLN*NCH*CL-1:0] term_all;    // lane l's saturated term of channel c at (l*NCH + c)*CL
   wire [NLN*8-1:0]      u_in_ready_all, u_out_valid_all;   // per lane and variant id
+  wire [NLN-1:0]        lane_out_valid;                    // per lane: what its back takes is valid
   wire [FTW-1:0]        bk_ftag;     // {fragment tag, first, last} as the back takes it
   wire                  u_kill = unit_kill;
 
@@ -705,7 +718,8 @@ module sc_light #(
         // one sc_specular per unit of UNITS; only the selected one gets passes (mat_unit cannot
         // change while one is in flight), its handshake and results are the lane's
         wire [8*UTW-1:0] ut_out_all;
-        wire [8*SPW-1:0] spec_all;
+        wire [8*UOW-1:0] spec_all;
+        wire             n_in_ready;   // SNORM: the shared sc_norm takes the selected unit's result
         for (u = 0; u < 8; u = u + 1) begin : g_u
           if (((UNITS >> u) & 1) != 0) begin : g_on
             sc_specular #(
@@ -714,7 +728,7 @@ module sc_light #(
                 .GUARD  (GUARD),
                 .CUTOFF (CUTOFF),
                 .TAGW   (UTW),
-                .NORM   (NORM)
+                .NORM   ((SNORM != 0) ? 0 : NORM)
             ) u_unit (
                 .clk_i      (clk_i),
                 .rst_ni     (rst_ni),
@@ -731,36 +745,52 @@ module sc_light #(
                 .in_cos_i   (x_f),
                 .in_tag_i   (ut_in),
                 .out_valid_o(u_out_valid_all[8*j + u]),
-                .out_ready_i(u_out_ready),
-                .out_spec_o (spec_all[u*SPW +: SPW]),
+                .out_ready_i((SNORM != 0) ? n_in_ready : u_out_ready),
+                .out_spec_o (spec_all[u*UOW +: UOW]),
                 .out_tag_o  (ut_out_all[u*UTW +: UTW])
             );
           end else begin : g_off
             assign u_in_ready_all[8*j + u]  = 1'b0;
             assign u_out_valid_all[8*j + u] = 1'b0;
-            assign spec_all[u*SPW +: SPW]   = {SPW{1'b0}};
+            assign spec_all[u*UOW +: UOW]   = {UOW{1'b0}};
             assign ut_out_all[u*UTW +: UTW] = {UTW{1'b0}};
           end
         end
         // the selected unit's outputs (AND-OR over the one-hot selection)
         reg [UTW-1:0] ut_sel;
-        reg [SPW-1:0] spec_sel;
+        reg [UOW-1:0] spec_sel;
         integer v;
         always @* begin
           ut_sel = {UTW{1'b0}};
-          spec_sel = {SPW{1'b0}};
+          spec_sel = {UOW{1'b0}};
           for (v = 0; v < 8; v = v + 1) begin
             ut_sel   = ut_sel | (ut_out_all[v*UTW +: UTW] & {UTW{unit_sel[v]}});
-            spec_sel = spec_sel | (spec_all[v*SPW +: SPW] & {SPW{unit_sel[v]}});
+            spec_sel = spec_sel | (spec_all[v*UOW +: UOW] & {UOW{unit_sel[v]}});
           end
         end
-        assign ut_b   = ut_sel;
-        assign spec_b = spec_sel;
+        wire sel_valid = |(u_out_valid_all[8*j +: 8] & unit_sel);
+        if (SNORM != 0) begin : g_snorm
+          sc_norm #(
+              .FRAC(VF), .COEFW(VF + 8), .COEF_SRC(0), .TAGW(UTW)
+          ) u_norm (
+              .clk_i(clk_i), .rst_ni(rst_ni), .mat_we_i(mat_we_u), .mat_coef_i(mat_coef_u),
+              .in_valid_i(sel_valid), .in_ready_o(n_in_ready), .in_spec_i(spec_sel),
+              .in_coef_i({(VF+8){1'b0}}), .in_tag_i(ut_sel),
+              .out_valid_o(lane_out_valid[j]), .out_ready_i(u_out_ready), .out_norm_o(spec_b),
+              .out_tag_o(ut_b));
+        end else begin : g_unorm
+          assign n_in_ready = 1'b0;
+          assign lane_out_valid[j] = sel_valid;
+          assign ut_b   = ut_sel;
+          assign spec_b = spec_sel;
+          wire unused_n_in_ready = &{1'b0, n_in_ready};
+        end
       end else begin : g_no_units
         assign ut_b   = ut_in;
         assign spec_b = {SPW{1'b0}};
         assign u_in_ready_all[8*j +: 8]  = 8'd0;
         assign u_out_valid_all[8*j +: 8] = 8'd0;
+        assign lane_out_valid[j] = 1'b0;
         wire unused_x = &{1'b0, x_f, spec_b, mat_we_u, mat_n_u, mat_thr_u, mat_coef_u};
       end
       // what the back's first stage takes: the units' output, or with CSER the held pass for channels 1, 2
@@ -809,8 +839,8 @@ module sc_light #(
   endgenerate
   // lane 0's selected unit gives the handshake (the lanes run in lock-step)
   assign u_in_ready  = |(u_in_ready_all[7:0] & unit_sel);
-  assign u_out_valid = |(u_out_valid_all[7:0] & unit_sel);
-  wire unused_units = &{1'b0, u_in_ready_all, u_out_valid_all, unit_sel};
+  assign u_out_valid = lane_out_valid[0];
+  wire unused_units = &{1'b0, u_in_ready_all, u_out_valid_all, unit_sel, lane_out_valid};
 
   // ---------------------------------------------------------------------------- shared normalisers
   // SHARE > 1 (LANES = 1): op k of {N, V, L, H} (those that exist, in that order) enters instance

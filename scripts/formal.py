@@ -274,13 +274,13 @@ MUTATIONS = {
     "iter_drop_transfer": ("sc_schlick_iter.v", "if (accept) begin\n        busy_q <= 1'b1;",
                            "if (accept && in_cos_i[0]) begin\n        busy_q <= 1'b1;", ["it_count"]),
     # the lighting core: accepts in reset / takes a register write in reset / accepts while reg_we_i
-    "light_accept_in_reset": ("sc_light.v", "assign in_ready_o  = rst_ni && adv_f && !reg_we_i && gap_ok && !hold_q;",
-                              "assign in_ready_o  = adv_f && !reg_we_i && gap_ok && !hold_q;", ["l_in_ready_reset"]),
+    "light_accept_in_reset": ("sc_light.v", "assign in_ready_o  = rst_ni && adv_f && !reg_we_i && gap_ok && ph_ok && !hold_q;",
+                              "assign in_ready_o  = adv_f && !reg_we_i && gap_ok && ph_ok && !hold_q;", ["l_in_ready_reset"]),
     "light_write_in_reset": ("sc_light.v", "assign reg_ready_o = rst_ni && (cnt_q == {CNTW{1'b0}});",
                              "assign reg_ready_o = (cnt_q == {CNTW{1'b0}});", ["l_reg_ready_reset"]),
     "light_accept_during_write": ("sc_light.v",
-                                  "assign in_ready_o  = rst_ni && adv_f && !reg_we_i && gap_ok && !hold_q;",
-                                  "assign in_ready_o  = rst_ni && adv_f && gap_ok && !hold_q;", ["l_in_ready_we"]),
+                                  "assign in_ready_o  = rst_ni && adv_f && !reg_we_i && gap_ok && ph_ok && !hold_q;",
+                                  "assign in_ready_o  = rst_ni && adv_f && gap_ok && ph_ok && !hold_q;", ["l_in_ready_we"]),
     # a held colour is released (the back advances while the output is held, if in_valid_i)
     "light_release_held": ("sc_light.v", "assign adv_b       = !out_valid_o || out_ready_i;",
                            "assign adv_b       = !out_valid_o || out_ready_i || in_valid_i;",
