@@ -135,6 +135,11 @@ def _fmt(v, spec=","):
     return "—" if v is None else format(v, spec)
 
 
+def _old(r):
+    """The label of a row kept for the record (`superseded`): which RTL it was measured on."""
+    return f" ({r.get('superseded_label', 'first RTL')})" if r.get("superseded") else ""
+
+
 def _fpc(v):
     if v is None:
         return "—"
@@ -163,7 +168,7 @@ def report_markdown(doc):
             gen = "not finished"
         when = sorted(set(v[:10] for v in r.get("when", {}).values()))
         src = sorted(set(r.get("source", {}).values()))
-        L.append(f"| {r['set']}{' (first RTL)' if r.get('superseded') else ''} | {r['lanes']} | {r.get('share', 1)} | {r.get('spec_guard', 0)} | {gen} | "
+        L.append(f"| {r['set']}{_old(r)} | {r['lanes']} | {r.get('share', 1)} | {r.get('spec_guard', 0)} | {gen} | "
                  f"{_fmt(r.get('x7_lut'))} / {_fmt(r.get('x7_ff'))} / {_fmt(r.get('x7_dsp48'))} | {fits} | "
                  f"{_fmt(r.get('ecp5_lut4'))} / {_fmt(r.get('ecp5_mult18'))} | {r.get('latency', '—')} | "
                  f"{' / '.join(_fpc(fpc.get(k)) for k in ('0', '1', '2', '4', '8') if k in fpc)} | "
@@ -192,7 +197,7 @@ def plot(doc, path, footer_text):
             colour = "C0" if r["set"] == "full" else "C1"
             mk = "o" if r.get("spec_guard", 0) else "s"
             ax.scatter([x], [v], marker=mk, facecolors="none" if r.get("superseded") else colour, edgecolors=colour)
-            ax.annotate(f"{r['set']} L{r['lanes']}{'' if r.get('share', 1) == 1 else ' S' + str(r['share'])} g{r.get('spec_guard', 0)}{' (first RTL)' if r.get('superseded') else ''}",
+            ax.annotate(f"{r['set']} L{r['lanes']}{'' if r.get('share', 1) == 1 else ' S' + str(r['share'])} g{r.get('spec_guard', 0)}{_old(r)}",
                         (x, v), fontsize=6, xytext=(3, 3), textcoords="offset points")
         if key == "x7_dsp48":
             ax.axhline(XC7A35T["dsp"], color="0.5", ls="--", lw=0.8)
