@@ -85,22 +85,9 @@ module sc_cs16 #(
     parameter integer SQ_K4    = 99,
     parameter integer SQ_COMP  = 0
 ) (
-    input  wire              clk_i,
-    input  wire              rst_ni,
-    // material
-    input  wire              mat_we_i,
-    input  wire [10:0]       mat_n_i,
-    input  wire [FRAC:0]     mat_thr_i,
-    // fragment in
-    input  wire              in_valid_i,
-    output wire              in_ready_o,
-    input  wire [FRAC+1:0]   in_cos_i,
-    input  wire [TAGW-1:0]   in_tag_i,
-    // result out
-    output wire              out_valid_o,
-    input  wire              out_ready_i,
-    output wire [FRAC:0]     out_spec_o,
-    output wire [TAGW-1:0]   out_tag_o
+    // clk_i, rst_ni; mat_we_i, mat_n_i[10:0], mat_thr_i[FRAC:0]; in_valid_i, in_ready_o,
+    // in_cos_i[FRAC+1:0], in_tag_i; out_valid_o, out_ready_i, out_spec_o[FRAC:0], out_tag_o
+`include "sc_unit_ports.vh"
 );
 
   localparam integer F = FRAC;

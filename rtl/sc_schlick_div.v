@@ -57,22 +57,9 @@ module sc_schlick_div #(
     parameter integer FRAC = 16,
     parameter integer TAGW = 8
 ) (
-    input  wire              clk_i,
-    input  wire              rst_ni,
-    // material
-    input  wire              mat_we_i,
-    input  wire [10:0]       mat_n_i,
-    input  wire [FRAC:0]     mat_thr_i,
-    // fragment in
-    input  wire              in_valid_i,
-    output wire              in_ready_o,
-    input  wire [FRAC+1:0]   in_cos_i,
-    input  wire [TAGW-1:0]   in_tag_i,
-    // result out
-    output wire              out_valid_o,
-    input  wire              out_ready_i,
-    output wire [FRAC:0]     out_spec_o,
-    output wire [TAGW-1:0]   out_tag_o
+    // clk_i, rst_ni; mat_we_i, mat_n_i[10:0], mat_thr_i[FRAC:0]; in_valid_i, in_ready_o,
+    // in_cos_i[FRAC+1:0], in_tag_i; out_valid_o, out_ready_i, out_spec_o[FRAC:0], out_tag_o
+`include "sc_unit_ports.vh"
 );
 
   localparam integer F  = FRAC;
@@ -205,19 +192,10 @@ module sc_schlick_div #(
   assign out_tag_o  = out_tag_q;
 
 `ifdef FORMAL
-  // Material rule of docs/spec.md §4 (proved with the unit, docs/formal.md): a material register
-  // loads exactly at an edge with mat_we_i high (in reset too) and holds otherwise, and a fragment
-  // accepted at an edge captures the material as it was before that edge (the old one at a write).
-  reg f_init = 1'b0;
-  always @(posedge clk_i) f_init <= 1'b1;
-  always @(posedge clk_i) begin
-    if (f_init) begin
-      mat_load_n: assert (mat_n_q == ($past(mat_we_i) ? $past(mat_n_i) : $past(mat_n_q)));
-      if ($past(adv)) begin
-        mat_old_n: assert (s0_n_q == $past(mat_n_q));
-      end
-    end
-  end
+  // Material rule of docs/spec.md §4 (rtl/sc_formal_material.vh): a fragment captures n at an advancing edge.
+  wire        f_capture    = adv;
+  wire [10:0] f_captured_n = s0_n_q;
+`include "sc_formal_material.vh"
 `endif
 
 endmodule

@@ -56,27 +56,15 @@ module sc_table #(
     parameter integer ENTRIES = 256,
     parameter integer TAGW    = 8
 ) (
-    input  wire              clk_i,
-    input  wire              rst_ni,
-    // material (unused: the table is the material)
-    input  wire              mat_we_i,
-    input  wire [10:0]       mat_n_i,
-    input  wire [FRAC:0]     mat_thr_i,
     // table write port
     input  wire              tab_we_i,
     input  wire [9:0]        tab_addr_i,
     input  wire [FRAC:0]     tab_value_i,
     input  wire [FRAC:0]     tab_delta_i,
-    // fragment in
-    input  wire              in_valid_i,
-    output wire              in_ready_o,
-    input  wire [FRAC+1:0]   in_cos_i,
-    input  wire [TAGW-1:0]   in_tag_i,
-    // result out
-    output wire              out_valid_o,
-    input  wire              out_ready_i,
-    output wire [FRAC:0]     out_spec_o,
-    output wire [TAGW-1:0]   out_tag_o
+    // the unit ports (the material ones unused: the table is the material): clk_i, rst_ni;
+    // mat_we_i, mat_n_i, mat_thr_i; in_valid_i, in_ready_o, in_cos_i, in_tag_i; out_valid_o,
+    // out_ready_i, out_spec_o[FRAC:0], out_tag_o
+`include "sc_unit_ports.vh"
 );
 
   localparam integer F  = FRAC;
