@@ -111,15 +111,8 @@ module sc_formal_light #(
   wire take   = out_valid_o && out_ready_i;
 
   // ---------------------------------------------------------------------------- environment
-  reg f_first = 1'b1;
-  reg f_past  = 1'b0;
-  always @(posedge clk_i) begin
-    f_first <= 1'b0;
-    f_past  <= 1'b1;
-  end
-  always @* begin
-    if (f_first) assume (!rst_ni);
-  end
+  // reset assumed in cycle 0; f_first, f_past (formal/sc_formal_env.vh)
+`include "sc_formal_env.vh"
 
   // ---------------------------------------------------------------------------- always: proved
   always @* begin

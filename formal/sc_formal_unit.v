@@ -78,15 +78,8 @@ module sc_formal_unit #(
   endgenerate
 
   // ---------------------------------------------------------------------------- environment
-  reg f_first = 1'b1;   // cycle 0 of the base case
-  reg f_past  = 1'b0;   // cycle >= 1
-  always @(posedge clk_i) begin
-    f_first <= 1'b0;
-    f_past  <= 1'b1;
-  end
-  always @* begin
-    if (f_first) assume (!rst_ni);
-  end
+  // reset assumed in cycle 0; f_first, f_past (formal/sc_formal_env.vh)
+`include "sc_formal_env.vh"
 
   // ---------------------------------------------------------------------------- properties
   always @* begin

@@ -87,6 +87,22 @@ module sc_specular #(
                   (VARIANT_TABLE256_ENTRIES > 0) && (VARIANT_TABLE1024_ENTRIES > 0);
   wire unused_tab = &{1'b0, is_table ? 1'b0 : &{1'b0, tab_we_i, tab_addr_i, tab_value_i, tab_delta_i}};
 
+  // Every unit's ports (rtl/sc_unit_ports.vh) are connected alike: the caller's, with the tag and
+  // the result side through u_* (above).
+`define SC_SPECULAR_UNIT_PORTS \
+          .clk_i      (clk_i), \
+          .rst_ni     (rst_ni), \
+          .mat_we_i   (mat_we_i), \
+          .mat_n_i    (mat_n_i), \
+          .mat_thr_i  (mat_thr_i), \
+          .in_valid_i (in_valid_i), \
+          .in_ready_o (in_ready_o), \
+          .in_cos_i   (in_cos_i), \
+          .in_tag_i   (u_in_tag), \
+          .out_valid_o(u_out_valid), \
+          .out_ready_i(u_out_ready), \
+          .out_spec_o (u_out_spec), \
+          .out_tag_o  (u_out_tag)
   generate
     if (VARIANT == VARIANT_CS16) begin : g_cs16
       sc_cs16 #(
@@ -95,76 +111,28 @@ module sc_specular #(
           .CUTOFF(CUTOFF),
           .TAGW  (UTAGW)
       ) u_unit (
-          .clk_i      (clk_i),
-          .rst_ni     (rst_ni),
-          .mat_we_i   (mat_we_i),
-          .mat_n_i    (mat_n_i),
-          .mat_thr_i  (mat_thr_i),
-          .in_valid_i (in_valid_i),
-          .in_ready_o (in_ready_o),
-          .in_cos_i   (in_cos_i),
-          .in_tag_i   (u_in_tag),
-          .out_valid_o(u_out_valid),
-          .out_ready_i(u_out_ready),
-          .out_spec_o (u_out_spec),
-          .out_tag_o  (u_out_tag)
+          `SC_SPECULAR_UNIT_PORTS
       );
     end else if (VARIANT == VARIANT_SCHLICK_DIV) begin : g_schlick_div
       sc_schlick_div #(
           .FRAC(FRAC),
           .TAGW(UTAGW)
       ) u_unit (
-          .clk_i      (clk_i),
-          .rst_ni     (rst_ni),
-          .mat_we_i   (mat_we_i),
-          .mat_n_i    (mat_n_i),
-          .mat_thr_i  (mat_thr_i),
-          .in_valid_i (in_valid_i),
-          .in_ready_o (in_ready_o),
-          .in_cos_i   (in_cos_i),
-          .in_tag_i   (u_in_tag),
-          .out_valid_o(u_out_valid),
-          .out_ready_i(u_out_ready),
-          .out_spec_o (u_out_spec),
-          .out_tag_o  (u_out_tag)
+          `SC_SPECULAR_UNIT_PORTS
       );
     end else if (VARIANT == VARIANT_SCHLICK_NR) begin : g_schlick_nr
       sc_schlick_nr #(
           .FRAC(FRAC),
           .TAGW(UTAGW)
       ) u_unit (
-          .clk_i      (clk_i),
-          .rst_ni     (rst_ni),
-          .mat_we_i   (mat_we_i),
-          .mat_n_i    (mat_n_i),
-          .mat_thr_i  (mat_thr_i),
-          .in_valid_i (in_valid_i),
-          .in_ready_o (in_ready_o),
-          .in_cos_i   (in_cos_i),
-          .in_tag_i   (u_in_tag),
-          .out_valid_o(u_out_valid),
-          .out_ready_i(u_out_ready),
-          .out_spec_o (u_out_spec),
-          .out_tag_o  (u_out_tag)
+          `SC_SPECULAR_UNIT_PORTS
       );
     end else if (VARIANT == VARIANT_SCHLICK_ITER) begin : g_schlick_iter
       sc_schlick_iter #(
           .FRAC(FRAC),
           .TAGW(UTAGW)
       ) u_unit (
-          .clk_i      (clk_i),
-          .rst_ni     (rst_ni),
-          .mat_we_i   (mat_we_i),
-          .mat_n_i    (mat_n_i),
-          .mat_thr_i  (mat_thr_i),
-          .in_valid_i (in_valid_i),
-          .in_ready_o (in_ready_o),
-          .in_cos_i   (in_cos_i),
-          .in_tag_i   (u_in_tag),
-          .out_valid_o(u_out_valid),
-          .out_ready_i(u_out_ready),
-          .out_spec_o (u_out_spec),
-          .out_tag_o  (u_out_tag)
+          `SC_SPECULAR_UNIT_PORTS
       );
     end else if (cs16_sq_param(VARIANT, 0) == 1) begin : g_cs16_form
       // cs16 forms with folded truncated squarers (config/configs.json "squarer", docs/spec.md §3.4):
@@ -186,19 +154,7 @@ module sc_specular #(
           .SQ_K4   (cs16_sq_param(VARIANT, 9)),
           .SQ_COMP (cs16_sq_param(VARIANT, 10))
       ) u_unit (
-          .clk_i      (clk_i),
-          .rst_ni     (rst_ni),
-          .mat_we_i   (mat_we_i),
-          .mat_n_i    (mat_n_i),
-          .mat_thr_i  (mat_thr_i),
-          .in_valid_i (in_valid_i),
-          .in_ready_o (in_ready_o),
-          .in_cos_i   (in_cos_i),
-          .in_tag_i   (u_in_tag),
-          .out_valid_o(u_out_valid),
-          .out_ready_i(u_out_ready),
-          .out_spec_o (u_out_spec),
-          .out_tag_o  (u_out_tag)
+          `SC_SPECULAR_UNIT_PORTS
       );
     end else if (VARIANT == VARIANT_TABLE256 || VARIANT == VARIANT_TABLE1024) begin : g_table
       sc_table #(
@@ -206,23 +162,11 @@ module sc_specular #(
           .ENTRIES((VARIANT == VARIANT_TABLE256) ? VARIANT_TABLE256_ENTRIES : VARIANT_TABLE1024_ENTRIES),
           .TAGW   (UTAGW)
       ) u_unit (
-          .clk_i      (clk_i),
-          .rst_ni     (rst_ni),
-          .mat_we_i   (mat_we_i),
-          .mat_n_i    (mat_n_i),
-          .mat_thr_i  (mat_thr_i),
           .tab_we_i   (tab_we_i),
           .tab_addr_i (tab_addr_i),
           .tab_value_i(tab_value_i),
           .tab_delta_i(tab_delta_i),
-          .in_valid_i (in_valid_i),
-          .in_ready_o (in_ready_o),
-          .in_cos_i   (in_cos_i),
-          .in_tag_i   (u_in_tag),
-          .out_valid_o(u_out_valid),
-          .out_ready_i(u_out_ready),
-          .out_spec_o (u_out_spec),
-          .out_tag_o  (u_out_tag)
+          `SC_SPECULAR_UNIT_PORTS
       );
     end else begin : g_check_variant
       // Portable Verilog-2005 elaboration error (Icarus, Verilator, Yosys): an undefined module
@@ -230,6 +174,7 @@ module sc_specular #(
       sc_specular_error_unknown_VARIANT_see_config_configs_json_variants u_error ();
     end
   endgenerate
+`undef SC_SPECULAR_UNIT_PORTS
 
   generate
     if (NORM == 0) begin : g_no_norm

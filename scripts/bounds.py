@@ -195,37 +195,45 @@ def schlick_cert(n, tol=Q(1, 10 ** 14)):
         ia_lo = (1 << (3 * P_BITS)) // (D(a) ** 2)
         return n * (_pow(a, n - 1, False) - ib_hi), n * (_pow(b, n - 1, True) - ia_lo)
 
+    inf, sup, boxes = _bnb(f, dd, 0, ONE, tol)
+    return dict(n=n, inf=inf, sup=sup, boxes=boxes)
+
+
+def _bnb(f, dd, a0, b0, tol):
+    """Certified inf and sup of a function on [a0, b0] (integers, units 2^-P) by branch and bound.
+    f(A) -> (lower, upper) of the value; dd(a, b) -> (lower, upper) of the derivative on [a, b] (units 2^-P per
+    unit of t). Returns ((inf_lo, inf_hi), (sup_lo, sup_hi), boxes) as exact rationals and the number of
+    boxes taken from the heap over both runs."""
+    import heapq
+
+    def cross(a, b, fa, fb, sa, sb):
+        # the crossing of the line through (a, fa) of slope sa and the line through (b, fb) of slope sb
+        qa, qb = Q(a, ONE), Q(b, ONE)
+        t = (Q(fb) - sb * qb - Q(fa) + sa * qa) / (sa - sb)
+        return Q(fa) + sa * (t - qa)
+
     def lower(a, b, fa, fb):
         lo, hi = dd(a, b)
         if lo >= 0:
             return Q(fa)
-        if hi <= 0:
-            return Q(fb)
-        qa, qb = Q(a, ONE), Q(b, ONE)
-        t = (Q(fb) - hi * qb - Q(fa) + lo * qa) / (lo - hi)
-        return Q(fa) + lo * (t - qa)
+        return Q(fb) if hi <= 0 else cross(a, b, fa, fb, lo, hi)
 
     def upper(a, b, fa, fb):
         lo, hi = dd(a, b)
         if lo >= 0:
             return Q(fb)
-        if hi <= 0:
-            return Q(fa)
-        qa, qb = Q(a, ONE), Q(b, ONE)
-        t = (Q(fb) - lo * qb - Q(fa) + hi * qa) / (hi - lo)
-        return Q(fa) + hi * (t - qa)
+        return Q(fa) if hi <= 0 else cross(a, b, fa, fb, hi, lo)
 
     tolS = tol * ONE
 
-    def bb(minimise):
-        import heapq
+    def run(minimise):
         if minimise:
             bound = lambda x, y, fx, fy: lower(x, y, fx[0], fy[0])
             val = lambda fx: Q(fx[1])
-        else:   # maximise Δ = minimise −Δ
+        else:
             bound = lambda x, y, fx, fy: -upper(x, y, fx[1], fy[1])
             val = lambda fx: Q(-fx[0])
-        a, b = 0, ONE
+        a, b = a0, b0
         fa, fb = f(a), f(b)
         best = min(val(fa), val(fb))
         heap = [(bound(a, b, fa, fb), a, b, fa, fb)]
@@ -247,69 +255,9 @@ def schlick_cert(n, tol=Q(1, 10 ** 14)):
         lo = best - tolS if low is None else min(low, best - tolS)
         return lo / ONE, best / ONE, boxes
 
-    i_lo, i_hi, b1 = bb(True)
-    m_lo, m_hi, b2 = bb(False)
-    return dict(n=n, inf=(i_lo, i_hi), sup=(-m_hi, -m_lo), boxes=b1 + b2)
-
-
-def _bnb(f, dd, a0, b0, tol):
-    """Certified inf and sup of a function on [a0, b0] (integers, units 2^-P) by branch and bound.
-    f(A) -> (lower, upper) of the value; dd(a, b) -> (lower, upper) of the derivative on [a, b] (units 2^-P per
-    unit of t). Returns ((inf_lo, inf_hi), (sup_lo, sup_hi)) as exact rationals."""
-    import heapq
-
-    def lower(a, b, fa, fb):
-        lo, hi = dd(a, b)
-        if lo >= 0:
-            return Q(fa)
-        if hi <= 0:
-            return Q(fb)
-        qa, qb = Q(a, ONE), Q(b, ONE)
-        t = (Q(fb) - hi * qb - Q(fa) + lo * qa) / (lo - hi)
-        return Q(fa) + lo * (t - qa)
-
-    def upper(a, b, fa, fb):
-        lo, hi = dd(a, b)
-        if lo >= 0:
-            return Q(fb)
-        if hi <= 0:
-            return Q(fa)
-        qa, qb = Q(a, ONE), Q(b, ONE)
-        t = (Q(fb) - lo * qb - Q(fa) + hi * qa) / (hi - lo)
-        return Q(fa) + hi * (t - qa)
-
-    tolS = tol * ONE
-
-    def run(minimise):
-        if minimise:
-            bound = lambda x, y, fx, fy: lower(x, y, fx[0], fy[0])
-            val = lambda fx: Q(fx[1])
-        else:
-            bound = lambda x, y, fx, fy: -upper(x, y, fx[1], fy[1])
-            val = lambda fx: Q(-fx[0])
-        a, b = a0, b0
-        fa, fb = f(a), f(b)
-        best = min(val(fa), val(fb))
-        heap = [(bound(a, b, fa, fb), a, b, fa, fb)]
-        low = None
-        while heap:
-            L, a, b, fa, fb = heapq.heappop(heap)
-            if best - L <= tolS:
-                low = L
-                break
-            m = (a + b) // 2
-            fm = f(m)
-            best = min(best, val(fm))
-            for (x, y, fx, fy) in ((a, m, fa, fm), (m, b, fm, fb)):
-                lb = bound(x, y, fx, fy)
-                if lb < best - tolS:
-                    heapq.heappush(heap, (lb, x, y, fx, fy))
-        lo = best - tolS if low is None else min(low, best - tolS)
-        return lo / ONE, best / ONE
-
-    i_lo, i_hi = run(True)
-    m_lo, m_hi = run(False)
-    return (i_lo, i_hi), (-m_hi, -m_lo)
+    i_lo, i_hi, b1 = run(True)
+    m_lo, m_hi, b2 = run(False)   # maximise Δ = minimise −Δ
+    return (i_lo, i_hi), (-m_hi, -m_lo), b1 + b2
 
 
 def cs16_cert(n, cut, tol=Q(1, 10 ** 14)):
@@ -351,7 +299,7 @@ def cs16_cert(n, cut, tol=Q(1, 10 ** 14)):
         # base = c exactly: Δ = 0 on the whole shaded part (a bisection cannot close on a flat zero)
         i_lo = i_hi = s_lo = s_hi = Q(0)
     else:
-        (i_lo, i_hi), (s_lo, s_hi) = _bnb(f, dd, a, ONE, tol)
+        (i_lo, i_hi), (s_lo, s_hi), _ = _bnb(f, dd, a, ONE, tol)
     eps = Q(2 * n) * (c_hi - Q(a, ONE))
     sh_sup = (s_lo - eps, s_hi)
     sh_inf = (i_lo, min(i_hi + eps, Q(0)))
