@@ -81,8 +81,6 @@ module sc_schlick_div #(
 
   localparam [F:0] ONE = {1'b1, {F{1'b0}}};   // 2^F, cos θ = 1.0
 
-  wire unused_thr = &{1'b0, mat_thr_i};       // the Schlick forms have no per-material threshold
-
   // ---------------------------------------------------------------------------- handshake
   wire          adv;                        // global enable (rtl/sc_pipe_ctrl.v)
   wire [NS-1:0] v_stage;                    // valid bit of each stage (unused: adv qualifies the data)
@@ -91,18 +89,10 @@ module sc_schlick_div #(
       .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .en_o(adv), .valid_o(v_stage));
   wire unused_v_stage = &{1'b0, v_stage};
 
-  // ---------------------------------------------------------------------------- material register
-  reg [10:0] mat_n_q;
-  always @(posedge clk_i) begin
-    if (mat_we_i) begin
-      mat_n_q <= mat_n_i;
-    end
-  end
+  // mat_n_q, the input clamp c_d (rtl/sc_schlick_front.vh)
+`include "sc_schlick_front.vh"
 
   // ---------------------------------------------------------------------------- S0: clamp
-  wire        cos_neg  = in_cos_i[F+1];
-  wire        cos_over = !cos_neg && (in_cos_i[F:0] > ONE);
-  wire [F:0]  c_d      = cos_neg ? {(F+1){1'b0}} : (cos_over ? ONE : in_cos_i[F:0]);
 
   reg [F:0]      s0_c_q, s0_d_q;
   reg [10:0]     s0_n_q;

@@ -65,8 +65,6 @@ module sc_schlick_iter #(
   localparam integer LASTK = NQ - 1;   // F+1 <= 25
   localparam [4:0]   LAST_K = LASTK[4:0];
 
-  wire unused_thr = &{1'b0, mat_thr_i};
-
   // ---------------------------------------------------------------------------- control
   reg        busy_q;       // a fragment is in DEN or DIV
   reg        div_q;        // phase: 0 = DEN, 1 = DIV (meaningful while busy_q)
@@ -109,18 +107,10 @@ module sc_schlick_iter #(
     end
   end
 
-  // ---------------------------------------------------------------------------- material register
-  reg [10:0] mat_n_q;
-  always @(posedge clk_i) begin
-    if (mat_we_i) begin
-      mat_n_q <= mat_n_i;
-    end
-  end
+  // mat_n_q, the input clamp c_d (rtl/sc_schlick_front.vh)
+`include "sc_schlick_front.vh"
 
   // ---------------------------------------------------------------------------- datapath
-  wire        cos_neg  = in_cos_i[F+1];
-  wire        cos_over = !cos_neg && (in_cos_i[F:0] > ONE);
-  wire [F:0]  c_d      = cos_neg ? {(F+1){1'b0}} : (cos_over ? ONE : in_cos_i[F:0]);
 
   reg [F:0]      c_q, d_q;
   reg [10:0]     n_q;
