@@ -54,7 +54,7 @@ struct CosimArgs {
   int shards = 0;
   std::string trace, json_path;
   int show = 5;
-  bool norm = false;              // sc_specular NORM = 1 (energy-normalised output, docs/spec.md §7)
+  bool norm = false;              // sc_specular ENERGY = 1 (energy-normalised output, docs/spec.md §7)
   std::string coef_model, coef_kind;
   ProgressFlags progress;
   // Given explicitly (options a mode or a setting would ignore are errors).
@@ -163,7 +163,7 @@ void run_cosim(const CosimArgs& a) {
     } else {
       norm_text = " norm: every model and kind (picked per material from n)";
     }
-    unit.set_norm(true, one_model ? static_cast<int>(parse_model(a.coef_model)) : -1, kind);
+    unit.set_energy(true, one_model ? static_cast<int>(parse_model(a.coef_model)) : -1, kind);
   }
   // Outputs: checked now, written together at the end (the waveform through a temporary file the
   // simulator writes).
@@ -377,7 +377,7 @@ void add_cosim(CLI::App& app) {
                          ->check(Int(0, kMaxParallel));
   sub->add_option("--trace", args->trace, "FST waveform file (one shard)")->check(NonEmpty("path"));
   sub->add_option("--json", args->json_path, "write the merged result as JSON (atomically)")->check(NonEmpty("path"));
-  sub->add_flag("--norm", args->norm, "energy-normalised output: sc_specular NORM = 1 (cs16, theta_cr)");
+  sub->add_flag("--norm", args->norm, "energy-normalised output: sc_specular ENERGY = 1 (cs16, theta_cr)");
   auto* cm_opt = sub->add_option("--coef-model", args->coef_model,
                                  "with --norm: all (default) | phong | phong_mod | blinn | blinn_mod | blinn_ndf | blinn_hf")->check(NonEmpty("model"));
   auto* coef_opt = sub->add_option("--coef", args->coef_kind, "with --norm and one --coef-model: fitted | classical")->check(NonEmpty("coefficient kind"));

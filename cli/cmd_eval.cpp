@@ -183,9 +183,9 @@ void run(EvalArgs& a) {
   }
   double coef_real = 1.0;
   if (spec.norm) {
-    const NormFormat nf{F, kCoefIntBits};
+    const EnergyFormat nf{F, kCoefIntBits};
     const uint64_t p = static_cast<uint64_t>(unit_out) * mat.coef;
-    const uint64_t nout = norm_eval(nf, mat.coef, unit_out);
+    const uint64_t nout = energy_eval(nf, mat.coef, unit_out);
     rows.push_back({"N1", "p", hexw(p, nf.prod_bits()), std::to_string(p), fixed(p, 2 * F), "unit out * coef, exact"});
     rows.push_back({"N2", "out", hexw(nout, nf.out_bits()), std::to_string(nout), fixed(nout, F), "round half up to F bits"});
     trace["norm"] = {{"p", p}, {"out", nout}};
@@ -194,7 +194,7 @@ void run(EvalArgs& a) {
   if (unit_out != out)  // the trace and Unit::eval are the same model: this cannot happen
     throw std::runtime_error(fmt::format("internal: trace output {} != Unit::eval {}", unit_out, out));
 
-  // Which coefficient model this n used (with --norm all it depends on n, as in Unit::set_norm).
+  // Which coefficient model this n used (with --norm all it depends on n, as in Unit::set_energy).
   std::string norm_desc;
   if (spec.norm) {
     const int model = spec.norm_model >= 0 ? spec.norm_model : n % kNumModels;

@@ -9,8 +9,8 @@
 // File format (also written as the file's header): one vector per line, five hex words
 //   N THR COEF COS EXPECTED
 // N = mat_n_i (11 bits), THR = mat_thr_i (F+1 bits, 0 for units without a threshold), COEF =
-// mat_coef_i (COEFW bits, 0 without NORM), COS = in_cos_i (F+2-bit two's complement), EXPECTED =
-// out_spec_o (F+1 bits, COEFW with NORM). Lines starting with // are comments.
+// mat_coef_i (COEFW bits, 0 without ENERGY), COS = in_cos_i (F+2-bit two's complement), EXPECTED =
+// out_spec_o (F+1 bits, COEFW with ENERGY). Lines starting with // are comments.
 //
 // The lighting core (--core lighting --features NAME|FILE, --mode hard|random): register writes,
 // fragments and expected colours, one record per line (format: docs/handoff.md, cli/handoff_light.cpp).
@@ -180,7 +180,7 @@ std::string format_vectors(const UnitSpec& spec, const VectorRequest& req, const
   s += "// 5 words a vector; // lines are comments):\n";
   s += fmt::format("//   N        mat_n_i, 11 bits, exponent n (16..1024)\n");
   s += fmt::format("//   THR      mat_thr_i, F+1 = {} bits, thr(n) = ceil(cos(6/sqrt(n))*2^F); 0 where unused\n", f.frac + 1);
-  s += fmt::format("//   COEF     mat_coef_i, COEFW = {} bits, coefficient code (8 integer, F fraction bits); 0 without NORM\n",
+  s += fmt::format("//   COEF     mat_coef_i, COEFW = {} bits, coefficient code (8 integer, F fraction bits); 0 without ENERGY\n",
                    spec.coef_bits());
   s += fmt::format("//   COS      in_cos_i, F+2 = {} bits, two's complement, 1.0 = 0x{:x}\n", f.in_bits(), f.one());
   s += fmt::format("//   EXPECTED out_spec_o, {} bits, 1.0 = 0x{:x}\n", spec.out_bits(), f.one());

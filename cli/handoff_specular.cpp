@@ -55,7 +55,7 @@ std::string specular_port_table() {
   std::string s = "| port | dir | width | meaning |\n|---|---|---|---|\n";
   for (const auto& p : load_ports()) {
     std::string width = sym_width(p.at("width"));
-    if (p.contains("width_norm")) width += " (" + sym_width(p.at("width_norm")) + " with `NORM` = 1)";
+    if (p.contains("width_norm")) width += " (" + sym_width(p.at("width_norm")) + " with `ENERGY` = 1)";
     s += fmt::format("| `{}` | {} | {} | {} |\n", p.at("name").get<std::string>(), p.at("dir").get<std::string>(), width,
                      p.at("meaning").get<std::string>());
   }
@@ -101,7 +101,7 @@ std::string wrapper_v(const Bundle& b) {
   std::string unused;
   if (!has("mat_thr_i")) unused += fmt::format("//   mat_thr_i  tied to 0 (not used by {}{})\n", s.variant_name,
                                                s.is_cs16() ? " with CUTOFF = 1" : "");
-  if (!has("mat_coef_i")) unused += "//   mat_coef_i tied to 0 (NORM = 0)\n";
+  if (!has("mat_coef_i")) unused += "//   mat_coef_i tied to 0 (ENERGY = 0)\n";
   if (!has("tab_we_i")) unused += "//   tab_we_i, tab_addr_i, tab_value_i, tab_delta_i tied to 0 (no table RAM in this unit)\n";
   return fmt::format(
       "// ============================================================================================\n"
@@ -109,7 +109,7 @@ std::string wrapper_v(const Bundle& b) {
       "// Purpose  : the bundle's top level: rtl/sc_specular.v with every parameter fixed, so no -G / -P /\n"
       "//            defparam is needed downstream.\n"
       "//              VARIANT = {vid} ({vname}), FRAC = {F}, GUARD = {G}, CUTOFF = {cut} ({cutname}),\n"
-      "//              TAGW = {tagw}, NORM = {norm}, COEFW = {coefw}\n"
+      "//              TAGW = {tagw}, ENERGY = {norm}, COEFW = {coefw}\n"
       "//            Ports, formats, handshake, reset, latency ({lat} cycles) and programming: interface.md.\n"
       "// Ports of sc_specular not brought out:\n{unused}"
       "// Made by  : {cmd}\n"
@@ -118,7 +118,7 @@ std::string wrapper_v(const Bundle& b) {
       "module {top} (\n{ports});\n\n"
       "  sc_specular #(\n"
       "      .VARIANT({vid}),\n      .FRAC   ({F}),\n      .GUARD  ({G}),\n      .CUTOFF ({cut}),\n"
-      "      .TAGW   ({tagw}),\n      .NORM   ({norm}),\n      .COEFW  ({coefw})\n"
+      "      .TAGW   ({tagw}),\n      .ENERGY ({norm}),\n      .COEFW  ({coefw})\n"
       "  ) u_core (\n{conns}  );\n\nendmodule\n\n`default_nettype wire\n",
       fmt::arg("top", b.top), fmt::arg("vid", static_cast<int>(s.variant)), fmt::arg("vname", s.variant_name),
       fmt::arg("F", s.format.frac), fmt::arg("G", s.format.guard), fmt::arg("cut", static_cast<int>(s.cutoff)),
@@ -135,10 +135,10 @@ std::string tb_config_vh(const Bundle& b, size_t maxvec) {
       "// (shadecore::Unit::latency / latency_min), as docs in interface.md.\n"
       "localparam integer FRAC         = {F};        // F: 1.0 = 2^F\n"
       "localparam integer OUTW         = {outw};        // out_spec_o width\n"
-      "localparam integer COEFW        = {coefw};        // mat_coef_i width (driven only with NORM = 1)\n"
+      "localparam integer COEFW        = {coefw};        // mat_coef_i width (driven only with ENERGY = 1)\n"
       "localparam integer TAGW         = {tagw};\n"
       "localparam integer LATENCY      = {lat};        // advancing edges from acceptance to the taking edge\n"
-      "localparam integer LATENCY_MIN  = {latmin};        // under output backpressure (NORM = 1 can close up)\n"
+      "localparam integer LATENCY_MIN  = {latmin};        // under output backpressure (ENERGY = 1 can close up)\n"
       "localparam integer MAXVEC       = {maxvec};     // the largest vector file in vectors/\n"
       "localparam integer NVEC_DEFAULT = {nhard};      // vectors in vectors/hard.hex (the default file)\n"
       "localparam integer TB_SEED      = {seed};  // random input gaps / backpressure (+seed= overrides)\n",
@@ -181,7 +181,7 @@ void recorded_fmax(Bundle& b) {
         b.fmax_mhz = r["fmax_mhz"].get<double>();
         b.fmax_source = fmt::format("{:.2f} MHz on an iCE40 {} (nextpnr-ice40 + icetime, docs/tradeoffs.json, "
                                     "scripts/cost_report.py{})",
-                                    b.fmax_mhz, r.value("pnr", "HX8K"), b.spec.norm ? "; measured without NORM" : "");
+                                    b.fmax_mhz, r.value("pnr", "HX8K"), b.spec.norm ? "; measured without ENERGY" : "");
       }
   } catch (const nlohmann::json::exception&) {
   }
@@ -236,7 +236,7 @@ std::string error_contract(const UnitSpec& s) {
       break;
   }
   if (s.norm)
-    e += "\nWith NORM = 1 the unit output u is multiplied by the material's coefficient code k and rounded half up:\n"
+    e += "\nWith ENERGY = 1 the unit output u is multiplied by the material's coefficient code k and rounded half up:\n"
          "out = ⌊(u·k + 2^(F−1)) / 2^F⌋ (COEFW bits, never overflows). Against the ideal coef(n)·u/2^F this is\n"
          "within 1 ulp (½ from the coefficient's rounding, ½ from the product's); relative to the double\n"
          "coef·(the unit's double reference) the bound above is scaled by coef, plus 1 ulp (docs/spec.md §7.3).\n";

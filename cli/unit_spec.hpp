@@ -53,7 +53,7 @@ struct UnitSpec {
   Format format;
   Cutoff cutoff = Cutoff::ThetaCr;
   bool norm = false;
-  int norm_model = -1;  // index into kModels; -1 = per n (Unit::set_norm)
+  int norm_model = -1;  // index into kModels; -1 = per n (Unit::set_energy)
   CoefKind coef_kind = CoefKind::Fitted;
 
   // cs16 or one of its squarer forms (cs16_faithful, cs16_compact): G and the cut-off apply.
@@ -76,7 +76,7 @@ struct UnitSpec {
   }
   [[nodiscard]] Unit unit() const {
     Unit u(variant, format, cutoff);
-    if (norm) u.set_norm(true, norm_model, coef_kind);
+    if (norm) u.set_energy(true, norm_model, coef_kind);
     return u;
   }
 };
@@ -90,7 +90,7 @@ inline void add_unit_options(CLI::App* sub, const std::shared_ptr<UnitOptions>& 
   }
   o->cutoff_opt = sub->add_option("--cutoff", o->cutoff, "cs16 cut-off form: theta_cr | sign_clamp")->check(cliargs::NonEmpty("cut-off"));
   sub->add_option("--norm", o->norm,
-                  "Energy normalisation after the unit (NORM = 1): a model (phong, phong_mod, blinn, blinn_mod, "
+                  "Energy normalisation after the unit (ENERGY = 1): a model (phong, phong_mod, blinn, blinn_mod, "
                   "blinn_ndf, blinn_hf) or 'all' (model and kind chosen per n, as the co-simulation)")->check(cliargs::NonEmpty("model"));
   o->coef_opt = sub->add_option("--coef", o->coef, "Coefficient kind with --norm MODEL: fitted | classical")->check(cliargs::NonEmpty("coefficient kind"));
 }
@@ -136,7 +136,7 @@ inline UnitSpec resolve_unit(const UnitOptions& o) {
 struct TestVector {
   int n = 16;          // mat_n_i
   uint32_t thr = 0;    // mat_thr_i (0 where the unit has no threshold)
-  uint32_t coef = 0;   // mat_coef_i (0 without NORM)
+  uint32_t coef = 0;   // mat_coef_i (0 without ENERGY)
   int64_t code = 0;    // in_cos_i as a signed integer
   uint32_t expected = 0;
 };

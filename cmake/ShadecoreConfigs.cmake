@@ -303,7 +303,7 @@ inline constexpr const char* kConfigsJson = R\"shadecore_json(${_cfg_json})shade
 " @ONLY)
 
 # RTL file lists (config/configs.json "rtl" and variants[].rtl; the one source, issue 20). Sets
-#   SHADECORE_RTL_SOURCES            sc_specular with every unit and sc_norm (absolute paths)
+#   SHADECORE_RTL_SOURCES            sc_specular with every unit and sc_energy (absolute paths)
 #   SHADECORE_LIGHT_SOURCES          sc_light with every operator and SHADECORE_RTL_SOURCES
 #   SHADECORE_RTL_FILES_<module>     what <module> needs as a top on its own ("standalone", else <module>.v)
 #   SHADECORE_VARIANT_<name>_RTL     a unit's files
@@ -333,7 +333,7 @@ foreach(i RANGE ${_lastv})
   _shadecore_json_list(SHADECORE_VARIANT_${_vname}_RTL variants ${i} rtl)
   list(APPEND SHADECORE_RTL_SOURCES ${SHADECORE_VARIANT_${_vname}_RTL})
 endforeach()
-_shadecore_json_list(_norm rtl sc_specular norm)
+_shadecore_json_list(_norm rtl sc_specular energy)
 list(APPEND SHADECORE_RTL_SOURCES ${_norm})
 list(REMOVE_DUPLICATES SHADECORE_RTL_SOURCES)
 _shadecore_json_list(SHADECORE_LIGHT_SOURCES rtl sc_light files)

@@ -60,7 +60,7 @@ module sc_formal_light #(
     parameter integer DIFFUSE      = 1,
     parameter integer UNITS        = 1,
     parameter integer CUTOFF       = 0,
-    parameter integer NORM         = 0,
+    parameter integer ENERGY       = 0,
     parameter integer BLINN        = 1,
     parameter integer PHONG        = 0,
     parameter integer LOCAL_VIEWER = 0,
@@ -96,7 +96,7 @@ module sc_formal_light #(
 
   sc_light #(
       .FRAC(FRAC), .GUARD(GUARD), .SGUARD(SGUARD), .LIGHTS(LIGHTS), .SLOT_KINDS(SLOT_KINDS), .LANES(LANES), .SHARE(SHARE),
-      .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE), .UNITS(UNITS), .CUTOFF(CUTOFF), .NORM(NORM),
+      .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE), .UNITS(UNITS), .CUTOFF(CUTOFF), .ENERGY(ENERGY),
       .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER), .NORMALIZE(NORMALIZE),
       .CHANNELS(CHANNELS), .TAGW(TAGW)
   ) dut (

@@ -2,7 +2,7 @@
 // ============================================================================================
 // Filename : formal/sc_formal_unit.v
 // Purpose  : formal harness of one unit (issue 21, docs/formal.md): instantiates rtl/sc_specular.v
-//            (KIND = 0: VARIANT, FRAC, GUARD, CUTOFF, NORM) or rtl/sc_norm.v on its own (KIND = 1,
+//            (KIND = 0: VARIANT, FRAC, GUARD, CUTOFF, ENERGY) or rtl/sc_energy.v on its own (KIND = 1,
 //            COEF_SRC = 0), leaves every input free (yosys-smtbmc picks them each cycle), assumes
 //            reset in the first cycle and asserts the port-level properties below. The control
 //            properties inside the RTL (`ifdef FORMAL in rtl/sc_pipe_ctrl.v, rtl/sc_schlick_iter.v
@@ -19,18 +19,18 @@
 `default_nettype none
 
 module sc_formal_unit #(
-    parameter integer KIND    = 0,   // 0: sc_specular, 1: sc_norm (COEF_SRC = 0)
+    parameter integer KIND    = 0,   // 0: sc_specular, 1: sc_energy (COEF_SRC = 0)
     parameter integer VARIANT = 0,
     parameter integer FRAC    = 16,
     parameter integer GUARD   = 5,
     parameter integer CUTOFF  = 0,
-    parameter integer NORM    = 0,
+    parameter integer ENERGY  = 0,
     parameter integer TAGW    = 4
 ) (
     input wire clk_i
 );
   localparam integer COEFW = FRAC + 8;
-  localparam integer OW    = (KIND == 1 || NORM != 0) ? COEFW : FRAC + 1;
+  localparam integer OW    = (KIND == 1 || ENERGY != 0) ? COEFW : FRAC + 1;
 
   // free inputs: driven by $anyseq every cycle
   (* anyseq *) reg              rst_ni;
@@ -57,7 +57,7 @@ module sc_formal_unit #(
     if (KIND == 0) begin : g_spec
       wire unused_h = &{1'b0, in_spec_i};
       sc_specular #(
-          .VARIANT(VARIANT), .FRAC(FRAC), .GUARD(GUARD), .CUTOFF(CUTOFF), .TAGW(TAGW), .NORM(NORM),
+          .VARIANT(VARIANT), .FRAC(FRAC), .GUARD(GUARD), .CUTOFF(CUTOFF), .TAGW(TAGW), .ENERGY(ENERGY),
           .COEFW(COEFW)
       ) dut (
           .clk_i(clk_i), .rst_ni(rst_ni), .mat_we_i(mat_we_i), .mat_n_i(mat_n_i),
@@ -66,10 +66,10 @@ module sc_formal_unit #(
           .in_valid_i(in_valid_i), .in_ready_o(in_ready_o), .in_cos_i(in_cos_i),
           .in_tag_i(in_tag_i), .out_valid_o(out_valid_o), .out_ready_i(out_ready_i),
           .out_spec_o(out_spec_o), .out_tag_o(out_tag_o));
-    end else begin : g_norm
+    end else begin : g_energy
       wire unused_h = &{1'b0, mat_n_i, mat_thr_i, tab_we_i, tab_addr_i, tab_value_i, tab_delta_i,
                         in_cos_i};
-      sc_norm #(.FRAC(FRAC), .COEFW(COEFW), .COEF_SRC(0), .TAGW(TAGW)) dut (
+      sc_energy #(.FRAC(FRAC), .COEFW(COEFW), .COEF_SRC(0), .TAGW(TAGW)) dut (
           .clk_i(clk_i), .rst_ni(rst_ni), .mat_we_i(mat_we_i), .mat_coef_i(mat_coef_i),
           .in_valid_i(in_valid_i), .in_ready_o(in_ready_o), .in_spec_i(in_spec_i),
           .in_coef_i({COEFW{1'b0}}), .in_tag_i(in_tag_i), .out_valid_o(out_valid_o),

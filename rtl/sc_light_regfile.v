@@ -18,7 +18,7 @@
 //   exists; mat_unit selects the unit with that variant id, and a variant that is absent selects the
 //   first unit for transport with its specular term forced to 0 (unit_kill_o).
 //
-// Parameters: as rtl/sc_light.v (FRAC, SLOT_KINDS, AMBIENT, DIFFUSE, UNITS, NORM, BLINN,
+// Parameters: as rtl/sc_light.v (FRAC, SLOT_KINDS, AMBIENT, DIFFUSE, UNITS, ENERGY, BLINN,
 //             PHONG, LOCAL_VIEWER, NORMALIZE, CHANNELS); NLT, NCH, AW as the core computes them;
 //             UFRAC = FRAC + SGUARD, the units' format (mat_thr UFRAC+1 bits, mat_coef UFRAC+8).
 // Ports     : clk_i; wr_i, addr_i[AW-1:0], data_i[31:0] (a write this edge);
@@ -38,7 +38,7 @@ module sc_light_regfile #(
     parameter integer AMBIENT      = 1,
     parameter integer DIFFUSE      = 1,
     parameter integer UNITS        = 1,
-    parameter integer NORM         = 0,
+    parameter integer ENERGY       = 0,
     parameter integer BLINN        = 1,
     parameter integer PHONG        = 0,
     parameter integer LOCAL_VIEWER = 0,
@@ -185,7 +185,7 @@ module sc_light_regfile #(
         mat_thr_q <= mat_thr_o;
         if (wr_i && addr_i == REG_MAT_UNIT) unit_q <= data_i[3:0];
       end
-      if (NORM != 0) begin : g_coef
+      if (ENERGY != 0) begin : g_coef
         wire hit_c = wr_i && (addr_i == REG_MAT_COEF);
         reg [UFRAC+7:0] mat_coef_q;
         assign mat_coef_o = hit_c ? data_i[UFRAC+7:0] : mat_coef_q;

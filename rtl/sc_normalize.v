@@ -5,7 +5,7 @@
 //            square root by leading-one normalisation of s = v·v to an even power of two, a
 //            96-entry seed table and two Newton–Raphson steps y <- y·(3 − m·y²)/2, then one
 //            multiply and a rounding shift per component. Bit-accurate C model: normalize3() in
-//            cmodel/include/shadecore/units/normalize.hpp and units/recip.hpp (same names as NormTrace).
+//            cmodel/include/shadecore/units/normalize.hpp and units/recip.hpp (same names as NormalizeTrace).
 //            A pipeline stage with an enable and no handshake of its own: it is embedded in the
 //            global-enable pipeline of rtl/sc_light.v (en_i = that pipeline's enable).
 //

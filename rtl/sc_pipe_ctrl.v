@@ -3,7 +3,7 @@
 // Filename : rtl/sc_pipe_ctrl.v
 // Purpose  : the one valid/ready pipeline control of the one-fragment-per-clock units (issue 21):
 //            a DEPTH-stage global-enable pipeline of docs/spec.md §4. Used by rtl/sc_cs16.v,
-//            rtl/sc_schlick_div.v, rtl/sc_schlick_nr.v, rtl/sc_table.v and rtl/sc_norm.v, which
+//            rtl/sc_schlick_div.v, rtl/sc_schlick_nr.v, rtl/sc_table.v and rtl/sc_energy.v, which
 //            clock every data register of their stages with en_o.
 //
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):

@@ -21,18 +21,18 @@
 //            (the Schlick and table units take FRAC and TAGW only; GUARD and CUTOFF do not apply to them)
 //   FRAC, GUARD, CUTOFF, TAGW: passed to the unit; legal ranges in the unit's header
 //            (cs16: 8 <= FRAC <= 24, 4 <= GUARD <= 8, FRAC+GUARD <= 31, CUTOFF 0/1, TAGW >= 1).
-//   NORM     0 (default): out_spec_o is the unit's output, F+1 bits.
-//            1: the energy-normalisation stage rtl/sc_norm.v (docs/spec.md §7) follows the unit:
+//   ENERGY   0 (default): out_spec_o is the unit's output, F+1 bits.
+//            1: the energy-normalisation stage rtl/sc_energy.v (docs/spec.md §7) follows the unit:
 //            out_spec_o = round(unit output × mat_coef), COEFW bits, 1.0 = 2^F. The coefficient is
 //            registered from mat_coef_i at mat_we_i (same rule as mat_n_i) and travels with the
 //            fragment through the unit in the upper tag bits, so a material write never affects a
 //            fragment in flight.
-//   COEFW    coefficient (and, with NORM = 1, output) width I+F, FRAC+1..FRAC+16 (default FRAC+8,
-//            enough for every model's coef over n = 16..1024). mat_coef_i is ignored when NORM = 0.
+//   COEFW    coefficient (and, with ENERGY = 1, output) width I+F, FRAC+1..FRAC+16 (default FRAC+8,
+//            enough for every model's coef over n = 16..1024). mat_coef_i is ignored when ENERGY = 0.
 // Table port: tab_we_i, tab_addr_i[9:0], tab_value_i[FRAC:0], tab_delta_i[FRAC:0] write one entry of a
 //            table unit's RAM per edge (docs/spec.md §9); every other unit ignores them (like mat_coef_i
-//            with NORM = 0): tie tab_we_i low.
-// Latency / throughput: those of the selected unit (cs16: 7 cycles, 1 per clock), + 2 with NORM = 1.
+//            with ENERGY = 0): tie tab_we_i low.
+// Latency / throughput: those of the selected unit (cs16: 7 cycles, 1 per clock), + 2 with ENERGY = 1.
 //
 // Adding a unit: add {"name", "id"} to config/configs.json "variants", then one labelled
 // generate branch below with the same port list (a new cs16 squaring form needs only its
@@ -46,7 +46,7 @@ module sc_specular #(
     parameter integer GUARD   = 5,
     parameter integer CUTOFF  = 0,
     parameter integer TAGW    = 8,
-    parameter integer NORM    = 0,
+    parameter integer ENERGY  = 0,
     parameter integer COEFW   = FRAC + 8
 ) (
     input  wire              clk_i,
@@ -65,15 +65,15 @@ module sc_specular #(
     input  wire [TAGW-1:0]   in_tag_i,
     output wire              out_valid_o,
     input  wire              out_ready_i,
-    output wire [((NORM != 0) ? COEFW : FRAC + 1)-1:0] out_spec_o,
+    output wire [((ENERGY != 0) ? COEFW : FRAC + 1)-1:0] out_spec_o,
     output wire [TAGW-1:0]   out_tag_o
 );
 
 `include "sc_variants.vh"
 
-  // The unit's result side: straight to the ports (NORM = 0) or into sc_norm (NORM = 1), whose
+  // The unit's result side: straight to the ports (ENERGY = 0) or into sc_energy (ENERGY = 1), whose
   // coefficient rides in the unit's tag above the caller's tag bits.
-  localparam integer CW    = (NORM != 0) ? COEFW : 0;
+  localparam integer CW    = (ENERGY != 0) ? COEFW : 0;
   localparam integer UTAGW = TAGW + CW;
   wire             u_out_valid, u_out_ready;
   wire [FRAC:0]    u_out_spec;
@@ -177,25 +177,25 @@ module sc_specular #(
 `undef SC_SPECULAR_UNIT_PORTS
 
   generate
-    if (NORM == 0) begin : g_no_norm
+    if (ENERGY == 0) begin : g_no_energy
       assign u_in_tag    = in_tag_i;
       assign out_valid_o = u_out_valid;
       assign u_out_ready = out_ready_i;
       assign out_spec_o  = u_out_spec;
       assign out_tag_o   = u_out_tag;
       wire unused_coef = &{1'b0, mat_coef_i};
-    end else if (NORM == 1) begin : g_norm
+    end else if (ENERGY == 1) begin : g_energy
       reg [COEFW-1:0] mat_coef_q;
       always @(posedge clk_i) begin
         if (mat_we_i) mat_coef_q <= mat_coef_i;
       end
       assign u_in_tag = {mat_coef_q, in_tag_i};
-      sc_norm #(
+      sc_energy #(
           .FRAC    (FRAC),
           .COEFW   (COEFW),
           .COEF_SRC(1),
           .TAGW    (TAGW)
-      ) u_norm (
+      ) u_energy (
           .clk_i      (clk_i),
           .rst_ni     (rst_ni),
           .mat_we_i   (1'b0),
@@ -212,7 +212,7 @@ module sc_specular #(
       );
     end else begin : g_check_norm
       // Portable elaboration error, as g_check_variant above.
-      sc_specular_error_illegal_NORM_0_is_off_1_is_sc_norm_after_the_unit u_error ();
+      sc_specular_error_illegal_ENERGY_0_is_off_1_is_sc_energy_after_the_unit u_error ();
     end
   endgenerate
 
@@ -223,7 +223,7 @@ module sc_specular #(
   reg f_init = 1'b0;
   always @(posedge clk_i) f_init <= 1'b1;
   generate
-    if (NORM == 1) begin : g_f_norm
+    if (ENERGY == 1) begin : g_f_energy
       always @(posedge clk_i) begin
         if (f_init) begin
           mat_load_coef: assert (u_in_tag[UTAGW-1:TAGW] == ($past(mat_we_i) ? $past(mat_coef_i) : $past(u_in_tag[UTAGW-1:TAGW])));

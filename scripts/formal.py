@@ -5,7 +5,7 @@
 Drives yosys + yosys-smtbmc (solver z3) directly; SymbiYosys is not packaged on Debian. A proof is
 k-induction: a bounded base case (BMC from reset, N steps) and an induction step of the same N
 (`yosys-smtbmc -i`), both must pass; together they prove the properties for every reachable state
-(unbounded). Jobs come from config/configs.json (every variant at every named width, sc_norm at every
+(unbounded). Jobs come from config/configs.json (every variant at every named width, sc_energy at every
 width, the control primitive alone at several depths).
 
 Abstraction (the default; --no-abstract keeps the datapath): every arithmetic, comparison and shift cell
@@ -182,7 +182,7 @@ def jobs():
         F, G = c["frac"], c["guard"]
         for v in cfg["variants"]:
             lat = latency(v, F)
-            p = {"KIND": 0, "VARIANT": v["id"], "FRAC": F, "GUARD": G, "CUTOFF": 0, "NORM": 0}
+            p = {"KIND": 0, "VARIANT": v["id"], "FRAC": F, "GUARD": G, "CUTOFF": 0, "ENERGY": 0}
             out["unit.%s.%s" % (v["name"], c["name"])] = dict(top="sc_formal_unit", params=p, files=files,
                                                              harness=HARNESS, depth=PROOF_DEPTH, reach=lat, drop_ctrl_asserts=True)
         out["norm.%s" % c["name"]] = dict(top="sc_formal_unit",
@@ -192,11 +192,11 @@ def jobs():
     F, G = dflt["frac"], dflt["guard"]
     for v in cfg["variants"]:
         lat = latency(v, F)
-        p = {"KIND": 0, "VARIANT": v["id"], "FRAC": F, "GUARD": G, "CUTOFF": 0, "NORM": 1}
+        p = {"KIND": 0, "VARIANT": v["id"], "FRAC": F, "GUARD": G, "CUTOFF": 0, "ENERGY": 1}
         out["unit_norm.%s.%s" % (v["name"], dflt["name"])] = dict(top="sc_formal_unit", params=p, files=files,
                                                                  harness=HARNESS, depth=PROOF_DEPTH, reach=lat + 2, drop_ctrl_asserts=True)
         if v["name"] == "cs16" or "squarer" in v:
-            p = dict(p, NORM=0, CUTOFF=1)
+            p = dict(p, ENERGY=0, CUTOFF=1)
             out["unit_sign_clamp.%s.%s" % (v["name"], dflt["name"])] = dict(
                 top="sc_formal_unit", params=p, files=files, harness=HARNESS, depth=PROOF_DEPTH, reach=lat, drop_ctrl_asserts=True)
     out.update(light_jobs(cfg))
@@ -206,7 +206,7 @@ def jobs():
 def is_long(name):
     """Jobs the default test suite leaves out (ctest label long): the deep control proofs (the popcount of
     pc_count at DEPTH 20 and 28 takes z3 from seconds to minutes), the cs16 forms at the wide width (Yosys
-    spends ~20-45 s elaborating sc_square's constant functions there) and the NORM = 1 / sign_clamp repeats."""
+    spends ~20-45 s elaborating sc_square's constant functions there) and the ENERGY = 1 / sign_clamp repeats."""
     if name.startswith("light"):
         # the full set's proof (~5 min) and every bounded job (BMC to depth 8-14: 2-10 min) are long;
         # light.diffuse and light.gl_default take 5-20 s

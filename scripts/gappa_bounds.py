@@ -508,7 +508,7 @@ def light_bound(set_name, n, claims=CLAIMS, h_min=H_MIN):
     if norm:
         coef = Q(1063, 1000) * n / (2 * PI_LO) + v     # fitted Phong coefficient code (material_writes, model 0)
     if norm:
-        sp = ((coef * cl - Q(1, 2)) / 2 ** E, (coef * ch + Q(1, 2)) / 2 ** E)  # unit + sc_norm, F ulps
+        sp = ((coef * cl - Q(1, 2)) / 2 ** E, (coef * ch + Q(1, 2)) / 2 ** E)  # unit + sc_energy, F ulps
     else:
         sp = (cl / 2 ** E, ch / 2 ** E)
     P["spec (F ulps)"] = sp
@@ -785,7 +785,7 @@ LIGHT_TEXT = """Quantity: per channel, the fixed-point core's colour minus the s
 (`LightCore::eval` − `eval_double(SpecRef::Variant)`, the `quant` part of `shadecore light-sweep`), for the cs16 unit
 (θcr cut), in LSB of 2^−F. Composed by `light_bound` in scripts/gappa_bounds.py in exact rational arithmetic
 (`scripts/gappa_bounds.py light SET N` prints the steps) from the Gappa-proved claims of §4 (normalize3 at VF,
-recip_att at F), the Gappa-proved cs16 contract at VF (§3, rows VF13/VF21), the sc_norm rounding (spec §7.3) and the
+recip_att at F), the Gappa-proved cs16 contract at VF (§3, rows VF13/VF21), the sc_energy rounding (spec §7.3) and the
 lemmas below. The composition itself is not a Gappa script (see "Not closed / left").
 
 Chain of hybrids T_r → T_1 (x at its fixed value) → T_2 (att at its fixed value) → T_f, each step bounded on
@@ -799,13 +799,13 @@ min(·, 1) (the saturating sum):
    n|b|^15 = n·L^(15/16). Where the clamp is not active, O + K·L < 1 with O ≥ 0 the other terms and K =
    coef·s·Is·att ≥ 0, so K|L'| = n·K^(1/16)·(K·L)^(15/16) ≤ n·K^(1/16); where it is active the derivative is 0. So
    x ↦ min(O + K·L(x), 1) is n·K^(1/16)-Lipschitz, plus the jump K·|b(c*)|^16 ≤ K·8^−16 at the θcr cut. Moving each
-   light's x in turn: ≤ n·K^(1/16)·|δx|·2^−VF per light. This is what keeps the sc_norm coefficient (K up to 173 at
+   light's x in turn: ≤ n·K^(1/16)·|δx|·2^−VF per light. This is what keeps the sc_energy coefficient (K up to 173 at
    n = 1024) from multiplying the x error: K^(1/16) ≤ 1.38.
 3. **att step** (full): q_f/q_r − 1 from d = D·L̂ (relative √3ε·2^−VF, Cauchy–Schwarz), the three truncations of q and
    kq·d/q ≤ √kq/2; then att_f = 1/q_f + (recip claim)·2^−F, relative to att_r = 1/q_r with q_r ≤ q_max (the stated
    geometry). A relative change ρ of one term of a sum below 1 changes min(·, 1) by ≤ |ρ|/(1 − |ρ|).
 4. **Back end** (T_2 → T_f, absolute): every ⌊·⌋ of the colour products (−1..0 LSB each), the diffuse factor's error
-   (step 1, /2^spec_guard), the unit's contract at VF (× coef with sc_norm, plus its ±1/2 rounding), times the
+   (step 1, /2^spec_guard), the unit's contract at VF (× coef with sc_energy, plus its ±1/2 rounding), times the
    colours (≤ 1) and att_f ≤ 1 + 1.0001·2^−F; the scene term's one truncation.
 
 Stated hypotheses (those of `light-sweep`'s programs, cli/cmd_light.cpp; outside them the bound is not claimed):

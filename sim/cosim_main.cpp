@@ -171,7 +171,7 @@ int run(const Options& o, const Unit& unit, const RunConfig& rc, std::string& ca
       {"guard", f.guard},
       {"variant", o.variant},
       {"cutoff", o.cutoff},
-      {"norm", unit.norm()},
+      {"norm", unit.energy()},
       {"mode", to_string(o.mode)},
       {"n_lo", o.n_lo},
       {"n_hi", o.n_hi},
@@ -284,7 +284,7 @@ int main_impl(int argc, char** argv) {
   auto* inject_at_opt =
       app.add_option("--inject-at", o.inject_at, "self-test: which output transfer (1-based)")->check(UInt(1));
   app.add_flag("--quiet", o.quiet, "print only the COSIM-RESULT line when the run passes");
-  app.add_flag("--norm", norm, "sc_specular with NORM = 1: rtl/sc_norm.v after the unit (cs16, theta_cr)");
+  app.add_flag("--norm", norm, "sc_specular with ENERGY = 1: rtl/sc_energy.v after the unit (cs16, theta_cr)");
   auto* coef_model_opt = app.add_option("--coef-model", coef_model,
                                         "--norm: all (model and kind picked per material from n; the default) | phong | "
                                         "phong_mod | blinn | blinn_mod | blinn_ndf | blinn_hf");
@@ -331,7 +331,7 @@ int main_impl(int argc, char** argv) {
       const bool one_model = !coef_model.empty() && coef_model != "all";
       if (coef_opt->count() && !one_model)
         throw std::invalid_argument("--coef needs --coef-model MODEL (with all, the kind is picked per material)");
-      unit.set_norm(true, one_model ? static_cast<int>(parse_model(coef_model)) : -1,
+      unit.set_energy(true, one_model ? static_cast<int>(parse_model(coef_model)) : -1,
                     parse_coef_kind(coef_kind.empty() ? "fitted" : coef_kind));
     }
     if (o.seed == 0) {

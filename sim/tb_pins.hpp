@@ -16,7 +16,7 @@ struct Pins {
   sc_core::sc_signal<bool> mat_we{"mat_we", false};
   sc_core::sc_signal<uint32_t> mat_n{"mat_n", 16};
   sc_core::sc_signal<uint32_t> mat_thr{"mat_thr", 0};
-  sc_core::sc_signal<uint32_t> mat_coef{"mat_coef", 0};  // NORM = 1 only (ignored otherwise)
+  sc_core::sc_signal<uint32_t> mat_coef{"mat_coef", 0};  // ENERGY = 1 only (ignored otherwise)
   // Table write port (table units only, docs/spec.md §9; tied low for the others by the driver).
   sc_core::sc_signal<bool> tab_we{"tab_we", false};
   sc_core::sc_signal<uint32_t> tab_addr{"tab_addr", 0};

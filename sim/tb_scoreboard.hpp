@@ -115,7 +115,7 @@ class ScoreboardT {
     }
     const uint64_t lat_adv = adv - e.adv, lat_cyc = cycle - e.cycle;
     // Exactly `latency` advancing edges for one global-enable pipeline; where elastic segments are
-    // chained (NORM stage, the lighting core) a transaction may close up on the one ahead through
+    // chained (ENERGY stage, the lighting core) a transaction may close up on the one ahead through
     // bubbles under backpressure, so the contract is the range latency_min..latency.
     if (lat_adv > static_cast<uint64_t>(e.lat_hi) || lat_adv < static_cast<uint64_t>(e.lat_lo)) {
       ++latency_errors_;

@@ -18,7 +18,7 @@ constexpr long double kPi = 3.141592653589793238462643383279502884L;
 // The setup constant at both ends of the exponent range, against the paper's formulas evaluated
 // independently here in long double and rounded half up.
 TEST(CoefSetup, FittedConstantsAtEnds) {
-  const NormFormat f{16, kCoefIntBits};
+  const EnergyFormat f{16, kCoefIntBits};
   struct Row { Model m; long double a, b, k; };
   const Row rows[] = {{Model::Phong, 1.063L, 0, 2},   {Model::PhongMod, 1.063L, 1, 2}, {Model::Blinn, 1.068L, 0.96L, 8},
                       {Model::BlinnMod, 1.027L, 4.8L, 8}, {Model::BlinnNdf, 1.063L, 0, 2}, {Model::BlinnHeightfield, 1.063L, 1, 2}};
@@ -26,7 +26,7 @@ TEST(CoefSetup, FittedConstantsAtEnds) {
     for (int n : {16, 1024}) {
       const long double c = (r.a * n + r.b) / (r.k * kPi);
       const auto expect = static_cast<uint32_t>(std::floor(c * 65536.0L + 0.5L));
-      EXPECT_EQ(norm_setup(f, r.m, CoefKind::Fitted, n), expect) << info(r.m).key << " n=" << n;
+      EXPECT_EQ(energy_setup(f, r.m, CoefKind::Fitted, n), expect) << info(r.m).key << " n=" << n;
     }
   // The largest coefficient of all: fitted modified Phong at n = 1024, (1.063·1024 + 1)/2π ≈ 173.4.
   EXPECT_NEAR(fitted_coef(Model::PhongMod, 1024), 173.40, 0.01);
@@ -36,16 +36,16 @@ TEST(CoefSetup, FittedConstantsAtEnds) {
 // legal F, and the per-fragment product at the largest coefficient and output 1.0 does not overflow.
 TEST(CoefSetup, LargestCoefficientFitsAndProductDoesNotOverflow) {
   for (int F = kFracMin; F <= kFracMax; ++F) {
-    const NormFormat f{F, kCoefIntBits};
+    const EnergyFormat f{F, kCoefIntBits};
     uint32_t cmax = 0;
     for (const auto& mi : kModels)
       for (CoefKind k : {CoefKind::Fitted, CoefKind::Classical})
-        for (int n = kNMin; n <= kNMax; ++n) cmax = std::max(cmax, norm_setup(f, mi.model, k, n));
+        for (int n = kNMin; n <= kNMax; ++n) cmax = std::max(cmax, energy_setup(f, mi.model, k, n));
     EXPECT_LT(cmax, uint64_t{1} << f.coef_bits());
     for (uint32_t coef : {cmax, static_cast<uint32_t>((uint64_t{1} << f.coef_bits()) - 1)}) {
       const uint32_t spec = 1u << F;  // 1.0, the largest unit output
       const unsigned __int128 exact = (static_cast<unsigned __int128>(spec) * coef + (1u << (F - 1))) >> F;
-      const uint64_t got = norm_eval(f, coef, spec);
+      const uint64_t got = energy_eval(f, coef, spec);
       EXPECT_EQ(got, static_cast<uint64_t>(exact)) << "F=" << F;
       EXPECT_LT(got, uint64_t{1} << f.out_bits()) << "F=" << F;
     }
@@ -53,7 +53,7 @@ TEST(CoefSetup, LargestCoefficientFitsAndProductDoesNotOverflow) {
 }
 
 TEST(CoefSetup, RoundsHalfUpAndRejectsBadValues) {
-  const NormFormat f{16, 8};
+  const EnergyFormat f{16, 8};
   EXPECT_EQ(coef_code(f, (1000 + 0.5) / 65536.0), 1001u);
   EXPECT_EQ(coef_code(f, (1000 + 0.49) / 65536.0), 1000u);
   EXPECT_EQ(coef_code(f, (1000 + 0.51) / 65536.0), 1001u);
@@ -63,10 +63,10 @@ TEST(CoefSetup, RoundsHalfUpAndRejectsBadValues) {
   EXPECT_THROW(coef_code(f, 255.0 + 65535.5 / 65536.0), std::invalid_argument);  // rounds up to 256
   EXPECT_THROW(coef_code(f, -1.0), std::invalid_argument);
   EXPECT_THROW(coef_code(f, std::nan("")), std::invalid_argument);
-  EXPECT_THROW(coef_code(NormFormat{7, 8}, 1.0), std::invalid_argument);
-  EXPECT_THROW(coef_code(NormFormat{16, 0}, 1.0), std::invalid_argument);
-  EXPECT_THROW(norm_setup(f, Model::Phong, CoefKind::Fitted, 15), std::invalid_argument);
-  EXPECT_THROW(norm_setup(f, Model::Phong, CoefKind::Fitted, 1025), std::invalid_argument);
+  EXPECT_THROW(coef_code(EnergyFormat{7, 8}, 1.0), std::invalid_argument);
+  EXPECT_THROW(coef_code(EnergyFormat{16, 0}, 1.0), std::invalid_argument);
+  EXPECT_THROW(energy_setup(f, Model::Phong, CoefKind::Fitted, 15), std::invalid_argument);
+  EXPECT_THROW(energy_setup(f, Model::Phong, CoefKind::Fitted, 1025), std::invalid_argument);
 }
 
 // coef·2^F is never within 64 double ulps (of coef·2^F) of a rounding tie, so a last-few-ulp
@@ -87,10 +87,10 @@ TEST(CoefSetup, SetupConstantNotNearTie) {
 
 // Exhaustive at F = 8: out = round-half-up(spec·coef / 2^F), error in (−½, ½] ulp, no overflow.
 TEST(NormEval, ExhaustiveRoundingAtF8) {
-  const NormFormat f{8, 8};
+  const EnergyFormat f{8, 8};
   for (uint32_t spec = 0; spec <= 256; ++spec)
     for (uint32_t coef = 0; coef < (1u << 16); ++coef) {
-      const uint64_t out = norm_eval(f, coef, spec);
+      const uint64_t out = energy_eval(f, coef, spec);
       const double exact = spec * static_cast<double>(coef) / 256.0;
       const double e = static_cast<double>(out) - exact;
       ASSERT_TRUE(e > -0.5 && e <= 0.5) << spec << " " << coef;
@@ -101,16 +101,16 @@ TEST(NormEval, ExhaustiveRoundingAtF8) {
 // Against the ideal coef·(spec/2^F): the normalised output is within 1 ulp_F (½ from the setup
 // rounding of coef times spec <= 1, ½ from the output rounding), every spec code, F = 16.
 TEST(NormEval, WithinOneUlpOfIdealProduct) {
-  const NormFormat f{16, 8};
+  const EnergyFormat f{16, 8};
   for (const auto& mi : kModels)
     for (CoefKind k : {CoefKind::Fitted, CoefKind::Classical})
       for (int n : {16, 100, 1024}) {
         const double c = coef_value(mi.model, k, n);
-        const uint32_t q = norm_setup(f, mi.model, k, n);
+        const uint32_t q = energy_setup(f, mi.model, k, n);
         double worst = 0;
         for (uint32_t spec = 0; spec <= 65536; ++spec) {
           const double ideal = c * spec;  // in units of 2^-16 of the output
-          worst = std::max(worst, std::fabs(static_cast<double>(norm_eval(f, q, spec)) - ideal));
+          worst = std::max(worst, std::fabs(static_cast<double>(energy_eval(f, q, spec)) - ideal));
         }
         EXPECT_LE(worst, 1.0) << mi.key << " n=" << n;
       }

@@ -148,9 +148,9 @@ TEST(EvalCli, PrintsTheTraceAndMatchesTheModel) {
   EXPECT_EQ(neg["out"].get<uint32_t>(), 0u);
   const auto one = eval_json("--n 1024 --code 0x10000");
   EXPECT_EQ(one["out"].get<uint32_t>(), 65536u);
-  // Schlick and NORM: the output is Unit::eval of the same configuration.
+  // Schlick and ENERGY: the output is Unit::eval of the same configuration.
   shadecore::Unit nu(shadecore::VariantId::schlick_nr, shadecore::config_named("narrow").format, shadecore::Cutoff::ThetaCr);
-  nu.set_norm(true, static_cast<int>(shadecore::Model::Blinn), shadecore::CoefKind::Classical);
+  nu.set_energy(true, static_cast<int>(shadecore::Model::Blinn), shadecore::CoefKind::Classical);
   const auto sj = eval_json("--variant schlick_nr --config narrow --norm blinn --coef classical --n 300 --code 200");
   EXPECT_EQ(sj["out"].get<uint32_t>(), nu.eval(nu.setup(300), 200));
   EXPECT_EQ(sj["material"]["coef"].get<uint32_t>(), nu.setup(300).coef);
@@ -251,7 +251,7 @@ TEST(VectorsCli, ExhaustiveAndNorm) {
   const shadecore::Format f = shadecore::config_named("narrow").format;
   ASSERT_EQ(v.size(), 2u * (f.one() + 1 + 4));
   shadecore::Unit u(shadecore::VariantId::cs16, f, shadecore::Cutoff::ThetaCr);
-  u.set_norm(true, static_cast<int>(shadecore::Model::Phong), shadecore::CoefKind::Fitted);
+  u.set_energy(true, static_cast<int>(shadecore::Model::Phong), shadecore::CoefKind::Fitted);
   std::set<int64_t> codes;
   for (const auto& l : v) {
     const auto m = u.setup(l.n);
@@ -523,7 +523,7 @@ TEST(SpecDocs, CoefficientAndLatencyTablesMatchTheModel) {
   const shadecore::Format f = shadecore::default_format();
   auto lat = [&](shadecore::VariantId v, bool norm) {
     shadecore::Unit u(v, f, shadecore::Cutoff::ThetaCr);
-    u.set_norm(norm);
+    u.set_energy(norm);
     return u.latency();
   };
   EXPECT_NE(spec.find("| `sc_cs16` (cs16) | " + std::to_string(lat(shadecore::VariantId::cs16, false)) + " |"), std::string::npos);

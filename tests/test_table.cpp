@@ -176,7 +176,7 @@ TEST(TableUnit, Hooks) {
       EXPECT_EQ(u.eval(m, code), table_eval(kDefault, t, code)) << code;
     EXPECT_THROW(u.eval(UnitMaterial{300, 0}, 100), std::invalid_argument);  // no table loaded
     Unit un = u;
-    un.set_norm(true);
+    un.set_energy(true);
     EXPECT_EQ(un.latency(), kTableLatency + 2);
   }
   EXPECT_EQ(Unit(VariantId::cs16, kDefault, Cutoff::ThetaCr).entries(), 0);

@@ -48,7 +48,7 @@ std::vector<std::string> specular_files(VariantId variant, bool norm) {
       found = true;
     }
   if (!found) throw std::runtime_error("config/configs.json: no variant '" + name + "'");
-  if (norm) append(v, top("sc_specular").at("norm"), "rtl.sc_specular.norm");
+  if (norm) append(v, top("sc_specular").at("energy"), "rtl.sc_specular.energy");
   return v;
 }
 
@@ -71,7 +71,7 @@ std::vector<std::string> light_files(const FeatureSet& fs) {
   if (normalize) append(v, l.at("normalize"), "rtl.sc_light.normalize");
   if (any_att) append(v, l.at("recip"), "rtl.sc_light.recip");
   for (VariantId u : fs.units()) append(v, specular_files(u, fs.norm), "rtl.sc_specular");
-  std::vector<std::string> once;  // units share sc_specular.v (and sc_norm.v): each file once
+  std::vector<std::string> once;  // units share sc_specular.v (and sc_energy.v): each file once
   for (const auto& f : v)
     if (std::find(once.begin(), once.end(), f) == once.end()) once.push_back(f);
   return once;

@@ -7,8 +7,8 @@
 // Table variants (config/configs.json contract "table", docs/spec.md §9): setup(n) also gives the
 // table RAM contents (UnitMaterial::tab, E words, written through tab_we_i/tab_addr_i/tab_value_i/
 // tab_delta_i), and eval() reads the words in UnitMaterial::tab — whatever the RAM holds.
-// Optionally (set_norm) the energy-normalisation stage rtl/sc_norm.v chained after the unit inside
-// sc_specular (parameter NORM = 1): setup() also gives mat_coef_i, eval() the normalised output,
+// Optionally (set_energy) the energy-normalisation stage rtl/sc_energy.v chained after the unit inside
+// sc_specular (parameter ENERGY = 1): setup() also gives mat_coef_i, eval() the normalised output,
 // latency() + 2 (docs/spec.md §7).
 // A new unit (a Schlick divider, an energy-normalised output) adds one `case` per function below
 // and a row in config/configs.json "variants"; the testbench does not change.
@@ -34,7 +34,7 @@ namespace shadecore {
 struct UnitMaterial {
   int n = kNMin;     // mat_n_i, 16..1024
   uint32_t thr = 0;  // mat_thr_i
-  uint32_t coef = 0; // mat_coef_i (NORM = 1 only: coef_code of the material's model, spec §7)
+  uint32_t coef = 0; // mat_coef_i (ENERGY = 1 only: coef_code of the material's model, spec §7)
   // Table variants only: the table RAM contents (E words, table_word() layout), loaded through the
   // tab_*_i ports; null for every other unit. Shared, not copied, when a material is passed around.
   std::shared_ptr<const std::vector<uint64_t>> tab = nullptr;
@@ -87,36 +87,36 @@ class Unit {
   // Chain the energy-normalisation stage (I = kCoefIntBits, F = format().frac). model < 0 picks the
   // model per material from n (kModels[n % 6], classical coefficient when (n / 6) is odd), so a
   // random run covers every model and kind; model >= 0 fixes it (index into kModels).
-  void set_norm(bool on, int model = -1, CoefKind kind = CoefKind::Fitted) {
-    if (model >= kNumModels) throw std::invalid_argument("norm model index out of range");
-    norm_ = on;
-    norm_model_ = model;
-    norm_kind_ = kind;
+  void set_energy(bool on, int model = -1, CoefKind kind = CoefKind::Fitted) {
+    if (model >= kNumModels) throw std::invalid_argument("energy model index out of range");
+    energy_ = on;
+    energy_model_ = model;
+    energy_kind_ = kind;
   }
-  [[nodiscard]] bool norm() const { return norm_; }
+  [[nodiscard]] bool energy() const { return energy_; }
 
   // Pipeline latency in cycles: accepted at the rising edge ending cycle t -> out_valid_o in t+latency.
   [[nodiscard]] int latency() const {
-    if (is_cs16_form()) return kCs16FormLatency + (norm_ ? 2 : 0);  // rtl/sc_cs16.v FORM = 1: S1..S5
+    if (is_cs16_form()) return kCs16FormLatency + (energy_ ? 2 : 0);  // rtl/sc_cs16.v FORM = 1: S1..S5
     switch (variant_) {
-      case VariantId::cs16: return 7 + (norm_ ? 2 : 0);  // rtl/sc_cs16.v: S0..S6 (+ sc_norm N1, N2)
+      case VariantId::cs16: return 7 + (energy_ ? 2 : 0);  // rtl/sc_cs16.v: S0..S6 (+ sc_energy N1, N2)
       // Schlick units (docs/spec.md §6.5): div/iter S0, S1, Q0..Q(F+1); nr S0..S9.
-      case VariantId::schlick_div: return schlick_div_latency(format_.frac) + (norm_ ? 2 : 0);
-      case VariantId::schlick_nr: return kSchlickNrLatency + (norm_ ? 2 : 0);
-      case VariantId::schlick_iter: return schlick_iter_latency(format_.frac) + (norm_ ? 2 : 0);
+      case VariantId::schlick_div: return schlick_div_latency(format_.frac) + (energy_ ? 2 : 0);
+      case VariantId::schlick_nr: return kSchlickNrLatency + (energy_ ? 2 : 0);
+      case VariantId::schlick_iter: return schlick_iter_latency(format_.frac) + (energy_ ? 2 : 0);
       case VariantId::table256:
-      case VariantId::table1024: return kTableLatency + (norm_ ? 2 : 0);  // rtl/sc_table.v: S0..S2
+      case VariantId::table1024: return kTableLatency + (energy_ ? 2 : 0);  // rtl/sc_table.v: S0..S2
       default: break;
     }
     return -1;
   }
 
   // Fewest advancing edges (!out_valid_o || out_ready_i) from acceptance to output. Equal to
-  // latency() for a single unit (one global enable). With NORM = 1 the unit and sc_norm are two
-  // pipelines: while sc_norm's output is held, the unit still advances into its empty output stage,
+  // latency() for a single unit (one global enable). With ENERGY = 1 the unit and sc_energy are two
+  // pipelines: while sc_energy's output is held, the unit still advances into its empty output stage,
   // so under backpressure a fragment can close up on the one ahead; at least the edges into N1 and
   // N2 and the taking edge remain (3). With out_ready_i high throughout it is exactly latency().
-  [[nodiscard]] int latency_min() const { return norm_ ? 3 : latency(); }
+  [[nodiscard]] int latency_min() const { return energy_ ? 3 : latency(); }
 
   // Material setup (docs/spec.md §3.1); throws std::invalid_argument for n outside [16, 1024].
   [[nodiscard]] UnitMaterial setup(long long n) const {
@@ -164,26 +164,26 @@ class Unit {
   }
 
  private:
-  [[nodiscard]] NormFormat norm_format() const { return NormFormat{format_.frac, kCoefIntBits}; }
+  [[nodiscard]] EnergyFormat energy_format() const { return EnergyFormat{format_.frac, kCoefIntBits}; }
   [[nodiscard]] UnitMaterial with_coef(UnitMaterial m, long long n) const {
-    if (!norm_) return m;
-    const Model model = norm_model_ >= 0 ? static_cast<Model>(norm_model_) : static_cast<Model>(n % kNumModels);
-    const CoefKind kind = norm_model_ >= 0 ? norm_kind_ : ((n / kNumModels) % 2 ? CoefKind::Classical : CoefKind::Fitted);
-    m.coef = norm_setup(norm_format(), model, kind, n);
+    if (!energy_) return m;
+    const Model model = energy_model_ >= 0 ? static_cast<Model>(energy_model_) : static_cast<Model>(n % kNumModels);
+    const CoefKind kind = energy_model_ >= 0 ? energy_kind_ : ((n / kNumModels) % 2 ? CoefKind::Classical : CoefKind::Fitted);
+    m.coef = energy_setup(energy_format(), model, kind, n);
     return m;
   }
-  // sc_norm N1/N2 after the unit (out < 2^(I+F) <= 2^32).
+  // sc_energy N1/N2 after the unit (out < 2^(I+F) <= 2^32).
   [[nodiscard]] uint32_t normalise(const UnitMaterial& m, uint32_t spec) const {
-    return norm_ ? static_cast<uint32_t>(norm_eval(norm_format(), m.coef, spec)) : spec;
+    return energy_ ? static_cast<uint32_t>(energy_eval(energy_format(), m.coef, spec)) : spec;
   }
 
   VariantId variant_;
   Format format_;
   Cutoff cutoff_;
   Cs16Stages stages_{};  // cs16 forms only
-  bool norm_ = false;
-  int norm_model_ = -1;
-  CoefKind norm_kind_ = CoefKind::Fitted;
+  bool energy_ = false;
+  int energy_model_ = -1;
+  CoefKind energy_kind_ = CoefKind::Fitted;
 };
 
 }  // namespace shadecore

@@ -90,7 +90,7 @@ double cell_integral(Model m, bool blinn_rows, double ua, double ub, double si, 
 // for the fixed-point datapath), the cs16 material, 2^F, sin and cos θi, and whether the lobe is a
 // function of N·h (Blinn rows) rather than of R·ωo (Phong rows).
 struct LobeSetup {
-  NormFormat nf;
+  EnergyFormat nf;
   double coef_d;
   uint32_t coef_q;
   Cs16Material mat;
@@ -125,7 +125,7 @@ double reflectance_cells(Model m, int n, double theta_i, const Options& o) {
     if (o.fixed_point) {
       const uint32_t spec = cs16_eval(o.format, o.cutoff, ls.mat, k);
       if (spec == 0) continue;
-      const double v = static_cast<double>(norm_eval(ls.nf, ls.coef_q, spec)) * ulp;
+      const double v = static_cast<double>(energy_eval(ls.nf, ls.coef_q, spec)) * ulp;
       sum += cell_integral(m, ls.blinn_rows, ua, ub, ls.si, ls.ci, [v](double) { return v; });
     } else {
       sum += cell_integral(m, ls.blinn_rows, ua, ub, ls.si, ls.ci, [&](double u) { return ls.golden_lobe(o, u, n); });
@@ -142,7 +142,7 @@ double reflectance_grid(Model m, int n, double theta_i, const Options& o) {
     if (!o.fixed_point) return ls.golden_lobe(o, c, n);
     const int64_t code = std::llround(c * scale);  // quantise to the (F+2)-bit input (|c| <= 1 fits)
     const uint32_t spec = cs16_eval(o.format, o.cutoff, ls.mat, code);
-    return static_cast<double>(norm_eval(ls.nf, ls.coef_q, spec)) / scale;
+    return static_cast<double>(energy_eval(ls.nf, ls.coef_q, spec)) / scale;
   };
 
   const double si = ls.si, ci = ls.ci;

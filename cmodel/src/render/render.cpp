@@ -635,7 +635,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
         mp.norm_model = static_cast<int>(M.normalization->model);
         mp.norm_kind = M.normalization->kind;
       } else {
-        mp.norm_model = -1;  // with the norm hardware: coefficient 1.0, sc_norm passes spec unchanged
+        mp.norm_model = -1;  // with the norm hardware: coefficient 1.0, sc_energy passes spec unchanged
       }
       if (sp.specular) mp.unit = sp.variant;
       auto ws = material_writes(core, mp);

@@ -50,7 +50,7 @@ struct Light {             // glLightfv(GL_LIGHTi, ...), specified with the view
   double kc = 1, kl = 0, kq = 0;  // GL_CONSTANT/LINEAR/QUADRATIC_ATTENUATION
 };
 
-struct Normalization {     // optional energy normalisation of the specular term (rtl/sc_norm.v)
+struct Normalization {     // optional energy normalisation of the specular term (rtl/sc_energy.v)
   Model model = Model::Blinn;
   CoefKind kind = CoefKind::Fitted;
 };

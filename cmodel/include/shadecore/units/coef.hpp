@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // shadecore — energy normalisation: the six coefficient models of the cs16 paper and the
-// bit-accurate normalisation stage (rtl/sc_norm.v). See docs/spec.md §7 and docs/energy.md.
+// bit-accurate normalisation stage (rtl/sc_energy.v). See docs/spec.md §7 and docs/energy.md.
 //
 //   coef(n) = (a·n + b) / (k·π)        k = 2 (Phong rows) or 8 (Blinn rows)
 //
@@ -109,7 +109,7 @@ inline constexpr int kCoefIntBits = 8;
 inline constexpr int kCoefIntBitsMin = 1;
 inline constexpr int kCoefIntBitsMax = 16;
 
-struct NormFormat {
+struct EnergyFormat {
   int frac = 16;                   // F: fraction bits of the unit output, of the coefficient and of the result
   int int_bits = kCoefIntBits;     // I: integer bits of the coefficient and of the result
   [[nodiscard]] constexpr int coef_bits() const { return int_bits + frac; }  // COEFW
@@ -118,14 +118,14 @@ struct NormFormat {
   [[nodiscard]] constexpr int prod_bits() const { return in_bits() + coef_bits(); }
 };
 
-inline void validate(const NormFormat& f) {
+inline void validate(const EnergyFormat& f) {
   check_in_range("fraction width", f.frac, kFracMin, kFracMax);
   check_in_range("coefficient integer bits", f.int_bits, kCoefIntBitsMin, kCoefIntBitsMax);
 }
 
 // Material setup: code = ⌊coef·2^F + ½⌋ (round half up of the IEEE-double value), checked to fit
 // in I+F bits. Throws std::invalid_argument if coef is negative, not finite or too large.
-inline uint32_t coef_code(const NormFormat& f, double coef) {
+inline uint32_t coef_code(const EnergyFormat& f, double coef) {
   validate(f);
   if (!std::isfinite(coef) || coef < 0) throw std::invalid_argument("coefficient must be finite and >= 0");
   const double scaled = std::floor(std::ldexp(coef, f.frac) + 0.5);
@@ -136,16 +136,16 @@ inline uint32_t coef_code(const NormFormat& f, double coef) {
 }
 
 // Setup for a material: model, coefficient kind and exponent n (validated: 16..1024).
-inline uint32_t norm_setup(const NormFormat& f, Model m, CoefKind k, long long n) {
+inline uint32_t energy_setup(const EnergyFormat& f, Model m, CoefKind k, long long n) {
   validate_n(n);
   return coef_code(f, coef_value(m, k, static_cast<double>(n)));
 }
 
-// Per fragment (rtl/sc_norm.v):
+// Per fragment (rtl/sc_energy.v):
 //   N1  p = spec · coef             (F+1) × (I+F) → I+2F+1 bits, exact
 //   N2  out = ⌊(p + 2^(F−1)) / 2^F⌋  I+F bits, 1.0 = 2^F (round half up)
 // spec <= 2^F and coef <= 2^(I+F) − 1 give p + 2^(F−1) < 2^(I+2F), so out < 2^(I+F): no overflow.
-inline uint64_t norm_eval(const NormFormat& f, uint32_t coef, uint32_t spec) {
+inline uint64_t energy_eval(const EnergyFormat& f, uint32_t coef, uint32_t spec) {
   const uint64_t p = static_cast<uint64_t>(spec) * coef;         // N1 (≤ 2F+I+1 ≤ 57 bits)
   return (p + (uint64_t{1} << (f.frac - 1))) >> f.frac;          // N2
 }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // shadecore — bit-accurate model of the lighting core's vector normaliser (docs/lighting.md §3; RTL:
-// rtl/sc_normalize.v, its registers named in NormTrace).
+// rtl/sc_normalize.v, its registers named in NormalizeTrace).
 //
 //   normalize3(v)  unit vector v/|v| by a reciprocal square root: leading-one normalisation of
 //                  s = v·v to an even power of two, a 96-entry seed table of 1/√m (10 fraction bits)
@@ -43,7 +43,7 @@ inline constexpr uint32_t rsqrt_seed(uint32_t i) {
 }
 
 // Every intermediate of one normalisation (names of rtl/sc_normalize.v's registers).
-struct NormTrace {
+struct NormalizeTrace {
   uint64_t s = 0;    // v·v, exact
   int p = 0;         // msb index of s
   int e2 = 0;        // even shift: m = s·2^e2 (truncated when e2 < 0)
@@ -69,9 +69,9 @@ inline constexpr double normalize3_bound_ulp(int F) { return F <= 22 ? 0.55 : 0.
 // u = v / |v| as signed codes with F fraction bits (1.0 = 2^F), each component rounded half up
 // (toward +∞ on ties). v = 0 gives u = 0. The components of v are signed integers (any common
 // fraction: the result does not depend on it) with |v_i| < 2^40.
-inline void normalize3(int F, const int64_t v[3], int64_t u[3], NormTrace* tr = nullptr) {
+inline void normalize3(int F, const int64_t v[3], int64_t u[3], NormalizeTrace* tr = nullptr) {
   const int R = rsqrt_frac(F), MB = rsqrt_mant_frac(F);
-  NormTrace t;
+  NormalizeTrace t;
   t.s = static_cast<uint64_t>(v[0] * v[0]) + static_cast<uint64_t>(v[1] * v[1]) + static_cast<uint64_t>(v[2] * v[2]);
   if (t.s == 0) {
     u[0] = u[1] = u[2] = 0;

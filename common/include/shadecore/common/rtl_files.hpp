@@ -14,7 +14,7 @@
 
 namespace shadecore::rtl {
 
-// sc_specular.v with the unit of `variant` (variants[].rtl) and, with `norm`, sc_norm.v.
+// sc_specular.v with the unit of `variant` (variants[].rtl) and, with `norm`, sc_energy.v.
 std::vector<std::string> specular_files(VariantId variant, bool norm);
 std::vector<std::string> specular_includes();
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // ============================================================================================
-// Filename : rtl/sc_norm.v
+// Filename : rtl/sc_energy.v
 // Purpose  : energy-normalisation output stage — multiplies the specular unit's output by the
 //            per-material coefficient coef(n) and rounds, exactly as docs/spec.md §7
-//            (bit-accurate C model: cmodel/include/shadecore/units/coef.hpp, norm_eval(); stage names
+//            (bit-accurate C model: cmodel/include/shadecore/units/coef.hpp, energy_eval(); stage names
 //            N1/N2 as there).
 //
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
@@ -49,7 +49,7 @@
 // ============================================================================================
 `default_nettype none
 
-module sc_norm #(
+module sc_energy #(
     parameter integer FRAC     = 16,
     parameter integer COEFW    = FRAC + 8,
     parameter integer COEF_SRC = 0,
@@ -81,16 +81,16 @@ module sc_norm #(
   // exist, named after the message; every tool stops with "unknown module <message>".
   generate
     if (FRAC < 8 || FRAC > 24) begin : g_check_frac
-      sc_norm_error_illegal_FRAC_legal_range_is_8_to_24 u_error ();
+      sc_energy_error_illegal_FRAC_legal_range_is_8_to_24 u_error ();
     end
     if (COEFW < FRAC + 1 || COEFW > FRAC + 16) begin : g_check_coefw
-      sc_norm_error_illegal_COEFW_legal_range_is_FRAC_plus_1_to_FRAC_plus_16 u_error ();
+      sc_energy_error_illegal_COEFW_legal_range_is_FRAC_plus_1_to_FRAC_plus_16 u_error ();
     end
     if (COEF_SRC != 0 && COEF_SRC != 1) begin : g_check_src
-      sc_norm_error_illegal_COEF_SRC_0_is_material_register_1_is_in_coef_i u_error ();
+      sc_energy_error_illegal_COEF_SRC_0_is_material_register_1_is_in_coef_i u_error ();
     end
     if (TAGW < 1) begin : g_check_tagw
-      sc_norm_error_illegal_TAGW_must_be_at_least_1 u_error ();
+      sc_energy_error_illegal_TAGW_must_be_at_least_1 u_error ();
     end
   endgenerate
 
