@@ -52,6 +52,43 @@ inline Format default_format() { return config_named(kDefaultConfig).format; }
 }  // namespace shadecore
 " @ONLY)
 
+# Legal parameter ranges (config/configs.json "limits", the one source): generates
+# ${SHADECORE_GENERATED_DIR}/shadecore/limits.hpp (namespace shadecore::limits, k<Name>Min/Max, kWorkMax),
+# from which cmodel format.hpp and units/coef.hpp take their constants. The RTL's elaboration checks state
+# the same numbers; ctest rtl.limits_agree (scripts/check_limits.py) checks them against the same entries.
+string(JSON _nlim LENGTH "${_cfg_json}" limits)
+math(EXPR _nlim_last "${_nlim} - 1")
+set(_limits_hpp "")
+foreach(i RANGE ${_nlim_last})
+  string(JSON _lname MEMBER "${_cfg_json}" limits ${i})
+  if(_lname STREQUAL "_comment")
+    continue()
+  endif()
+  string(JSON _lcpp GET "${_cfg_json}" limits ${_lname} cpp)
+  foreach(_bound min max sum_max)
+    string(JSON _lv ERROR_VARIABLE _lnone GET "${_cfg_json}" limits ${_lname} ${_bound})
+    if(NOT _lnone)
+      if(_bound STREQUAL "min")
+        set(_lsuffix Min)
+      elseif(_bound STREQUAL "max")
+        set(_lsuffix Max)
+      else()
+        set(_lsuffix "")  # the entry's cpp name already says what it bounds (kWorkMax)
+      endif()
+      string(APPEND _limits_hpp "inline constexpr int ${_lcpp}${_lsuffix} = ${_lv};  // limits.${_lname}.${_bound}\n")
+    endif()
+  endforeach()
+endforeach()
+file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/limits.hpp" CONTENT
+"// SPDX-License-Identifier: Apache-2.0
+// generated from config/configs.json \"limits\" by cmake/ShadecoreConfigs.cmake — do not edit
+// The legal parameter ranges of the RTL and the C model (docs/spec.md §2; rtl/*.v elaboration checks,
+// ctest rtl.limits_agree).
+#pragma once
+namespace shadecore::limits {
+${_limits_hpp}}  // namespace shadecore::limits
+" @ONLY)
+
 # Hardware unit variants (config/configs.json "variants": name <-> id, the VARIANT parameter of
 # rtl/sc_specular.v). Sets SHADECORE_VARIANT_NAMES and SHADECORE_VARIANT_<name>_ID, and generates
 #   ${SHADECORE_GENERATED_DIR}/shadecore/variants.hpp  (enum class VariantId, kVariants)

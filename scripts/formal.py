@@ -69,7 +69,7 @@ def unit_files(cfg):
     files = list(cfg["rtl"]["sc_specular"]["files"])
     for v in cfg["variants"]:
         files += v["rtl"]
-    files += cfg["rtl"]["sc_specular"]["norm"]
+    files += cfg["rtl"]["sc_specular"]["energy"]
     out = []
     for f in files:
         if f not in out:

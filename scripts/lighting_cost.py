@@ -51,7 +51,7 @@ def light_files():
     cfg = json.load(open(os.path.join(ROOT, "config", "configs.json")))
     r = cfg["rtl"]
     files = list(r["sc_light"]["files"]) + r["sc_light"]["normalize"] + r["sc_light"]["recip"]
-    files += r["sc_specular"]["files"] + r["sc_specular"]["norm"]
+    files += r["sc_specular"]["files"] + r["sc_specular"]["energy"]
     for v in cfg["variants"]:
         files += v["rtl"]
     out = []

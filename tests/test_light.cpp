@@ -9,6 +9,7 @@
 
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
+#include "shadecore/limits.hpp"
 #include "shadecore/units/normalize.hpp"
 #include "shadecore/units/recip.hpp"
 
@@ -465,4 +466,19 @@ TEST(LightModes, ShareSpacesThePassesAndMovesTheSharedNormalisations) {
   bool found = false;
   for (const auto& p : b.verilog_params(8)) found = found || p == "SHARE=2";
   EXPECT_TRUE(found);
+}
+
+// The lighting core's legal ranges in features.hpp state config/configs.json "limits" (generated
+// shadecore/limits.hpp); rtl/sc_light.v's checks state them too (ctest rtl.limits_agree). A mismatch
+// does not compile.
+static_assert(kLightFracMax == limits::kLightFracMax, "features.hpp kLightFracMax != configs.json limits.light_frac.max");
+static_assert(kSpecGuardMax == limits::kSpecGuardMax, "features.hpp kSpecGuardMax != configs.json limits.spec_guard.max");
+static_assert(kShareMax == limits::kShareMax, "features.hpp kShareMax != configs.json limits.share.max");
+static_assert(kLightFracMax + kSpecGuardMax <= limits::kFracMax, "F + spec_guard must stay within the units' widest format");
+
+TEST(Limits, LightingRangesAreTheConfigured) {
+  EXPECT_EQ(kLightFracMax, limits::kLightFracMax);
+  EXPECT_EQ(kSpecGuardMax, limits::kSpecGuardMax);
+  EXPECT_EQ(kShareMax, limits::kShareMax);
+  EXPECT_EQ(kFracMin, limits::kLightFracMin);  // the core takes the units' narrowest format too
 }

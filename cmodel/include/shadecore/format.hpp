@@ -14,13 +14,17 @@
 #include <string>
 #include <string_view>
 
+#include "shadecore/limits.hpp"
+
 namespace shadecore {
 
-inline constexpr int kFracMin = 8;
-inline constexpr int kFracMax = 24;
-inline constexpr int kGuardMin = 4;  // base = 1 - (n/16)(1-c) has frac+4 fraction bits: exact when guard >= 4
-inline constexpr int kGuardMax = 8;
-inline constexpr int kWorkMax = 31;  // frac+guard <= 31 keeps every squaring product within 64 bits
+// The legal ranges come from config/configs.json "limits" (generated shadecore/limits.hpp), the same
+// numbers the RTL's elaboration checks state (ctest rtl.limits_agree).
+inline constexpr int kFracMin = limits::kFracMin;
+inline constexpr int kFracMax = limits::kFracMax;
+inline constexpr int kGuardMin = limits::kGuardMin;  // base = 1 - (n/16)(1-c) has frac+4 fraction bits: exact when guard >= 4
+inline constexpr int kGuardMax = limits::kGuardMax;
+inline constexpr int kWorkMax = limits::kWorkMax;    // frac+guard <= 31 keeps every squaring product within 64 bits
 inline constexpr int kNMin = 16;
 inline constexpr int kNMax = 1024;
 inline constexpr int kNBits = 11;  // n in [16, 1024] as an unsigned integer; n/16 is n with 4 implied fraction bits

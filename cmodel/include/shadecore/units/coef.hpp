@@ -106,8 +106,8 @@ inline double coef_value(Model m, CoefKind k, double n) {
 // The largest coefficient of any model/kind over n = 16..1024 is the fitted modified Phong
 // (1.063·1024 + 1)/2π ≈ 173.4 < 2^8.
 inline constexpr int kCoefIntBits = 8;
-inline constexpr int kCoefIntBitsMin = 1;
-inline constexpr int kCoefIntBitsMax = 16;
+inline constexpr int kCoefIntBitsMin = limits::kCoefIntBitsMin;  // config/configs.json "limits" (COEFW - FRAC)
+inline constexpr int kCoefIntBitsMax = limits::kCoefIntBitsMax;
 
 struct EnergyFormat {
   int frac = 16;                   // F: fraction bits of the unit output, of the coefficient and of the result
