@@ -654,18 +654,25 @@ def _fmt_iv(lo, hi, digits=4):
     return "[%.*f, %.*f]" % (digits, math.floor(float(lo) * k) / k, digits, math.ceil(float(hi) * k) / k)
 
 
+def _md_head(*cols):
+    """A Markdown table's header and separator lines."""
+    return ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
+
+
+CONTRACT_TEXT = ("`scripts/gappa_bounds.py run` (Gappa 1.4.1; scripts generated from config/configs.json; `show UNIT CONFIG` "
+                 "prints one). Error = out − 2^F·y in output ulps, y the real-number value of the same input (cs16: x0^16 with "
+                 "x0 = |base|; Schlick: S = c/Dc). Gappa proves closed intervals, so a strict bound of the spec is proved in its "
+                 "closed form. Measured extremes: docs/spec.md §3.3, §3.4 and §6.4 (`shadecore sweep`, exhaustive). Rows `VF13`, "
+                 "`VF21`: the cs16 unit at the lighting core's specular-path widths F + spec_guard (§5 uses them).\n")
+
+
 def report_section(g):
     L = ["## 3. Quantisation contracts, proved (Gappa)\n"]
     if not g:
         L.append("Not run (`scripts/gappa_bounds.py run --json out/bounds/gappa.json` before `scripts/bounds.py all`).\n")
         return "\n".join(L)
-    L.append("`scripts/gappa_bounds.py run` (Gappa 1.4.1; scripts generated from config/configs.json; `show UNIT CONFIG` prints "
-             "one). Error = out − 2^F·y in output ulps, y the real-number value of the same input (cs16: x0^16 with x0 = |base|; "
-             "Schlick: S = c/Dc). Gappa proves closed intervals, so a strict bound of the spec is proved in its closed form. "
-             "Measured extremes: docs/spec.md §3.3, §3.4 and §6.4 (`shadecore sweep`, exhaustive). Rows `VF13`, `VF21`: the "
-             "cs16 unit at the lighting core's specular-path widths F + spec_guard (§5 uses them).\n")
-    L.append("| unit | width | contract (ulp) | Gappa | enclosure Gappa proves (ulp) | s |")
-    L.append("|---|---|---|---|---|---|")
+    L.append(CONTRACT_TEXT)
+    L += _md_head("unit", "width", "contract (ulp)", "Gappa", "enclosure Gappa proves (ulp)", "s")
     for r in g["rows"]:
         if r["unit"] in ("normalize3", "recip_att"):
             continue
@@ -701,8 +708,8 @@ def operator_section(g):
              "output shift sh = R + msb(q) − 2F (all shifts a q of the core can have), the row gives their hull. **claim** is "
              "the interval the docs and §5 use: Gappa's enclosure rounded outward, proved by its own run (a claim Gappa no "
              "longer proves fails `run`).\n" % (g.get("machine", "this machine"), g.get("date", "")))
-    L.append("| operator | F | tested bound (docs/lighting.md §3) | measured | Gappa proves (ulp) | claim | tested bound proved? |")
-    L.append("|---|---|---|---|---|---|---|")
+    L += _md_head("operator", "F", "tested bound (docs/lighting.md §3)", "measured", "Gappa proves (ulp)", "claim",
+                  "tested bound proved?")
     measured = {("normalize3", 16): "0.534", ("normalize3", 21): "0.525", ("normalize3", 8): "—", ("normalize3", 13): "—",
                 ("recip_att", 8): "0.93", ("recip_att", 16): "0.93"}
     seen = {}
@@ -759,8 +766,8 @@ def light_section(g):
     L = ["## 5. Lighting core, quantisation part: a composed bound\n"]
     L.append(LIGHT_TEXT)
     meas = (g or {}).get("measured", {})
-    L.append("| set | n | bound, per channel (LSB of 2^−16) | x step (one light) | att step (one light) | rest (one light + scene) |")
-    L.append("|---|---|---|---|---|---|")
+    L += _md_head("set", "n", "bound, per channel (LSB of 2^−16)", "x step (one light)", "att step (one light)",
+                  "rest (one light + scene)")
     for S in ("gl_default", "full"):
         for n in (16, 64, 128, 256, 512, 1024):
             (lo, hi), P, info = light_bound(S, n)

@@ -181,27 +181,18 @@ int run(const Options& o, const Unit& unit, const RunConfig& rc, std::string& ca
       {"out_stall", o.out_stall},
       {"planned", stim.planned()},
       {"stimulus_digest", stim.digest()},
-      {"accepted", sb.accepted_},
-      {"vectors", sb.checked_},
-      {"mismatches", sb.mismatches_},
-      {"lost", sb.lost_},
-      {"duplicated_or_reordered", sb.unexpected_},
-      {"latency_errors", sb.latency_errors_},
-      {"protocol_errors", sb.protocol_errors_},
-      {"dropped_by_reset", sb.dropped_by_reset_},
       {"resets", drv.resets()},
       {"replayed_after_reset", drv.replayed()},
       {"table_writes", drv.table_writes()},
       {"material_writes", sb.material_writes_},
       {"latency_spec", unit.latency()},
-      {"latency_min", sb.checked_ ? sb.lat_min_ : 0},
-      {"latency_max", sb.lat_max_},
       {"cycles", mon.cycles()},
       {"wall_s", wall},
       {"vectors_per_s", vps},
       {"watchdog", mon.watchdog_fired()},
       {"reproduce", rc.repro},
   };
+  j.update(sb.counts_json());
   nlohmann::json mm = nlohmann::json::array();
   for (const auto& m : sb.first_)
     mm.push_back({{"n", m.n}, {"code", m.code}, {"expected", m.expected}, {"got", m.got}, {"tag", m.tag}});

@@ -25,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "shadecore/unit.hpp"
 
 namespace shadecore::sim {
@@ -150,6 +152,21 @@ class ScoreboardT {
 
   [[nodiscard]] bool ok() const {
     return mismatches_ == 0 && lost_ == 0 && unexpected_ == 0 && latency_errors_ == 0 && protocol_errors_ == 0;
+  }
+
+  // The run's counts and latency range, as both simulators report them in their --json record
+  // (docs/cli.md); the caller adds what is its own.
+  [[nodiscard]] nlohmann::json counts_json() const {
+    return {{"accepted", accepted_},
+            {"vectors", checked_},
+            {"mismatches", mismatches_},
+            {"lost", lost_},
+            {"duplicated_or_reordered", unexpected_},
+            {"latency_errors", latency_errors_},
+            {"protocol_errors", protocol_errors_},
+            {"dropped_by_reset", dropped_by_reset_},
+            {"latency_min", checked_ ? lat_min_ : 0},
+            {"latency_max", lat_max_}};
   }
 
   uint64_t accepted_ = 0, outputs_ = 0, checked_ = 0, mismatches_ = 0, lost_ = 0, unexpected_ = 0,
