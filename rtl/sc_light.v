@@ -37,7 +37,7 @@
 //                 sc_variants.vh); 0 = no specular term. The table units are not supported;
 //                 schlick_iter only alone                                                (default 1)
 //   CUTOFF        cs16 cut-off form, 0 theta_cr / 1 sign_clamp                         (default 0)
-//   NORM          0/1: sc_norm after each unit (coefficient register mat_coef)         (default 0)
+//   ENERGY        0/1: sc_energy after each unit (coefficient register mat_coef)       (default 0)
 //   BLINN, PHONG  0/1 each, at least one with a unit: x = N̂·Ĥ, Ĥ = normalise(L̂ + V̂) / x = R·V̂,
 //                 R = 2(N̂·L̂)N̂ − L̂ exist                                              (default 1, 0)
 //   LOCAL_VIEWER  0/1: V̂ = normalise(−P) exists (V = (0, 0, 1) always does)          (default 0)
@@ -95,11 +95,11 @@
 //               NB   = 3 + ANY_ATT
 //               LATENCY_P = T_F + (UNITS ? L_unit : 0) + NB, L_unit = the material's unit's
 //                           Unit::latency(): cs16 7, cs16 forms 5, schlick_nr 10, schlick_div /
-//                           schlick_iter VF+4; +2 with NORM
+//                           schlick_iter VF+4; +2 with ENERGY
 //             and the last pass issues (passes − 1)·interval edges after the acceptance (interval = S,
 //             schlick_iter: VF+4 rounded up to a multiple of S):
 //             LightCore::latency(regs) = LATENCY_P + (passes − 1)·interval. Under backpressure the
-//             front, the units and the back are elastic segments (as sc_specular with NORM = 1): a
+//             front, the units and the back are elastic segments (as sc_specular with ENERGY = 1): a
 //             fragment takes LightCore::latency_min() = NB+1 .. latency(regs) advancing edges;
 //             without units the core is one global-enable pipeline (exactly latency(regs)).
 // Throughput: one pass per SHARE clocks while out_ready_i is high: one fragment per SHARE·⌈k/LANES⌉
@@ -122,7 +122,7 @@ module sc_light #(
     parameter integer DIFFUSE      = 1,
     parameter integer UNITS        = 1,
     parameter integer CUTOFF       = 0,
-    parameter integer NORM         = 0,
+    parameter integer ENERGY       = 0,
     parameter integer BLINN        = 1,
     parameter integer PHONG        = 0,
     parameter integer LOCAL_VIEWER = 0,
@@ -174,7 +174,7 @@ module sc_light #(
     unit_latency = ((v == VARIANT_CS16) ? 7 : (cs16_sq_param(v, 0) == 1) ? 5 :
                     (v == VARIANT_SCHLICK_NR) ? 10 :
                     (v == VARIANT_SCHLICK_DIV || v == VARIANT_SCHLICK_ITER) ? FRAC + SGUARD + 4 : 0) +
-                   ((NORM != 0) ? 2 : 0);
+                   ((ENERGY != 0) ? 2 : 0);
   endfunction
   function integer max_unit_latency(input integer dummy);
     integer v;
@@ -262,11 +262,11 @@ module sc_light #(
   // drain and no fragment waits beyond LightCore::latency (at SHARE = 3 the co-simulation showed
   // fragments 2..3 edges late after stalls: the backlog never drained).
   localparam integer CSER  = (SH >= 4 && NCH == 3 && SPECULAR != 0) ? 1 : 0;
-  localparam integer SPW   = (NORM != 0) ? VF + 8 : VF + 1;               // unit output width
-  // with NORM and more than one unit, one sc_norm per lane after the unit selection instead of one per
+  localparam integer SPW   = (ENERGY != 0) ? VF + 8 : VF + 1;               // unit output width
+  // with ENERGY and more than one unit, one sc_energy per lane after the unit selection instead of one per
   // unit (only the selected unit has passes; its coefficient register cannot change while one is in flight)
-  localparam integer SNORM = (NORM != 0 && popcount8(UNITS) > 1) ? 1 : 0;
-  localparam integer UOW   = (NORM != 0 && SNORM == 0) ? VF + 8 : VF + 1;   // each unit's own output width
+  localparam integer SNORM = (ENERGY != 0 && popcount8(UNITS) > 1) ? 1 : 0;
+  localparam integer UOW   = (ENERGY != 0 && SNORM == 0) ? VF + 8 : VF + 1;   // each unit's own output width
   localparam integer CNTW  = sc_bits(T_F + max_unit_latency(0) + NB + 3);   // fragments in flight
   localparam integer ITER  = (UNITS == (1 << VARIANT_SCHLICK_ITER)) ? 1 : 0;
   localparam integer GAP   = VF + 3;                                      // schlick_iter: interval VF+4, minus 1
@@ -336,8 +336,8 @@ module sc_light #(
     if (((UNITS >> VARIANT_SCHLICK_ITER) & 1) != 0 && ITER == 0) begin : g_check_iter
       sc_light_error_schlick_iter_cannot_share_the_core_with_other_UNITS u_error ();
     end
-    if (NORM != 0 && NORM != 1) begin : g_check_norm
-      sc_light_error_illegal_NORM_must_be_0_or_1 u_error ();
+    if (ENERGY != 0 && ENERGY != 1) begin : g_check_energy
+      sc_light_error_illegal_ENERGY_must_be_0_or_1 u_error ();
     end
     if (BLINN != 0 && BLINN != 1) begin : g_check_blinn
       sc_light_error_illegal_BLINN_must_be_0_or_1 u_error ();
@@ -354,8 +354,8 @@ module sc_light #(
     if (NORMALIZE != 0 && NORMALIZE != 1) begin : g_check_normalize
       sc_light_error_illegal_NORMALIZE_must_be_0_or_1 u_error ();
     end
-    if (NORM != 0 && SPECULAR == 0) begin : g_check_norm_spec
-      sc_light_error_illegal_NORM_needs_SPECULAR u_error ();
+    if (ENERGY != 0 && SPECULAR == 0) begin : g_check_energy_spec
+      sc_light_error_illegal_ENERGY_needs_SPECULAR u_error ();
     end
     if (AMBIENT == 0 && DIFFUSE == 0 && SPECULAR == 0) begin : g_check_terms
       sc_light_error_illegal_no_term_enabled_AMBIENT_DIFFUSE_SPECULAR_all_0 u_error ();
@@ -385,7 +385,7 @@ module sc_light #(
   wire                   unit_kill, lv_mode, phong_mode, norm_mode;
   sc_light_regfile #(
       .FRAC(FRAC), .UFRAC(VF), .SLOT_KINDS(SLOT_KINDS), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
-      .UNITS(UNITS), .NORM(NORM), .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER),
+      .UNITS(UNITS), .ENERGY(ENERGY), .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER),
       .NORMALIZE(NORMALIZE), .NLT(NLT), .NCH(NCH), .AW(AW)
   ) u_regs (
       .clk_i(clk_i), .wr_i(wr), .addr_i(reg_addr_i[AW-1:0]), .data_i(reg_data_i),
@@ -719,7 +719,7 @@ module sc_light #(
         // change while one is in flight), its handshake and results are the lane's
         wire [8*UTW-1:0] ut_out_all;
         wire [8*UOW-1:0] spec_all;
-        wire             n_in_ready;   // SNORM: the shared sc_norm takes the selected unit's result
+        wire             n_in_ready;   // SNORM: the shared sc_energy takes the selected unit's result
         for (u = 0; u < 8; u = u + 1) begin : g_u
           if (((UNITS >> u) & 1) != 0) begin : g_on
             sc_specular #(
@@ -728,7 +728,7 @@ module sc_light #(
                 .GUARD  (GUARD),
                 .CUTOFF (CUTOFF),
                 .TAGW   (UTW),
-                .NORM   ((SNORM != 0) ? 0 : NORM)
+                .ENERGY ((SNORM != 0) ? 0 : ENERGY)
             ) u_unit (
                 .clk_i      (clk_i),
                 .rst_ni     (rst_ni),
@@ -770,7 +770,7 @@ module sc_light #(
         end
         wire sel_valid = |(u_out_valid_all[8*j +: 8] & unit_sel);
         if (SNORM != 0) begin : g_snorm
-          sc_norm #(
+          sc_energy #(
               .FRAC(VF), .COEFW(VF + 8), .COEF_SRC(0), .TAGW(UTW)
           ) u_norm (
               .clk_i(clk_i), .rst_ni(rst_ni), .mat_we_i(mat_we_u), .mat_coef_i(mat_coef_u),

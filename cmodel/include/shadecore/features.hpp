@@ -53,7 +53,7 @@ struct FeatureSet {
   VariantId variant = VariantId::cs16;  // the first specular unit, when specular
   std::vector<VariantId> more_units;    // further units the material register can choose
   Cutoff cutoff = Cutoff::ThetaCr;      // cs16 only
-  bool norm = false;                    // rtl/sc_norm.v after each unit (coefficient register mat_coef)
+  bool norm = false;                    // rtl/sc_energy.v after each unit (coefficient register mat_coef)
   bool blinn = true;                    // x = N·H (Blinn-Phong) exists
   bool phong = false;                   // x = R·V (Phong) exists
   bool local_viewer = false;            // V = normalise(−P) exists (V = (0, 0, 1) always does)
@@ -381,7 +381,7 @@ inline std::vector<std::string> FeatureSet::verilog_params(int tagw) const {
       "DIFFUSE=" + std::to_string(diffuse ? 1 : 0),
       "UNITS=" + std::to_string(unit_mask),
       "CUTOFF=" + std::to_string(static_cast<int>(cutoff)),
-      "NORM=" + std::to_string(norm ? 1 : 0),
+      "ENERGY=" + std::to_string(norm ? 1 : 0),
       "BLINN=" + std::to_string(blinn ? 1 : 0),
       "PHONG=" + std::to_string(phong ? 1 : 0),
       "LOCAL_VIEWER=" + std::to_string(local_viewer ? 1 : 0),

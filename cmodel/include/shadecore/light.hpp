@@ -177,7 +177,7 @@ class LightCore {
   explicit LightCore(FeatureSet fs) : fs_(std::move(fs)), f_(fs_.format()), uf_(fs_.unit_format()) {
     for (VariantId v : fs_.units()) {
       units_.emplace_back(v, uf_, fs_.cutoff);
-      if (fs_.norm) units_.back().set_norm(true, 0);  // the coefficient comes from mat_coef; the model index is unused
+      if (fs_.norm) units_.back().set_energy(true, 0);  // the coefficient comes from mat_coef; the model index is unused
     }
     if (units_.empty()) units_.emplace_back(fs_.variant, uf_, fs_.cutoff);  // latency / setup only
   }
@@ -377,7 +377,7 @@ inline int LightCore::pass_latency(int unit_index) const {
          p.back;
 }
 
-// One pass's pipeline (front, the material's unit with sc_norm when norm, back), then one more
+// One pass's pipeline (front, the material's unit with sc_energy when norm, back), then one more
 // issue interval per further pass: the last pass enters the pipeline (passes − 1)·interval edges
 // after the fragment was accepted.
 inline int LightCore::latency(const LightRegs& r) const {
@@ -530,12 +530,12 @@ inline std::vector<RegWrite> material_writes(const LightCore& core, const Materi
                                 fs.summary() + ")");
   Unit u(var, core.unit_format(), core.unit().cutoff());
   const bool norm = fs.norm && m.norm_model >= 0;
-  if (norm) u.set_norm(true, m.norm_model, m.norm_kind);
+  if (norm) u.set_energy(true, m.norm_model, m.norm_kind);
   const UnitMaterial um = u.setup(m.shininess);
   w.push_back({kReg_mat_unit, static_cast<uint32_t>(var)});
   w.push_back({kReg_mat_n, static_cast<uint32_t>(um.n)});
   w.push_back({kReg_mat_thr, um.thr});
-  // with the norm hardware and no normalisation: coef = 1.0 (sc_norm then passes the unit's value)
+  // with the norm hardware and no normalisation: coef = 1.0 (sc_energy then passes the unit's value)
   w.push_back({kReg_mat_coef, norm ? um.coef : (fs.norm ? (uint32_t{1} << core.unit_format().frac) : um.coef)});
   for (uint32_t c = 0; c < 3; ++c) {
     w.push_back({kReg_mat_emission + c, detail::colour_code(F, m.emission[c], "material emission")});
