@@ -27,6 +27,7 @@
 #include "shadecore/unit.hpp"
 #include "tb_options.hpp"
 #include "tb_pins.hpp"
+#include "tb_reset.hpp"
 #include "shadecore/stimulus/rng.hpp"
 #include "tb_stimulus.hpp"
 
@@ -40,14 +41,12 @@ class Driver : public sc_core::sc_module {
         pins_(pins),
         stim_(stim),
         unit_(unit),
-        reset_at_(local_reset(o, stim.planned())),
-        reset_cycles_(o.reset_cycles),
+        reset_(local_reset(o, stim.planned()), o.reset_cycles),
         resend_(o.resend),
         in_stall_(o.in_stall, o.seed * 0x9E3779B97F4A7C15ull + 1),
         out_stall_(o.out_stall, o.seed * 0xD1B54A32D192ED03ull + 2),
         code_mask_((uint32_t{1} << unit.format().in_bits()) - 1),
-        entries_(unit.entries()),
-        rst_left_(o.reset_cycles) {
+        entries_(unit.entries()) {
     SC_METHOD(on_clk);
     sensitive << pins_.clk.posedge_event();
     dont_initialize();
@@ -57,7 +56,7 @@ class Driver : public sc_core::sc_module {
   // Transactions sent again after the mid-stream reset flushed them.
   [[nodiscard]] uint64_t replayed() const { return replayed_; }
   [[nodiscard]] uint64_t accepted() const { return accepted_; }
-  [[nodiscard]] uint64_t resets() const { return resets_; }
+  [[nodiscard]] uint64_t resets() const { return reset_.resets(); }
   [[nodiscard]] uint64_t table_writes() const { return table_writes_; }
 
  private:
@@ -85,7 +84,7 @@ class Driver : public sc_core::sc_module {
     if (took) {
       have_ = false;
       ++accepted_;
-      if (reset_at_ >= 0 && resend_) in_flight_.push_back(item_);
+      if (reset_.reset_at() >= 0 && resend_) in_flight_.push_back(item_);
     }
     if (!rst_q_ && !in_flight_.empty() && resend_) {
       // Flushed: sent again after the reset, in their order, with new tags (after the one being
@@ -95,13 +94,7 @@ class Driver : public sc_core::sc_module {
       in_flight_.clear();
     }
     // --- reset for the next edge
-    if (rst_left_ > 0) --rst_left_;
-    if (rst_left_ == 0 && !mid_reset_done_ && reset_at_ >= 0 && accepted_ >= static_cast<uint64_t>(reset_at_)) {
-      rst_left_ = reset_cycles_;
-      mid_reset_done_ = true;
-      ++resets_;
-    }
-    rst_q_ = rst_left_ == 0;
+    rst_q_ = reset_.next(accepted_);
     pins_.rst_n.write(rst_q_);
 
     // --- material
@@ -167,8 +160,7 @@ class Driver : public sc_core::sc_module {
   Pins& pins_;
   Stimulus& stim_;
   const Unit& unit_;
-  const int64_t reset_at_;
-  const int reset_cycles_;
+  ResetPlan reset_;
   const bool resend_;
   StallGen in_stall_, out_stall_;
   const uint32_t code_mask_;
@@ -177,14 +169,12 @@ class Driver : public sc_core::sc_module {
   Item item_;
   bool have_ = false, finished_ = false, valid_q_ = false;
   bool rst_q_ = false;  // rst_ni as driven for the coming edge (low at start)
-  int rst_left_;
-  bool mid_reset_done_ = false;
   bool ready_q_ = false;  // out_ready_i as driven for the coming edge
   std::deque<Item> in_flight_, replay_;
   uint64_t replayed_ = 0;
   int rtl_n_ = -1;
   uint32_t tag_ = 0, next_tag_ = 0;
-  uint64_t accepted_ = 0, resets_ = 0;
+  uint64_t accepted_ = 0;
   // table load in progress
   std::shared_ptr<const std::vector<uint64_t>> load_words_;
   uint32_t load_addr_ = 0, load_left_ = 0;

@@ -93,6 +93,27 @@ module tb_shadecore;
   `include "tb_common.vh"  // xs32 (xorshift32), fail_exit
 
   // Checks one result taken at this edge with `adv_at` advancing edges counted.
+  // Whether vector idx needs another material than the one last loaded (n, thr, coef words).
+  function new_material(input integer idx);
+    begin
+      new_material = mem[5*idx] != ld_n || mem[5*idx+1] != ld_thr || mem[5*idx+2] != ld_coef;
+    end
+  endfunction
+
+  // Drive the material of vector idx onto the material port for the coming edge (mat_we_i high).
+  task load_material(input integer idx);
+    begin
+      ld_n       = mem[5*idx];
+      ld_thr     = mem[5*idx+1];
+      ld_coef    = mem[5*idx+2];
+      mat_we     = 1'b1;
+      mat_n      = ld_n[10:0];
+      mat_thr    = ld_thr[FRAC:0];
+      mat_coef   = ld_coef[COEFW-1:0];
+      mat_writes = mat_writes + 1;
+    end
+  endtask
+
   task take_result;
     input integer adv_at;
     begin
@@ -227,18 +248,11 @@ module tb_shadecore;
       end
       mat_we = 1'b0;
       if (have) begin
-        if (!mat_loaded || mem[5*pidx] != ld_n || mem[5*pidx+1] != ld_thr || mem[5*pidx+2] != ld_coef) begin
+        if (!mat_loaded || new_material(pidx)) begin
           // A material write is a bubble: a fragment accepted at the write edge would still be
           // shaded with the old material.
-          ld_n       = mem[5*pidx];
-          ld_thr     = mem[5*pidx+1];
-          ld_coef    = mem[5*pidx+2];
-          mat_we     = 1'b1;
-          mat_n      = ld_n[10:0];
-          mat_thr    = ld_thr[FRAC:0];
-          mat_coef   = ld_coef[COEFW-1:0];
+          load_material(pidx);
           mat_loaded = 1'b1;
-          mat_writes = mat_writes + 1;
           valid_q    = 1'b0;
         end else if (rst_left != 0) begin
           valid_q = 1'b0;  // AXI-Stream: no valid while in reset
@@ -262,16 +276,8 @@ module tb_shadecore;
       // another material, load it at that very edge: the fragment taken at a write edge must still be
       // shaded with the old material, the next one with the new (in_ready_o settles after out_ready_i).
       #1;
-      if (valid_q && in_ready === 1'b1 && next_idx < nvec &&
-          (mem[5*next_idx] != ld_n || mem[5*next_idx+1] != ld_thr || mem[5*next_idx+2] != ld_coef)) begin
-        ld_n       = mem[5*next_idx];
-        ld_thr     = mem[5*next_idx+1];
-        ld_coef    = mem[5*next_idx+2];
-        mat_we     = 1'b1;
-        mat_n      = ld_n[10:0];
-        mat_thr    = ld_thr[FRAC:0];
-        mat_coef   = ld_coef[COEFW-1:0];
-        mat_writes = mat_writes + 1;
+      if (valid_q && in_ready === 1'b1 && next_idx < nvec && new_material(next_idx)) begin
+        load_material(next_idx);
       end
 
       // ------------------------------------------------ done: watch TAIL more cycles
