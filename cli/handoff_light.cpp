@@ -194,7 +194,7 @@ std::string register_table(const FeatureSet& fs) {
       return fmt::format("energy-normalisation coefficient ⌊coef(n)·2^{} + ½⌋, unsigned {} bits (norm only)", UF,
                          light_coef_bits(UF));
     if (f == "position") return fmt::format("two's complement {} bits, [−128, 128): point light position, or the unit direction "
-                                            "code of a directional light", F + 8);
+                                            "code of a directional light (read saturated to [−2, 2))", F + 8);
     if (f == "att_coef") return fmt::format("unsigned {} bits, [0, 256) (point_att lights only)", F + 8);
     if (f == "light_model")
       return std::string("mode: bit 0 local viewer, bit 1 reflection (0 Blinn N·H, 1 Phong R·V), bit 2 normalize; "
@@ -374,7 +374,8 @@ All synchronous to the rising edge of `clk_i`.
 
 - Normal `in_n*_i`: {nw}-bit two's complement, any length (interpolated normals need not be unit{nnorm}).
 - Position `in_p*_i` and point-light positions: {pw}-bit two's complement, eye space, [−128, 128).
-- Directional light: the position registers hold the unit direction towards the light as codes.
+- Directional light: the position registers hold the unit direction towards the light as codes; the core
+  reads each saturated to [−2, 2) (the F+2 low bits' range), so a unit direction is taken as written.
 - Colours (material emission/ambient/diffuse/specular, light ambient/diffuse/specular, global ambient):
   unsigned {cw} bits, [0, 2).
 - kc, kl, kq: unsigned {pw} bits, [0, 256). n: 11 bits, 16..1024; thr, coef: as the specular unit.

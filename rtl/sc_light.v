@@ -661,7 +661,7 @@ module sc_light #(
   endgenerate
 
   // ---------------------------------------------------------------------------- lanes
-  localparam integer HVW_T = ((CAN_DIR != 0) ? PW + SGUARD : NV) + 1;   // H = L + V (sc_light_lane's HVW)
+  localparam integer HVW_T = NV + 1;   // H = L + V (sc_light_lane's HVW)
   wire [NLN*3*(PW+1)-1:0] lv_all;    // lane j's P_j − P at stage 0 (SHARE > 1)
   wire [NLN*3*HVW_T-1:0]  hv_all;    // lane j's H at T_H (SHARE > 1)
   wire [NLN*NCH*CL-1:0] term_all;    // lane l's saturated term of channel c at (l*NCH + c)*CL
@@ -898,7 +898,7 @@ module sc_light #(
       if (OP_H != 0) begin : g_op_h
         for (gi = 0; gi < 3; gi = gi + 1) begin : g_c
           wire [HVW_T-1:0] e = hv_all[gi*HVW_T +: HVW_T];
-          assign ops[(3*K_H + gi)*VWX +: VWX] = (VWX > HVW_T) ? {{(VWX-HVW_T){e[HVW_T-1]}}, e} : e;
+          assign ops[(3*K_H + gi)*VWX +: VWX] = {{(VWX-HVW_T){e[HVW_T-1]}}, e};
         end
       end else begin : g_no_op_h
         wire unused_hv = &{1'b0, hv_all};

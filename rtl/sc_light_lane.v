@@ -10,7 +10,8 @@
 //
 //   Slot registers are read through the slot index that travels with the pass (idx_i at stage 0,
 //   delayed here to every stage that reads a register; they cannot change while a pass is in flight).
-//   L̂     directional: the position register (a unit direction code, F+8 bits) · 2^SG;
+//   L̂     directional: the position register (a unit direction code, F+8 bits) saturated to the
+//          signed F+2 bits of [−2, 2), · 2^SG (L, H, N̂·L and R are VF+2 / VF+3 bits wide, not F+8+SG);
 //          point: sc_normalize(P_j − P) at VF (P_j − P F+9 bits, also passed through for the distance)
 //   att    A1 d = max(⌊(P_j−P)·L̂ / 2^VF⌋, 0); A2 dd = ⌊d²/2^F⌋, ⌊kl·d/2^F⌋; A3 q = kc + ⌊kl·d/2^F⌋ +
 //          ⌊kq·dd/2^F⌋; sc_recip(q) — for point_att; 2^F for every other kind
@@ -77,7 +78,7 @@ module sc_light_lane #(
     output wire [FRAC+7:0]           att_o,
     output wire [2:0]                idx_o,
     output wire [3*(FRAC+9)-1:0]     lv_o,
-    output wire [3*(((CAN_DIR != 0) ? FRAC+8+SG : FRAC+SG+2)+1)-1:0] hv_o,
+    output wire [3*(FRAC+SG+3)-1:0]  hv_o,
     input  wire [3*(FRAC+SG+2)-1:0]  lhat_i,
     input  wire [3*(FRAC+SG+2)-1:0]  hhat_i,
     input  wire [1:0]                ph_i
@@ -90,7 +91,7 @@ module sc_light_lane #(
   localparam integer NW  = VF + 2;                           // normalised vectors, x
   localparam integer PW  = FRAC + 8;
   localparam integer CL  = FRAC + 1;
-  localparam integer LW  = (CAN_DIR != 0) ? PW + SG : NW;    // component width of L
+  localparam integer LW  = NW;   // component width of L: L̂, or a directional light's unit direction (saturated)
   localparam integer HVW = LW + 1;                           // of H = L + V
   localparam integer NDW = LW + 4;                           // of ⌊N̂·L / 2^F⌋
   localparam integer RVW = NDW + 4;                          // of R = 2(N̂·L)N̂ − L
@@ -266,13 +267,17 @@ module sc_light_lane #(
       wire unused_pt = &{1'b0, l_pt, dv_d, p_i, pos_0, lhat_i};
     end
     for (gi = 0; gi < 3; gi = gi + 1) begin : g_lsel
-      wire [NW-1:0] lp = l_pt[gi*NW +: NW];
-      wire [LW-1:0] lp_w = {{(LW-NW){lp[NW-1]}}, lp};
-      wire [PW+SG-1:0] ld_w;   // directional: the register · 2^SG (LW = PW+SG where used)
+      wire [LW-1:0] lp_w = l_pt[gi*NW +: NW];   // L̂ (LW = NW)
+      // directional: the register holds a unit direction; its code saturated to the signed F+2 bits
+      // of [−2, 2) (out of contract beyond), then · 2^SG
+      wire [PW-1:0]    pd    = pos_l[gi*PW +: PW];
+      wire             pd_in = (pd[PW-1:FRAC+1] == {(PW-FRAC-1){1'b0}}) || (pd[PW-1:FRAC+1] == {(PW-FRAC-1){1'b1}});
+      wire [FRAC+1:0]  pd_s  = pd_in ? pd[FRAC+1:0] : {pd[PW-1], {(FRAC+1){!pd[PW-1]}}};
+      wire [LW-1:0]    ld_w;
       if (SG > 0) begin : g_ld_sg
-        assign ld_w = {pos_l[gi*PW +: PW], {SG{1'b0}}};
+        assign ld_w = {pd_s, {SG{1'b0}}};
       end else begin : g_ld
-        assign ld_w = pos_l[gi*PW +: PW];
+        assign ld_w = pd_s;
       end
       if (CAN_DIR != 0 && POINT_L != 0) begin : g_both
         assign l[gi*LW +: LW] = (kind_l == KIND_DIRECTIONAL[1:0]) ? ld_w : lp_w;

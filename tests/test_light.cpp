@@ -408,6 +408,43 @@ TEST(LightModes, AbsentCapabilitiesDecodeAsDocumented) {
   EXPECT_EQ(b.c[0], 1u << (F - 1));     // diffuse only
 }
 
+// A directional light's position register holds a unit direction; the core reads each component
+// saturated to the signed F+2 bits of [−2, 2) (docs/lighting.md §1): a code beyond gives what the range's
+// end gives, and a unit code is taken as written.
+TEST(LightModes, DirectionalCodeSaturatesToTheUnitRange) {
+  using nlohmann::json;
+  const FeatureSet fs = feature_set_from_json(
+      json::parse(R"({"lights": ["directional"], "specular": "cs16", "reflection": "blinn"})"), "t");
+  const LightCore core(fs);
+  const int F = core.format().frac;
+  const int E = core.unit_format().frac - F;
+  LightRegs r;
+  r.write(core.widths(), kReg_mat_unit, static_cast<uint32_t>(VariantId::cs16));
+  r.write(core.widths(), kReg_light_mode, light_mode_word(true, LightKind::Directional));
+  const uint32_t pmask = static_cast<uint32_t>(mask_bits(light_pos_bits(F)));
+  const int64_t hi = (int64_t{1} << (F + 1)) - 1, lo = -(int64_t{1} << (F + 1));
+  Fragment fr;
+  fr.n[0] = int64_t{1} << (F - 1), fr.n[1] = -(int64_t{1} << (F - 2)), fr.n[2] = int64_t{1} << F;
+  auto trace = [&](int64_t x, int64_t y, int64_t z) {
+    r.write(core.widths(), kReg_light_position + 0, static_cast<uint32_t>(x) & pmask);
+    r.write(core.widths(), kReg_light_position + 1, static_cast<uint32_t>(y) & pmask);
+    r.write(core.widths(), kReg_light_position + 2, static_cast<uint32_t>(z) & pmask);
+    LightCoreTrace t;
+    const Colour c = core.eval(r, fr, &t);
+    return std::make_pair(c, t.light[0]);
+  };
+  const auto big = trace(int64_t{1} << (F + 6), -(int64_t{1} << (F + 7)), hi + 1);   // beyond [−2, 2)
+  const auto edge = trace(hi, lo, hi);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(big.first.c[c], edge.first.c[c]);
+  EXPECT_EQ(big.second.l[0], hi << E);
+  EXPECT_EQ(big.second.l[1], lo << E);
+  EXPECT_EQ(big.second.l[2], hi << E);
+  EXPECT_EQ(big.second.x, edge.second.x);
+  const auto unit = trace(0, -(int64_t{1} << F), 0);   // a unit code: as written
+  EXPECT_EQ(unit.second.l[1], -(int64_t{1} << (F + E)));
+  EXPECT_EQ(unit.second.l[0], 0);
+}
+
 // Passes and latency: ⌈k/lanes⌉ passes (one with no light), one more issue interval per pass.
 TEST(LightModes, PassesAndLatencyFollowTheEnabledLights) {
   for (int lanes : {1, 2, 3, 8}) {

@@ -13,7 +13,8 @@
 // Formats (F = the feature set's config frac, <= 16; "code/2^F" unless said otherwise):
 //   normal N           signed F+2 bits (any length: interpolated normals are not unit)
 //   position P, P_j    signed F+8 bits: [−128, 128) eye-space units
-//   direction (w = 0)  the light_position register holds the unit direction to the light as a code
+//   direction (w = 0)  the light_position register holds the unit direction to the light as a code; the
+//                      core reads it saturated to the signed F+2 bits of [−2, 2) (a unit code never saturates)
 //   colours            unsigned F+1 bits: [0, 2)
 //   kc, kl, kq         unsigned F+8 bits: [0, 256)
 //   n, thr, coef       as the specular unit (docs/spec.md §3.1, §7): 11 bits, F+1 bits, F+8 bits
@@ -259,7 +260,9 @@ class LightCore {
       lt.kind = kind;
       lt.att = static_cast<uint64_t>(one);
       if (kind == LightKind::Directional) {
-        for (int i = 0; i < 3; ++i) lt.l[i] = L.pos[i] * (int64_t{1} << E);
+        // the register holds a unit direction: its code saturated to the signed F+2 bits of [−2, 2)
+        const int64_t lim = int64_t{1} << (F + 1);
+        for (int i = 0; i < 3; ++i) lt.l[i] = std::clamp<int64_t>(L.pos[i], -lim, lim - 1) * (int64_t{1} << E);
       } else {
         const int64_t dv[3] = {L.pos[0] - fr.p[0], L.pos[1] - fr.p[1], L.pos[2] - fr.p[2]};  // F+9 bits
         normalize3(VF, dv, lt.l);
@@ -429,8 +432,9 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
     const LightRegs::Light& L = r.light[static_cast<size_t>(j)];
     const LightKind kind = static_cast<LightKind>(L.mode >> 1);
     double l[3], att = 1.0;
-    if (kind == LightKind::Directional) {
-      for (int i = 0; i < 3; ++i) l[i] = v(L.pos[i]);
+    if (kind == LightKind::Directional) {  // the register's code saturated to [−2, 2), as the core reads it
+      const int64_t lim = int64_t{1} << (F + 1);
+      for (int i = 0; i < 3; ++i) l[i] = v(std::clamp<int64_t>(L.pos[i], -lim, lim - 1));
     } else {
       for (int i = 0; i < 3; ++i) l[i] = v(L.pos[i]) - p[i];
       const double d = std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
