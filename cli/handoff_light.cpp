@@ -4,7 +4,7 @@
 // lint/Yosys/iCE40 reports, run scripts, constraints) is cli/handoff_bundle.cpp; this file makes what
 // is particular to rtl/sc_light.v:
 //
-//   rtl/            sc_light.v, sc_light_regs.vh, sc_variants.vh, sc_delay.v and exactly the operators
+//   rtl/            sc_light.v, sc_light_regs.vh, sc_variants.vh, sc_delay.v, sc_sat.v and exactly the operators
 //                   and units the feature set instantiates; <top>.v fixes every parameter
 //                   (FeatureSet::verilog_params)
 //   interface.md    ports (config/interface.json "light_ports"), register map (config/configs.json

@@ -98,8 +98,6 @@ module sc_light_lane #(
   localparam integer NEED_L = (NEED_N != 0 || CAN_ATT != 0) ? 1 : 0;
   localparam integer POINT_L = (CAN_PT != 0 && NEED_L != 0) ? 1 : 0;   // an L̂ = normalise(P_j − P)
   localparam [CL-1:0] ONE   = {1'b1, {FRAC{1'b0}}};
-  localparam [NW-1:0] X_MAX = {2'b01, {VF{1'b1}}};
-  localparam [NW-1:0] X_MIN = {2'b10, {VF{1'b0}}};
   localparam [PW-1:0] ATT_ONE = {{7{1'b0}}, 1'b1, {FRAC{1'b0}}};
 
   genvar gi, k, mi;
@@ -270,9 +268,8 @@ module sc_light_lane #(
       wire [LW-1:0] lp_w = l_pt[gi*NW +: NW];   // L̂ (LW = NW)
       // directional: the register holds a unit direction; its code saturated to the signed F+2 bits
       // of [−2, 2) (out of contract beyond), then · 2^SG
-      wire [PW-1:0]    pd    = pos_l[gi*PW +: PW];
-      wire             pd_in = (pd[PW-1:FRAC+1] == {(PW-FRAC-1){1'b0}}) || (pd[PW-1:FRAC+1] == {(PW-FRAC-1){1'b1}});
-      wire [FRAC+1:0]  pd_s  = pd_in ? pd[FRAC+1:0] : {pd[PW-1], {(FRAC+1){!pd[PW-1]}}};
+      wire [FRAC+1:0]  pd_s;
+      sc_sat #(.IW(PW), .OW(FRAC+2)) u_sat_ld (.d_i(pos_l[gi*PW +: PW]), .q_o(pd_s));
       wire [LW-1:0]    ld_w;
       if (SG > 0) begin : g_ld_sg
         assign ld_w = {pd_s, {SG{1'b0}}};
@@ -454,13 +451,10 @@ module sc_light_lane #(
       localparam integer XFW = 2 * NW + 2 - VF;
       wire [XFW-1:0] xs = xsum[2*NW+1:VF];
       wire unused_xsum = &{1'b0, xsum[VF-1:0]};
-      wire in_rng = (xs[XFW-1:NW-1] == {(XFW-NW+1){1'b0}}) || (xs[XFW-1:NW-1] == {(XFW-NW+1){1'b1}});
-      reg [NW-1:0] x_q;
-      always @(posedge clk_i) begin
-        if (en_i) x_q <= in_rng ? xs[NW-1:0] : (xs[XFW-1] ? X_MIN : X_MAX);
-      end
-      sc_delay #(.W(NW), .DEPTH(T_F - T_XB)) u_dly_x (
-          .clk_i(clk_i), .en_i(en_i), .d_i(x_q), .q_o(xb_f));
+      wire [NW-1:0] x_s;   // saturated to the unit's word, registered at T_XB, then to T_F
+      sc_sat #(.IW(XFW), .OW(NW)) u_sat_x (.d_i(xs), .q_o(x_s));
+      sc_delay #(.W(NW), .DEPTH(T_F - T_XB + 1)) u_dly_x (
+          .clk_i(clk_i), .en_i(en_i), .d_i(x_s), .q_o(xb_f));
     end else begin : g_no_blinn
       assign xb_f = {NW{1'b0}};
       assign hv_o = {3*HVW{1'b0}};
@@ -502,24 +496,18 @@ module sc_light_lane #(
         localparam integer XFW = RVW + NW + 2 - VF;
         wire [XFW-1:0] xs = xsum[RVW+NW+1:VF];
         wire unused_xsum = &{1'b0, xsum[VF-1:0]};
-        wire in_rng = (xs[XFW-1:NW-1] == {(XFW-NW+1){1'b0}}) || (xs[XFW-1:NW-1] == {(XFW-NW+1){1'b1}});
-        reg [NW-1:0] x_q;
-        always @(posedge clk_i) begin
-          if (en_i) x_q <= in_rng ? xs[NW-1:0] : (xs[XFW-1] ? X_MIN : X_MAX);
-        end
-        sc_delay #(.W(NW), .DEPTH(T_F - T_XP)) u_dly_x (
-            .clk_i(clk_i), .en_i(en_i), .d_i(x_q), .q_o(xp_f));
+        wire [NW-1:0] x_s;
+        sc_sat #(.IW(XFW), .OW(NW)) u_sat_x (.d_i(xs), .q_o(x_s));
+        sc_delay #(.W(NW), .DEPTH(T_F - T_XP + 1)) u_dly_x (
+            .clk_i(clk_i), .en_i(en_i), .d_i(x_s), .q_o(xp_f));
       end else begin : g_inf
         // V = (0, 0, 1): x = R_z exactly (T_A+2)
         wire [RVW-1:0] xs = rv[2*RVW +: RVW];
         wire unused_rxy = &{1'b0, rv[2*RVW-1:0], v_p_i};
-        wire in_rng = (xs[RVW-1:NW-1] == {(RVW-NW+1){1'b0}}) || (xs[RVW-1:NW-1] == {(RVW-NW+1){1'b1}});
-        reg [NW-1:0] x_q;
-        always @(posedge clk_i) begin
-          if (en_i) x_q <= in_rng ? xs[NW-1:0] : (xs[RVW-1] ? X_MIN : X_MAX);
-        end
-        sc_delay #(.W(NW), .DEPTH(T_F - T_XP)) u_dly_x (
-            .clk_i(clk_i), .en_i(en_i), .d_i(x_q), .q_o(xp_f));
+        wire [NW-1:0] x_s;
+        sc_sat #(.IW(RVW), .OW(NW)) u_sat_x (.d_i(xs), .q_o(x_s));
+        sc_delay #(.W(NW), .DEPTH(T_F - T_XP + 1)) u_dly_x (
+            .clk_i(clk_i), .en_i(en_i), .d_i(x_s), .q_o(xp_f));
       end
     end else begin : g_no_phong
       assign xp_f = {NW{1'b0}};
