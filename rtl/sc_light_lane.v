@@ -116,6 +116,7 @@ module sc_light_lane #(
   localparam integer NOP = 5;
   localparam integer BMX = RVW;                 // the widest other side (RVW >= NDW, LW, PW+1, NW)
   localparam integer PMX = NW + BMX;
+  localparam integer SMX = PMX + 2;             // a dot product: the sum of an op's three products
   function integer op_on(input integer o);
     op_on = (o == 0) ? CAN_ATT : (o == 1) ? NEED_N : (o == 2) ? ((SPECULAR != 0 && PHONG != 0) ? 1 : 0) :
             (o == 3) ? ((SPECULAR != 0 && PHONG != 0 && LV != 0) ? 1 : 0) :
@@ -169,14 +170,21 @@ module sc_light_lane #(
   wire [NOP*3*BMX-1:0] opb;    // sign-extended to BMX
   wire [NOP*3*PMX-1:0] prod;   // its product, sign-extended to PMX
   wire [5*3*PMX-1:0]   iprod;  // instance i's products
+  wire [NOP*SMX-1:0]   dsum;   // op o's dot product at [o*SMX +: SMX] (exact; consumers read its low bits)
+  wire unused_dsum = &{1'b0, dsum};   // each consumer reads the low bits its op needs
   generate
     for (k = 0; k < NOP; k = k + 1) begin : g_op_off
       if (op_on(k) == 0) begin : g_off
         assign opa[k*3*NW +: 3*NW]   = {3*NW{1'b0}};
         assign opb[k*3*BMX +: 3*BMX] = {3*BMX{1'b0}};
         assign prod[k*3*PMX +: 3*PMX] = {3*PMX{1'b0}};
+        assign dsum[k*SMX +: SMX] = {SMX{1'b0}};
       end else begin : g_on
         assign prod[k*3*PMX +: 3*PMX] = iprod[op_inst(k)*3*PMX +: 3*PMX];
+        wire [PMX-1:0] p0 = prod[(3*k + 0)*PMX +: PMX];
+        wire [PMX-1:0] p1 = prod[(3*k + 1)*PMX +: PMX];
+        wire [PMX-1:0] p2 = prod[(3*k + 2)*PMX +: PMX];
+        assign dsum[k*SMX +: SMX] = {{2{p0[PMX-1]}}, p0} + {{2{p1[PMX-1]}}, p1} + {{2{p2[PMX-1]}}, p2};
       end
     end
     for (mi = 0; mi < NMI; mi = mi + 1) begin : g_mi
@@ -309,12 +317,9 @@ module sc_light_lane #(
         assign opa[(0 + gi)*NW +: NW]   = l_pt[gi*NW +: NW];
         assign opb[(0 + gi)*BMX +: BMX] = {{(BMX-PW-1){b[PW]}}, b};
       end
-      wire [PW+NW:0] dp0 = prod[0*PMX +: PW+NW+1];
-      wire [PW+NW:0] dp1 = prod[1*PMX +: PW+NW+1];
-      wire [PW+NW:0] dp2 = prod[2*PMX +: PW+NW+1];
-      wire [PW+NW+2:0] dsum = {{2{dp0[PW+NW]}}, dp0} + {{2{dp1[PW+NW]}}, dp1} + {{2{dp2[PW+NW]}}, dp2};
-      wire [DW-1:0] d_d = dsum[PW+NW+2] ? {DW{1'b0}} : dsum[VF+DW-1:VF];
-      wire unused_dsum = &{1'b0, dsum[PW+NW+1:VF+DW], dsum[VF-1:0]};
+      wire [PW+NW+2:0] dla = dsum[0*SMX +: PW+NW+3];
+      wire [DW-1:0] d_d = dla[PW+NW+2] ? {DW{1'b0}} : dla[VF+DW-1:VF];
+      wire unused_dla = &{1'b0, dla[PW+NW+1:VF+DW], dla[VF-1:0]};
       reg [DW-1:0] a1_d_q;
       always @(posedge clk_i) begin
         if (en_i) a1_d_q <= d_d;
@@ -370,11 +375,7 @@ module sc_light_lane #(
         assign opa[(3 + gi)*NW +: NW]   = nn_a_i[gi*NW +: NW];
         assign opb[(3 + gi)*BMX +: BMX] = {{(BMX-LW){b[LW-1]}}, b};
       end
-      wire [NW+LW-1:0] np0 = prod[3*PMX +: NW+LW];
-      wire [NW+LW-1:0] np1 = prod[4*PMX +: NW+LW];
-      wire [NW+LW-1:0] np2 = prod[5*PMX +: NW+LW];
-      wire [NW+LW+1:0] nsum = {{2{np0[NW+LW-1]}}, np0} + {{2{np1[NW+LW-1]}}, np1}
-                            + {{2{np2[NW+LW-1]}}, np2};
+      wire [NW+LW+1:0] nsum = dsum[1*SMX +: NW+LW+2];
       wire unused_nsum = &{1'b0, nsum[VF-1:0]};
       reg [NDW-1:0] ndl_q;
       always @(posedge clk_i) begin
@@ -443,11 +444,7 @@ module sc_light_lane #(
         assign opa[(12 + gi)*NW +: NW]   = nn_b_i[gi*NW +: NW];
         assign opb[(12 + gi)*BMX +: BMX] = {{(BMX-NW){b[NW-1]}}, b};
       end
-      wire [2*NW-1:0] xp0 = prod[12*PMX +: 2*NW];
-      wire [2*NW-1:0] xp1 = prod[13*PMX +: 2*NW];
-      wire [2*NW-1:0] xp2 = prod[14*PMX +: 2*NW];
-      wire [2*NW+1:0] xsum = {{2{xp0[2*NW-1]}}, xp0} + {{2{xp1[2*NW-1]}}, xp1}
-                           + {{2{xp2[2*NW-1]}}, xp2};
+      wire [2*NW+1:0] xsum = dsum[4*SMX +: 2*NW+2];
       localparam integer XFW = 2 * NW + 2 - VF;
       wire [XFW-1:0] xs = xsum[2*NW+1:VF];
       wire unused_xsum = &{1'b0, xsum[VF-1:0]};
@@ -488,11 +485,7 @@ module sc_light_lane #(
           assign opa[(9 + gi)*NW +: NW]   = v_p_i[gi*NW +: NW];
           assign opb[(9 + gi)*BMX +: BMX] = rv_d[gi*RVW +: RVW];
         end
-        wire [RVW+NW-1:0] xp0 = prod[9*PMX +: RVW+NW];
-        wire [RVW+NW-1:0] xp1 = prod[10*PMX +: RVW+NW];
-        wire [RVW+NW-1:0] xp2 = prod[11*PMX +: RVW+NW];
-        wire [RVW+NW+1:0] xsum = {{2{xp0[RVW+NW-1]}}, xp0} + {{2{xp1[RVW+NW-1]}}, xp1}
-                               + {{2{xp2[RVW+NW-1]}}, xp2};
+        wire [RVW+NW+1:0] xsum = dsum[3*SMX +: RVW+NW+2];
         localparam integer XFW = RVW + NW + 2 - VF;
         wire [XFW-1:0] xs = xsum[RVW+NW+1:VF];
         wire unused_xsum = &{1'b0, xsum[VF-1:0]};
