@@ -152,15 +152,18 @@ class LightStimulus {
   double u01() { return static_cast<double>(rng_.next() >> 11) * 0x1.0p-53; }
   double u(double lo, double hi) { return lo + (hi - lo) * u01(); }
 
-  void push(const std::vector<RegWrite>& ws) {
+  // Queue register writes into q (the random stream's pending_ or the directed list), tracking them in shadow_.
+  template <class Q>
+  void queue_writes(Q& q, const std::vector<RegWrite>& ws) {
     for (const auto& w : ws) {
       CoreCommand c;
       c.is_write = true;
       c.w = w;
-      pending_.push_back(c);
+      q.push_back(c);
       shadow_.write(W_, w.addr, w.data);
     }
   }
+  void push(const std::vector<RegWrite>& ws) { queue_writes(pending_, ws); }
   std::vector<RegWrite> random_material() {
     MaterialParams m;
     for (int c = 0; c < 3; ++c) {
@@ -352,14 +355,12 @@ class LightStimulus {
     directed_.push_back(c);
     ++directed_frags_;
   }
-  void add_writes(const std::vector<RegWrite>& ws) {
-    for (const auto& w : ws) {
-      CoreCommand c;
-      c.is_write = true;
-      c.w = w;
-      directed_.push_back(c);
-      shadow_.write(W_, w.addr, w.data);
-    }
+  void add_writes(const std::vector<RegWrite>& ws) { queue_writes(directed_, ws); }
+  // Light base b's attenuation registers: kc raw, kl = kq = 0.
+  static void push_att(std::vector<RegWrite>& ws, uint32_t b, uint32_t kc) {
+    ws.push_back({b + kReg_light_kc, kc});
+    ws.push_back({b + kReg_light_kl, 0});
+    ws.push_back({b + kReg_light_kq, 0});
   }
   void build_directed() {
     const int nl = core_.features().num_lights();
@@ -429,9 +430,7 @@ class LightStimulus {
       const uint32_t b = static_cast<uint32_t>(j) * kLightStride;
       for (uint32_t c = 0; c < 3; ++c)
         for (uint32_t a : {kReg_light_ambient, kReg_light_diffuse, kReg_light_specular}) ws.push_back({b + a + c, cmax});
-      ws.push_back({b + kReg_light_kc, 1});  // kc = 2^-F: 1/q saturates
-      ws.push_back({b + kReg_light_kl, 0});
-      ws.push_back({b + kReg_light_kq, 0});
+      push_att(ws, b, 1);  // kc = 2^-F: 1/q saturates
     }
     add_writes(ws);
     for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
@@ -439,9 +438,7 @@ class LightStimulus {
     ws.clear();
     for (int j = 0; j < nl; ++j) {
       const uint32_t b = static_cast<uint32_t>(j) * kLightStride;
-      ws.push_back({b + kReg_light_kc, 0});
-      ws.push_back({b + kReg_light_kl, 0});
-      ws.push_back({b + kReg_light_kq, 0});
+      push_att(ws, b, 0);
     }
     add_writes(ws);
     for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
