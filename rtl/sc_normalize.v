@@ -297,11 +297,22 @@ module sc_normalize #(
   reg [KW-1:0]   s9_k_q;
   generate
     for (c = 0; c < 3; c = c + 1) begin : g_mul
-      wire [VW-1:0] vc = v8[c*VW +: VW];
-      // two's complement product modulo 2^PW: sign-extend v, zero-extend y2 (PW > VW, PW > R+1)
-      wire [PW-1:0] vext = {{(PW-VW){vc[VW-1]}}, vc};
-      wire [PW-1:0] yext = {{(PW-R-1){1'b0}}, s8_y_q};
-      wire [PW-1:0] p_d = vext * yext;
+      // two's complement product modulo 2^PW: v_i·y2 as a signed VW × (R+2)-bit product at its
+      // natural widths (y2 < 2^(R+1), made signed by a zero bit), sign-extended or cut to PW bits
+      // — the same PW low bits as the product of the PW-bit extensions, without the PW × PW
+      // multiplier that a product of extended operands asks a synthesis tool for
+      wire signed [VW-1:0]   vc = v8[c*VW +: VW];
+      wire signed [R+1:0]    yc = {1'b0, s8_y_q};
+      wire signed [VW+R+1:0] pn = vc * yc;
+      wire [PW-1:0] p_d;
+      if (PW > VW + R + 2) begin : g_ext
+        assign p_d = {{(PW-VW-R-2){pn[VW+R+1]}}, pn};
+      end else begin : g_cut
+        assign p_d = pn[PW-1:0];
+        if (PW < VW + R + 2) begin : g_hi
+          wire unused_pn = &{1'b0, pn[VW+R+1:PW]};
+        end
+      end
       always @(posedge clk_i) begin
         if (en_i) s9_p_q[c*PW +: PW] <= p_d;
       end
