@@ -93,8 +93,10 @@ module sc_light_lane #(
   localparam integer CL  = FRAC + 1;
   localparam integer LW  = NW;   // component width of L: L̂, or a directional light's unit direction (saturated)
   localparam integer HVW = LW + 1;                           // of H = L + V
-  localparam integer NDW = LW + 4;                           // of ⌊N̂·L / 2^F⌋
-  localparam integer RVW = NDW + 4;                          // of R = 2(N̂·L)N̂ − L
+  localparam integer NDF = NW + LW + 2 - VF;                 // of ⌊N̂·L / 2^VF⌋, exact
+  localparam integer NDW = NW + 2;                           // of ndl: ⌊N̂·L / 2^VF⌋ saturated to [−8, 8)
+  localparam integer RVF = NDW + 4;                          // of R = 2·ndl·N̂ − L, exact
+  localparam integer RVW = NW + 2;                           // of R saturated to [−8, 8) per component
   localparam integer NEED_L = (NEED_N != 0 || CAN_ATT != 0) ? 1 : 0;
   localparam integer POINT_L = (CAN_PT != 0 && NEED_L != 0) ? 1 : 0;   // an L̂ = normalise(P_j − P)
   localparam [CL-1:0] ONE   = {1'b1, {FRAC{1'b0}}};
@@ -114,7 +116,7 @@ module sc_light_lane #(
   // combinationally at its own stage. Operands are sign-extended to the instance's widest op: the
   // low bits of a product, all that a consumer reads, do not depend on that width.
   localparam integer NOP = 5;
-  localparam integer BMX = RVW;                 // the widest other side (RVW >= NDW, LW, PW+1, NW)
+  localparam integer BMX = (PW + 1 > RVW) ? PW + 1 : RVW;   // the widest other side (RVW = NDW >= LW, NW)
   localparam integer PMX = NW + BMX;
   localparam integer SMX = PMX + 2;             // a dot product: the sum of an op's three products
   function integer op_on(input integer o);
@@ -377,9 +379,13 @@ module sc_light_lane #(
       end
       wire [NW+LW+1:0] nsum = dsum[1*SMX +: NW+LW+2];
       wire unused_nsum = &{1'b0, nsum[VF-1:0]};
+      // ndl saturated to [−8, 8): never with a unit L (|N| < 2√3); only a directional code beyond [−2, 2)
+      // could reach it, and there diff (clamped to 1) and f (the sign) are unchanged
+      wire [NDW-1:0] ndl_d;
+      sc_sat #(.IW(NDF), .OW(NDW)) u_sat_ndl (.d_i(nsum[NW+LW+1:VF]), .q_o(ndl_d));
       reg [NDW-1:0] ndl_q;
       always @(posedge clk_i) begin
-        if (en_i) ndl_q <= nsum[NW+LW+1:VF];
+        if (en_i) ndl_q <= ndl_d;
       end
       assign ndl = ndl_q;
       localparam integer NSW = NDW - SG;   // ⌊ndl / 2^SG⌋: F fraction bits
@@ -470,7 +476,10 @@ module sc_light_lane #(
         wire [NDW+2:0] rs = rp[NDW+NW-1:VF-1];
         wire unused_rp = &{1'b0, rp[VF-2:0]};
         wire [LW-1:0] lc = l1[gi*LW +: LW];
-        assign rv[gi*RVW +: RVW] = {{(RVW-NDW-3){rs[NDW+2]}}, rs} - {{(RVW-LW){lc[LW-1]}}, lc};
+        wire [RVF-1:0] rf = {rs[NDW+2], rs} - {{(RVF-LW){lc[LW-1]}}, lc};
+        // saturated to [−8, 8): never with a unit N̂ and L (|R| = 1); the R·V̂ product is then 23 × 25
+        // bits at F = 16, spec_guard 5 (two DSP48E1 instead of four)
+        sc_sat #(.IW(RVF), .OW(RVW)) u_sat_r (.d_i(rf), .q_o(rv[gi*RVW +: RVW]));
       end
       if (LV != 0) begin : g_lv
         // x = ⌊R·V̂ / 2^VF⌋ at T_RV+1 (V̂ = (0, 0, 2^F) without the local-viewer mode: x = R_z)

@@ -443,6 +443,13 @@ TEST(LightModes, DirectionalCodeSaturatesToTheUnitRange) {
   const auto unit = trace(0, -(int64_t{1} << F), 0);   // a unit code: as written
   EXPECT_EQ(unit.second.l[1], -(int64_t{1} << (F + E)));
   EXPECT_EQ(unit.second.l[0], 0);
+  // N̂·L saturates to [−8, 8) (signed VF+4 bits): reachable only with a code beyond the unit range —
+  // here N = (2, 2, 2) − 1 code each (no GL_NORMALIZE) and L = (2, 2, 2) − 1 code: N·L ≈ 12
+  fr.n[0] = fr.n[1] = fr.n[2] = hi;
+  const auto sat = trace(hi, hi, hi);
+  EXPECT_EQ(sat.second.ndl, (int64_t{1} << (F + E + 3)) - 1);
+  EXPECT_EQ(sat.second.diff, 1u << F);   // diff clamps to 1 as it would unsaturated
+  EXPECT_TRUE(sat.second.f);
 }
 
 // Passes and latency: ⌈k/lanes⌉ passes (one with no light), one more issue interval per pass.

@@ -274,7 +274,10 @@ class LightCore {
           lt.att = recip_att(F, lt.q);
         }
       }
-      lt.ndl = dot3(t.nn, lt.l) >> VF;  // VF fraction bits
+      // N̂·L at VF fraction bits, and R below, saturated to [−8, 8) (signed VF+4 bits): never with a unit L
+      // (and, for R, a unit N̂); the bound keeps the lane's R and R·V̂ products narrow (docs/lighting.md §3.3)
+      const int64_t lim8 = int64_t{1} << (VF + 3);
+      lt.ndl = std::clamp<int64_t>(dot3(t.nn, lt.l) >> VF, -lim8, lim8 - 1);
       lt.diff = static_cast<uint32_t>(std::clamp<int64_t>(lt.ndl >> E, 0, one));
       lt.f = lt.ndl > 0 && md.unit >= 0;
       if (fs_.specular) {
@@ -286,7 +289,8 @@ class LightCore {
           x = dot3(t.nn, hn) >> VF;
         } else {
           int64_t rv[3];
-          for (int i = 0; i < 3; ++i) rv[i] = ((lt.ndl * t.nn[i]) >> (VF - 1)) - lt.l[i];  // 2(N̂·L)N̂ − L
+          for (int i = 0; i < 3; ++i)  // 2(N̂·L)N̂ − L
+            rv[i] = std::clamp<int64_t>(((lt.ndl * t.nn[i]) >> (VF - 1)) - lt.l[i], -lim8, lim8 - 1);
           x = dot3(rv, t.v) >> VF;
         }
         lt.x = std::clamp<int64_t>(x, uf_.in_min(), uf_.in_max());  // the unit's signed VF+2-bit word, saturated
@@ -444,7 +448,7 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
         att = q > 0 ? std::min(1.0 / q, std::ldexp(static_cast<double>(att_max(F)), -F)) : std::ldexp(static_cast<double>(att_max(F)), -F);
       }
     }
-    const double ndl = nn[0] * l[0] + nn[1] * l[1] + nn[2] * l[2];
+    const double ndl = std::clamp(nn[0] * l[0] + nn[1] * l[1] + nn[2] * l[2], -8.0, 8.0);  // as the core saturates
     double spec = 0.0;
     if (fs_.specular && md.unit >= 0 && ndl > 0) {
       double x;
@@ -454,7 +458,7 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
         x = nn[0] * h[0] + nn[1] * h[1] + nn[2] * h[2];
       } else {
         double rv[3];
-        for (int i = 0; i < 3; ++i) rv[i] = 2 * ndl * nn[i] - l[i];
+        for (int i = 0; i < 3; ++i) rv[i] = std::clamp(2 * ndl * nn[i] - l[i], -8.0, 8.0);
         x = rv[0] * vv[0] + rv[1] * vv[1] + rv[2] * vv[2];
       }
       x = std::clamp(x, 0.0, 1.0);
