@@ -275,11 +275,12 @@ std::vector<ShardSpec> expand(const json& plan) {
       for (int k = 0; k < shards; ++k) {
         const int lo = n_lo + static_cast<int>(static_cast<long long>(total) * k / shards);
         const int hi = n_lo + static_cast<int>(static_cast<long long>(total) * (k + 1) / shards) - 1;
-        add(k, shards, "sweep",
-            {self, "sweep", "--variant", get<std::string>(j, name, "variant", "cs16"), "--config",
-             get<std::string>(j, name, "config", "default"), "--cutoff", get<std::string>(j, name, "cutoff", "theta_cr"),
-             "--n", fmt::format("{}..{}", lo, hi), "--threads", "1", "--no-progress"},
-            "json");
+        std::vector<std::string> v{self, "sweep", "--variant", get<std::string>(j, name, "variant", "cs16"), "--config",
+                                   get<std::string>(j, name, "config", "default")};
+        // the cut-off only where the job names one: `sweep` takes --cutoff for cs16 and its forms alone
+        if (j.contains("cutoff")) v.insert(v.end(), {"--cutoff", get<std::string>(j, name, "cutoff", "theta_cr")});
+        v.insert(v.end(), {"--n", fmt::format("{}..{}", lo, hi), "--threads", "1", "--no-progress"});
+        add(k, shards, "sweep", v, "json");
       }
     } else if (kind == "cosim_lighting") {
       // Random mode shards by fragment index like the unit's random jobs: the lighting stimulus — register
