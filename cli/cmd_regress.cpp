@@ -159,12 +159,20 @@ T get(const json& j, const std::string& job, const char* key, T dflt) {
 
 std::string num(double v) { return fmt::format("{}", v); }
 
-// Shard k of `shards` of a random job of `count` transactions: its first global index and its count (the
-// first count % shards shards take one more).
-std::pair<uint64_t, uint64_t> index_range(uint64_t count, int shards, int k) {
-  const uint64_t base = count / static_cast<uint64_t>(shards), extra = count % static_cast<uint64_t>(shards);
-  const uint64_t kk = static_cast<uint64_t>(k);
-  return {kk * base + std::min(kk, extra), base + (kk < extra ? 1 : 0)};
+// A random job of `count` transactions (a function of (seed, index)) in shards: every shard's first global
+// index and count (min(shards, count) shards; the first count % shards take one more), and the one global
+// reset index every shard is given (the plan's reset_at, else the stimulus's default for (seed, count)).
+struct RandomShards {
+  std::vector<std::pair<uint64_t, uint64_t>> ranges;
+  int64_t reset_at = -1;
+};
+RandomShards random_shards(const json& j, const std::string& name, uint64_t seed, uint64_t count, int shards_req) {
+  RandomShards r;
+  r.reset_at = get<int64_t>(j, name, "reset_at", static_cast<int64_t>(stimulus::default_reset_index(seed, count)));
+  const uint64_t shards = std::min<uint64_t>(static_cast<uint64_t>(shards_req), count);
+  const uint64_t base = count / shards, extra = count % shards;
+  for (uint64_t k = 0; k < shards; ++k) r.ranges.emplace_back(k * base + std::min(k, extra), base + (k < extra ? 1 : 0));
+  return r;
 }
 
 // Expands the plan into shards (deterministic: a function of the plan and this build's simulators).
@@ -252,14 +260,13 @@ std::vector<ShardSpec> expand(const json& plan) {
       } else if (mode == "random") {
         const uint64_t count = get<uint64_t>(j, name, "count", 100000);
         if (count == 0) throw std::invalid_argument(fmt::format("plan: job '{}': count must be >= 1", name));
-        const int64_t reset_at =
-            get<int64_t>(j, name, "reset_at", static_cast<int64_t>(stimulus::default_reset_index(seed, count)));
-        const int shards = static_cast<int>(std::min<uint64_t>(shards_req, count));
+        const RandomShards rs = random_shards(j, name, seed, count, shards_req);
+        const int shards = static_cast<int>(rs.ranges.size());
         for (int k = 0; k < shards; ++k) {
-          const auto [first, c] = index_range(count, shards, k);
+          const auto [first, c] = rs.ranges[static_cast<size_t>(k)];
           std::vector<std::string> v = common;
           v.insert(v.end(), {"--n", fmt::format("{}..{}", n_lo, n_hi), "--count", std::to_string(c), "--first",
-                             std::to_string(first), "--reset-at", std::to_string(reset_at)});
+                             std::to_string(first), "--reset-at", std::to_string(rs.reset_at)});
           if (j.contains("mat_rate")) v.insert(v.end(), {"--mat-rate", num(get<double>(j, name, "mat_rate", 0.01))});
           add(k, shards, "sim", v);
         }
@@ -308,13 +315,12 @@ std::vector<ShardSpec> expand(const json& plan) {
         common.insert(common.end(), {"--count", std::to_string(count)});
         add(0, 1, "cli", common, "json");
       } else {
-        const int64_t reset_at =
-            get<int64_t>(j, name, "reset_at", static_cast<int64_t>(stimulus::default_reset_index(seed, count)));
-        const int shards = static_cast<int>(std::min<uint64_t>(shards_req, count));
+        const RandomShards rs = random_shards(j, name, seed, count, shards_req);
+        const int shards = static_cast<int>(rs.ranges.size());
         for (int k = 0; k < shards; ++k) {
-          const auto [first, c] = index_range(count, shards, k);
+          const auto [first, c] = rs.ranges[static_cast<size_t>(k)];
           std::vector<std::string> v = common;
-          v.insert(v.end(), {"--count", std::to_string(c), "--reset-at", std::to_string(reset_at)});
+          v.insert(v.end(), {"--count", std::to_string(c), "--reset-at", std::to_string(rs.reset_at)});
           if (first != 0) v.insert(v.end(), {"--first", std::to_string(first)});
           add(k, shards, "cli", v, "json");
         }
