@@ -89,6 +89,7 @@ struct BundleBase {
   std::vector<Port> ports;
   std::vector<std::string> rtl_files;  // relative to the bundle
   int latency = 0, latency_min = 0;
+  int latency_slack = 0;  // lighting: LightCore::latency_max() − latency() (a shared unit's gap under backpressure)
   SynthMode synth = SynthMode::Flat;
   std::string synth_why;       // why this synthesis mode (recorded in the report)
   std::string comb_paths;      // the combinational input → output paths (constraints.sdc, interface.md)

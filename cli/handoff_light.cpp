@@ -164,11 +164,13 @@ std::string tb_config_vh(const LightBundle& b, size_t maxrec) {
       "localparam integer TAGW         = {tagw};\n"
       "localparam integer LATENCY      = {lat};        // advancing edges from acceptance to the taking edge\n"
       "localparam integer LATENCY_MIN  = {latmin};        // under output backpressure (elastic segments)\n"
+      "localparam integer LATENCY_SLACK = {slack};       // under backpressure: a pass a stall bunched waits at a shared unit\n"
       "localparam integer MAXREC       = {maxrec};     // records in the largest vector file in vectors/\n"
       "localparam integer NREC_DEFAULT = {nhard};      // records in vectors/hard.hex (the default file)\n"
       "localparam integer TB_SEED      = {seed};  // random input gaps / backpressure (+seed= overrides)\n",
       fmt::arg("name", b.fs.name), fmt::arg("top", b.top), fmt::arg("F", b.fs.format().frac), fmt::arg("tagw", b.tagw),
-      fmt::arg("lat", b.latency), fmt::arg("latmin", b.latency_min), fmt::arg("maxrec", maxrec),
+      fmt::arg("lat", b.latency), fmt::arg("latmin", b.latency_min), fmt::arg("slack", b.latency_slack),
+      fmt::arg("maxrec", maxrec),
       fmt::arg("nhard", b.n_hard), fmt::arg("seed", b.seed));
 }
 
@@ -344,8 +346,14 @@ std::string interface_md(const LightBundle& b) {
           : fmt::format("**{} cycles** with `out_ready_i` high (a fragment accepted at the edge ending cycle t is on "
                         "`out_*` in cycle t+{}). Under backpressure the front, the specular units and the back are "
                         "elastic segments, so a fragment can close up on the one ahead: {}..{} advancing edges (an "
-                        "edge advances when `!out_valid_o || out_ready_i` before it).",
-                        b.latency, b.latency, b.latency_min, b.latency);
+                        "edge advances when `!out_valid_o || out_ready_i` before it){}.",
+                        b.latency, b.latency, b.latency_min, b.latency + b.latency_slack,
+                        b.latency_slack > 0
+                            ? fmt::format("; the cs16 / schlick_nr units share their multipliers over the {} clocks of a "
+                                          "pass and take a pass only that many stages behind the one ahead, so a pass "
+                                          "that backpressure bunched can wait up to {} edges at the unit's input",
+                                          fs.share, b.latency_slack)
+                            : std::string());
   return fmt::format(
       R"(# `{top}` — shadecore lighting core, feature set `{name}`
 
@@ -589,6 +597,7 @@ void run_lighting(const Options& o) {
     b.ports = light_ports(fs, o.tagw);
     b.latency = core.latency();
     b.latency_min = core.latency_min();
+    b.latency_slack = core.latency_max() - core.latency();
     step(fmt::format("bundle for {}, top {}, TAGW {}, seed {}", b.desc, b.top, b.tagw, b.seed));
 
     // rtl/, filelist.f

@@ -8,7 +8,8 @@
 `default_nettype none
 
 module sc_formal_ctrl #(
-    parameter integer DEPTH = 1
+    parameter integer DEPTH = 1,
+    parameter integer GAP   = 1
 ) (
     input wire clk_i
 );
@@ -18,7 +19,7 @@ module sc_formal_ctrl #(
   wire             in_ready_o, out_valid_o, en_o;
   wire [DEPTH-1:0] valid_o;
 
-  sc_pipe_ctrl #(.DEPTH(DEPTH)) dut (
+  sc_pipe_ctrl #(.DEPTH(DEPTH), .GAP(GAP)) dut (
       .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(in_ready_o),
       .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .en_o(en_o), .valid_o(valid_o));
 

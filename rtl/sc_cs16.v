@@ -15,6 +15,10 @@
 //          the stage widths SQ_A1..SQ_A4 (relative to F, or F+G with SQ_REL_G = 1), kept columns
 //          SQ_K1..SQ_K4 and compensation SQ_COMP (docs/spec.md §3.4). FORM = 1 has no S0 and no S6:
 //          clamp, n·d and the cut feed S1 combinationally, S5 is the output register (latency 5).
+//   SHARE  1..4 (FORM = 0; the lighting core's `share`): the four squarings share ⌈4/SHARE⌉ squarers
+//          (rtl/sc_mul_pool.v, squaring k at stage k; each squarer takes the one valid stage of its
+//          group) and a fragment is accepted only SHARE stages behind the one ahead (rtl/sc_pipe_ctrl.v
+//          GAP): one fragment per SHARE clocks, the same outputs and latency.           (default 1)
 //
 // Ports : docs/spec.md §4 (clk_i, rst_ni synchronous active-low, AXI-Stream style valid/ready).
 //
@@ -83,7 +87,8 @@ module sc_cs16 #(
     parameter integer SQ_K2    = 99,
     parameter integer SQ_K3    = 99,
     parameter integer SQ_K4    = 99,
-    parameter integer SQ_COMP  = 0
+    parameter integer SQ_COMP  = 0,
+    parameter integer SHARE    = 1
 ) (
     // clk_i, rst_ni; mat_we_i, mat_n_i[10:0], mat_thr_i[FRAC:0]; in_valid_i, in_ready_o,
     // in_cos_i[FRAC+1:0], in_tag_i; out_valid_o, out_ready_i, out_spec_o[FRAC:0], out_tag_o
@@ -114,6 +119,9 @@ module sc_cs16 #(
     if (TAGW < 1) begin : g_check_tagw
       sc_cs16_error_illegal_TAGW_must_be_at_least_1 u_error ();
     end
+    if (SHARE < 1 || SHARE > 4) begin : g_check_share
+      sc_cs16_error_illegal_SHARE_legal_range_is_1_to_4 u_error ();
+    end
   endgenerate
 
   localparam [F:0]    ONE      = {1'b1, {F{1'b0}}};           // 2^F, cos θ = 1.0
@@ -125,8 +133,8 @@ module sc_cs16 #(
   // LATENCY register stages: S0..S6 in the reference form, S1..S5 in FORM = 1 (no S0, no S6).
   localparam integer LATENCY = (FORM == 0) ? 7 : 5;
   wire               adv;                  // global enable (rtl/sc_pipe_ctrl.v)
-  wire [LATENCY-1:0] v_stage;              // valid bit of each stage (unused: adv qualifies the data)
-  sc_pipe_ctrl #(.DEPTH(LATENCY)) u_ctrl (
+  wire [LATENCY-1:0] v_stage;              // valid bit of each stage (the shared squarers' selection)
+  sc_pipe_ctrl #(.DEPTH(LATENCY), .GAP((FORM == 0) ? SHARE : 1)) u_ctrl (
       .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(in_ready_o),
       .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .en_o(adv), .valid_o(v_stage));
   wire unused_v_stage = &{1'b0, v_stage};
@@ -204,18 +212,23 @@ module sc_cs16 #(
       end
 
       // ---------------------------------------------------------------------------- S2..S5: x <- floor(x^2 / 2^W)
-      wire [2*W+1:0] sq1 = s1_x_q * s1_x_q;
-      reg  [W:0]     s2_x_q;
-      reg  [TAGW-1:0] s2_tag_q;
-      wire [2*W+1:0] sq2 = s2_x_q * s2_x_q;
-      reg  [W:0]     s3_x_q;
-      reg  [TAGW-1:0] s3_tag_q;
-      wire [2*W+1:0] sq3 = s3_x_q * s3_x_q;
-      reg  [W:0]     s4_x_q;
-      reg  [TAGW-1:0] s4_tag_q;
-      wire [2*W+1:0] sq4 = s4_x_q * s4_x_q;
-      reg  [W:0]     s5_x_q;
-      reg  [TAGW-1:0] s5_tag_q;
+      // squaring k (0..3) reads stage S(k+1); with SHARE > 1 those of SHARE consecutive stages share one
+      // squarer, which takes the stage whose valid bit is set (rtl/sc_mul_pool.v)
+      localparam integer XW = W + 1;
+      localparam [63:0]  SQ_W = {32'd0, XW[7:0], XW[7:0], XW[7:0], XW[7:0]};
+      reg  [W:0]      s2_x_q, s3_x_q, s4_x_q, s5_x_q;
+      reg  [TAGW-1:0] s2_tag_q, s3_tag_q, s4_tag_q, s5_tag_q;
+      wire [4*XW-1:0] sq_in = {s4_x_q, s3_x_q, s2_x_q, s1_x_q};
+      wire [4*2*XW-1:0] sq;   // squaring k's x·x at [2k·XW +: 2XW]
+      sc_mul_pool #(
+          .NOP(4), .SH(SHARE), .ON(15), .ST({32'd0, 8'd4, 8'd3, 8'd2, 8'd1}), .AW(SQ_W), .BW(SQ_W),
+          .AMX(XW), .BMX(XW), .SIGNED(0)
+      ) u_sq (
+          .a_i(sq_in), .b_i(sq_in), .sel_i(v_stage[4:1]), .p_o(sq));
+      wire [2*W+1:0] sq1 = sq[0*2*XW +: 2*XW];
+      wire [2*W+1:0] sq2 = sq[1*2*XW +: 2*XW];
+      wire [2*W+1:0] sq3 = sq[2*2*XW +: 2*XW];
+      wire [2*W+1:0] sq4 = sq[3*2*XW +: 2*XW];
       // x <= 2^W, so x^2 <= 2^(2W): bit 2W+1 is always 0 and bits W-1..0 are truncated.
       wire unused_sq = &{1'b0, sq1[2*W+1], sq1[W-1:0], sq2[2*W+1], sq2[W-1:0],
                          sq3[2*W+1], sq3[W-1:0], sq4[2*W+1], sq4[W-1:0]};

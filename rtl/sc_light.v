@@ -728,7 +728,8 @@ module sc_light #(
                 .GUARD  (GUARD),
                 .CUTOFF (CUTOFF),
                 .TAGW   (UTW),
-                .ENERGY ((SNORM != 0) ? 0 : ENERGY)
+                .ENERGY ((SNORM != 0) ? 0 : ENERGY),
+                .SHARE  (SH)
             ) u_unit (
                 .clk_i      (clk_i),
                 .rst_ni     (rst_ni),

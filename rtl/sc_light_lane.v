@@ -102,19 +102,18 @@ module sc_light_lane #(
   localparam [CL-1:0] ONE   = {1'b1, {FRAC{1'b0}}};
   localparam [PW-1:0] ATT_ONE = {{7{1'b0}}, 1'b1, {FRAC{1'b0}}};
 
-  genvar gi, k, mi;
+  genvar gi, k;
 
   // ---------------------------------------------------------------------------- dot-product multipliers
   // Five triplets of signed products, op: the NW-bit side × the other side, at a stage:
   //   0 A1  L̂ · (P_j − P)   at T_L      (point_att)     1 NL  N̂ · L        at T_A   (N̂·L)
   //   2 R   N̂ · ndl         at T_A+1    (Phong)         3 RV  V̂ · R        at T_RV  (Phong, local viewer)
   //   4 NH  N̂ · Ĥ           at T_XB−1   (Blinn)
-  // Each op k that exists joins the first multiplier instance with no op at a stage ≡ its stage
-  // (mod SH): with SH = 1 every op has its own three multipliers (the products as written out
-  // before); with SHARE > 1 an instance multiplies, at phase ph_i, the operands of its op whose
-  // stage ≡ ph_i — the pass at that stage is exactly there — and every op reads its product
-  // combinationally at its own stage. Operands are sign-extended to the instance's widest op: the
-  // low bits of a product, all that a consumer reads, do not depend on that width.
+  // One rtl/sc_mul_pool.v per component: each op k that exists joins the first multiplier instance
+  // with no op at a stage ≡ its stage (mod SH): with SH = 1 every op has its own three multipliers
+  // (the products as written out before); with SHARE > 1 an instance multiplies, at phase ph_i, the
+  // operands of its op whose stage ≡ ph_i — the pass at that stage is exactly there — and every op
+  // reads its product combinationally at its own stage.
   localparam integer NOP = 5;
   localparam integer BMX = (PW + 1 > RVW) ? PW + 1 : RVW;   // the widest other side (RVW = NDW >= LW, NW)
   localparam integer PMX = NW + BMX;
@@ -130,101 +129,68 @@ module sc_light_lane #(
   function integer op_bw(input integer o);
     op_bw = (o == 0) ? PW + 1 : (o == 1) ? LW : (o == 2) ? NDW : (o == 3) ? RVW : NW;
   endfunction
-  function integer op_inst(input integer o);
-    integer j, i, used, r, res, found;
+  // the packed parameters of rtl/sc_mul_pool.v: op o's field f (0 on, 1 stage, 2 b width) at [8o +: 8]
+  function [63:0] op_pack(input integer f);
+    integer o, v;
     begin
-      used = 0;
-      res = 0;
-      for (j = 0; j <= o; j = j + 1) begin
-        if (op_on(j) != 0) begin
-          r = op_stage(j) % SH;
-          found = -1;
-          for (i = NOP - 1; i >= 0; i = i - 1) begin
-            if (((used >> (i * 4 + r)) & 1) == 0) found = i;
-          end
-          used = used | (1 << (found * 4 + r));
-          if (j == o) res = found;
-        end
+      op_pack = 64'd0;
+      for (o = 0; o < NOP; o = o + 1) begin
+        v = (f == 0) ? op_on(o) : (f == 1) ? op_stage(o) : op_bw(o);
+        op_pack = op_pack | ({32'd0, v} << (8 * o));   // every v < 256
       end
-      op_inst = res;
     end
   endfunction
-  function integer n_inst(input integer dummy);
+  function integer op_mask(input integer dummy);
     integer o;
     begin
-      n_inst = dummy;
-      for (o = 0; o < NOP; o = o + 1) begin
-        if (op_on(o) != 0 && op_inst(o) + 1 > n_inst) n_inst = op_inst(o) + 1;
-      end
+      op_mask = dummy;
+      for (o = 0; o < NOP; o = o + 1) op_mask = op_mask | (op_on(o) << o);
     end
   endfunction
-  function integer inst_bw(input integer i);
-    integer o;
-    begin
-      inst_bw = 2;
-      for (o = 0; o < NOP; o = o + 1) begin
-        if (op_on(o) != 0 && op_inst(o) == i && op_bw(o) > inst_bw) inst_bw = op_bw(o);
-      end
-    end
-  endfunction
-  localparam integer NMI = n_inst(0);
+  localparam [63:0] OP_ST = op_pack(1);
+  localparam [63:0] OP_BW = op_pack(2);
+  localparam [63:0] OP_AW = {24'd0, {5{NW[7:0]}}};
+  localparam integer OP_ON = op_mask(0);
   wire [NOP*3*NW-1:0]  opa;    // op o, component c at [(3o+c)*NW +: NW]
   wire [NOP*3*BMX-1:0] opb;    // sign-extended to BMX
   wire [NOP*3*PMX-1:0] prod;   // its product, sign-extended to PMX
-  wire [5*3*PMX-1:0]   iprod;  // instance i's products
   wire [NOP*SMX-1:0]   dsum;   // op o's dot product at [o*SMX +: SMX] (exact; consumers read its low bits)
   wire unused_dsum = &{1'b0, dsum};   // each consumer reads the low bits its op needs
+  wire [NOP-1:0] op_sel;       // op o's pass is at its stage (the phase)
   generate
+    for (k = 0; k < NOP; k = k + 1) begin : g_op_sel
+      localparam integer RI = op_stage(k) % SH;
+      assign op_sel[k] = (SH == 1) || (ph_i == RI[1:0]);
+    end
+    // one pool per component: op o's component c is at [o*NW +: NW] / [o*BMX +: BMX] of pool c
+    for (gi = 0; gi < 3; gi = gi + 1) begin : g_c
+      wire [NOP*NW-1:0]  a_c;
+      wire [NOP*BMX-1:0] b_c;
+      wire [NOP*PMX-1:0] p_c;
+      for (k = 0; k < NOP; k = k + 1) begin : g_k
+        assign a_c[k*NW +: NW]   = opa[(3*k + gi)*NW +: NW];
+        assign b_c[k*BMX +: BMX] = opb[(3*k + gi)*BMX +: BMX];
+        assign prod[(3*k + gi)*PMX +: PMX] = p_c[k*PMX +: PMX];
+      end
+      sc_mul_pool #(
+          .NOP(NOP), .SH(SH), .ON(OP_ON), .ST(OP_ST), .AW(OP_AW), .BW(OP_BW), .AMX(NW), .BMX(BMX), .SIGNED(1)
+      ) u_mul (
+          .a_i(a_c), .b_i(b_c), .sel_i(op_sel), .p_o(p_c));
+    end
     for (k = 0; k < NOP; k = k + 1) begin : g_op_off
       if (op_on(k) == 0) begin : g_off
         assign opa[k*3*NW +: 3*NW]   = {3*NW{1'b0}};
         assign opb[k*3*BMX +: 3*BMX] = {3*BMX{1'b0}};
-        assign prod[k*3*PMX +: 3*PMX] = {3*PMX{1'b0}};
         assign dsum[k*SMX +: SMX] = {SMX{1'b0}};
       end else begin : g_on
-        assign prod[k*3*PMX +: 3*PMX] = iprod[op_inst(k)*3*PMX +: 3*PMX];
         wire [PMX-1:0] p0 = prod[(3*k + 0)*PMX +: PMX];
         wire [PMX-1:0] p1 = prod[(3*k + 1)*PMX +: PMX];
         wire [PMX-1:0] p2 = prod[(3*k + 2)*PMX +: PMX];
         assign dsum[k*SMX +: SMX] = {{2{p0[PMX-1]}}, p0} + {{2{p1[PMX-1]}}, p1} + {{2{p2[PMX-1]}}, p2};
       end
     end
-    for (mi = 0; mi < NMI; mi = mi + 1) begin : g_mi
-      localparam integer PB = inst_bw(mi);
-      for (gi = 0; gi < 3; gi = gi + 1) begin : g_c
-        wire [NOP*NW-1:0] a_t;
-        wire [NOP*PB-1:0] b_t;
-        for (k = 0; k < NOP; k = k + 1) begin : g_k
-          if (op_on(k) != 0 && op_inst(k) == mi) begin : g_sel
-            localparam integer RI = op_stage(k) % SH;
-            wire sel = (SH == 1) || (ph_i == RI[1:0]);
-            assign a_t[k*NW +: NW] = opa[(3*k + gi)*NW +: NW] & {NW{sel}};
-            assign b_t[k*PB +: PB] = opb[(3*k + gi)*BMX +: PB] & {PB{sel}};
-          end else begin : g_nosel
-            assign a_t[k*NW +: NW] = {NW{1'b0}};
-            assign b_t[k*PB +: PB] = {PB{1'b0}};
-          end
-        end
-        reg [NW-1:0] a;
-        reg [PB-1:0] b;
-        integer o;
-        always @* begin
-          a = {NW{1'b0}};
-          b = {PB{1'b0}};
-          for (o = 0; o < NOP; o = o + 1) begin
-            a = a | a_t[o*NW +: NW];
-            b = b | b_t[o*PB +: PB];
-          end
-        end
-        wire signed [NW+PB-1:0] p = $signed(a) * $signed(b);
-        assign iprod[(3*mi + gi)*PMX +: PMX] = {{(PMX-NW-PB){p[NW+PB-1]}}, p};
-      end
-    end
-    if (NMI < 5) begin : g_ipad
-      assign iprod[5*3*PMX-1:NMI*3*PMX] = {((5-NMI)*3*PMX){1'b0}};
-    end
   endgenerate
-  wire unused_prod = &{1'b0, prod, iprod, opa, opb};
+  wire unused_prod = &{1'b0, prod, opa, opb};
 
   // ---------------------------------------------------------------------------- slot index per stage
   wire [3*(T_F+1)-1:0] idx_s;   // the slot index at stage k at [3k +: 3]
@@ -350,8 +316,9 @@ module sc_light_lane #(
       end
       // att = 1/q at T_ATT for point_att, 2^F for the other kinds; then to T_F
       wire [FRAC+7:0] att_r;
-      sc_recip #(.FRAC(FRAC), .QW(QW)) u_recip (
-          .clk_i(clk_i), .en_i(en_i), .q_i(a3_q_q), .att_o(att_r));
+      // q at T_L+3: the recip's products share multipliers over SH stages by the phase (rtl/sc_recip.v)
+      sc_recip #(.FRAC(FRAC), .QW(QW), .SH(SH), .PH0((T_L + 3) % SH)) u_recip (
+          .clk_i(clk_i), .en_i(en_i), .q_i(a3_q_q), .ph_i(ph_i), .att_o(att_r));
       wire [1:0] kind_t = kind_i[2*idx_t +: 2];
       wire [FRAC+7:0] att_k = (kind_t == KIND_POINT_ATT[1:0]) ? att_r : ATT_ONE;
       sc_delay #(.W(FRAC+8), .DEPTH(T_F - T_ATT)) u_dly_att (

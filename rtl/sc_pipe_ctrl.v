@@ -8,6 +8,10 @@
 //
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
 //   DEPTH  number of register stages (= the unit's latency), >= 1                    (default 1)
+//   GAP    1..DEPTH: a fragment is accepted only when stages 0..GAP-2 are empty, so any two fragments
+//          in flight are at least GAP stages apart (a unit whose multipliers rtl/sc_mul_pool.v shares
+//          over GAP = SHARE consecutive stages; the lighting core issues its passes that far apart,
+//          so only passes a stall has bunched wait)                                  (default 1)
 //
 // Ports : clk_i, rst_ni (synchronous, active-low: clears every valid bit; fragments in flight
 //         are dropped), in_valid_i/in_ready_o and out_valid_o/out_ready_i (docs/spec.md §4),
@@ -18,7 +22,8 @@
 //             in_ready_o = rst_ni && en_o (combinational from out_ready_i: ready may depend on
 //             ready, no valid depends on a ready). At a rising edge with rst_ni high and en_o
 //             high the valid bits shift by one stage and in_valid_i enters stage 0, so a fragment
-//             is accepted exactly when in_valid_i && in_ready_o. A held output (out_valid_o &&
+//             is accepted exactly when in_valid_i && in_ready_o. With GAP > 1, in_ready_o is also
+//             low while a fragment is in stages 0..GAP-2 (a registered condition). A held output (out_valid_o &&
 //             !out_ready_i) freezes the whole pipeline: en_o is low and no data register loads.
 //
 // Formal (`ifdef FORMAL`, proved by k-induction with yosys-smtbmc, docs/formal.md):
@@ -26,11 +31,13 @@
 //   pc_count         accepted - taken since the last reset == number of valid bits (<= DEPTH)
 //   pc_no_spurious   after a reset no valid output until a fragment has been accepted
 //   pc_hold          a valid output not taken stays valid (rst_ni high at that edge)
+//   pc_gap           no two valid stages are closer than GAP
 // ============================================================================================
 `default_nettype none
 
 module sc_pipe_ctrl #(
-    parameter integer DEPTH = 1
+    parameter integer DEPTH = 1,
+    parameter integer GAP   = 1
 ) (
     input  wire             clk_i,
     input  wire             rst_ni,
@@ -51,12 +58,23 @@ module sc_pipe_ctrl #(
     if (DEPTH < 1) begin : g_check_depth
       sc_pipe_ctrl_error_illegal_DEPTH_must_be_at_least_1 u_error ();
     end
+    if (GAP < 1 || GAP > DEPTH) begin : g_check_gap
+      sc_pipe_ctrl_error_illegal_GAP_legal_range_is_1_to_DEPTH u_error ();
+    end
   endgenerate
 
   reg  [DEPTH-1:0] v_q;                    // valid bit of each stage, stage 0 first
   wire             adv = !v_q[DEPTH-1] || out_ready_i;
   assign en_o        = adv;
-  assign in_ready_o  = rst_ni && adv;
+  wire             gap_ok;                 // stages 0..GAP-2 empty
+  generate
+    if (GAP > 1) begin : g_gap
+      assign gap_ok = ~|v_q[GAP-2:0];
+    end else begin : g_nogap
+      assign gap_ok = 1'b1;
+    end
+  endgenerate
+  assign in_ready_o  = rst_ni && adv && gap_ok;
   assign out_valid_o = v_q[DEPTH-1];
   assign valid_o     = v_q;
 
@@ -66,7 +84,7 @@ module sc_pipe_ctrl #(
         if (!rst_ni) begin
           v_q <= 1'b0;
         end else if (adv) begin
-          v_q <= in_valid_i;
+          v_q <= in_valid_i && gap_ok;
         end
       end
     end else begin : g_line
@@ -74,7 +92,7 @@ module sc_pipe_ctrl #(
         if (!rst_ni) begin
           v_q <= {DEPTH{1'b0}};
         end else if (adv) begin
-          v_q <= {v_q[DEPTH-2:0], in_valid_i};
+          v_q <= {v_q[DEPTH-2:0], in_valid_i && gap_ok};
         end
       end
     end
@@ -118,6 +136,21 @@ module sc_pipe_ctrl #(
       pc_count_bound: assert (f_cnt <= DEPTH);
       pc_no_spurious: assert (f_acc || !out_valid_o);
       pc_acc:         assert (f_acc || f_cnt == 0);
+    end
+  end
+
+  // any two valid stages at least GAP apart
+  integer f_j, f_k;
+  reg     f_close;
+  always @* begin
+    f_close = 1'b0;
+    for (f_j = 0; f_j < DEPTH; f_j = f_j + 1) begin
+      for (f_k = f_j + 1; f_k < DEPTH; f_k = f_k + 1) begin
+        if (f_k < f_j + GAP && v_q[f_j] && v_q[f_k]) f_close = 1'b1;
+      end
+    end
+    if (f_past) begin
+      pc_gap: assert (!f_close);
     end
   end
 

@@ -13,10 +13,15 @@
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
 //   FRAC  F, fraction bits of q and of att (1.0 = 2^F)               8 <= F <= 16 (default 16)
 //   QW    width of the unsigned input q                              1 <= QW <= 64 (default 43)
+//   SH    1..4, the lighting core's `share` (passes SH enabled edges apart or more): the four
+//         Newton–Raphson products (S2..S5) share ⌈4/SH⌉ multipliers (rtl/sc_mul_pool.v), chosen by ph_i (default 1)
+//   PH0   0..SH-1: ph_i ≡ PH0 + k (mod SH) while a pass's q is k stages past q_i (the pass at q_i
+//         itself at PH0)                                                               (default 0)
 //
 // Ports : clk_i             clock, all flops on the rising edge
 //         en_i              enable (the embedding pipeline's global enable)
 //         q_i[QW-1:0]       q, unsigned, F fraction bits
+//         ph_i[1:0]         the embedding pipeline's phase (SH > 1; ignored with SH = 1)
 //         att_o[F+7:0]      att = round_half_up(2^F / (q/2^F)), F fraction bits, saturated to
 //                           ATT_MAX = 2^(F+8) − 1 (q = 0 and every q < 2^(F−8) give ATT_MAX)
 //
@@ -42,11 +47,14 @@
 
 module sc_recip #(
     parameter integer FRAC = 16,
-    parameter integer QW   = 43
+    parameter integer QW   = 43,
+    parameter integer SH   = 1,
+    parameter integer PH0  = 0
 ) (
     input  wire              clk_i,
     input  wire              en_i,
     input  wire [QW-1:0]     q_i,
+    input  wire [1:0]        ph_i,
     output wire [FRAC+7:0]   att_o
 );
 
@@ -68,6 +76,9 @@ module sc_recip #(
     end
     if (QW < 1 || QW > 64) begin : g_check_qw
       sc_recip_error_illegal_QW_legal_range_is_1_to_64 u_error ();
+    end
+    if (SH < 1 || SH > 4 || PH0 < 0 || PH0 >= SH) begin : g_check_sh
+      sc_recip_error_illegal_SH_1_to_4_and_PH0_0_to_SH_minus_1 u_error ();
     end
   endgenerate
 
@@ -164,8 +175,16 @@ module sc_recip #(
     end
   end
 
+  // ---------------------------------------------------------------------------- the products
+  // op: 0 e1 = mt·y1 (S4), 1 y2 = g·y1 (S5), 2 y1 = g·y0 (S3), 3 e0 = mt·y0 (S2); the pool is below
+  localparam integer MA = R + 2;   // widest a (g)
+  localparam integer MB = R + 1;   // widest b (y1)
+  localparam integer MP = MA + MB;
+  wire [4*MP-1:0] pp;              // op o's product in the low bits of [o*MP +: MP]
+  wire unused_pp = &{1'b0, pp};
+
   // ---------------------------------------------------------------------------- S3/S4: first step
-  wire [R+T:0] e0_p = {{T{1'b0}}, s2_mt_q} * {{(R+1){1'b0}}, s2_y0_q};   // < 2^(R+1+T)
+  wire [R+T:0] e0_p = pp[3*MP +: R+T+1];                              // mt·y0 < 2^(R+1+T)
   wire [R+1:0] g0_d = TWO_R - {1'b0, e0_p[R+T:T]};                     // 2 − e, e < 2
   wire unused_e0 = &{1'b0, e0_p[T-1:0]};
   reg  [R+1:0]   s3_g_q;
@@ -183,7 +202,7 @@ module sc_recip #(
     end
   end
 
-  wire [R+T+1:0] y1_p = {{(R+2){1'b0}}, s3_y0_q} * {{T{1'b0}}, s3_g_q};
+  wire [R+T+1:0] y1_p = pp[2*MP +: R+T+2];                  // y0·g
   wire unused_y1 = &{1'b0, y1_p[R+T+1], y1_p[T-1:0]};   // y1 < 2^R: bit R+T+1 is 0
   reg  [R:0]     s4_y1_q;
   reg  [R:0]     s4_mt_q;
@@ -199,7 +218,7 @@ module sc_recip #(
   end
 
   // ---------------------------------------------------------------------------- S5/S6: second step
-  wire [2*R+1:0] e1_p = {{(R+1){1'b0}}, s4_mt_q} * {{(R+1){1'b0}}, s4_y1_q};
+  wire [2*R+1:0] e1_p = pp[0*MP +: 2*R+2];                  // mt·y1
   wire [R+1:0]   g1_d = TWO_R - e1_p[2*R+1:R];
   wire unused_e1 = &{1'b0, e1_p[R-1:0]};
   reg  [R+1:0]   s5_g_q;
@@ -215,7 +234,7 @@ module sc_recip #(
     end
   end
 
-  wire [2*R+2:0] y2_p = {{(R+2){1'b0}}, s5_y1_q} * {{(R+1){1'b0}}, s5_g_q};
+  wire [2*R+2:0] y2_p = pp[1*MP +: 2*R+3];                  // y1·g
   wire unused_y2 = &{1'b0, y2_p[2*R+2:2*R+1], y2_p[R-1:0]};   // y2 < 2^R
   reg  [R:0]     s6_y2_q;
   reg  [SHW-1:0] s6_sh_q;
@@ -227,6 +246,21 @@ module sc_recip #(
       s6_sat_q <= s5_sat_q;
     end
   end
+
+  // the products' pool: op o at stage S_k is selected when ph_i ≡ PH0 + k (mod SH)
+  localparam integer R1 = R + 1, R2 = R + 2, TT = T;
+  localparam integer P2 = (PH0 + 2) % SH, P3 = (PH0 + 3) % SH, P4 = (PH0 + 4) % SH, P5 = (PH0 + 5) % SH;
+  wire [3:0] psel = {ph_i == P2[1:0], ph_i == P3[1:0], ph_i == P5[1:0], ph_i == P4[1:0]};
+  sc_mul_pool #(
+      .NOP(4), .SH(SH), .ON(15),
+      .ST({32'd0, 8'd2, 8'd3, 8'd5, 8'd4}),
+      .AW({32'd0, R1[7:0], R2[7:0], R2[7:0], R1[7:0]}),
+      .BW({32'd0, TT[7:0], TT[7:0], R1[7:0], R1[7:0]}),
+      .AMX(MA), .BMX(MB), .SIGNED(0)
+  ) u_mul (
+      .a_i({{(MA-R1){1'b0}}, s2_mt_q, s3_g_q, s5_g_q, {(MA-R1){1'b0}}, s4_mt_q}),
+      .b_i({{(MB-TT){1'b0}}, s2_y0_q, {(MB-TT){1'b0}}, s3_y0_q, s5_y1_q, s4_y1_q}),
+      .sel_i(psel), .p_o(pp));
 
   // ---------------------------------------------------------------------------- S7: round, saturate
   // barrel shifter: {y2, 0} >> sh (stage b shifts right by 2^b when sh bit b is set)

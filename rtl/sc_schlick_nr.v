@@ -12,6 +12,11 @@
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
 //   FRAC   F, fraction bits of cos θ and of the output     8 <= F <= 24   (default 16)
 //   TAGW   width of the opaque tag that travels with each fragment, >= 1  (default 8)
+//   SHARE  1..4 (the lighting core's `share`): the six products (n·d, the four Newton–Raphson products,
+//          c·y2) share multipliers over SHARE consecutive stages (rtl/sc_mul_pool.v: at 4, two: one for
+//          e1, y2, c·y2 and y1, one for e0 and n·d), each taking the one valid stage of its group, and a
+//          fragment is accepted only SHARE stages behind the one ahead (rtl/sc_pipe_ctrl.v GAP): one
+//          fragment per SHARE clocks, the same outputs and latency                  (default 1)
 //   (no GUARD: the reciprocal carries R = F + 6 fraction bits; mat_thr_i is not used)
 //
 // Ports : docs/spec.md §4 (clk_i, rst_ni synchronous active-low, AXI-Stream style valid/ready).
@@ -54,7 +59,8 @@
 
 module sc_schlick_nr #(
     parameter integer FRAC = 16,
-    parameter integer TAGW = 8
+    parameter integer TAGW = 8,
+    parameter integer SHARE = 1
 ) (
     // clk_i, rst_ni; mat_we_i, mat_n_i[10:0], mat_thr_i[FRAC:0]; in_valid_i, in_ready_o,
     // in_cos_i[FRAC+1:0], in_tag_i; out_valid_o, out_ready_i, out_spec_o[FRAC:0], out_tag_o
@@ -78,6 +84,9 @@ module sc_schlick_nr #(
     if (TAGW < 1) begin : g_check_tagw
       sc_schlick_nr_error_illegal_TAGW_must_be_at_least_1 u_error ();
     end
+    if (SHARE < 1 || SHARE > 4) begin : g_check_share
+      sc_schlick_nr_error_illegal_SHARE_legal_range_is_1_to_4 u_error ();
+    end
   endgenerate
 
   localparam [F:0]   ONE   = {1'b1, {F{1'b0}}};          // 2^F, cos θ = 1.0
@@ -85,8 +94,8 @@ module sc_schlick_nr #(
 
   // ---------------------------------------------------------------------------- handshake
   wire          adv;                        // global enable (rtl/sc_pipe_ctrl.v)
-  wire [NS-1:0] v_stage;                    // valid bit of each stage (unused: adv qualifies the data)
-  sc_pipe_ctrl #(.DEPTH(NS)) u_ctrl (
+  wire [NS-1:0] v_stage;                    // valid bit of each stage (the shared multipliers' selection)
+  sc_pipe_ctrl #(.DEPTH(NS), .GAP(SHARE)) u_ctrl (
       .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(in_ready_o),
       .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .en_o(adv), .valid_o(v_stage));
   wire unused_v_stage = &{1'b0, v_stage};
@@ -114,9 +123,39 @@ module sc_schlick_nr #(
     end
   end
 
+  // ---------------------------------------------------------------------------- the products
+  // op: 0 e1 = mt·y1 (S5), 1 y2 = g·y1 (S6), 2 p = y2·c (S7), 3 y1 = g·y0 (S4), 4 e0 = mt·y0 (S3),
+  // 5 n·d (S0); each read at its stage, its product in the low bits of its slot (rtl/sc_mul_pool.v)
+  localparam integer MA = R + 2;   // widest a (g)
+  localparam integer MB = R + 1;   // widest b (y1)
+  localparam integer MP = MA + MB;
+  localparam integer R1 = R + 1, R2 = R + 2, F1 = F + 1, TT = T, NN = 11;
+  wire [R:0]   s3_mt_w, s5_mt_w, s5_y1_w, s6_y1_w, s7_y2_w;   // the stage registers below
+  wire [R+1:0] s4_g_w, s6_g_w;
+  wire [T-1:0] s3_y0_w, s4_y0t_w;
+  wire [F:0]   s0_d_w, s7_c_w;
+  wire [10:0]  s0_n_w;
+  wire [6*MA-1:0] pa;
+  wire [6*MB-1:0] pb;
+  wire [6*MP-1:0] pp;
+  assign pa = {{(MA-F1){1'b0}}, s0_d_w, {(MA-R1){1'b0}}, s3_mt_w, s4_g_w, {(MA-R1){1'b0}}, s7_y2_w, s6_g_w,
+               {(MA-R1){1'b0}}, s5_mt_w};
+  assign pb = {{(MB-NN){1'b0}}, s0_n_w, {(MB-TT){1'b0}}, s3_y0_w, {(MB-TT){1'b0}}, s4_y0t_w, {(MB-F1){1'b0}}, s7_c_w,
+               s6_y1_w, s5_y1_w};
+  sc_mul_pool #(
+      .NOP(6), .SH(SHARE), .ON(63),
+      .ST({16'd0, 8'd0, 8'd3, 8'd4, 8'd7, 8'd6, 8'd5}),
+      .AW({16'd0, F1[7:0], R1[7:0], R2[7:0], R1[7:0], R2[7:0], R1[7:0]}),
+      .BW({16'd0, NN[7:0], TT[7:0], TT[7:0], F1[7:0], R1[7:0], R1[7:0]}),
+      .AMX(MA), .BMX(MB), .SIGNED(0)
+  ) u_mul (
+      .a_i(pa), .b_i(pb),
+      .sel_i({v_stage[0], v_stage[3], v_stage[4], v_stage[7], v_stage[6], v_stage[5]}), .p_o(pp));
+  wire unused_v_rest = &{1'b0, v_stage[9:8], v_stage[2:1]};
+  wire unused_pp = &{1'b0, pp};   // each op reads the low bits of its slot
+
   // ---------------------------------------------------------------------------- S1: denominator
-  wire [DB-1:0] den_d = ({{(DB-11){1'b0}}, s0_n_q} * {{(DB-F-1){1'b0}}, s0_d_q})
-                      + {{(DB-F-1){1'b0}}, s0_c_q};
+  wire [DB-1:0] den_d = pp[5*MP +: DB] + {{(DB-F-1){1'b0}}, s0_c_q};   // n·d + c < 2^(F+11)
   reg [DB-1:0] s1_den_q;
   reg [F:0]    s1_c_q;
   always @(posedge clk_i) begin
@@ -235,7 +274,7 @@ module sc_schlick_nr #(
   end
 
   // ---------------------------------------------------------------------------- S4/S5: first iteration
-  wire [R+T:0]   e0_p = s3_mt_q * s3_y0_q;               // < 2^(R+1+T)
+  wire [R+T:0]   e0_p = pp[4*MP +: R+T+1];              // mt·y0 < 2^(R+1+T)
   wire [R+1:0]   g0_d = TWO_R - {1'b0, e0_p[R+T:T]};     // 2 − e, e < 2
   wire unused_e0 = &{1'b0, e0_p[T-1:0]};
   reg  [R+1:0]   s4_g_q;
@@ -253,7 +292,7 @@ module sc_schlick_nr #(
     end
   end
 
-  wire [R+T+1:0] y1_p = s4_y0_q * s4_g_q;                // y1 = ⌊y0·g / 2^T⌋ <= 2^R + 1
+  wire [R+T+1:0] y1_p = pp[3*MP +: R+T+2];              // y0·g; y1 = ⌊y0·g / 2^T⌋ <= 2^R + 1
   wire unused_y1 = &{1'b0, y1_p[R+T+1], y1_p[T-1:0]};
   reg  [R:0]     s5_y1_q;
   reg  [R:0]     s5_mt_q;
@@ -269,7 +308,7 @@ module sc_schlick_nr #(
   end
 
   // ---------------------------------------------------------------------------- S6/S7: second iteration
-  wire [2*R+1:0] e1_p = s5_mt_q * s5_y1_q;               // < 2^(2R+2)
+  wire [2*R+1:0] e1_p = pp[0*MP +: 2*R+2];              // mt·y1 < 2^(2R+2)
   wire [R+1:0]   g1_d = TWO_R - e1_p[2*R+1:R];
   wire unused_e1 = &{1'b0, e1_p[R-1:0]};
   reg  [R+1:0]   s6_g_q;
@@ -285,7 +324,7 @@ module sc_schlick_nr #(
     end
   end
 
-  wire [2*R+2:0] y2_p = s6_y1_q * s6_g_q;                // y2 = ⌊y1·g / 2^R⌋ <= 2^R + 1
+  wire [2*R+2:0] y2_p = pp[1*MP +: 2*R+3];              // y1·g; y2 = ⌊y1·g / 2^R⌋ <= 2^R + 1
   wire unused_y2 = &{1'b0, y2_p[2*R+2:2*R+1], y2_p[R-1:0]};
   reg  [R:0]     s7_y2_q;
   reg  [3:0]     s7_s_q;
@@ -303,7 +342,7 @@ module sc_schlick_nr #(
   reg [3:0]    s8_s_q;
   always @(posedge clk_i) begin
     if (adv) begin
-      s8_p_q <= s7_c_q * s7_y2_q;
+      s8_p_q <= pp[2*MP +: PW];   // c·y2
       s8_s_q <= s7_s_q;
     end
   end
@@ -321,6 +360,20 @@ module sc_schlick_nr #(
       s9_out_q <= rnd[F+1:1];
     end
   end
+
+  // the pool's operands (declared before the registers they read)
+  assign s0_d_w   = s0_d_q;
+  assign s0_n_w   = s0_n_q;
+  assign s3_mt_w  = s3_mt_q;
+  assign s3_y0_w  = s3_y0_q;
+  assign s4_g_w   = s4_g_q;
+  assign s4_y0t_w = s4_y0_q;
+  assign s5_mt_w  = s5_mt_q;
+  assign s5_y1_w  = s5_y1_q;
+  assign s6_g_w   = s6_g_q;
+  assign s6_y1_w  = s6_y1_q;
+  assign s7_y2_w  = s7_y2_q;
+  assign s7_c_w   = s7_c_q;
 
   assign out_spec_o = s9_out_q;
   assign out_tag_o  = tag_q[TAGW*NS-1:TAGW*(NS-1)];

@@ -57,6 +57,7 @@ PROOF_DEPTH = 4
 # sc_pipe_ctrl on its own at every DEPTH a unit uses (cs16 7, forms 5, schlick_div F+4, schlick_nr 10,
 # table 3, norm 2) and 1
 CTRL_DEPTHS = (1, 2, 3, 5, 7, 10, 12, 20, 28)
+CTRL_GAPS = ((7, 2), (7, 4), (10, 4))
 
 
 def load_config():
@@ -178,6 +179,11 @@ def jobs():
     for d in CTRL_DEPTHS:
         out["pipe_ctrl.d%d" % d] = dict(top="sc_formal_ctrl", params={"DEPTH": d}, files=["sc_pipe_ctrl.v"],
                                          harness=CTRL_HARNESS, depth=PROOF_DEPTH, reach=d)
+    # GAP (the units shared at share 2..4: cs16 7 stages, schlick_nr 10)
+    for d, g in CTRL_GAPS:
+        out["pipe_ctrl.d%dg%d" % (d, g)] = dict(top="sc_formal_ctrl", params={"DEPTH": d, "GAP": g},
+                                                 files=["sc_pipe_ctrl.v"], harness=CTRL_HARNESS,
+                                                 depth=PROOF_DEPTH, reach=d)
     for c in cfg["configs"]:
         F, G = c["frac"], c["guard"]
         for v in cfg["variants"]:
@@ -217,7 +223,8 @@ def is_long(name):
 
 # Mutants run by ctest (formal/CMakeLists.txt): mutation -> job whose proof it must break.
 CTEST_MUTANTS = [("drop_transfer", "pipe_ctrl.d7"), ("spurious_after_reset", "pipe_ctrl.d7"),
-                 ("accept_in_reset", "pipe_ctrl.d7"), ("release_held", "unit.cs16.default"),
+                 ("accept_in_reset", "pipe_ctrl.d7"), ("gap_ignored", "pipe_ctrl.d7g4"),
+                 ("release_held", "unit.cs16.default"),
                  ("accept_in_reset", "unit.cs16.default"), ("material_without_we", "unit.cs16.default"),
                  ("material_new_at_write", "unit.cs16.default"), ("release_held", "unit.schlick_div.narrow"),
                  ("iter_accept_in_reset", "unit.schlick_iter.default"),
@@ -244,14 +251,16 @@ MUTANT_DEPTH = {"light_accept_in_reset": 4, "light_write_in_reset": 4, "light_ac
 # exactly once in the file, so a mutation cannot silently stop applying when the RTL changes.
 MUTATIONS = {
     # a fragment accepted while the output stage is empty and out_ready_i low is lost
-    "drop_transfer": ("sc_pipe_ctrl.v", "v_q <= {v_q[DEPTH-2:0], in_valid_i};",
-                      "v_q <= {v_q[DEPTH-2:0], in_valid_i && out_ready_i};", ["pc_count"]),
+    "drop_transfer": ("sc_pipe_ctrl.v", "v_q <= {v_q[DEPTH-2:0], in_valid_i && gap_ok};",
+                      "v_q <= {v_q[DEPTH-2:0], in_valid_i && gap_ok && out_ready_i};", ["pc_count"]),
     # the data registers load while the output is held (valid stays, data and tag change)
     "release_held": ("sc_pipe_ctrl.v", "assign en_o        = adv;",
                      "assign en_o        = adv || in_valid_i;", ["u_hold_data", "u_hold_tag"]),
     # in_ready_o no longer low during reset
-    "accept_in_reset": ("sc_pipe_ctrl.v", "assign in_ready_o  = rst_ni && adv;",
-                        "assign in_ready_o  = adv;", ["pc_ready_reset", "u_ready_reset"]),
+    "accept_in_reset": ("sc_pipe_ctrl.v", "assign in_ready_o  = rst_ni && adv && gap_ok;",
+                        "assign in_ready_o  = adv && gap_ok;", ["pc_ready_reset", "u_ready_reset"]),
+    # a fragment accepted while the one ahead is fewer than GAP stages in (the shared multipliers would mix them)
+    "gap_ignored": ("sc_pipe_ctrl.v", "assign gap_ok = ~|v_q[GAP-2:0];", "assign gap_ok = 1'b1;", ["pc_gap"]),
     # reset leaves a valid bit set: a valid output nothing was accepted for
     "spurious_after_reset": ("sc_pipe_ctrl.v", "v_q <= {DEPTH{1'b0}};",
                              "v_q <= {{(DEPTH-1){1'b0}}, 1'b1};", ["pc_count", "pc_no_spurious"]),

@@ -43,7 +43,7 @@ struct LightModel {
   const LightCore* core;
   LightRegs regs{};
   bool written = false;
-  int lat = 0, lat_min = 0;  // core->latency(regs), core->latency_min(regs)
+  int lat = 0, lat_min = 0;  // core->latency_max(regs), core->latency_min(regs)
   [[nodiscard]] bool ready() const { return written; }
   [[nodiscard]] int latency() const { return lat; }
   [[nodiscard]] int latency_min() const { return lat_min; }
@@ -56,7 +56,7 @@ class LightScoreboard : public ScoreboardT<LightModel> {
   void on_write(uint32_t addr, uint32_t data) {
     model_.regs.write(model_.core->widths(), addr, data);
     model_.written = true;
-    model_.lat = model_.core->latency(model_.regs);
+    model_.lat = model_.core->latency_max(model_.regs);
     model_.lat_min = model_.core->latency_min(model_.regs);
     ++material_writes_;
   }

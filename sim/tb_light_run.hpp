@@ -138,7 +138,7 @@ inline int light_run(const LightOptions& o, const FeatureSet& fs, const std::str
                 (unsigned long long)sb.material_writes_, (unsigned long long)sb.dropped_by_reset_,
                 (unsigned long long)hs.resets, (unsigned long long)hs.replayed,
                 (unsigned long long)(sb.checked_ ? sb.lat_min_ : 0), (unsigned long long)sb.lat_max_,
-                core.latency_min(), core.latency(), (unsigned long long)hs.cycles, wall, vps, harness.c_str());
+                core.latency_min(), core.latency_max(), (unsigned long long)hs.cycles, wall, vps, harness.c_str());
   if (sb.checked_ == 0) std::printf("cosim: FAIL: no fragment was checked\n");
   if (!ok) std::printf("cosim: reproduce with: %s\n", repro.c_str());
   if (mode == LightMode::Stream && !o.out_file.empty()) {
@@ -175,6 +175,7 @@ inline int light_run(const LightOptions& o, const FeatureSet& fs, const std::str
       {"register_writes", sb.material_writes_},
       {"latency_spec", core.latency()},
       {"latency_spec_min", core.latency_min()},
+      {"latency_spec_max", core.latency_max()},   // under backpressure (latency_spec + gap slack)
       {"latency_min", sb.checked_ ? sb.lat_min_ : 0},
       {"latency_max", sb.lat_max_},
       {"cycles", hs.cycles},

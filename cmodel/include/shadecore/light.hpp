@@ -224,6 +224,13 @@ class LightCore {
   [[nodiscard]] int latency_min(const LightRegs& r) const;
   [[nodiscard]] int latency() const;
   [[nodiscard]] int latency_min() const;
+  // The most advancing edges under backpressure: latency plus gap_slack. At share > 1 the cs16 (reference
+  // form) and schlick_nr units share their multipliers over share stages and take a pass only share stages
+  // behind the one ahead (rtl/sc_pipe_ctrl.v GAP); a pass that a stall has bunched closer waits at the
+  // unit's input, at most share − 1 edges (docs/lighting.md §2.1; the co-simulation saw at most 1).
+  [[nodiscard]] int gap_slack(int unit_index) const;
+  [[nodiscard]] int latency_max(const LightRegs& r) const;
+  [[nodiscard]] int latency_max() const;
   // Clocks between two passes (share, schlick_iter: F+4 rounded up to a multiple of share) and the latency of one pass.
   [[nodiscard]] int pass_interval() const;
   [[nodiscard]] int pass_latency(int unit_index) const;
@@ -405,6 +412,17 @@ inline int LightCore::latency() const {
   for (size_t u = 0; u < units_.size(); ++u) worst = std::max(worst, pass_latency(static_cast<int>(u)));
   const int max_passes = (fs_.num_lights() + fs_.lanes - 1) / fs_.lanes;
   return worst + (max_passes - 1) * pass_interval();
+}
+inline int LightCore::gap_slack(int unit_index) const {
+  if (!fs_.specular || fs_.share <= 1) return 0;
+  const VariantId v = units_[static_cast<size_t>(unit_index < 0 ? 0 : unit_index)].variant();
+  return v == VariantId::cs16 || v == VariantId::schlick_nr ? fs_.share - 1 : 0;
+}
+inline int LightCore::latency_max(const LightRegs& r) const { return latency(r) + gap_slack(modes(r).unit); }
+inline int LightCore::latency_max() const {
+  int slack = 0;
+  for (size_t u = 0; u < units_.size(); ++u) slack = std::max(slack, gap_slack(static_cast<int>(u)));
+  return latency() + slack;
 }
 inline int LightCore::latency_min() const {
   if (fs_.specular) return detail::light_pipe(fs_).back + 1;
