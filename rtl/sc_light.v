@@ -89,7 +89,7 @@
 //               T_A  = max(T_NN, T_L)                      N̂·L → diff, f at T_A+1
 //               T_H  = the first t >= max(T_L, T_V) with t ≡ K_H (mod S);  T_RV = max(T_A+2, T_V)
 //               T_XB = T_H+NL+1 (BLINN), T_XP = LV ? T_RV+1 : T_A+2 (PHONG)      unit input x
-//               T_ATT = T_L+3+RL                           att (point_att)
+//               T_ATT = T_L+3+RL (+1 with SHARE > 1)       att (point_att)
 //               T_F  = max(1, NEED_N ? T_A+1 : 0, UNITS ? max(T_XB, T_XP) : 0, ANY_ATT ? T_ATT : 0)
 //               (with S = 1 every op enters at stage 0: T_V = T_L = NL, T_H = max(T_L, T_V))
 //               NB   = 3 + ANY_ATT
@@ -251,7 +251,9 @@ module sc_light #(
   localparam integer T_XB  = T_H + NL + 1;                                // x, Blinn
   localparam integer T_XP  = (LV != 0) ? T_RV + 1 : T_A + 2;              // x, Phong
   localparam integer T_X   = sc_max((HAS_B != 0) ? T_XB : 0, (HAS_P != 0) ? T_XP : 0);
-  localparam integer T_ATT = T_L + 3 + RL;                                // att (point_att; T_L = NL with SHARE 1)
+  // att (point_att; T_L = NL with SHARE 1); with SHARE > 1 q takes one stage more, its three products at
+  // three stages sharing one multiplier (rtl/sc_light_lane.v)
+  localparam integer T_ATT = T_L + 3 + RL + ((SH > 1) ? 1 : 0);
   localparam integer T_F   = sc_max(sc_max(1, (NEED_N != 0) ? T_A + 1 : 0),
                                   sc_max((SPECULAR != 0) ? T_X : 0, (ANY_ATT != 0) ? T_ATT : 0));
   localparam integer NB    = (ANY_ATT != 0) ? 4 : 3;                      // back pipeline stages

@@ -276,9 +276,7 @@ module sc_light_lane #(
       wire [2:0] idx_a1 = idx_s[3*(T_L+1) +: 3];
       wire [2:0] idx_a2 = idx_s[3*(T_L+2) +: 3];
       wire [2:0] idx_t  = idx_s[3*T_ATT +: 3];
-      wire [PW-1:0] kl = katt_i[(3*idx_a1 + 1)*PW +: PW];
-      wire [PW-1:0] kc = katt_i[(3*idx_a2 + 0)*PW +: PW];
-      wire [PW-1:0] kq = katt_i[(3*idx_a2 + 2)*PW +: PW];
+      localparam integer DDW = 2 * DW - F;
       // A1 (T_L+1): dl = ⌊(P_j − P)·L̂ / 2^VF⌋, d = max(dl, 0)
       for (gi = 0; gi < 3; gi = gi + 1) begin : g_op_a1
         wire [PW:0] b = dv_d[gi*(PW+1) +: PW+1];
@@ -292,33 +290,76 @@ module sc_light_lane #(
       always @(posedge clk_i) begin
         if (en_i) a1_d_q <= d_d;
       end
-      // A2: dd = ⌊d² / 2^F⌋, kld = ⌊kl·d / 2^F⌋
-      wire [2*DW-1:0]    dd_p  = {{DW{1'b0}}, a1_d_q} * {{DW{1'b0}}, a1_d_q};
-      wire [PW+DW-1:0]   kld_p = {{DW{1'b0}}, kl} * {{PW{1'b0}}, a1_d_q};
-      wire unused_a2 = &{1'b0, dd_p[F-1:0], kld_p[F-1:0]};
-      reg [2*DW-F-1:0]   a2_dd_q;
-      reg [PW+DW-F-1:0]  a2_kld_q;
+      wire [QW-1:0] q_d;
+      reg  [QW-1:0] q_q;   // q at T_L+3 (SH = 1) or T_L+4 (SH > 1)
       always @(posedge clk_i) begin
-        if (en_i) begin
-          a2_dd_q  <= dd_p[2*DW-1:F];
-          a2_kld_q <= kld_p[PW+DW-1:F];
-        end
+        if (en_i) q_q <= q_d;
       end
-      // A3: q = kc + kld + ⌊kq·dd / 2^F⌋
-      localparam integer DDW = 2 * DW - F;
-      wire [PW+DDW-1:0] kqdd_p = {{DDW{1'b0}}, kq} * {{PW{1'b0}}, a2_dd_q};
-      wire unused_a3 = &{1'b0, kqdd_p[F-1:0]};
-      wire [QW-1:0] q_d = {{(QW-PW){1'b0}}, kc} + {{(QW-(PW+DW-F)){1'b0}}, a2_kld_q}
-                        + {{(QW-(PW+DDW-F)){1'b0}}, kqdd_p[PW+DDW-1:F]};
-      reg [QW-1:0] a3_q_q;
-      always @(posedge clk_i) begin
-        if (en_i) a3_q_q <= q_d;
+      if (SH == 1) begin : g_q3
+        // A2: dd = ⌊d² / 2^F⌋, kld = ⌊kl·d / 2^F⌋; A3: q = kc + kld + ⌊kq·dd / 2^F⌋
+        wire [PW-1:0] kl = katt_i[(3*idx_a1 + 1)*PW +: PW];
+        wire [PW-1:0] kc = katt_i[(3*idx_a2 + 0)*PW +: PW];
+        wire [PW-1:0] kq = katt_i[(3*idx_a2 + 2)*PW +: PW];
+        wire [2*DW-1:0]    dd_p  = {{DW{1'b0}}, a1_d_q} * {{DW{1'b0}}, a1_d_q};
+        wire [PW+DW-1:0]   kld_p = {{DW{1'b0}}, kl} * {{PW{1'b0}}, a1_d_q};
+        wire unused_a2 = &{1'b0, dd_p[F-1:0], kld_p[F-1:0]};
+        reg [DDW-1:0]      a2_dd_q;
+        reg [PW+DW-F-1:0]  a2_kld_q;
+        always @(posedge clk_i) begin
+          if (en_i) begin
+            a2_dd_q  <= dd_p[2*DW-1:F];
+            a2_kld_q <= kld_p[PW+DW-1:F];
+          end
+        end
+        wire [PW+DDW-1:0] kqdd_p = {{DDW{1'b0}}, kq} * {{PW{1'b0}}, a2_dd_q};
+        wire unused_a3 = &{1'b0, kqdd_p[F-1:0]};
+        assign q_d = {{(QW-PW){1'b0}}, kc} + {{(QW-(PW+DW-F)){1'b0}}, a2_kld_q}
+                   + {{(QW-(PW+DDW-F)){1'b0}}, kqdd_p[PW+DDW-1:F]};
+      end else begin : g_q4
+        // A2 (T_L+1): dd = ⌊d² / 2^F⌋; A3 (T_L+2): ⌊kq·dd / 2^F⌋; A4 (T_L+3): q = kc + ⌊kl·d / 2^F⌋ + that:
+        // the same q one stage later, its three products at three stages in one rtl/sc_mul_pool.v instance
+        wire [2:0] idx_a3 = idx_s[3*(T_L+3) +: 3];
+        wire [PW-1:0] kq = katt_i[(3*idx_a2 + 2)*PW +: PW];
+        wire [PW-1:0] kl = katt_i[(3*idx_a3 + 1)*PW +: PW];
+        wire [PW-1:0] kc = katt_i[(3*idx_a3 + 0)*PW +: PW];
+        wire unused_idx_a1 = &{1'b0, idx_a1};
+        reg  [DDW-1:0]       a2_dd_q;
+        reg  [DW-1:0]        a2_d_q, a3_d_q;
+        reg  [PW+DDW-F-1:0]  a3_kqdd_q;
+        localparam integer AM = DDW, BM = DW, MP = AM + BM;
+        localparam integer ST1 = T_L + 1, ST2 = T_L + 2, ST3 = T_L + 3;
+        wire [3*MP-1:0] ap;   // op 0 d·d (T_L+1), 1 dd·kq (T_L+2), 2 d·kl (T_L+3)
+        localparam integer RS1 = ST1 % SH, RS2 = ST2 % SH, RS3 = ST3 % SH;
+        wire [2:0] asel = {ph_i == RS3[1:0], ph_i == RS2[1:0], ph_i == RS1[1:0]};
+        sc_mul_pool #(
+            .NOP(3), .SH(SH), .ON(7), .ST({40'd0, ST3[7:0], ST2[7:0], ST1[7:0]}),
+            .AW({40'd0, DW[7:0], DDW[7:0], DW[7:0]}), .BW({40'd0, PW[7:0], PW[7:0], DW[7:0]}),
+            .AMX(AM), .BMX(BM), .SIGNED(0)
+        ) u_mul_att (
+            .a_i({{(AM-DW){1'b0}}, a3_d_q, a2_dd_q, {(AM-DW){1'b0}}, a1_d_q}),
+            .b_i({{(BM-PW){1'b0}}, kl, {(BM-PW){1'b0}}, kq, a1_d_q}),
+            .sel_i(asel), .p_o(ap));
+        wire [2*DW-1:0]   dd_p   = ap[0*MP +: 2*DW];
+        wire [PW+DDW-1:0] kqdd_p = ap[1*MP +: PW+DDW];
+        wire [PW+DW-1:0]  kld_p  = ap[2*MP +: PW+DW];
+        wire unused_ap = &{1'b0, ap, dd_p[F-1:0], kqdd_p[F-1:0], kld_p[F-1:0]};
+        always @(posedge clk_i) begin
+          if (en_i) begin
+            a2_dd_q   <= dd_p[2*DW-1:F];
+            a2_d_q    <= a1_d_q;
+            a3_kqdd_q <= kqdd_p[PW+DDW-1:F];
+            a3_d_q    <= a2_d_q;
+          end
+        end
+        assign q_d = {{(QW-PW){1'b0}}, kc} + {{(QW-(PW+DW-F)){1'b0}}, kld_p[PW+DW-1:F]}
+                   + {{(QW-(PW+DDW-F)){1'b0}}, a3_kqdd_q};
       end
       // att = 1/q at T_ATT for point_att, 2^F for the other kinds; then to T_F
       wire [FRAC+7:0] att_r;
-      // q at T_L+3: the recip's products share multipliers over SH stages by the phase (rtl/sc_recip.v)
-      sc_recip #(.FRAC(FRAC), .QW(QW), .SH(SH), .PH0((T_L + 3) % SH)) u_recip (
-          .clk_i(clk_i), .en_i(en_i), .q_i(a3_q_q), .ph_i(ph_i), .att_o(att_r));
+      // q at T_L+3 (+1 with SH > 1): the recip's products share multipliers over SH stages by the phase
+      // (rtl/sc_recip.v)
+      sc_recip #(.FRAC(FRAC), .QW(QW), .SH(SH), .PH0((T_L + 3 + ((SH > 1) ? 1 : 0)) % SH)) u_recip (
+          .clk_i(clk_i), .en_i(en_i), .q_i(q_q), .ph_i(ph_i), .att_o(att_r));
       wire [1:0] kind_t = kind_i[2*idx_t +: 2];
       wire [FRAC+7:0] att_k = (kind_t == KIND_POINT_ATT[1:0]) ? att_r : ATT_ONE;
       sc_delay #(.W(FRAC+8), .DEPTH(T_F - T_ATT)) u_dly_att (

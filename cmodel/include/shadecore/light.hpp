@@ -366,7 +366,9 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   int t_x = 0;                                                        // the unit input x
   if (fs.blinn) t_x = std::max(t_x, t_h + NL + 1);
   if (fs.phong) t_x = std::max(t_x, lv ? t_rv + 1 : t_a + 2);
-  const int t_att = t_l + 3 + RL;                                     // att (distance, q, 1/q; t_l = NL at share 1)
+  // att (distance, q, 1/q; t_l = NL at share 1); at share > 1 q takes a stage more (its three products at
+  // three stages, one shared multiplier)
+  const int t_att = t_l + 3 + RL + (S > 1 ? 1 : 0);
   int t_f = 1;
   if (need_n) t_f = std::max(t_f, t_a + 1);
   if (fs.specular) t_f = std::max(t_f, t_x);
