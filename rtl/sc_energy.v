@@ -121,7 +121,19 @@ module sc_energy #(
   endgenerate
 
   // ---------------------------------------------------------------------------- N1: exact product
-  wire [PW-1:0] p_d = {{COEFW{1'b0}}, in_spec_i} * {{(F+1){1'b0}}, coef};
+  // coef split at 17 bits (spec·coef = spec·c_lo + spec·c_hi·2^17, exact): each part fits one DSP48E1
+  // tile (25 × 18) for F <= 23, where a tool splitting the wider operand (Yosys 0.23) spends four
+  localparam integer CL = 17;
+  wire [PW-1:0] p_d;
+  generate
+    if (COEFW > CL) begin : g_split
+      wire [F+CL:0]       plo = {{CL{1'b0}}, in_spec_i} * {{(F+1){1'b0}}, coef[CL-1:0]};
+      wire [F+COEFW-CL:0] phi = {{(COEFW-CL){1'b0}}, in_spec_i} * {{(F+1){1'b0}}, coef[COEFW-1:CL]};
+      assign p_d = {{(COEFW-CL){1'b0}}, plo} + {phi, {CL{1'b0}}};
+    end else begin : g_whole
+      assign p_d = {{COEFW{1'b0}}, in_spec_i} * {{(F+1){1'b0}}, coef};
+    end
+  endgenerate
 
   reg [PW-1:0]   n1_p_q;
   reg [TAGW-1:0] n1_tag_q;

@@ -301,9 +301,22 @@ module sc_normalize #(
       // natural widths (y2 < 2^(R+1), made signed by a zero bit), sign-extended or cut to PW bits
       // — the same PW low bits as the product of the PW-bit extensions, without the PW × PW
       // multiplier that a product of extended operands asks a synthesis tool for
+      // y2 is split at 17 bits (v·y2 = v·y_lo + v·y_hi·2^17, exact): each part is a signed VW × 18-bit
+      // product, one DSP48E1 tile (25 × 18) for VW <= 25, where a tool splitting the wider operand
+      // (Yosys 0.23) spends four on VW × (R+2) (docs/lighting.md §8.1)
+      localparam integer YL = 17;
       wire signed [VW-1:0]   vc = v8[c*VW +: VW];
-      wire signed [R+1:0]    yc = {1'b0, s8_y_q};
-      wire signed [VW+R+1:0] pn = vc * yc;
+      wire signed [VW+R+1:0] pn;
+      if (R + 1 > YL) begin : g_split
+        wire signed [YL:0]        ylo = {1'b0, s8_y_q[YL-1:0]};
+        wire signed [R+1-YL:0]    yhi = {1'b0, s8_y_q[R:YL]};
+        wire signed [VW+YL:0]     plo = vc * ylo;
+        wire signed [VW+R+1-YL:0] phi = vc * yhi;
+        assign pn = {{(R+1-YL){plo[VW+YL]}}, plo} + {phi, {YL{1'b0}}};
+      end else begin : g_whole
+        wire signed [R+1:0] yc = {1'b0, s8_y_q};
+        assign pn = vc * yc;
+      end
       wire [PW-1:0] p_d;
       if (PW > VW + R + 2) begin : g_ext
         assign p_d = {{(PW-VW-R-2){pn[VW+R+1]}}, pn};
