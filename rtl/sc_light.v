@@ -185,6 +185,26 @@ module sc_light #(
       end
     end
   endfunction
+  // passes a unit (with its sc_energy) can hold: cs16 and schlick_nr at SHARE > 1 keep them SHARE stages apart
+  // (rtl/sc_pipe_ctrl.v GAP); the others, and sc_energy, one per stage
+  function integer unit_in_flight(input integer v);
+    integer l;
+    begin
+      l = ((v == VARIANT_CS16) ? 7 : (cs16_sq_param(v, 0) == 1) ? 5 : (v == VARIANT_SCHLICK_NR) ? 10 :
+           (v == VARIANT_SCHLICK_DIV || v == VARIANT_SCHLICK_ITER) ? FRAC + SGUARD + 4 : 0);
+      if (SH > 1 && (v == VARIANT_CS16 || v == VARIANT_SCHLICK_NR)) l = (l + SH - 1) / SH;
+      unit_in_flight = l + ((ENERGY != 0) ? 2 : 0);
+    end
+  endfunction
+  function integer max_in_flight(input integer dummy);
+    integer v;
+    begin
+      max_in_flight = dummy;
+      for (v = 0; v < 8; v = v + 1) begin
+        if (((UNITS >> v) & 1) != 0) max_in_flight = sc_max(max_in_flight, unit_in_flight(v));
+      end
+    end
+  endfunction
   // number of set bits of the low 8 bits of m
   function integer popcount8(input integer m);
     integer b;
@@ -721,6 +741,7 @@ module sc_light #(
         // change while one is in flight), its handshake and results are the lane's
         wire [8*UTW-1:0] ut_out_all;
         wire [8*UOW-1:0] spec_all;
+        wire [UTW-1:0]   ut_u_in, ut_u_out;   // the tag the units (and sc_energy) carry and hand out
         wire             n_in_ready;   // SNORM: the shared sc_energy takes the selected unit's result
         for (u = 0; u < 8; u = u + 1) begin : g_u
           if (((UNITS >> u) & 1) != 0) begin : g_on
@@ -746,7 +767,7 @@ module sc_light #(
                 .in_valid_i (vf_last && unit_sel[u]),
                 .in_ready_o (u_in_ready_all[8*j + u]),
                 .in_cos_i   (x_f),
-                .in_tag_i   (ut_in),
+                .in_tag_i   (ut_u_in),
                 .out_valid_o(u_out_valid_all[8*j + u]),
                 .out_ready_i((SNORM != 0) ? n_in_ready : u_out_ready),
                 .out_spec_o (spec_all[u*UOW +: UOW]),
@@ -780,13 +801,46 @@ module sc_light #(
               .in_valid_i(sel_valid), .in_ready_o(n_in_ready), .in_spec_i(spec_sel),
               .in_coef_i({(VF+8){1'b0}}), .in_tag_i(ut_sel),
               .out_valid_o(lane_out_valid[j]), .out_ready_i(u_out_ready), .out_norm_o(spec_b),
-              .out_tag_o(ut_b));
+              .out_tag_o(ut_u_out));
         end else begin : g_unorm
           assign n_in_ready = 1'b0;
           assign lane_out_valid[j] = sel_valid;
-          assign ut_b   = ut_sel;
+          assign ut_u_out = ut_sel;
           assign spec_b = spec_sel;
           wire unused_n_in_ready = &{1'b0, n_in_ready};
+        end
+        if (SH > 1) begin : g_sbq
+          // SHARE > 1: the sideband waits in a queue beside the units instead of travelling through their
+          // stages (passes there are SHARE apart: a few entries instead of a tag register per stage of every
+          // unit); pushed when the selected unit takes a pass, popped when the back takes its result, in
+          // order. The units' own tag lines carry zeros (synthesis removes them). Cleared by reset, which
+          // also drops every pass in the units.
+          localparam integer QD  = max_in_flight(0);
+          localparam integer QAW = sc_bits(QD);
+          localparam integer QL = QD - 1;
+          wire [QAW-1:0] q_last = QL[QAW-1:0];
+          reg [UTW-1:0] q_mem [0:QD-1];
+          reg [QAW-1:0] q_wr, q_rd;
+          wire q_push = vf_last && |(u_in_ready_all[8*j +: 8] & unit_sel);
+          wire q_pop  = lane_out_valid[j] && u_out_ready;
+          always @(posedge clk_i) begin
+            if (!rst_ni) begin
+              q_wr <= {QAW{1'b0}};
+              q_rd <= {QAW{1'b0}};
+            end else begin
+              if (q_push) q_wr <= (q_wr == q_last) ? {QAW{1'b0}} : q_wr + 1'b1;
+              if (q_pop)  q_rd <= (q_rd == q_last) ? {QAW{1'b0}} : q_rd + 1'b1;
+            end
+          end
+          always @(posedge clk_i) begin
+            if (q_push) q_mem[q_wr] <= ut_in;
+          end
+          assign ut_u_in = {UTW{1'b0}};
+          assign ut_b    = q_mem[q_rd];
+          wire unused_u_out = &{1'b0, ut_u_out};
+        end else begin : g_sbt
+          assign ut_u_in = ut_in;
+          assign ut_b    = ut_u_out;
         end
       end else begin : g_no_units
         assign ut_b   = ut_in;
