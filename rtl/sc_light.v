@@ -739,9 +739,11 @@ module sc_light #(
       if (SPECULAR != 0) begin : g_units
         // one sc_specular per unit of UNITS; only the selected one gets passes (mat_unit cannot
         // change while one is in flight), its handshake and results are the lane's
-        wire [8*UTW-1:0] ut_out_all;
+        // the units' tag: the sideband (UTW bits) at SHARE 1, one constant bit beside the queue at SHARE > 1
+        localparam integer UTAG = (SH > 1) ? 1 : UTW;
+        wire [8*UTAG-1:0] ut_out_all;
         wire [8*UOW-1:0] spec_all;
-        wire [UTW-1:0]   ut_u_in, ut_u_out;   // the tag the units (and sc_energy) carry and hand out
+        wire [UTAG-1:0]  ut_u_in, ut_u_out;   // the tag the units (and sc_energy) carry and hand out
         wire             n_in_ready;   // SNORM: the shared sc_energy takes the selected unit's result
         for (u = 0; u < 8; u = u + 1) begin : g_u
           if (((UNITS >> u) & 1) != 0) begin : g_on
@@ -750,7 +752,7 @@ module sc_light #(
                 .FRAC   (VF),
                 .GUARD  (GUARD),
                 .CUTOFF (CUTOFF),
-                .TAGW   (UTW),
+                .TAGW   (UTAG),
                 .ENERGY ((SNORM != 0) ? 0 : ENERGY),
                 .SHARE  (SH)
             ) u_unit (
@@ -771,31 +773,31 @@ module sc_light #(
                 .out_valid_o(u_out_valid_all[8*j + u]),
                 .out_ready_i((SNORM != 0) ? n_in_ready : u_out_ready),
                 .out_spec_o (spec_all[u*UOW +: UOW]),
-                .out_tag_o  (ut_out_all[u*UTW +: UTW])
+                .out_tag_o  (ut_out_all[u*UTAG +: UTAG])
             );
           end else begin : g_off
             assign u_in_ready_all[8*j + u]  = 1'b0;
             assign u_out_valid_all[8*j + u] = 1'b0;
             assign spec_all[u*UOW +: UOW]   = {UOW{1'b0}};
-            assign ut_out_all[u*UTW +: UTW] = {UTW{1'b0}};
+            assign ut_out_all[u*UTAG +: UTAG] = {UTAG{1'b0}};
           end
         end
         // the selected unit's outputs (AND-OR over the one-hot selection)
-        reg [UTW-1:0] ut_sel;
+        reg [UTAG-1:0] ut_sel;
         reg [UOW-1:0] spec_sel;
         integer v;
         always @* begin
-          ut_sel = {UTW{1'b0}};
+          ut_sel = {UTAG{1'b0}};
           spec_sel = {UOW{1'b0}};
           for (v = 0; v < 8; v = v + 1) begin
-            ut_sel   = ut_sel | (ut_out_all[v*UTW +: UTW] & {UTW{unit_sel[v]}});
+            ut_sel   = ut_sel | (ut_out_all[v*UTAG +: UTAG] & {UTAG{unit_sel[v]}});
             spec_sel = spec_sel | (spec_all[v*UOW +: UOW] & {UOW{unit_sel[v]}});
           end
         end
         wire sel_valid = |(u_out_valid_all[8*j +: 8] & unit_sel);
         if (SNORM != 0) begin : g_snorm
           sc_energy #(
-              .FRAC(VF), .COEFW(VF + 8), .COEF_SRC(0), .TAGW(UTW)
+              .FRAC(VF), .COEFW(VF + 8), .COEF_SRC(0), .TAGW(UTAG)
           ) u_norm (
               .clk_i(clk_i), .rst_ni(rst_ni), .mat_we_i(mat_we_u), .mat_coef_i(mat_coef_u),
               .in_valid_i(sel_valid), .in_ready_o(n_in_ready), .in_spec_i(spec_sel),
@@ -835,7 +837,7 @@ module sc_light #(
           always @(posedge clk_i) begin
             if (q_push) q_mem[q_wr] <= ut_in;
           end
-          assign ut_u_in = {UTW{1'b0}};
+          assign ut_u_in = 1'b0;
           assign ut_b    = q_mem[q_rd];
           wire unused_u_out = &{1'b0, ut_u_out};
         end else begin : g_sbt
