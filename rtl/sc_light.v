@@ -188,12 +188,12 @@ module sc_light #(
   // passes a unit (with its sc_energy) can hold: cs16 and schlick_nr at SHARE > 1 keep them SHARE stages apart
   // (rtl/sc_pipe_ctrl.v GAP); the others, and sc_energy, one per stage
   function integer unit_in_flight(input integer v);
-    integer l;
+    integer e, l;
     begin
-      l = ((v == VARIANT_CS16) ? 7 : (cs16_sq_param(v, 0) == 1) ? 5 : (v == VARIANT_SCHLICK_NR) ? 10 :
-           (v == VARIANT_SCHLICK_DIV || v == VARIANT_SCHLICK_ITER) ? FRAC + SGUARD + 4 : 0);
+      e = (ENERGY != 0) ? 2 : 0;
+      l = unit_latency(v) - e;   // the unit's own stages
       if (SH > 1 && (v == VARIANT_CS16 || v == VARIANT_SCHLICK_NR)) l = (l + SH - 1) / SH;
-      unit_in_flight = l + ((ENERGY != 0) ? 2 : 0);
+      unit_in_flight = l + e;
     end
   endfunction
   function integer max_in_flight(input integer dummy);
