@@ -208,7 +208,7 @@ std::string register_table(const FeatureSet& fs) {
     return std::string(f);
   };
   // Which registers this feature set reads (the others exist in the map but are ignored here).
-  const bool any_att = fs.any_kind(LightKind::PointAtt);
+  const bool any_att = fs.any_att();
   auto used = [&](std::string_view name) -> std::string {
     if (name == "light_model") return "yes (local viewer, reflection, normalize where they exist)";
     if (name == "mat_unit") return fs.specular ? "yes" : "no";
@@ -283,7 +283,7 @@ std::string unit_contract(const FeatureSet& fs) {
 
 // The bounds of the operators this feature set instantiates (docs/lighting.md §3).
 std::string operator_contract(const FeatureSet& fs) {
-  const bool any_att = fs.any_kind(LightKind::PointAtt), any_point = fs.any_kind(LightKind::Point);
+  const bool any_att = fs.any_att(), any_point = fs.any_kind(LightKind::Point);
   const bool need_n = fs.diffuse || fs.specular;
   std::vector<std::string> v;
   if (need_n && fs.normalize) v.push_back("N̂");

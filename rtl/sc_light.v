@@ -25,6 +25,8 @@
 //   LIGHTS        light slots, 1..8 (MAX_LIGHTS of sc_light_regs.vh)                    (default 1)
 //   SLOT_KINDS    3 bits per slot, slot j at [3j+2:3j]: bit k = the slot can take kind k
 //                 (KIND_* of sc_light_regs.vh: 0 directional, 1 point, 2 point_att)   (default 1)
+//   SLOT_SPOT     bit j = slot j can be spot (KIND_SPOT = 3: point_att times GL's spot factor,
+//                 the spot registers and the lane's spot path exist)                   (default 0)
 //   LANES         per-light datapaths, 1..LIGHTS: k enabled lights take ⌈k/LANES⌉ passes (default 1)
 //   SHARE         clocks per pass, 1..4 (feature-set key share): passes issue only every SHARE-th
 //                 front-advancing edge (a phase counter), and the vector normalisations of a pass
@@ -79,7 +81,8 @@
 //
 // Latency   : per pass LATENCY_P advancing edges from its issue to the colour (out_ready_i high):
 //               NL = 10 (sc_normalize), RL = 7 (sc_recip), NEED_N = DIFFUSE | UNITS,
-//               LV = UNITS & LOCAL_VIEWER, ANY_ATT = some slot can be point_att,
+//               LV = UNITS & LOCAL_VIEWER, ANY_ATT = some slot can be point_att or spot,
+//               ANY_SPOT = some slot can be spot,
 //               ANY_PL = ANY_ATT | (NEED_N & some slot can be point)
 //               the normalisations N (NEED_N & NORMALIZE), V (LV), L (ANY_PL), H (UNITS & BLINN) that
 //               exist are numbered k = 0, 1, ... in that order: K_V, K_L, K_H; S = SHARE
@@ -90,7 +93,9 @@
 //               T_H  = the first t >= max(T_L, T_V) with t ≡ K_H (mod S);  T_RV = max(T_A+2, T_V)
 //               T_XB = T_H+NL+1 (BLINN), T_XP = LV ? T_RV+1 : T_A+2 (PHONG)      unit input x
 //               T_ATT = T_L+3+RL (+1 with SHARE > 1)       att (point_att)
-//               T_F  = max(1, NEED_N ? T_A+1 : 0, UNITS ? max(T_XB, T_XP) : 0, ANY_ATT ? T_ATT : 0)
+//               T_SP = T_L+2+8                             the spot factor (sc_powi, 8 exponent bits)
+//               T_F  = max(1, NEED_N ? T_A+1 : 0, UNITS ? max(T_XB, T_XP) : 0, ANY_ATT ? T_ATT : 0,
+//                          ANY_SPOT ? max(T_ATT, T_SP)+1 : 0)
 //               (with S = 1 every op enters at stage 0: T_V = T_L = NL, T_H = max(T_L, T_V))
 //               NB   = 3 + ANY_ATT
 //               LATENCY_P = T_F + (UNITS ? L_unit : 0) + NB, L_unit = the material's unit's
@@ -116,6 +121,7 @@ module sc_light #(
     parameter integer SGUARD       = 0,
     parameter integer LIGHTS       = 1,
     parameter integer SLOT_KINDS   = 1,
+    parameter integer SLOT_SPOT    = 0,
     parameter integer LANES        = 1,
     parameter integer SHARE        = 1,
     parameter integer AMBIENT      = 1,
@@ -240,8 +246,9 @@ module sc_light #(
   localparam integer SPECULAR = (UNITS != 0) ? 1 : 0;
   localparam integer KINDS   = all_kinds(NLT);
   localparam integer CAN_DIR = KINDS & 1;
-  localparam integer CAN_PT  = ((KINDS >> 1) & 3) != 0 ? 1 : 0;
-  localparam integer ANY_ATT = (KINDS >> 2) & 1;
+  localparam integer ANY_SPOT = ((SLOT_SPOT & ((1 << NLT) - 1)) != 0) ? 1 : 0;
+  localparam integer CAN_PT  = (((KINDS >> 1) & 3) != 0 || ANY_SPOT != 0) ? 1 : 0;   // point, point_att or spot
+  localparam integer ANY_ATT = (((KINDS >> 2) & 1) != 0 || ANY_SPOT != 0) ? 1 : 0;   // point_att or spot
 
   localparam integer NEED_N  = (DIFFUSE != 0 || SPECULAR != 0) ? 1 : 0;   // N̂·L is needed
   localparam integer LV      = (SPECULAR != 0 && LOCAL_VIEWER != 0) ? 1 : 0;
@@ -274,8 +281,11 @@ module sc_light #(
   // att (point_att; T_L = NL with SHARE 1); with SHARE > 1 q takes one stage more, its three products at
   // three stages sharing one multiplier (rtl/sc_light_lane.v)
   localparam integer T_ATT = T_L + 3 + RL + ((SH > 1) ? 1 : 0);
-  localparam integer T_F   = sc_max(sc_max(1, (NEED_N != 0) ? T_A + 1 : 0),
-                                  sc_max((SPECULAR != 0) ? T_X : 0, (ANY_ATT != 0) ? T_ATT : 0));
+  localparam integer SPEB  = 8;                                            // spot exponent bits (sc_powi stages)
+  localparam integer T_SP  = T_L + 2 + SPEB;                               // the spot factor
+  localparam integer T_F   = sc_max(sc_max(sc_max(1, (NEED_N != 0) ? T_A + 1 : 0),
+                                  sc_max((SPECULAR != 0) ? T_X : 0, (ANY_ATT != 0) ? T_ATT : 0)),
+                                  (ANY_SPOT != 0) ? sc_max(T_ATT, T_SP) + 1 : 0);
   localparam integer NB    = (ANY_ATT != 0) ? 4 : 3;                      // back pipeline stages
   // channel-serial back (SHARE >= 4, RGB, units): a pass enters the back as three items, channels 0, 1, 2 on
   // consecutive back-advancing edges, through one set of colour multipliers (rtl/sc_light_shade.v CSER):
@@ -329,12 +339,15 @@ module sc_light #(
       sc_light_error_illegal_SHARE_above_1_needs_LANES_1 u_error ();
     end
     for (j = 0; j < NLT; j = j + 1) begin : g_check_kind
-      if (((SLOT_KINDS >> (3 * j)) & 7) == 0) begin : g_bad
+      if (((SLOT_KINDS >> (3 * j)) & 7) == 0 && ((SLOT_SPOT >> j) & 1) == 0) begin : g_bad
         sc_light_error_illegal_SLOT_KINDS_each_slot_needs_a_kind u_error ();
       end
     end
     if (SLOT_KINDS < 0 || (SLOT_KINDS >> (3 * NLT)) != 0) begin : g_check_kinds_range
       sc_light_error_illegal_SLOT_KINDS_bits_beyond_LIGHTS_slots u_error ();
+    end
+    if (SLOT_SPOT < 0 || (SLOT_SPOT >> NLT) != 0) begin : g_check_spot_range
+      sc_light_error_illegal_SLOT_SPOT_bits_beyond_LIGHTS_slots u_error ();
     end
     if (CHANNELS != 1 && CHANNELS != 3) begin : g_check_channels
       sc_light_error_illegal_CHANNELS_must_be_1_or_3 u_error ();
@@ -394,6 +407,9 @@ module sc_light #(
   wire                   wr;
   wire [NLT*3*PW-1:0]    pos_all, katt_all;
   wire [NLT*2-1:0]       kind_all;
+  wire [NLT*3*(FRAC+2)-1:0] sdir_all;
+  wire [NLT*(VF+2)-1:0]  scos_all;
+  wire [NLT*8-1:0]       sexp_all;
   wire [NLT-1:0]         on_all;
   wire [NLT*NCH*CL-1:0]  lamb_all;
   wire [NCH*CL-1:0]      mamb_w;
@@ -406,12 +422,13 @@ module sc_light #(
   wire [7:0]             unit_sel;
   wire                   unit_kill, lv_mode, phong_mode, norm_mode;
   sc_light_regfile #(
-      .FRAC(FRAC), .UFRAC(VF), .SLOT_KINDS(SLOT_KINDS), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
+      .FRAC(FRAC), .UFRAC(VF), .SLOT_KINDS(SLOT_KINDS), .SLOT_SPOT(SLOT_SPOT), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
       .UNITS(UNITS), .ENERGY(ENERGY), .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER),
       .NORMALIZE(NORMALIZE), .NLT(NLT), .NCH(NCH), .AW(AW)
   ) u_regs (
       .clk_i(clk_i), .wr_i(wr), .addr_i(reg_addr_i[AW-1:0]), .data_i(reg_data_i),
       .pos_o(pos_all), .katt_o(katt_all), .kind_o(kind_all), .on_o(on_all),
+      .sdir_o(sdir_all), .scos_o(scos_all), .sexp_o(sexp_all),
       .lamb_o(lamb_all), .mamb_o(mamb_w), .ldif_o(ldif_all), .lspec_o(lspec_all),
       .scene_o(scene_w), .mdif_o(mdif_w), .mspec_o(mspec_w),
       .mat_we_o(mat_we_u), .mat_n_o(mat_n_u), .mat_thr_o(mat_thr_u), .mat_coef_o(mat_coef_u),
@@ -701,6 +718,7 @@ module sc_light #(
       wire [2:0]      idx_f;
       sc_light_lane #(
           .FRAC(FRAC), .SG(SGUARD), .NLT(NLT), .CAN_DIR(CAN_DIR), .CAN_PT(CAN_PT), .CAN_ATT(ANY_ATT),
+          .CAN_SPOT(ANY_SPOT), .T_SP(T_SP),
           .NEED_N(NEED_N), .SPECULAR(SPECULAR), .DIFFUSE(DIFFUSE), .BLINN(BLINN), .PHONG(PHONG),
           .LV(LV), .T_L(T_L), .T_A(T_A), .T_H(T_H), .T_RV(T_RV), .T_XB(T_XB), .T_XP(T_XP),
           .T_ATT(T_ATT), .T_F(T_F), .EXT_NORM((SH > 1) ? 1 : 0), .SH(SH)
@@ -708,6 +726,7 @@ module sc_light #(
           .clk_i(clk_i), .en_i(adv_f), .idx_i(lane_idx[3*j +: 3]), .p_i(p_in),
           .nn_a_i(nn_a), .nn_b_i(nn_b), .nn_p_i(nn_p), .v_h_i(v_h), .v_p_i(v_p), .phong_i(phong_mode),
           .pos_i(pos_all), .katt_i(katt_all), .kind_i(kind_all),
+          .sdir_i(sdir_all), .scos_i(scos_all), .sexp_i(sexp_all),
           .x_o(x_f), .diff_o(diff_f), .f_o(f_f), .att_o(att_f), .idx_o(idx_f),
           .lv_o(lv_all[j*3*(PW+1) +: 3*(PW+1)]), .hv_o(hv_all[j*3*HVW_T +: 3*HVW_T]),
           .lhat_i(pool_lhat), .hhat_i(pool_hhat), .ph_i(ph));

@@ -15,13 +15,18 @@
 //          point: sc_normalize(P_j − P) at VF (P_j − P F+9 bits, also passed through for the distance)
 //   att    A1 d = max(⌊(P_j−P)·L̂ / 2^VF⌋, 0); A2 dd = ⌊d²/2^F⌋, ⌊kl·d/2^F⌋; A3 q = kc + ⌊kl·d/2^F⌋ +
 //          ⌊kq·dd/2^F⌋; sc_recip(q) — for point_att; 2^F for every other kind
+//   spot   (CAN_SPOT, kind spot) S1 (T_L+1) sdl = ⌊−(L̂·ŝ) / 2^VF⌋, ŝ the spot direction register
+//          (F+2 bits) · 2^SG; S2 (T_L+2) in = sdl >= the spot cos register, x = clamp(⌊sdl / 2^SG⌋, 0,
+//          2^F); rtl/sc_powi.v x^e over 8 stages (0 outside the cone) → T_SP = T_L+10; att · spot
+//          registered at max(T_ATT, T_SP)+1 (⌊att·spot / 2^F⌋ for spot, att otherwise)
 //   ndl    ⌊N̂·L / 2^VF⌋ → diff = clamp(⌊ndl / 2^SG⌋, 0, 2^F), f = ndl > 0
 //   x      Blinn: Ĥ = sc_normalize(L̂ + V̂), x = ⌊N̂·Ĥ / 2^VF⌋; Phong: R = ⌊ndl·N̂ / 2^(VF−1)⌋ − L̂,
 //          x = ⌊R·V̂ / 2^VF⌋ (= R_z when only V = (0, 0, 1) exists); saturated to the unit's VF+2-bit
 //          word; with both reflections both are computed and phong_i chooses at T_F.
-// Parameters: FRAC, SG, NLT (slots), capabilities CAN_DIR / CAN_PT (point or point_att) / CAN_ATT, NEED_N,
+// Parameters: FRAC, SG, NLT (slots), capabilities CAN_DIR / CAN_PT (point, point_att or spot) / CAN_ATT
+//             (point_att or spot) / CAN_SPOT, NEED_N,
 //             SPECULAR, DIFFUSE, BLINN, PHONG, LV, and the stage times of rtl/sc_light.v's header
-//             (T_L, T_A, T_H, T_RV, T_XB, T_XP, T_ATT, T_F); SH (SHARE of rtl/sc_light.v: the lane's
+//             (T_L, T_A, T_H, T_RV, T_XB, T_XP, T_ATT, T_SP, T_F); SH (SHARE of rtl/sc_light.v: the lane's
 //             dot-product multipliers are shared by ops whose stages differ mod SH, chosen by the
 //             phase ph_i; "dot-product multipliers" below); EXT_NORM = 1 (rtl/sc_light.v's SHARE > 1):
 //             L̂ and Ĥ are normalised outside the lane by the core's shared normalisers — the lane
@@ -29,8 +34,8 @@
 //             Ĥ (T_H+NL, hhat_i); with EXT_NORM = 0 these ports are unused and the lane has its own.
 // Ports     : clk_i, en_i; idx_i (slot, stage 0); p_i (fragment position, stage 0); nn_a_i (N̂ at
 //             T_A), nn_b_i (N̂ at T_H+NL), nn_p_i (N̂ at T_A+1), v_h_i (V̂ at T_H), v_p_i (V̂ at T_RV);
-//             phong_i (mode); pos_i, katt_i, kind_i (every slot's registers, packed as
-//             sc_light_regfile.v); outputs at T_F: x_o, diff_o, f_o, att_o, idx_o; EXT_NORM's
+//             phong_i (mode); pos_i, katt_i, kind_i, sdir_i, scos_i, sexp_i (every slot's registers,
+//             packed as sc_light_regfile.v); outputs at T_F: x_o, diff_o, f_o, att_o, idx_o; EXT_NORM's
 //             lv_o, hv_o, lhat_i, hhat_i (above).
 // ============================================================================================
 `default_nettype none
@@ -42,6 +47,7 @@ module sc_light_lane #(
     parameter integer CAN_DIR  = 1,
     parameter integer CAN_PT   = 0,
     parameter integer CAN_ATT  = 0,
+    parameter integer CAN_SPOT = 0,
     parameter integer NEED_N   = 1,
     parameter integer SPECULAR = 1,
     parameter integer DIFFUSE  = 1,
@@ -55,6 +61,7 @@ module sc_light_lane #(
     parameter integer T_XB     = 0,
     parameter integer T_XP     = 0,
     parameter integer T_ATT    = 0,
+    parameter integer T_SP     = 0,
     parameter integer T_F      = 1,
     parameter integer EXT_NORM = 0,
     parameter integer SH       = 1
@@ -72,6 +79,9 @@ module sc_light_lane #(
     input  wire [NLT*3*(FRAC+8)-1:0] pos_i,
     input  wire [NLT*3*(FRAC+8)-1:0] katt_i,
     input  wire [NLT*2-1:0]          kind_i,
+    input  wire [NLT*3*(FRAC+2)-1:0] sdir_i,
+    input  wire [NLT*(FRAC+SG+2)-1:0] scos_i,
+    input  wire [NLT*8-1:0]          sexp_i,
     output wire [FRAC+SG+1:0]        x_o,
     output wire [FRAC:0]             diff_o,
     output wire                      f_o,
@@ -105,29 +115,29 @@ module sc_light_lane #(
   genvar gi, k;
 
   // ---------------------------------------------------------------------------- dot-product multipliers
-  // Five triplets of signed products, op: the NW-bit side × the other side, at a stage:
+  // Six triplets of signed products, op: the NW-bit side × the other side, at a stage:
   //   0 A1  L̂ · (P_j − P)   at T_L      (point_att)     1 NL  N̂ · L        at T_A   (N̂·L)
   //   2 R   N̂ · ndl         at T_A+1    (Phong)         3 RV  V̂ · R        at T_RV  (Phong, local viewer)
-  //   4 NH  N̂ · Ĥ           at T_XB−1   (Blinn)
+  //   4 NH  N̂ · Ĥ           at T_XB−1   (Blinn)         5 S1  ŝ · L̂        at T_L+1 (spot)
   // One rtl/sc_mul_pool.v per component: each op k that exists joins the first multiplier instance
   // with no op at a stage ≡ its stage (mod SH): with SH = 1 every op has its own three multipliers
   // (the products as written out before); with SHARE > 1 an instance multiplies, at phase ph_i, the
   // operands of its op whose stage ≡ ph_i — the pass at that stage is exactly there — and every op
   // reads its product combinationally at its own stage.
-  localparam integer NOP = 5;
+  localparam integer NOP = 6;
   localparam integer BMX = (PW + 1 > RVW) ? PW + 1 : RVW;   // the widest other side (RVW = NDW >= LW, NW)
   localparam integer PMX = NW + BMX;
   localparam integer SMX = PMX + 2;             // a dot product: the sum of an op's three products
   function integer op_on(input integer o);
     op_on = (o == 0) ? CAN_ATT : (o == 1) ? NEED_N : (o == 2) ? ((SPECULAR != 0 && PHONG != 0) ? 1 : 0) :
             (o == 3) ? ((SPECULAR != 0 && PHONG != 0 && LV != 0) ? 1 : 0) :
-            ((SPECULAR != 0 && BLINN != 0) ? 1 : 0);
+            (o == 4) ? ((SPECULAR != 0 && BLINN != 0) ? 1 : 0) : CAN_SPOT;
   endfunction
   function integer op_stage(input integer o);
-    op_stage = (o == 0) ? T_L : (o == 1) ? T_A : (o == 2) ? T_A + 1 : (o == 3) ? T_RV : T_XB - 1;
+    op_stage = (o == 0) ? T_L : (o == 1) ? T_A : (o == 2) ? T_A + 1 : (o == 3) ? T_RV : (o == 4) ? T_XB - 1 : T_L + 1;
   endfunction
   function integer op_bw(input integer o);
-    op_bw = (o == 0) ? PW + 1 : (o == 1) ? LW : (o == 2) ? NDW : (o == 3) ? RVW : NW;
+    op_bw = (o == 0) ? PW + 1 : (o == 1) ? LW : (o == 2) ? NDW : (o == 3) ? RVW : (o == 4) ? NW : LW;
   endfunction
   // the packed parameters of rtl/sc_mul_pool.v: op o's field f (0 on, 1 stage, 2 b width) at [8o +: 8]
   function [63:0] op_pack(input integer f);
@@ -149,7 +159,7 @@ module sc_light_lane #(
   endfunction
   localparam [63:0] OP_ST = op_pack(1);
   localparam [63:0] OP_BW = op_pack(2);
-  localparam [63:0] OP_AW = {24'd0, {5{NW[7:0]}}};
+  localparam [63:0] OP_AW = {16'd0, {6{NW[7:0]}}};
   localparam integer OP_ON = op_mask(0);
   wire [NOP*3*NW-1:0]  opa;    // op o, component c at [(3o+c)*NW +: NW]
   wire [NOP*3*BMX-1:0] opb;    // sign-extended to BMX
@@ -267,7 +277,58 @@ module sc_light_lane #(
     end
   endgenerate
 
-  // ---------------------------------------------------------------------------- attenuation (point_att)
+  // ---------------------------------------------------------------------------- spot factor (spot)
+  wire [FRAC:0] spot_f;    // the spot factor at T_SP (F fraction bits, <= 2^F)
+  generate
+    if (CAN_SPOT != 0) begin : g_spot
+      wire [2:0] idx_s1 = idx_s[3*(T_L+1) +: 3];
+      wire [2:0] idx_s2 = idx_s[3*(T_L+2) +: 3];
+      wire [3*LW-1:0] l_s1;
+      sc_delay #(.W(3*LW), .DEPTH(1)) u_dly_ls (
+          .clk_i(clk_i), .en_i(en_i), .d_i(l), .q_o(l_s1));
+      for (gi = 0; gi < 3; gi = gi + 1) begin : g_op_s1
+        wire [FRAC+1:0] sd = sdir_i[(3*idx_s1 + gi)*(FRAC+2) +: FRAC+2];
+        wire [LW-1:0] b = l_s1[gi*LW +: LW];
+        if (SG > 0) begin : g_sg
+          assign opa[(15 + gi)*NW +: NW] = {sd, {SG{1'b0}}};
+        end else begin : g_nsg
+          assign opa[(15 + gi)*NW +: NW] = sd;
+        end
+        assign opb[(15 + gi)*BMX +: BMX] = {{(BMX-LW){b[LW-1]}}, b};
+      end
+      // S1: sdl = ⌊−(ŝ·L̂) / 2^VF⌋, exact (VF+7 bits)
+      localparam integer SSW = NW + LW + 2;
+      localparam integer SDW = SSW + 1 - VF;
+      wire [SSW-1:0] ssum = dsum[5*SMX +: SSW];
+      wire [SSW:0]   nsum = {SSW+1{1'b0}} - {ssum[SSW-1], ssum};
+      wire unused_nsum = &{1'b0, nsum[VF-1:0]};
+      reg  [SDW-1:0] sdl_q;
+      always @(posedge clk_i) begin
+        if (en_i) sdl_q <= nsum[SSW:VF];
+      end
+      // S2: in = sdl >= cos (signed), x = clamp(⌊sdl / 2^SG⌋, 0, 2^F)
+      wire [VF+1:0]  scos = scos_i[idx_s2*(VF+2) +: VF+2];
+      wire [SDW-1:0] scos_x = {{(SDW-VF-2){scos[VF+1]}}, scos};
+      wire           in_cone = $signed(sdl_q) >= $signed(scos_x);
+      localparam integer SXW = SDW - SG;
+      wire [SXW-1:0] sx_s = sdl_q[SDW-1:SG];
+      wire           sneg = sdl_q[SDW-1];
+      wire           sbig = !sneg && (sx_s > {{(SXW-CL){1'b0}}, ONE});
+      wire [CL-1:0]  sx = sneg ? {CL{1'b0}} : (sbig ? ONE : sx_s[CL-1:0]);
+      if (SG > 0) begin : g_sg_unused
+        wire unused_sdl_lo = &{1'b0, sdl_q[SG-1:0]};
+      end
+      localparam integer PH0 = (T_L + 2) % SH;
+      sc_powi #(.FRAC(FRAC), .EB(T_SP - T_L - 2), .SH(SH), .PH0(PH0)) u_powi (
+          .clk_i(clk_i), .en_i(en_i), .x_i(sx), .e_i(sexp_i[8*idx_s2 +: 8]), .zero_i(!in_cone),
+          .ph_i(ph_i), .r_o(spot_f));
+    end else begin : g_no_spot
+      assign spot_f = {(FRAC+1){1'b0}};
+      wire unused_spot = &{1'b0, sdir_i, scos_i, sexp_i};
+    end
+  endgenerate
+
+  // ---------------------------------------------------------------------------- attenuation (point_att, spot)
   wire [FRAC+7:0] att_f;   // att at T_F
   generate
     if (CAN_ATT != 0) begin : g_att
@@ -361,12 +422,34 @@ module sc_light_lane #(
       sc_recip #(.FRAC(FRAC), .QW(QW), .SH(SH), .PH0((T_L + 3 + ((SH > 1) ? 1 : 0)) % SH)) u_recip (
           .clk_i(clk_i), .en_i(en_i), .q_i(q_q), .ph_i(ph_i), .att_o(att_r));
       wire [1:0] kind_t = kind_i[2*idx_t +: 2];
-      wire [FRAC+7:0] att_k = (kind_t == KIND_POINT_ATT[1:0]) ? att_r : ATT_ONE;
-      sc_delay #(.W(FRAC+8), .DEPTH(T_F - T_ATT)) u_dly_att (
-          .clk_i(clk_i), .en_i(en_i), .d_i(att_k), .q_o(att_f));
+      wire [FRAC+7:0] att_k = (kind_t == KIND_POINT_ATT[1:0] || kind_t == KIND_SPOT[1:0]) ? att_r : ATT_ONE;
+      if (CAN_SPOT != 0) begin : g_att_spot
+        // att · spot for a spot light at T_SA = max(T_ATT, T_SP), registered at T_SA+1, then to T_F
+        localparam integer T_SA = (T_ATT > T_SP) ? T_ATT : T_SP;
+        wire [2:0] idx_sa = idx_s[3*T_SA +: 3];
+        wire [1:0] kind_sa = kind_i[2*idx_sa +: 2];
+        wire [FRAC+7:0] att_sa;
+        wire [FRAC:0]   sp_sa;
+        sc_delay #(.W(FRAC+8), .DEPTH(T_SA - T_ATT)) u_dly_att_sa (
+            .clk_i(clk_i), .en_i(en_i), .d_i(att_k), .q_o(att_sa));
+        sc_delay #(.W(FRAC+1), .DEPTH(T_SA - T_SP)) u_dly_sp_sa (
+            .clk_i(clk_i), .en_i(en_i), .d_i(spot_f), .q_o(sp_sa));
+        wire [2*FRAC+8:0] as_p = {{(FRAC+1){1'b0}}, att_sa} * {{(FRAC+8){1'b0}}, sp_sa};
+        wire unused_as = &{1'b0, as_p[2*FRAC+8:2*FRAC+8], as_p[FRAC-1:0]};
+        reg [FRAC+7:0] att_sa_q;
+        always @(posedge clk_i) begin
+          if (en_i) att_sa_q <= (kind_sa == KIND_SPOT[1:0]) ? as_p[FRAC +: FRAC+8] : att_sa;
+        end
+        sc_delay #(.W(FRAC+8), .DEPTH(T_F - T_SA - 1)) u_dly_att (
+            .clk_i(clk_i), .en_i(en_i), .d_i(att_sa_q), .q_o(att_f));
+      end else begin : g_att_plain
+        wire unused_spot_f = &{1'b0, spot_f};
+        sc_delay #(.W(FRAC+8), .DEPTH(T_F - T_ATT)) u_dly_att (
+            .clk_i(clk_i), .en_i(en_i), .d_i(att_k), .q_o(att_f));
+      end
     end else begin : g_no_att
       assign att_f = ATT_ONE;
-      wire unused_att = &{1'b0, katt_i, dv_d};
+      wire unused_att = &{1'b0, katt_i, dv_d, spot_f};
     end
   endgenerate
   assign att_o = att_f;

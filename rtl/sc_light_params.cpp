@@ -64,7 +64,7 @@ FeatureSet random_set(SplitMix& rng, int index) {
     fs.config = cfgs[static_cast<size_t>(rng.below(static_cast<int>(cfgs.size())))];
     fs.slots.clear();
     const int n = 1 + rng.below(shadecore::kMaxLights);
-    for (int j = 0; j < n; ++j) fs.slots.push_back(static_cast<uint8_t>(1 + rng.below(7)));  // a non-empty kind set
+    for (int j = 0; j < n; ++j) fs.slots.push_back(static_cast<uint8_t>(1 + rng.below(15)));  // a non-empty kind set (spot: bit 3)
     fs.lanes = 1 + rng.below(n);
     fs.ambient = rng.coin();
     fs.diffuse = rng.coin();

@@ -13,17 +13,18 @@
 //   per pass in rtl/sc_light_shade.v (one multiplier per lane and channel, not one per slot).
 //
 //   Mode decode (docs/lighting.md §4): a light slot is on when its mode's enable bit is set and its
-//   kind is one the slot can take (SLOT_KINDS); local viewer and normalize are on only where the
+//   kind is one the slot can take (SLOT_KINDS, SLOT_SPOT for kind 3); local viewer and normalize are on only where the
 //   hardware exists; the reflection is Phong when bit 1 is set and Phong exists, or when only Phong
 //   exists; mat_unit selects the unit with that variant id, and a variant that is absent selects the
 //   first unit for transport with its specular term forced to 0 (unit_kill_o).
 //
-// Parameters: as rtl/sc_light.v (FRAC, SLOT_KINDS, AMBIENT, DIFFUSE, UNITS, ENERGY, BLINN,
+// Parameters: as rtl/sc_light.v (FRAC, SLOT_KINDS, SLOT_SPOT, AMBIENT, DIFFUSE, UNITS, ENERGY, BLINN,
 //             PHONG, LOCAL_VIEWER, NORMALIZE, CHANNELS); NLT, NCH, AW as the core computes them;
 //             UFRAC = FRAC + SGUARD, the units' format (mat_thr UFRAC+1 bits, mat_coef UFRAC+8).
 // Ports     : clk_i; wr_i, addr_i[AW-1:0], data_i[31:0] (a write this edge);
 //             per slot j, packed at j: pos_o (3 × F+8), katt_o (kc, kl, kq × F+8), kind_o (2 bits, the
-//             register's kind), on_o (1 bit), lamb_o (per channel Ia_jc, F+1 bits),
+//             register's kind), on_o (1 bit), spot (slots that can be spot, else 0): sdir_o (3 × F+2),
+//             scos_o (UFRAC+2), sexp_o (8), lamb_o (per channel Ia_jc, F+1 bits),
 //             ldif_o, lspec_o (per channel F+1); material: scene_o (min(e + a·A >> F, 2^F)), mdif_o,
 //             mspec_o; unit: mat_we_o, mat_n_o, mat_thr_o, mat_coef_o (the values after this edge's
 //             write, with mat_we_o at the write edge), unit_sel_o (one-hot over variant ids),
@@ -35,6 +36,7 @@ module sc_light_regfile #(
     parameter integer FRAC         = 16,
     parameter integer UFRAC        = 16,
     parameter integer SLOT_KINDS   = 1,
+    parameter integer SLOT_SPOT    = 0,
     parameter integer AMBIENT      = 1,
     parameter integer DIFFUSE      = 1,
     parameter integer UNITS        = 1,
@@ -55,6 +57,9 @@ module sc_light_regfile #(
     output wire [NLT*3*(FRAC+8)-1:0] katt_o,
     output wire [NLT*2-1:0]      kind_o,
     output wire [NLT-1:0]        on_o,
+    output wire [NLT*3*(FRAC+2)-1:0] sdir_o,
+    output wire [NLT*(UFRAC+2)-1:0]  scos_o,
+    output wire [NLT*8-1:0]      sexp_o,
     output wire [NLT*NCH*(FRAC+1)-1:0] lamb_o,
     output wire [NCH*(FRAC+1)-1:0] mamb_o,
     output wire [NLT*NCH*(FRAC+1)-1:0] ldif_o,
@@ -224,8 +229,9 @@ module sc_light_regfile #(
     for (j = 0; j < NLT; j = j + 1) begin : g_slot
       localparam integer KINDS  = slot_kinds(j);
       localparam integer CAN_D  = KINDS & 1;
-      localparam integer CAN_PT = (KINDS >> 1) & 3;      // point or point_att
-      localparam integer CAN_A  = (KINDS >> 2) & 1;      // point_att
+      localparam integer CAN_S  = (SLOT_SPOT >> j) & 1;  // spot (kind 3)
+      localparam integer CAN_PT = (((KINDS >> 1) & 3) != 0 || CAN_S != 0) ? 1 : 0;   // point, point_att or spot
+      localparam integer CAN_A  = (((KINDS >> 2) & 1) != 0 || CAN_S != 0) ? 1 : 0;   // point_att or spot
       localparam integer NEED_P = ((CAN_D != 0 && (DIFFUSE != 0 || SPECULAR != 0)) || CAN_PT != 0) ? 1 : 0;
       localparam integer ABASE  = LIGHT_STRIDE * j;
       localparam integer A_MODE = reg_at(REG_LIGHT_MODE, ABASE);
@@ -240,7 +246,8 @@ module sc_light_regfile #(
         if (wr_i && addr_i == A_MODE[AW-1:0]) mode_q <= data_i[3:0];
       end
       wire [2:0] kind = mode_q[3:1];
-      assign on_o[j]         = mode_q[0] && !kind[2] && (kind[1:0] != 2'd3) && ((KINDS >> kind[1:0]) & 1) != 0;
+      localparam [3:0] KMASK = {CAN_S[0], KINDS[2:0]};
+      assign on_o[j]         = mode_q[0] && !kind[2] && KMASK[kind[1:0]];
       assign kind_o[2*j +: 2] = kind[1:0];
 
       if (NEED_P != 0) begin : g_pos
@@ -265,6 +272,31 @@ module sc_light_regfile #(
         assign katt_o[3*j*PW +: 3*PW] = {kq_q, kl_q, kc_q};
       end else begin : g_no_att
         assign katt_o[3*j*PW +: 3*PW] = {3*PW{1'b0}};
+      end
+      localparam integer A_SD = reg_at(REG_LIGHT_SPOT_DIRECTION, ABASE);
+      localparam integer A_SC = reg_at(REG_LIGHT_SPOT_COS, ABASE);
+      localparam integer A_SE = reg_at(REG_LIGHT_SPOT_EXPONENT, ABASE);
+      if (CAN_S != 0) begin : g_spot
+        for (gi = 0; gi < 3; gi = gi + 1) begin : g_c
+          localparam integer A = A_SD + gi;
+          reg [F+1:0] sdir_q;
+          always @(posedge clk_i) begin
+            if (wr_i && addr_i == A[AW-1:0]) sdir_q <= data_i[F+1:0];
+          end
+          assign sdir_o[(3*j + gi)*(F+2) +: F+2] = sdir_q;
+        end
+        reg [UFRAC+1:0] scos_q;
+        reg [7:0]       sexp_q;
+        always @(posedge clk_i) begin
+          if (wr_i && addr_i == A_SC[AW-1:0]) scos_q <= data_i[UFRAC+1:0];
+          if (wr_i && addr_i == A_SE[AW-1:0]) sexp_q <= data_i[7:0];
+        end
+        assign scos_o[j*(UFRAC+2) +: UFRAC+2] = scos_q;
+        assign sexp_o[8*j +: 8] = sexp_q;
+      end else begin : g_no_spot
+        assign sdir_o[3*j*(F+2) +: 3*(F+2)] = {3*(F+2){1'b0}};
+        assign scos_o[j*(UFRAC+2) +: UFRAC+2] = {(UFRAC+2){1'b0}};
+        assign sexp_o[8*j +: 8] = 8'd0;
       end
       for (c = 0; c < NCH; c = c + 1) begin : g_col
         localparam integer A_LA = reg_at(REG_LIGHT_AMBIENT, ABASE + c);

@@ -60,7 +60,7 @@ std::vector<std::string> specular_includes() {
 
 std::vector<std::string> light_files(const FeatureSet& fs) {
   // The generate conditions of rtl/sc_light.v (NEED_N, LV, ANY_ATT, ANY_PL, T_NN / T_V / T_L / Blinn H).
-  const bool any_att = fs.any_kind(LightKind::PointAtt), any_point = fs.any_kind(LightKind::Point);
+  const bool any_att = fs.any_att(), any_point = fs.any_kind(LightKind::Point);
   const bool need_n = fs.diffuse || fs.specular;
   const bool lv = fs.specular && fs.local_viewer;
   const bool any_pl = any_att || (need_n && any_point);

@@ -28,10 +28,13 @@
 
 namespace shadecore {
 
-enum class LightKind : int { Directional = 0, Point = 1, PointAtt = 2 };
-inline constexpr int kNumLightKinds = 3;  // usable kinds (kind 3, spot, is reserved: config/configs.json)
+// spot: a point_att light whose attenuation is multiplied by the spot factor (GL_SPOT_*, docs/lighting.md §3.4)
+enum class LightKind : int { Directional = 0, Point = 1, PointAtt = 2, Spot = 3 };
+inline constexpr int kNumLightKinds = 4;
 inline constexpr uint8_t kind_bit(LightKind k) { return static_cast<uint8_t>(1u << static_cast<int>(k)); }
-inline constexpr uint8_t kAllKinds = 0x7;
+inline constexpr uint8_t kAllKinds = 0xF;
+// The kinds whose light has attenuation 1/q (point_att, spot).
+inline constexpr bool has_att(LightKind k) { return k == LightKind::PointAtt || k == LightKind::Spot; }
 
 inline constexpr int kLightFracMax = 16;  // the core's widest format (every product stays within 64 bits)
 inline constexpr int kSpecGuardMax = 8;    // spec_guard: F + spec_guard <= kFracMax (the units' widest format)
@@ -85,7 +88,11 @@ struct FeatureSet {
       if (m & kind_bit(k)) return true;
     return false;
   }
-  [[nodiscard]] bool any_point() const { return any_kind(LightKind::Point) || any_kind(LightKind::PointAtt); }
+  [[nodiscard]] bool any_point() const {
+    return any_kind(LightKind::Point) || any_kind(LightKind::PointAtt) || any_kind(LightKind::Spot);
+  }
+  // Some slot computes an attenuation (point_att or spot).
+  [[nodiscard]] bool any_att() const { return any_kind(LightKind::PointAtt) || any_kind(LightKind::Spot); }
   [[nodiscard]] bool needs_position() const { return any_point() || (specular && local_viewer); }
   // The specular units the material can choose (empty without specular), first = variant.
   [[nodiscard]] std::vector<VariantId> units() const {
@@ -144,10 +151,10 @@ inline uint8_t fs_kind(const nlohmann::json& e, const std::string& where) {
   for (const auto& kind : kLightKinds)
     if (kind.name == s) {
       if (kind.reserved)
-        fs_fail(where, "light kind '" + s + "' is reserved (not in this core yet; known: directional, point, point_att)");
+        fs_fail(where, "light kind '" + s + "' is reserved (not in this core yet; known: directional, point, point_att, spot)");
       return static_cast<uint8_t>(1u << kind.id);
     }
-  fs_fail(where, "unknown light kind '" + s + "' (known: directional, point, point_att)");
+  fs_fail(where, "unknown light kind '" + s + "' (known: directional, point, point_att, spot)");
   return 0;
 }
 // A string or a non-empty list of strings, each parsed by `one`.
@@ -175,7 +182,7 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
     else if (k == "lights") {
       if (!v.is_array() || v.empty() || v.size() > static_cast<size_t>(kMaxLights))
         fs_fail(where, "'lights' must be a list of 1.." + std::to_string(kMaxLights) +
-                           " light slots, each a kind or a list of kinds (directional, point, point_att)");
+                           " light slots, each a kind or a list of kinds (directional, point, point_att, spot)");
       fs.slots.clear();
       for (const auto& e : v) {
         uint8_t m = 0;
@@ -366,14 +373,19 @@ inline std::string FeatureSet::key() const {
 
 inline std::vector<std::string> FeatureSet::verilog_params(int tagw) const {
   const Format f = format();
-  uint32_t kinds = 0, unit_mask = 0;
-  for (size_t j = 0; j < slots.size(); ++j) kinds |= static_cast<uint32_t>(slots[j]) << (3 * j);
+  // SLOT_KINDS: kinds 0..2 of slot j at bits [3j+2:3j]; SLOT_SPOT: bit j = slot j can be spot (kind 3)
+  uint32_t kinds = 0, spot = 0, unit_mask = 0;
+  for (size_t j = 0; j < slots.size(); ++j) {
+    kinds |= (static_cast<uint32_t>(slots[j]) & 7u) << (3 * j);
+    if (slots[j] & kind_bit(LightKind::Spot)) spot |= 1u << j;
+  }
   for (auto u : units()) unit_mask |= 1u << static_cast<int>(u);
   std::vector<std::string> p = {
       "FRAC=" + std::to_string(f.frac),
       "GUARD=" + std::to_string(f.guard),
       "LIGHTS=" + std::to_string(slots.size()),
       "SLOT_KINDS=" + std::to_string(kinds),
+      "SLOT_SPOT=" + std::to_string(spot),
       "LANES=" + std::to_string(lanes),
       "SHARE=" + std::to_string(share),
       "SGUARD=" + std::to_string(spec_guard),

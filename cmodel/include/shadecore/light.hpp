@@ -18,6 +18,9 @@
 //   colours            unsigned F+1 bits: [0, 2)
 //   kc, kl, kq         unsigned F+8 bits: [0, 256)
 //   n, thr, coef       as the specular unit (docs/spec.md §3.1, §7): 11 bits, F+1 bits, F+8 bits
+//   spot direction     signed F+2 bits: the unit direction ŝ the light points along (a code, as a directional
+//                      light's); spot cos: signed VF+2 bits (VF = F + spec_guard), ⌈cos(cutoff)·2^VF⌉;
+//                      spot exponent: 8 bits, unsigned (GL: 0..128)
 //   output colour      unsigned F+1 bits, saturated to [0, 2^F]
 #pragma once
 
@@ -53,6 +56,22 @@ inline int64_t sign_extend(uint64_t v, int bits) {
 }
 inline uint64_t mask_bits(int bits) { return bits >= 64 ? ~uint64_t{0} : (uint64_t{1} << bits) - 1; }
 
+// x^e by an exact square-and-multiply chain (rtl/sc_powi.v), x in [0, 1] as a code of `frac` fraction bits
+// (x <= 2^frac): over the exponent's bits k = 0 .. ebits−1, low first, r ← ⌊r·p / 2^frac⌋ where bit k is set and
+// p ← ⌊p² / 2^frac⌋, from r = 2^frac (x^0 = 1 for every x, 0 included: GL's convention) and p = x. Every
+// value stays in [0, 2^frac]; each product's truncation is the only rounding, so the result is at most e − 1
+// codes below x^e·2^frac (e >= 1; exact for e <= 1) and never above it (docs/lighting.md §3.4).
+inline uint64_t powi_chain(int frac, uint64_t x, uint32_t e, int ebits) {
+  uint64_t r = uint64_t{1} << frac, p = x;
+  for (int k = 0; k < ebits; ++k) {
+    if ((e >> k) & 1u) r = (r * p) >> frac;
+    p = (p * p) >> frac;
+  }
+  return r;
+}
+inline constexpr int kSpotExpBits = 8;  // the spot exponent register: 0..255 computed, GL uses 0..128
+inline constexpr int kSpotExpMax = 128;  // GL_SPOT_EXPONENT's range (the host rejects more)
+
 // The register file of sc_light, as the codes the hardware holds (register map: light_regs.hpp).
 // Mode registers (docs/lighting.md §4): light_model (bit 0 local viewer, bit 1 Phong reflection, bit 2
 // normalize), mat_unit (a variant id), per light mode (bit 0 enable, bits 3:1 kind). Registers are not
@@ -82,6 +101,9 @@ struct LightRegs {
     int64_t pos[3] = {};
     uint32_t ambient[3] = {}, diffuse[3] = {}, specular[3] = {};
     uint32_t kc = 0, kl = 0, kq = 0;
+    int64_t sdir[3] = {};   // spot direction, signed F+2 bits
+    int64_t scos = 0;       // ⌈cos(cutoff)·2^VF⌉, signed VF+2 bits
+    uint32_t sexp = 0;      // spot exponent, 8 bits
   };
   std::array<Light, kMaxLights> light{};
 
@@ -119,6 +141,10 @@ struct LightRegs {
     if (off == kReg_light_kl) return L.kl = attc, true;
     if (off == kReg_light_kq) return L.kq = attc, true;
     if (off == kReg_light_mode) return L.mode = data & mask_bits(kLightModeBits), true;
+    for (int c = 0; c < 3; ++c)
+      if (off == kReg_light_spot_direction + c) return L.sdir[c] = sign_extend(data, F + 2), true;
+    if (off == kReg_light_spot_cos) return L.scos = sign_extend(data, w.UF + 2), true;
+    if (off == kReg_light_spot_exponent) return L.sexp = data & static_cast<uint32_t>(mask_bits(kSpotExpBits)), true;
     return false;
   }
 };
@@ -145,7 +171,10 @@ struct LightTrace {
   int64_t l[3] = {};   // unit direction to the light (VF = F + spec_guard fraction bits)
   uint64_t d = 0;      // distance, F fraction bits (point_att)
   uint64_t q = 0;      // kc + kl·d + kq·d² (point_att)
-  uint64_t att = 0;    // 1/q, F fraction bits, saturated (point_att); 2^F otherwise
+  uint64_t att = 0;    // 1/q, F fraction bits, saturated (point_att); 2^F otherwise; spot: ⌊1/q · spot / 2^F⌋
+  int64_t sdl = 0;     // spot: ⌊−L̂·ŝ / 2^VF⌋ (ŝ the direction register · 2^spec_guard), VF fraction bits
+  bool in_cone = false;  // spot: sdl >= the spot cos register
+  uint64_t spot = 0;   // spot: in_cone ? powi_chain(clamp(⌊sdl / 2^spec_guard⌋, 0, 2^F), exponent) : 0 (F bits)
   int64_t ndl = 0;     // ⌊N̂·L / 2^VF⌋, signed, VF fraction bits
   uint32_t diff = 0;   // clamp(⌊ndl / 2^(VF−F)⌋, 0, 2^F)
   bool f = false;      // ndl > 0 (and the material's unit exists)
@@ -273,12 +302,21 @@ class LightCore {
       } else {
         const int64_t dv[3] = {L.pos[0] - fr.p[0], L.pos[1] - fr.p[1], L.pos[2] - fr.p[2]};  // F+9 bits
         normalize3(VF, dv, lt.l);
-        if (kind == LightKind::PointAtt) {
+        if (has_att(kind)) {
           const int64_t dl = dot3(dv, lt.l) >> VF;                // |D| = D·L̂
           lt.d = dl < 0 ? 0 : static_cast<uint64_t>(dl);
           const uint64_t dd = (lt.d * lt.d) >> F;
           lt.q = uint64_t{L.kc} + ((uint64_t{L.kl} * lt.d) >> F) + ((uint64_t{L.kq} * dd) >> F);
           lt.att = recip_att(F, lt.q);
+        }
+        if (kind == LightKind::Spot) {
+          // GL's spot factor: (max(−L̂·ŝ, 0))^e inside the cone (−L̂·ŝ >= cos(cutoff)), 0 outside
+          const int64_t sd[3] = {L.sdir[0] * (int64_t{1} << E), L.sdir[1] * (int64_t{1} << E), L.sdir[2] * (int64_t{1} << E)};
+          lt.sdl = (-dot3(lt.l, sd)) >> VF;
+          lt.in_cone = lt.sdl >= L.scos;
+          const uint64_t xs = static_cast<uint64_t>(std::clamp<int64_t>(lt.sdl >> E, 0, one));
+          lt.spot = lt.in_cone ? powi_chain(F, xs, L.sexp, kSpotExpBits) : 0;
+          lt.att = (lt.att * lt.spot) >> F;
         }
       }
       // N̂·L at VF fraction bits, and R below, saturated to [−8, 8) (signed VF+4 bits): never with a unit L
@@ -346,7 +384,8 @@ struct LightPipe {
 inline LightPipe light_pipe(const FeatureSet& fs) {
   constexpr int NL = 10;  // rtl/sc_normalize.v
   constexpr int RL = 7;   // rtl/sc_recip.v
-  const bool any_att = fs.any_kind(LightKind::PointAtt);
+  const bool any_att = fs.any_att();  // point_att or spot
+  const bool any_spot = fs.any_kind(LightKind::Spot);
   const bool any_point = fs.any_kind(LightKind::Point);
   const bool need_n = fs.diffuse || fs.specular;                    // N̂·L is computed
   const bool lv = fs.specular && fs.local_viewer;                    // V̂ = normalise(−P) exists
@@ -373,6 +412,9 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   if (need_n) t_f = std::max(t_f, t_a + 1);
   if (fs.specular) t_f = std::max(t_f, t_x);
   if (any_att) t_f = std::max(t_f, t_att);
+  // spot: ŝ·L̂ at t_l+1, sdl registered at t_l+2, then kSpotExpBits chain stages (rtl/sc_powi.v); att · spot
+  // registered one stage after both are there
+  if (any_spot) t_f = std::max(t_f, std::max(t_att, t_l + 2 + kSpotExpBits) + 1);
   // The back: colour products, attenuation, sum, accumulator. With share >= 4 on an RGB core with units it
   // is channel-serial (rtl/sc_light.v CSER): a pass enters it as three items, one per channel, on
   // consecutive edges, so its colour is out two edges later.
@@ -463,9 +505,14 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
       for (int i = 0; i < 3; ++i) l[i] = v(L.pos[i]) - p[i];
       const double d = std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
       norm3(l);
-      if (kind == LightKind::PointAtt) {
+      if (has_att(kind)) {
         const double q = v(L.kc) + v(L.kl) * d + v(L.kq) * d * d;
         att = q > 0 ? std::min(1.0 / q, std::ldexp(static_cast<double>(att_max(F)), -F)) : std::ldexp(static_cast<double>(att_max(F)), -F);
+      }
+      if (kind == LightKind::Spot) {  // the same registers read exactly: ŝ = code/2^F, cos = code/2^VF
+        const double sd = -(l[0] * v(L.sdir[0]) + l[1] * v(L.sdir[1]) + l[2] * v(L.sdir[2]));
+        const bool in = sd >= std::ldexp(static_cast<double>(L.scos), -uf_.frac);
+        att *= in ? (L.sexp == 0 ? 1.0 : std::pow(std::clamp(sd, 0.0, 1.0), static_cast<double>(L.sexp))) : 0.0;
       }
     }
     const double ndl = std::clamp(nn[0] * l[0] + nn[1] * l[1] + nn[2] * l[2], -8.0, 8.0);  // as the core saturates
@@ -510,6 +557,9 @@ struct LightParams {
   double position[4] = {0, 0, 1, 0};  // GL_POSITION in eye space; w = 0 directional
   double ambient[3] = {0, 0, 0}, diffuse[3] = {1, 1, 1}, specular[3] = {1, 1, 1};
   double kc = 1, kl = 0, kq = 0;       // GL_CONSTANT/LINEAR/QUADRATIC_ATTENUATION
+  double spot_direction[3] = {0, 0, -1};  // GL_SPOT_DIRECTION in eye space (any length, not 0)
+  double spot_cutoff = 180;            // GL_SPOT_CUTOFF, degrees: 0..90, or 180 (no cone: not a spot light)
+  int spot_exponent = 0;               // GL_SPOT_EXPONENT, 0..128
 };
 struct MaterialParams {
   double emission[3] = {0, 0, 0}, ambient[3] = {0.2, 0.2, 0.2}, diffuse[3] = {0.8, 0.8, 0.8},
@@ -574,6 +624,17 @@ inline std::vector<RegWrite> material_writes(const LightCore& core, const Materi
   return w;
 }
 
+// The spot cos register for a cutoff in degrees: ⌈cos(cutoff)·2^VF⌉ (so a code sdl is inside iff sdl >=
+// cos(cutoff)·2^VF, GL's >=), as a VF+2-bit two's-complement word; cutoff 180: the smallest word (−2), every
+// fragment inside. cos is taken at the cutoff in radians, cutoff·π/180 in double.
+inline uint32_t spot_cos_code(int vf, double cutoff_deg) {
+  const uint32_t m = static_cast<uint32_t>(mask_bits(vf + 2));
+  if (cutoff_deg == 180.0) return (uint32_t{1} << (vf + 1)) & m;
+  const double c = std::cos(cutoff_deg * (std::acos(-1.0) / 180.0));
+  const int64_t code = static_cast<int64_t>(std::ceil(std::ldexp(c, vf)));
+  return static_cast<uint32_t>(code) & m;
+}
+
 // Light j's registers. A directional light (w = 0) gets its unit direction; a point light its position
 // (w must be 1 after the host's divide by w). Rejects kc = kl = kq = 0 for an attenuated light.
 inline std::vector<RegWrite> light_writes(const LightCore& core, int j, const LightParams& lp) {
@@ -582,11 +643,19 @@ inline std::vector<RegWrite> light_writes(const LightCore& core, int j, const Li
   if (j < 0 || j >= fs.num_lights())
     throw std::invalid_argument("light " + std::to_string(j) + " not in the feature set (" +
                                 std::to_string(fs.num_lights()) + " lights)");
-  // Without an explicit kind: a slot's only kind; else directional for w = 0, and for w != 0 point
-  // with attenuation where the slot can take it (GL's positional light), else point.
+  const std::string lj = "light " + std::to_string(j);
+  if (!(lp.spot_cutoff == 180.0 || (lp.spot_cutoff >= 0.0 && lp.spot_cutoff <= 90.0)))
+    throw std::invalid_argument(lj + ": spot cutoff " + std::to_string(lp.spot_cutoff) + " out of range (0..90 or 180 degrees)");
+  if (lp.spot_exponent < 0 || lp.spot_exponent > kSpotExpMax)
+    throw std::invalid_argument(lj + ": spot exponent " + std::to_string(lp.spot_exponent) + " out of range 0.." +
+                                std::to_string(kSpotExpMax));
+  // Without an explicit kind: a slot's only kind; else directional for w = 0; for w != 0 spot when the
+  // cutoff is not 180 (GL's spot light), else point with attenuation where the slot can take it (GL's
+  // positional light), else point.
   LightKind kind = fs.slot_kind(j);
   if (lp.kind) kind = *lp.kind;
   else if (lp.position[3] == 0.0 && fs.slot_can(j, LightKind::Directional)) kind = LightKind::Directional;
+  else if (lp.position[3] != 0.0 && lp.spot_cutoff != 180.0) kind = LightKind::Spot;
   else if (lp.position[3] != 0.0 && fs.slot_can(j, LightKind::PointAtt)) kind = LightKind::PointAtt;
   else if (lp.position[3] != 0.0 && fs.slot_can(j, LightKind::Point)) kind = LightKind::Point;
   if (!fs.slot_can(j, kind))
@@ -615,7 +684,9 @@ inline std::vector<RegWrite> light_writes(const LightCore& core, int j, const Li
     w.push_back({base + kReg_light_diffuse + c, detail::colour_code(F, lp.diffuse[c], "light diffuse")});
     w.push_back({base + kReg_light_specular + c, detail::colour_code(F, lp.specular[c], "light specular")});
   }
-  if (kind == LightKind::PointAtt) {
+  if (lp.spot_cutoff != 180.0 && kind != LightKind::Spot)
+    throw std::invalid_argument(lj + " has a spot cutoff (" + std::to_string(lp.spot_cutoff) + ") but is " + to_string(kind));
+  if (has_att(kind)) {
     const uint32_t kc = detail::attc_code(F, lp.kc, "constant attenuation");
     const uint32_t kl = detail::attc_code(F, lp.kl, "linear attenuation");
     const uint32_t kq = detail::attc_code(F, lp.kq, "quadratic attenuation");
@@ -624,6 +695,17 @@ inline std::vector<RegWrite> light_writes(const LightCore& core, int j, const Li
     w.push_back({base + kReg_light_kc, kc});
     w.push_back({base + kReg_light_kl, kl});
     w.push_back({base + kReg_light_kq, kq});
+  }
+  if (kind == LightKind::Spot) {
+    const double* sd = lp.spot_direction;
+    const double l = std::sqrt(sd[0] * sd[0] + sd[1] * sd[1] + sd[2] * sd[2]);
+    if (!(l > 0)) throw std::invalid_argument(lj + ": zero spot direction");
+    const uint32_t dmask = static_cast<uint32_t>(mask_bits(F + 2));
+    for (uint32_t c = 0; c < 3; ++c)
+      w.push_back({base + kReg_light_spot_direction + c, static_cast<uint32_t>(std::llround(std::ldexp(sd[c] / l, F))) & dmask});
+    w.push_back({base + kReg_light_spot_cos, spot_cos_code(core.unit_format().frac, lp.spot_cutoff)});
+    // cutoff 180 on a spot slot: exponent 0 and the smallest cos, so the factor is 1 everywhere (GL)
+    w.push_back({base + kReg_light_spot_exponent, lp.spot_cutoff == 180.0 ? 0u : static_cast<uint32_t>(lp.spot_exponent)});
   }
   return w;
 }

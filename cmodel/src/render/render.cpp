@@ -252,6 +252,7 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
       if (!contributes) continue;
       LightKind k = LightKind::PointAtt;
       if (L.position[3] == 0.0) k = LightKind::Directional;
+      else if (L.is_spot()) k = LightKind::Spot;
       else if (attc_code(F, L.kc) == (1u << F) && attc_code(F, L.kl) == 0 && attc_code(F, L.kq) == 0)
         k = LightKind::Point;
       fs.slots.push_back(kind_bit(k));
@@ -610,6 +611,12 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
           lp.specular[c] = L.specular[c];
         }
         lp.kc = L.kc, lp.kl = L.kl, lp.kq = L.kq;
+        if (L.is_spot()) {  // GL_SPOT_DIRECTION is transformed by the modelview's upper 3×3 (w = 0)
+          const auto de = apply(view, {L.spot_direction[0], L.spot_direction[1], L.spot_direction[2], 0.0});
+          for (int i = 0; i < 3; ++i) lp.spot_direction[i] = de[i];
+          lp.spot_cutoff = L.spot_cutoff;
+          lp.spot_exponent = L.spot_exponent;
+        }
       } else {  // a slot the scene does not use: zero colours contribute exactly 0
         lp.position[0] = lp.position[1] = 0;
         lp.position[2] = 1;

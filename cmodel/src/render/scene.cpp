@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // shadecore — scene file parsing (docs/scenes.md). Strict: every error is one line "FILE: PATH: what".
 #include "shadecore/render/scene.hpp"
+#include "shadecore/light.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -358,7 +359,7 @@ Camera parse_camera(const Parser& P, const json& j, const std::string& path) {
 
 Light parse_light(const Parser& P, const json& j, const std::string& path, int F) {
   P.keys(j, path, {"position", "ambient", "diffuse", "specular", "constant_attenuation", "linear_attenuation",
-                   "quadratic_attenuation"});
+                   "quadratic_attenuation", "spot_direction", "spot_cutoff", "spot_exponent"});
   Light l;
   if (!j.contains("position")) P.fail(path, "missing 'position' [x, y, z, w]");
   {
@@ -398,6 +399,24 @@ Light parse_light(const Parser& P, const json& j, const std::string& path, int F
              (j.contains("constant_attenuation") && l.kc != 1.0)) {
     P.fail(path, "attenuation applies to point lights only (w != 0); GL ignores it for directional lights");
   }
+  // GL_SPOT_DIRECTION / GL_SPOT_CUTOFF / GL_SPOT_EXPONENT (docs/scenes.md §3)
+  if (j.contains("spot_direction")) {
+    l.spot_direction = P.coords3(j["spot_direction"], path + ".spot_direction");
+    const auto& d = l.spot_direction;
+    const double dl = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(dl >= 1e-150) || !std::isfinite(d[0] / dl) || !std::isfinite(d[1] / dl) || !std::isfinite(d[2] / dl))
+      P.fail(path + ".spot_direction", "must be a non-zero direction (too short to normalise)");
+  }
+  if (j.contains("spot_cutoff")) {
+    const double c = P.number(j["spot_cutoff"], path + ".spot_cutoff");
+    if (!(c == 180.0 || (c >= 0.0 && c <= 90.0)))
+      P.fail(path + ".spot_cutoff", Parser::fmt_num(c) + " out of range 0..90 or 180 degrees (GL_SPOT_CUTOFF)");
+    l.spot_cutoff = c;
+  }
+  if (j.contains("spot_exponent"))
+    l.spot_exponent = P.integer(j["spot_exponent"], path + ".spot_exponent", 0, kSpotExpMax);
+  if (l.position[3] == 0.0 && l.spot_cutoff != 180.0)
+    P.fail(path, "a spot light (spot_cutoff != 180) must be positional (w != 0); GL ignores the cone for directional lights");
   return l;
 }
 

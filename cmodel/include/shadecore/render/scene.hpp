@@ -48,6 +48,10 @@ struct Light {             // glLightfv(GL_LIGHTi, ...), specified with the view
   Vec4 position{0, 0, 1, 0};  // world coordinates; w = 0 directional (towards the light), else point
   Vec3 ambient{0, 0, 0}, diffuse{1, 1, 1}, specular{1, 1, 1};
   double kc = 1, kl = 0, kq = 0;  // GL_CONSTANT/LINEAR/QUADRATIC_ATTENUATION
+  Vec3 spot_direction{0, 0, -1};  // GL_SPOT_DIRECTION, world coordinates (transformed like position, w = 0)
+  double spot_cutoff = 180;       // GL_SPOT_CUTOFF, degrees: 0..90, or 180 (no cone)
+  int spot_exponent = 0;          // GL_SPOT_EXPONENT, 0..128
+  [[nodiscard]] bool is_spot() const { return position[3] != 0.0 && spot_cutoff != 180.0; }
 };
 
 struct Normalization {     // optional energy normalisation of the specular term (rtl/sc_energy.v)

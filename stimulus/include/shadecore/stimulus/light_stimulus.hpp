@@ -222,7 +222,24 @@ class LightStimulus {
     lp.kl = u01() < 0.5 ? 0.0 : u(0, 0.2);
     lp.kq = u01() < 0.5 ? 0.0 : u(0, 0.05);
     if (lp.kc < 0.01 && lp.kl == 0 && lp.kq == 0) lp.kc = 1;
+    if (kind == LightKind::Spot) random_spot(lp);
     return light_writes(core_, j, lp);
+  }
+  // A spot light: its direction points near the fragments' region (the origin) from its position, so that
+  // fragments fall inside and outside the cone; cutoffs 0..90 (the edges included) and sometimes 180;
+  // exponents 0..128 with their ends and the chain's bit patterns.
+  void random_spot(LightParams& lp) {
+    for (int i = 0; i < 3; ++i) lp.spot_direction[i] = -lp.position[i] + u(-30, 30);
+    if (std::fabs(lp.spot_direction[0]) + std::fabs(lp.spot_direction[1]) + std::fabs(lp.spot_direction[2]) < 1e-3)
+      lp.spot_direction[2] = -1;
+    switch (rng_.next() % 8) {
+      case 0: lp.spot_cutoff = 180; break;
+      case 1: lp.spot_cutoff = 90; break;
+      case 2: lp.spot_cutoff = 0; break;
+      default: lp.spot_cutoff = u(1, 89);
+    }
+    static constexpr int kExp[] = {0, 1, 2, 3, 15, 16, 64, 127, 128};
+    lp.spot_exponent = rng_.next() % 2 ? kExp[rng_.next() % 9] : static_cast<int>(rng_.uniform(0, kSpotExpMax));
   }
   void program_random() {
     double ga[3] = {u(0, 0.4), u(0, 0.4), u(0, 0.4)};
@@ -494,9 +511,88 @@ class LightStimulus {
         }
       }
     }
-    // a slot asked for a kind it cannot take, and the reserved kind 3 (spot): the light is off
+    // a slot asked for a kind it cannot take (spot where the slot has no spot hardware, kinds 4..7): the light is off
     for (int j = 0; j < nl; ++j)
       add_writes({{static_cast<uint32_t>(j) * kLightStride + kReg_light_mode, (static_cast<uint32_t>(j) % 5 + 3) << 1 | 1u}});
+    for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
+    build_directed_spot();
+  }
+  // 8. spot lights (docs/lighting.md §3.4), on every slot that can be spot, the others off: −L̂·ŝ exactly at the
+  //    spot cos register and one code either side (the register written raw from the model's own sdl);
+  //    exponent 0 with x = 0 (ŝ perpendicular to L̂: factor 1, and 0 for exponent 1); every exponent bit
+  //    pattern of the chain's ends; cutoff 180 (the host's words: factor 1)
+  void build_directed_spot() {
+    const int nl = core_.features().num_lights();
+    std::vector<int> spot;
+    for (int j = 0; j < nl; ++j)
+      if (core_.features().slot_can(j, LightKind::Spot)) spot.push_back(j);
+    if (spot.empty()) return;
+    const int64_t one = int64_t{1} << F_;
+    auto program = [&](const double pos[3], const double dir[3], double cutoff, int e) {
+      std::vector<RegWrite> ws;
+      for (int j = 0; j < nl; ++j) {
+        if (!core_.features().slot_can(j, LightKind::Spot)) {
+          ws.push_back({static_cast<uint32_t>(j) * kLightStride + kReg_light_mode, 0u});
+          continue;
+        }
+        LightParams lp;
+        lp.kind = LightKind::Spot;
+        for (int i = 0; i < 3; ++i) lp.position[i] = pos[i], lp.spot_direction[i] = dir[i];
+        lp.position[3] = 1;
+        lp.spot_cutoff = cutoff;
+        lp.spot_exponent = e;
+        lp.specular[0] = lp.specular[1] = lp.specular[2] = 0.7;
+        lp.ambient[0] = lp.ambient[1] = lp.ambient[2] = 0.2;
+        const auto lw = light_writes(core_, j, lp);
+        ws.insert(ws.end(), lw.begin(), lw.end());
+      }
+      add_writes(ws);
+    };
+    auto raw_all = [&](uint32_t reg, uint32_t data) {
+      std::vector<RegWrite> ws;
+      for (int j : spot) ws.push_back({static_cast<uint32_t>(j) * kLightStride + reg, data});
+      add_writes(ws);
+    };
+    const uint32_t cmask = static_cast<uint32_t>(mask_bits(W_.UF + 2));
+    // a light above, pointing down a little off the axis; fragments on the plane z = 0 around it
+    const double pos[3] = {1, 2, 10}, down[3] = {0.05, -0.1, -1};
+    program(pos, down, 30, 5);
+    for (uint64_t k = 0; k < 10; ++k) {
+      Fragment f;
+      f.n[2] = one;
+      f.p[0] = static_cast<int64_t>(k) * (one / 2) - 2 * one;
+      f.p[1] = static_cast<int64_t>(k % 3) * one;
+      LightCoreTrace t;
+      (void)core_.eval(shadow_, f, &t);
+      const int64_t sdl = t.light[static_cast<size_t>(spot.front())].sdl;
+      for (int64_t d = -1; d <= 1; ++d) {
+        raw_all(kReg_light_spot_cos, static_cast<uint32_t>(sdl + d) & cmask);
+        add_frag(f);
+      }
+    }
+    // exponent 0 with x = 0: L̂ = (0, 0, 1) exactly (light at (0, 0, 10), P = 0), ŝ = (1, 0, 0): −L̂·ŝ = 0; the
+    // cos register 0 (inside at the boundary) and 1 (outside)
+    const double above[3] = {0, 0, 10}, side[3] = {1, 0, 0};
+    for (int e : {0, 1, 2, 128}) {
+      program(above, side, 90, e);
+      for (uint32_t c : {0u, 1u}) {
+        raw_all(kReg_light_spot_cos, c);
+        Fragment f;
+        f.n[2] = one;
+        add_frag(f);
+      }
+    }
+    // every exponent 0..255 written raw (the chain's bit patterns; GL's range is 0..128), cutoff 90
+    program(pos, down, 90, 0);
+    for (uint32_t e = 0; e < 256; e += (e < 20 ? 1 : 7)) {
+      raw_all(kReg_light_spot_exponent, e);
+      Fragment f;
+      f.n[2] = one;
+      f.p[0] = static_cast<int64_t>(e % 5) * one;
+      add_frag(f);
+    }
+    // cutoff 180 on a spot slot: exponent 0 and the smallest cos (factor 1 everywhere)
+    program(pos, down, 180, 0);
     for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
   }
 
