@@ -197,13 +197,19 @@ std::string register_table(const FeatureSet& fs) {
                          light_coef_bits(UF));
     if (f == "position") return fmt::format("two's complement {} bits, [−128, 128): point light position, or the unit direction "
                                             "code of a directional light (read saturated to [−2, 2))", F + 8);
-    if (f == "att_coef") return fmt::format("unsigned {} bits, [0, 256) (point_att lights only)", F + 8);
+    if (f == "att_coef") return fmt::format("unsigned {} bits, [0, 256) (point_att and spot lights only)", F + 8);
+    if (f == "direction")
+      return fmt::format("two's complement {} bits, 1.0 = 2^F: the unit spot direction ŝ in eye space", F + 2);
+    if (f == "spot_cos")
+      return fmt::format("two's complement {} bits: ⌈cos(cutoff)·2^{}⌉, inside iff ⌊−L̂·ŝ·2^{}⌋ ≥ it; cutoff 180: "
+                         "the smallest word with exponent 0", UF + 2, UF, UF);
+    if (f == "spot_exponent") return std::string("unsigned 8 bits: the spot exponent e (GL 0..128), x^e by an exact chain");
     if (f == "light_model")
       return std::string("mode: bit 0 local viewer, bit 1 reflection (0 Blinn N·H, 1 Phong R·V), bit 2 normalize; "
                          "a bit naming absent hardware reads as off (with one reflection bit 1 is ignored)");
     if (f == "unit") return std::string("mode: 4 bits, the variant id of the material's specular unit; an absent unit gives specular 0");
     if (f == "light_mode")
-      return std::string("mode: bit 0 enable, bits 3:1 kind (0 directional, 1 point, 2 point_att; 3 spot is reserved); "
+      return std::string("mode: bit 0 enable, bits 3:1 kind (0 directional, 1 point, 2 point_att, 3 spot); "
                          "a kind the slot cannot take turns the light off");
     return std::string(f);
   };
@@ -222,7 +228,9 @@ std::string register_table(const FeatureSet& fs) {
     if (name == "mat_n") return fs.specular ? "yes" : "no";
     if (name == "mat_thr") return fs.specular && fs.variant == VariantId::cs16 && fs.cutoff == Cutoff::ThetaCr ? "yes" : "no";
     if (name == "mat_coef") return fs.norm ? "yes" : "no";
-    if (name == "light_kc" || name == "light_kl" || name == "light_kq") return any_att ? "point_att lights" : "no";
+    if (name == "light_kc" || name == "light_kl" || name == "light_kq") return any_att ? "point_att and spot lights" : "no";
+    if (name == "light_spot_direction" || name == "light_spot_cos" || name == "light_spot_exponent")
+      return fs.any_kind(LightKind::Spot) ? "spot lights" : "no";
     if (name == "light_position") return fs.diffuse || fs.specular || any_att ? "yes" : "no";
     return "?";
   };
@@ -233,7 +241,8 @@ std::string register_table(const FeatureSet& fs) {
     if (r.count > 1) addr += fmt::format("..0x{:02x}", r.addr + r.count - 1);
     if (r.per_light) addr += fmt::format(" + 0x{:x}·j", kLightStride);
     s += fmt::format("| `{}` | {} | {}{} | {} | {} |\n", r.name, addr, r.count,
-                     r.count == 3 ? (r.format == "position" ? " (x, y, z)" : " (r, g, b)") : "", fmt_of(r.format),
+                     r.count == 3 ? (r.format == "position" || r.format == "direction" ? " (x, y, z)" : " (r, g, b)") : "",
+                     fmt_of(r.format),
                      used(r.name));
   }
   return s;

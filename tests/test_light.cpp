@@ -98,6 +98,35 @@ TEST(LightOps, RecipBoundExhaustive) {
   EXPECT_EQ(recip_att(16, 0), att_max(16));
 }
 
+// The spot factor's square-and-multiply chain (docs/lighting.md §3.4): 0 <= x^e·2^F − chain <= e − 1 codes for
+// e >= 1, and x^0 = 1 for every x (0 included). Every x code and exponent at F = 8; every exponent and a dense
+// sample of x (with the ends) at F = 16. The exact power is taken in long double.
+TEST(LightOps, PowiChainBoundExhaustive) {
+  for (int F : {8, 16}) {
+    const uint64_t one = uint64_t{1} << F;
+    long double worst_ratio = 0;  // the largest (exact − chain) / (e − 1)
+    for (uint64_t x = 0; x <= one; x += (F == 8 || x + 97 > one ? 1 : 97)) {
+      for (uint32_t e = 0; e < 256; ++e) {
+        const uint64_t r = powi_chain(F, x, e, kSpotExpBits);
+        ASSERT_LE(r, one);
+        if (e == 0) {
+          ASSERT_EQ(r, one) << "x^0 must be exactly 1 (x = " << x << ")";
+          continue;
+        }
+        const long double ex = std::pow(static_cast<long double>(x) / one, static_cast<long double>(e)) * one;
+        const long double err = ex - static_cast<long double>(r);
+        ASSERT_GE(err, -1e-9L) << "chain above the exact power: F " << F << " x " << x << " e " << e;
+        ASSERT_LE(err, static_cast<long double>(e - 1) + 1e-9L) << "F " << F << " x " << x << " e " << e;
+        if (e > 1) worst_ratio = std::max(worst_ratio, err / (e - 1));
+        if (e == 1) {
+          ASSERT_EQ(r, x);
+        }
+      }
+    }
+    EXPECT_GT(worst_ratio, 0.1L);  // the bound is approached, not vacuous
+  }
+}
+
 namespace {
 FeatureSet named(const std::string& n) { return feature_set_named_or_file(n); }
 
@@ -131,6 +160,69 @@ TEST(LightHardCases, ZeroNormalGivesAmbientOnly) {
   EXPECT_FALSE(t.light[0].f);
   const uint64_t expect = t.scene[0] + ((uint64_t{r.regs.ambient[0]} * r.regs.light[0].ambient[0]) >> r.F);
   EXPECT_EQ(c.c[0], expect);
+}
+
+// A spot light (docs/lighting.md §3.4): inside exactly at −L̂·ŝ = the cos register (GL's >=), outside one code
+// above; x = 0 with exponent 0 gives the factor 1 (att unchanged), exponent 1 gives 0; cutoff 180 on a spot
+// slot is the factor 1; the host rejects a cutoff outside 0..90/180 and an exponent outside 0..128.
+TEST(LightHardCases, SpotBoundaryAndZeroPower) {
+  const FeatureSet fs = feature_set_from_json(nlohmann::json::parse(R"({"lights": ["spot"], "specular": "cs16"})"), "test");
+  Rig r(fs);
+  const int64_t one = int64_t{1} << r.F;
+  LightParams lp;
+  lp.position[0] = 0, lp.position[1] = 0, lp.position[2] = 10, lp.position[3] = 1;
+  lp.spot_direction[0] = 0.1, lp.spot_direction[1] = 0.05, lp.spot_direction[2] = -1;
+  lp.spot_cutoff = 30;
+  lp.spot_exponent = 7;
+  r.apply(light_writes(r.core, 0, lp));
+  Fragment fr;
+  fr.n[2] = one;
+  fr.p[0] = one / 3;
+  LightCoreTrace t;
+  static_cast<void>(r.core.eval(r.regs, fr, &t));
+  ASSERT_TRUE(t.light[0].in_cone);
+  const uint32_t cmask = static_cast<uint32_t>(mask_bits(r.core.unit_format().frac + 2));
+  const uint64_t att_in = t.light[0].att;
+  for (int64_t d : {-1, 0, 1}) {
+    r.regs.write(r.core.widths(), kReg_light_spot_cos, static_cast<uint32_t>(t.light[0].sdl + d) & cmask);
+    LightCoreTrace u;
+    static_cast<void>(r.core.eval(r.regs, fr, &u));
+    EXPECT_EQ(u.light[0].in_cone, d <= 0) << d;
+    EXPECT_EQ(u.light[0].spot == 0, d > 0) << d;
+    if (d <= 0) {
+      EXPECT_EQ(u.light[0].att, att_in);
+    }
+  }
+  // x = 0: L̂ = (0, 0, 1) exactly (P = 0), ŝ = (1, 0, 0); the cos register 0 (inside at the boundary)
+  lp.spot_direction[0] = 1, lp.spot_direction[1] = 0, lp.spot_direction[2] = 0;
+  lp.spot_cutoff = 90;
+  for (int e : {0, 1}) {
+    lp.spot_exponent = e;
+    r.apply(light_writes(r.core, 0, lp));
+    r.regs.write(r.core.widths(), kReg_light_spot_cos, 0);
+    LightCoreTrace u;
+    static_cast<void>(r.core.eval(r.regs, Fragment{{0, 0, one}, {0, 0, 0}}, &u));
+    EXPECT_EQ(u.light[0].sdl, 0);
+    EXPECT_TRUE(u.light[0].in_cone);
+    EXPECT_EQ(u.light[0].spot, e == 0 ? static_cast<uint64_t>(one) : 0u) << e;
+  }
+  lp.spot_cutoff = 180;
+  lp.spot_exponent = 50;
+  r.apply(light_writes(r.core, 0, lp));
+  for (int64_t x : {-one, int64_t{0}, one}) {
+    LightCoreTrace u;
+    static_cast<void>(r.core.eval(r.regs, Fragment{{0, 0, one}, {x, 0, -x}}, &u));
+    EXPECT_EQ(u.light[0].spot, static_cast<uint64_t>(one));
+  }
+  for (double c : {-1.0, 90.5, 179.0, 181.0}) {
+    lp.spot_cutoff = c;
+    EXPECT_THROW(light_writes(r.core, 0, lp), std::invalid_argument) << c;
+  }
+  lp.spot_cutoff = 45;
+  for (int e : {-1, 129}) {
+    lp.spot_exponent = e;
+    EXPECT_THROW(light_writes(r.core, 0, lp), std::invalid_argument) << e;
+  }
 }
 
 // N·L exactly 0 and one code either side, with L = (0, 0, 1) exactly.
@@ -479,11 +571,14 @@ TEST(LightModes, PassesAndLatencyFollowTheEnabledLights) {
 // H = L + V later. The stage times of `full` (N, V, L, H all exist), worked out by hand from the rule:
 //   S = 1: V̂, L̂ at 10, H at 10, x (Blinn) at 21: front 21; + cs16 7 + norm 2 + back 4 = 34
 //   S = 2: V̂ at 11, L̂ at 10, H at 11 (≡ 1), x at 22: 35
-//   S = 3: V̂ 11, L̂ 12, H 12 (≡ 0), x at 23: 36
-//   S = 4: V̂ at 11, L̂ at 12, H at 15 (≡ 3), x at 26: 39, + 2 for the channel-serial back (S >= 4, RGB): 41
+//   S = 3: V̂ 11, L̂ 12, H 12 (≡ 0), x at 23; spot (§3.4): att at 12+3+7+1 = 23, the chain's factor at 12+2+8 = 22,
+//          att·spot registered at 24: front 24: 37
+//   S = 4: V̂ at 11, L̂ at 12, H at 15 (≡ 3), x at 26 (att·spot at 24): 39, + 2 for the channel-serial back
+//          (S >= 4, RGB): 41
+//   (S = 1, 2: att·spot at 21, 22, no later than x)
 // Each further pass adds S edges; schlick_iter's F+4 (25 at F = 16 + spec_guard 5) rounds up to S's multiple.
 TEST(LightModes, ShareSpacesThePassesAndMovesTheSharedNormalisations) {
-  const int expect_base[5] = {0, 34, 35, 36, 41};
+  const int expect_base[5] = {0, 34, 35, 37, 41};
   for (int share = 1; share <= kShareMax; ++share) {
     FeatureSet fs = named("full");
     fs.lanes = 1;

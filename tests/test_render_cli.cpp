@@ -103,12 +103,30 @@ TEST_F(RenderCli, BadScenesOneLineExit1NoOutput) {
     o.replace(o.find("%F"), 2, file);
     return edit(R"({"type": "sphere", "material": "m", "shading": "phong", "slices": 12, "stacks": 8})", o);
   };
+  // a point light with the given spot keys
+  auto spot_light = [&](const std::string& keys) {
+    return edit(R"("position": [0, 1, 1, 0], "specular": [1, 1, 1]})",
+                R"("position": [0, 1, 4, 1], "specular": [1, 1, 1], )" + keys + "}");
+  };
   const std::vector<Bad> cases = {
       {"malformed JSON", edit("\"fovy\": 40,", "\"fovy\": 40,,"), ":3:"},
       {"malformed JSON line/column", std::string(kGood).substr(0, 120), "malformed JSON"},
       {"unknown top-level key", edit("\"image\"", "\"imagez\": 1, \"image\""), "imagez: unknown key"},
-      {"unknown light key", edit("\"specular\": [1, 1, 1]}", "\"specular\": [1, 1, 1], \"spot_cutoff\": 30}"),
-       "lights[0].spot_cutoff: unknown key"},
+      {"unknown light key", edit("\"specular\": [1, 1, 1]}", "\"specular\": [1, 1, 1], \"spot_angle\": 30}"),
+       "lights[0].spot_angle: unknown key"},
+      // GL_SPOT_* (issue 19): every bad value of the new keys
+      {"spot cutoff above 90", spot_light(R"("spot_cutoff": 91)"), "lights[0].spot_cutoff: 91 out of range 0..90 or 180"},
+      {"spot cutoff negative", spot_light(R"("spot_cutoff": -1)"), "lights[0].spot_cutoff: -1 out of range 0..90 or 180"},
+      {"spot cutoff 179", spot_light(R"("spot_cutoff": 179)"), "lights[0].spot_cutoff: 179 out of range 0..90 or 180"},
+      {"spot cutoff not a number", spot_light(R"("spot_cutoff": "30")"), "lights[0].spot_cutoff: must be a number"},
+      {"spot exponent above 128", spot_light(R"("spot_exponent": 129)"), "lights[0].spot_exponent: 129 out of range 0..128"},
+      {"spot exponent negative", spot_light(R"("spot_exponent": -1)"), "lights[0].spot_exponent: -1 out of range 0..128"},
+      {"spot exponent fractional", spot_light(R"("spot_exponent": 20.5)"), "lights[0].spot_exponent: must be an integer (20.5 is not)"},
+      {"spot direction zero", spot_light(R"("spot_direction": [0, 0, 0])"), "lights[0].spot_direction: must be a non-zero direction"},
+      {"spot direction two numbers", spot_light(R"("spot_direction": [1, 2])"), "lights[0].spot_direction: must be a list of 3 numbers"},
+      {"spot on a directional light",
+       edit("\"specular\": [1, 1, 1]}", "\"specular\": [1, 1, 1], \"spot_cutoff\": 30}"),
+       "lights[0]: a spot light (spot_cutoff != 180) must be positional"},
       {"unknown object key", edit("\"slices\": 12", "\"slices\": 12, \"colour\": 1"), "objects[0].colour: unknown key"},
       {"duplicate key", edit("\"fovy\": 40,", "\"fovy\": 40, \"fovy\": 50,"), "camera.fovy: duplicate key"},
       {"wrong type", edit("\"width\": 40", "\"width\": \"40\""), "image.width: must be an integer"},
