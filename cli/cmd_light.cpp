@@ -50,7 +50,7 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
     apply(material_writes(core, m));
     for (int j = 0; j < fs.num_lights(); ++j) {
       LightParams lp;
-      // the most general kind the slot can take (point_att on 'full', as the parallel core had)
+      // the most general kind the slot can take (spot on 'full': point_att times a random cone)
       LightKind kind = fs.slot_kind(j);
       for (int k = 0; k < kNumLightKinds; ++k)
         if (fs.slot_can(j, static_cast<LightKind>(k))) kind = static_cast<LightKind>(k);
@@ -62,6 +62,12 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
       lp.position[3] = dir ? 0 : 1;
       for (int c = 0; c < 3; ++c) lp.ambient[c] = u(0, 0.1), lp.diffuse[c] = u(0, 1), lp.specular[c] = u(0, 1);
       lp.kc = 1, lp.kl = u(0, 0.05), lp.kq = u(0, 0.005);
+      if (kind == LightKind::Spot) {  // aimed at a point of the fragments' region; cut-off 5..90°, exponent 0..128
+        const double target[3] = {u(-15, 15), u(-15, 15), u(-60, -2)};
+        for (int i = 0; i < 3; ++i) lp.spot_direction[i] = target[i] - lp.position[i];
+        lp.spot_cutoff = u(5, 90);
+        lp.spot_exponent = static_cast<int>(std::lround(u(0, kSpotExpMax)));
+      }
       apply(light_writes(core, j, lp));
     }
     for (uint64_t i = 0; i < per_program; ++i) {
