@@ -150,6 +150,21 @@ void object_transform(const scene::Transform& t) {
   glScaled(t.scale[0], t.scale[1], t.scale[2]);
 }
 
+// GL's projection · modelview (column-major), read back.
+std::array<double, 16> current_mvp() {
+  GLdouble p[16], m[16];
+  glGetDoublev(GL_PROJECTION_MATRIX, p);
+  glGetDoublev(GL_MODELVIEW_MATRIX, m);
+  std::array<double, 16> r{};
+  for (int c = 0; c < 4; ++c)
+    for (int row = 0; row < 4; ++row) {
+      double acc = 0;
+      for (int k = 0; k < 4; ++k) acc += p[k * 4 + row] * m[c * 4 + k];
+      r[static_cast<size_t>(c * 4 + row)] = acc;
+    }
+  return r;
+}
+
 bool nonzero(const Vec3& c) { return c[0] != 0 || c[1] != 0 || c[2] != 0; }
 
 }  // namespace
@@ -203,6 +218,7 @@ GlImage render_gl(const Scene& sc, render::MeshSource& meshes, const GlSettings&
     glShadeModel(sh == Shading::Flat ? GL_FLAT : GL_SMOOTH);
     glPushMatrix();
     object_transform(o.transform);
+    out.object_mvp.push_back(current_mvp());
     draw_mesh(*meshes.get(static_cast<int>(oi)), sh == Shading::Flat ? Draw::Flat : Draw::Smooth);
     glPopMatrix();
   }
@@ -345,6 +361,7 @@ Comparison compare(int width, int height, const std::vector<uint8_t>& exact_rgb,
       uint8_t* d = &r.diff_rgb[p * 3];
       r.covered_exact += a >= 0;
       r.covered_gl += b >= 0;
+      if (a != b && r.mismatches.size() < Comparison::kMaxMismatches) r.mismatches.push_back({x, y, a, b});
       if ((a >= 0) != (b >= 0)) {
         ++r.coverage_mismatch;
         d[0] = d[1] = 255;  // yellow
@@ -382,6 +399,64 @@ Comparison compare(int width, int height, const std::vector<uint8_t>& exact_rgb,
   for (const auto& h : per) r.per_object.push_back(h.stats(tolerance));
   r.pass = r.comparable.pixels > 0 && r.comparable.p99 <= tolerance && r.coverage_mismatch == 0 && r.object_mismatch == 0;
   return r;
+}
+
+void explain_mismatches(const Scene& sc, render::MeshSource& meshes, const GlImage& gl, Comparison& cmp) {
+  cmp.mismatch_near_edge = 0;
+  const double W = gl.width, H = gl.height;
+  for (size_t oi = 0; oi < sc.objects.size() && oi < gl.object_mvp.size(); ++oi) {
+    std::vector<size_t> mine;
+    for (size_t i = 0; i < cmp.mismatches.size(); ++i)
+      if (cmp.mismatches[i].exact_object == static_cast<int32_t>(oi) || cmp.mismatches[i].gl_object == static_cast<int32_t>(oi))
+        mine.push_back(i);
+    if (mine.empty()) continue;
+    const auto& mvp = gl.object_mvp[oi];
+    const auto mesh = meshes.get(static_cast<int>(oi));
+    // window coordinates, y down (row 0 at the top), as the rasteriser; nothing for w <= 0
+    std::vector<std::array<double, 2>> win(mesh->pos.size());
+    std::vector<char> ok(mesh->pos.size(), 0);
+    for (size_t v = 0; v < mesh->pos.size(); ++v) {
+      const auto& p = mesh->pos[v];
+      double c[4];
+      for (int r = 0; r < 4; ++r) c[r] = mvp[static_cast<size_t>(r)] * p[0] + mvp[static_cast<size_t>(4 + r)] * p[1] + mvp[static_cast<size_t>(8 + r)] * p[2] + mvp[static_cast<size_t>(12 + r)];
+      if (!(c[3] > 0)) continue;
+      ok[v] = 1;
+      win[v] = {(c[0] / c[3] * 0.5 + 0.5) * W, (0.5 - c[1] / c[3] * 0.5) * H};
+    }
+    for (const auto& face : mesh->faces)
+      for (size_t k = 1; k + 1 < face.size(); ++k) {
+        const int tv[3] = {face[0], face[k], face[k + 1]};
+        if (!ok[static_cast<size_t>(tv[0])] || !ok[static_cast<size_t>(tv[1])] || !ok[static_cast<size_t>(tv[2])]) continue;
+        const auto& A = win[static_cast<size_t>(tv[0])];
+        const auto& B = win[static_cast<size_t>(tv[1])];
+        const auto& C = win[static_cast<size_t>(tv[2])];
+        const double area = (B[0] - A[0]) * (C[1] - A[1]) - (B[1] - A[1]) * (C[0] - A[0]);
+        if (area == 0) continue;
+        const double sgn = area > 0 ? 1 : -1;
+        for (size_t i : mine) {
+          auto& m = cmp.mismatches[i];
+          const double px = m.x + 0.5, py = m.y + 0.5;
+          if (px < std::min({A[0], B[0], C[0]}) - 1 || px > std::max({A[0], B[0], C[0]}) + 1 ||
+              py < std::min({A[1], B[1], C[1]}) - 1 || py > std::max({A[1], B[1], C[1]}) + 1)
+            continue;
+          const std::array<double, 2>* P[3] = {&A, &B, &C};
+          double inside = 1e300;  // the smallest signed distance to the three edges (> 0 inside)
+          for (int e = 0; e < 3; ++e) {
+            const auto& a = *P[e];
+            const auto& b = *P[(e + 1) % 3];
+            const double ex = b[0] - a[0], ey = b[1] - a[1], len = std::hypot(ex, ey);
+            if (len == 0) continue;
+            inside = std::min(inside, sgn * (ex * (py - a[1]) - ey * (px - a[0])) / len);
+          }
+          if (inside < -1.0 / 64) continue;  // not near this triangle
+          const double d = std::abs(inside);
+          if (m.edge_px < 0 || d < m.edge_px) m.edge_px = d;
+        }
+      }
+  }
+  for (const auto& m : cmp.mismatches)
+    if (m.edge_px >= 0 && m.edge_px <= Comparison::kSnapPx) ++cmp.mismatch_near_edge;
+  cmp.mismatches_explained = cmp.coverage_mismatch + cmp.object_mismatch == cmp.mismatch_near_edge;
 }
 
 }  // namespace shadecore::glref

@@ -14,6 +14,7 @@
 // Such objects are still drawn by GL (Phong ones as Gouraud) so that coverage and occlusion compare.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -34,6 +35,7 @@ struct GlImage {
   std::vector<uint8_t> rgb;             // 8-bit RGB, row-major from the top (as render::to_rgb8)
   std::vector<int32_t> object;          // the scene object each pixel shows, −1 for the background
   std::string renderer, version;        // GL_RENDERER, GL_VERSION
+  std::vector<std::array<double, 16>> object_mvp;  // per object: GL's projection · modelview (column-major)
 };
 
 // Renders `sc` through OSMesa's fixed-function pipeline (two passes: lit colours, then object ids with the
@@ -70,6 +72,18 @@ struct Comparison {
   uint64_t covered_exact = 0, covered_gl = 0, covered_both = 0;
   uint64_t coverage_mismatch = 0;       // covered in one image and not in the other
   uint64_t object_mismatch = 0;         // covered in both, by different objects (occlusion, depth ties)
+  struct Mismatch {
+    int x, y;                           // column from the left, row from the top
+    int32_t exact_object, gl_object;    // −1: background
+    double edge_px = -1;                // explain_mismatches: distance to the nearest triangle edge (−1: none near)
+  };
+  std::vector<Mismatch> mismatches;     // coverage / object mismatches, row by row (the first kMaxMismatches)
+  static constexpr size_t kMaxMismatches = 4096;
+  // explain_mismatches: those within kSnapPx of a triangle edge of an object involved (sub-pixel vertex snapping:
+  // GL transforms in float, shadecore in double, both snap to 1/256 pixel), and whether every one was.
+  uint64_t mismatch_near_edge = 0;
+  bool mismatches_explained = false;
+  static constexpr double kSnapPx = 1.0 / 256;
   bool pass = false;                    // comparable.pixels > 0, p99 <= tolerance, no coverage or object mismatch
   // Amplified difference: black = equal; grey 1, 2 LSB; above: red where shadecore's exact image is brighter,
   // blue where GL's is, 32 per LSB (from 3 LSB at 96 + ...); yellow = coverage mismatch, magenta = object
@@ -81,5 +95,11 @@ struct Comparison {
 // GL's. With all_objects every object counts towards the verdict, comparable or not.
 Comparison compare(int width, int height, const std::vector<uint8_t>& exact_rgb, const std::vector<int32_t>& exact_object,
                    const GlImage& gl, const std::vector<ObjectCheck>& checks, int tolerance = 2, bool all_objects = false);
+
+// For each recorded mismatch: the distance from its pixel centre to the nearest edge of the triangles of the
+// objects involved (projected in double with GL's matrices) that contain the centre or lie within 1/64 pixel
+// of it; counts the ones within Comparison::kSnapPx. A rule difference (fill convention, pixel centres) would put
+// centres exactly on edges of far more pixels; a depth or occlusion difference leaves them far from any edge.
+void explain_mismatches(const scene::Scene& sc, render::MeshSource& meshes, const GlImage& gl, Comparison& cmp);
 
 }  // namespace shadecore::glref
