@@ -132,6 +132,9 @@ void run_gl_compare(const GlCompareArgs& a, bool json_given, bool size_given, bo
   gs.width = fr.width, gs.height = fr.height, gs.mode = st.mode;
   const glref::GlImage gl = glref::render_gl(sc, meshes, gs);
   const double t_gl = std::chrono::duration<double>(Clock::now() - t1).count();
+  if (gl.renderer.rfind("llvmpipe", 0) != 0)
+    fmt::print(stderr, "gl-compare: note: the GL image is {}'s, not llvmpipe's (GALLIUM_DRIVER); the measured reference is llvmpipe\n",
+               gl.renderer);
 
   glref::Comparison cmp = glref::compare(fr.width, fr.height, exact_rgb, exact_obj, gl, checks, a.tolerance, a.all_objects);
   glref::explain_mismatches(sc, meshes, gl, cmp);

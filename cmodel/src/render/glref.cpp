@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -174,6 +175,9 @@ GlImage render_gl(const Scene& sc, render::MeshSource& meshes, const GlSettings&
   out.width = s.width > 0 ? s.width : sc.width;
   out.height = s.height > 0 ? s.height : sc.height;
   const int W = out.width, H = out.height;
+  // The reference is llvmpipe (Debian's OSMesa is gallium: softpipe snaps vertices differently); GALLIUM_DRIVER
+  // set by the caller still wins, and GlImage::renderer says what drew the image.
+  ::setenv("GALLIUM_DRIVER", "llvmpipe", 0);
   Context c;
   c.ctx = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
   if (!c.ctx) throw std::runtime_error("OSMesa: cannot create an RGBA context with a 24-bit depth buffer");
