@@ -85,8 +85,8 @@ struct Comparison {
   bool mismatches_explained = false;
   static constexpr double kSnapPx = 1.0 / 256;
   bool pass = false;                    // comparable.pixels > 0, p99 <= tolerance, no coverage or object mismatch
-  // Amplified difference: black = equal; grey 1, 2 LSB; above: red where shadecore's exact image is brighter,
-  // blue where GL's is, 32 per LSB (from 3 LSB at 96 + ...); yellow = coverage mismatch, magenta = object
+  // Amplified difference: black = equal; grey (60 per LSB) up to the tolerance; above it red where shadecore's
+  // exact image is brighter, blue where GL's is (128 + 16 per LSB); yellow = coverage mismatch, magenta = object
   // mismatch; non-comparable objects as their exact image at a quarter of its brightness.
   std::vector<uint8_t> diff_rgb;
 };
