@@ -5,6 +5,8 @@
 # Extra package names given as arguments are installed too (scripts/cost_report.py asks for the
 # iCE40 place-and-route tools this way, so the default setup stays lean). z3 (the SMT solver of
 # yosys-smtbmc), sollya and gappa are the proof tools of the formal suite (docs/formal.md, docs/bounds.md).
+# libosmesa6-dev (Mesa's off-screen GL, llvmpipe) with the GL headers (libgl-dev: GL/gl.h, mesa-common-dev) is
+# the outside reference of `shadecore gl-compare` (docs/gl_compare.md).
 set -euo pipefail
 
 PACKAGES=(
@@ -12,6 +14,7 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libtinyobjloader-dev
   verilator libsystemc-dev yosys iverilog
   z3 sollya gappa
+  libosmesa6-dev libgl-dev mesa-common-dev
   python3 python3-numpy python3-matplotlib zlib1g-dev
   slurm-wlm munge
   "$@"
