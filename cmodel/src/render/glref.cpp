@@ -72,12 +72,11 @@ void set_gl_light(int i, const scene::Light& L) {
   glLightf(id, GL_CONSTANT_ATTENUATION, static_cast<GLfloat>(L.kc));  // GL applies them to positional lights only,
   glLightf(id, GL_LINEAR_ATTENUATION, static_cast<GLfloat>(L.kl));    // as the core (directional: att = 1)
   glLightf(id, GL_QUADRATIC_ATTENUATION, static_cast<GLfloat>(L.kq));
-  // spot: set when scene::Light has spot_* (merged from main)
-  //   const GLfloat dir[3] = {GLfloat(L.spot_direction[0]), GLfloat(L.spot_direction[1]), GLfloat(L.spot_direction[2])};
-  //   glLightfv(id, GL_SPOT_DIRECTION, dir);                       // transformed by the view matrix, like GL_POSITION
-  //   glLightf(id, GL_SPOT_CUTOFF, GLfloat(L.spot_cutoff));        // degrees, 0..90 or 180 (= no spot)
-  //   glLightf(id, GL_SPOT_EXPONENT, GLfloat(L.spot_exponent));    // 0..128
-  // Until then GL's defaults hold, which are the scene's defaults: (0, 0, −1), 180, 0.
+  const GLfloat dir[3] = {static_cast<GLfloat>(L.spot_direction[0]), static_cast<GLfloat>(L.spot_direction[1]),
+                         static_cast<GLfloat>(L.spot_direction[2])};
+  glLightfv(id, GL_SPOT_DIRECTION, dir);                                  // transformed by the view matrix, like GL_POSITION
+  glLightf(id, GL_SPOT_CUTOFF, static_cast<GLfloat>(L.spot_cutoff));      // degrees, 0..90 or 180 (= no spot)
+  glLightf(id, GL_SPOT_EXPONENT, static_cast<GLfloat>(L.spot_exponent));  // 0..128
   glEnable(id);
 }
 
