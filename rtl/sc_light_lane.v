@@ -16,9 +16,9 @@
 //   att    A1 d = max(⌊(P_j−P)·L̂ / 2^VF⌋, 0); A2 dd = ⌊d²/2^F⌋, ⌊kl·d/2^F⌋; A3 q = kc + ⌊kl·d/2^F⌋ +
 //          ⌊kq·dd/2^F⌋; sc_recip(q) — for point_att; 2^F for every other kind
 //   spot   (CAN_SPOT, kind spot) S1 (T_L+1) sdl = ⌊−(L̂·ŝ) / 2^VF⌋, ŝ the spot direction register
-//          (F+2 bits) · 2^SG; S2 (T_L+2) in = sdl >= the spot cos register, x = clamp(⌊sdl / 2^SG⌋, 0,
-//          2^F); rtl/sc_powi.v x^e over 8 stages (0 outside the cone) → T_SP = T_L+10; att · spot
-//          registered at max(T_ATT, T_SP)+1 (⌊att·spot / 2^F⌋ for spot, att otherwise)
+//          (F+2 bits) · 2^SG; S2 (T_L+2) in = sdl >= the spot cos register, x = clamp(sdl, 0,
+//          2^VF); rtl/sc_powi.v x^e at VF over 8 stages (0 outside the
+//          cone) → T_SP = T_L+10; att · spot registered at max(T_ATT, T_SP)+1 (⌊att·spot / 2^VF⌋ for spot)
 //   ndl    ⌊N̂·L / 2^VF⌋ → diff = clamp(⌊ndl / 2^SG⌋, 0, 2^F), f = ndl > 0
 //   x      Blinn: Ĥ = sc_normalize(L̂ + V̂), x = ⌊N̂·Ĥ / 2^VF⌋; Phong: R = ⌊ndl·N̂ / 2^(VF−1)⌋ − L̂,
 //          x = ⌊R·V̂ / 2^VF⌋ (= R_z when only V = (0, 0, 1) exists); saturated to the unit's VF+2-bit
@@ -278,7 +278,7 @@ module sc_light_lane #(
   endgenerate
 
   // ---------------------------------------------------------------------------- spot factor (spot)
-  wire [FRAC:0] spot_f;    // the spot factor at T_SP (F fraction bits, <= 2^F)
+  wire [VF:0]   spot_f;    // the spot factor at T_SP (VF fraction bits, <= 2^VF)
   generate
     if (CAN_SPOT != 0) begin : g_spot
       wire [2:0] idx_s1 = idx_s[3*(T_L+1) +: 3];
@@ -306,24 +306,20 @@ module sc_light_lane #(
       always @(posedge clk_i) begin
         if (en_i) sdl_q <= nsum[SSW:VF];
       end
-      // S2: in = sdl >= cos (signed), x = clamp(⌊sdl / 2^SG⌋, 0, 2^F)
+      // S2: in = sdl >= cos (signed), x = clamp(sdl, 0, 2^VF)
       wire [VF+1:0]  scos = scos_i[idx_s2*(VF+2) +: VF+2];
       wire [SDW-1:0] scos_x = {{(SDW-VF-2){scos[VF+1]}}, scos};
       wire           in_cone = $signed(sdl_q) >= $signed(scos_x);
-      localparam integer SXW = SDW - SG;
-      wire [SXW-1:0] sx_s = sdl_q[SDW-1:SG];
+      localparam [VF:0] VONE = {1'b1, {VF{1'b0}}};
       wire           sneg = sdl_q[SDW-1];
-      wire           sbig = !sneg && (sx_s > {{(SXW-CL){1'b0}}, ONE});
-      wire [CL-1:0]  sx = sneg ? {CL{1'b0}} : (sbig ? ONE : sx_s[CL-1:0]);
-      if (SG > 0) begin : g_sg_unused
-        wire unused_sdl_lo = &{1'b0, sdl_q[SG-1:0]};
-      end
+      wire           sbig = !sneg && (sdl_q > {{(SDW-VF-1){1'b0}}, VONE});
+      wire [VF:0]    sx = sneg ? {(VF+1){1'b0}} : (sbig ? VONE : sdl_q[VF:0]);
       localparam integer PH0 = (T_L + 2) % SH;
-      sc_powi #(.FRAC(FRAC), .EB(T_SP - T_L - 2), .SH(SH), .PH0(PH0)) u_powi (
+      sc_powi #(.FRAC(VF), .EB(T_SP - T_L - 2), .SH(SH), .PH0(PH0)) u_powi (
           .clk_i(clk_i), .en_i(en_i), .x_i(sx), .e_i(sexp_i[8*idx_s2 +: 8]), .zero_i(!in_cone),
           .ph_i(ph_i), .r_o(spot_f));
     end else begin : g_no_spot
-      assign spot_f = {(FRAC+1){1'b0}};
+      assign spot_f = {(VF+1){1'b0}};
       wire unused_spot = &{1'b0, sdir_i, scos_i, sexp_i};
     end
   endgenerate
@@ -429,16 +425,17 @@ module sc_light_lane #(
         wire [2:0] idx_sa = idx_s[3*T_SA +: 3];
         wire [1:0] kind_sa = kind_i[2*idx_sa +: 2];
         wire [FRAC+7:0] att_sa;
-        wire [FRAC:0]   sp_sa;
+        wire [VF:0]     sp_sa;
         sc_delay #(.W(FRAC+8), .DEPTH(T_SA - T_ATT)) u_dly_att_sa (
             .clk_i(clk_i), .en_i(en_i), .d_i(att_k), .q_o(att_sa));
-        sc_delay #(.W(FRAC+1), .DEPTH(T_SA - T_SP)) u_dly_sp_sa (
+        sc_delay #(.W(VF+1), .DEPTH(T_SA - T_SP)) u_dly_sp_sa (
             .clk_i(clk_i), .en_i(en_i), .d_i(spot_f), .q_o(sp_sa));
-        wire [2*FRAC+8:0] as_p = {{(FRAC+1){1'b0}}, att_sa} * {{(FRAC+8){1'b0}}, sp_sa};
-        wire unused_as = &{1'b0, as_p[2*FRAC+8:2*FRAC+8], as_p[FRAC-1:0]};
+        // ⌊att·spot / 2^VF⌋ <= att (spot <= 2^VF)
+        wire [FRAC+VF+8:0] as_p = {{(VF+1){1'b0}}, att_sa} * {{(FRAC+8){1'b0}}, sp_sa};
+        wire unused_as = &{1'b0, as_p[FRAC+VF+8], as_p[VF-1:0]};
         reg [FRAC+7:0] att_sa_q;
         always @(posedge clk_i) begin
-          if (en_i) att_sa_q <= (kind_sa == KIND_SPOT[1:0]) ? as_p[FRAC +: FRAC+8] : att_sa;
+          if (en_i) att_sa_q <= (kind_sa == KIND_SPOT[1:0]) ? as_p[VF +: FRAC+8] : att_sa;
         end
         sc_delay #(.W(FRAC+8), .DEPTH(T_F - T_SA - 1)) u_dly_att (
             .clk_i(clk_i), .en_i(en_i), .d_i(att_sa_q), .q_o(att_f));

@@ -182,6 +182,7 @@ TEST(LightHardCases, SpotBoundaryAndZeroPower) {
   static_cast<void>(r.core.eval(r.regs, fr, &t));
   ASSERT_TRUE(t.light[0].in_cone);
   const uint32_t cmask = static_cast<uint32_t>(mask_bits(r.core.unit_format().frac + 2));
+  const uint64_t vone = uint64_t{1} << r.core.unit_format().frac;
   const uint64_t att_in = t.light[0].att;
   for (int64_t d : {-1, 0, 1}) {
     r.regs.write(r.core.widths(), kReg_light_spot_cos, static_cast<uint32_t>(t.light[0].sdl + d) & cmask);
@@ -204,7 +205,7 @@ TEST(LightHardCases, SpotBoundaryAndZeroPower) {
     static_cast<void>(r.core.eval(r.regs, Fragment{{0, 0, one}, {0, 0, 0}}, &u));
     EXPECT_EQ(u.light[0].sdl, 0);
     EXPECT_TRUE(u.light[0].in_cone);
-    EXPECT_EQ(u.light[0].spot, e == 0 ? static_cast<uint64_t>(one) : 0u) << e;
+    EXPECT_EQ(u.light[0].spot, e == 0 ? vone : 0u) << e;  // the factor has VF fraction bits
   }
   lp.spot_cutoff = 180;
   lp.spot_exponent = 50;
@@ -212,7 +213,7 @@ TEST(LightHardCases, SpotBoundaryAndZeroPower) {
   for (int64_t x : {-one, int64_t{0}, one}) {
     LightCoreTrace u;
     static_cast<void>(r.core.eval(r.regs, Fragment{{0, 0, one}, {x, 0, -x}}, &u));
-    EXPECT_EQ(u.light[0].spot, static_cast<uint64_t>(one));
+    EXPECT_EQ(u.light[0].spot, vone);
   }
   for (double c : {-1.0, 90.5, 179.0, 181.0}) {
     lp.spot_cutoff = c;
@@ -401,7 +402,7 @@ TEST(FeatureSets, StrictParsing) {
   };
   bad(R"({"lightz": []})", "unknown key 'lightz'");
   bad(R"({"lights": []})", "1..8");
-  bad(R"({"lights": ["spot"]})", "light kind 'spot' is reserved");
+  bad(R"({"lights": ["spotlight"]})", "unknown light kind 'spotlight' (known: directional, point, point_att, spot)");
   bad(R"({"lights": ["lamp"]})", "unknown light kind 'lamp'");
   bad(R"({"lights": [["point", "point"]]})", "names a kind twice");
   bad(R"({"lights": ["point"], "lanes": 2})", "exceeds the 1 light slots");

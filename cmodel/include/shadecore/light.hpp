@@ -171,10 +171,10 @@ struct LightTrace {
   int64_t l[3] = {};   // unit direction to the light (VF = F + spec_guard fraction bits)
   uint64_t d = 0;      // distance, F fraction bits (point_att)
   uint64_t q = 0;      // kc + kl·d + kq·d² (point_att)
-  uint64_t att = 0;    // 1/q, F fraction bits, saturated (point_att); 2^F otherwise; spot: ⌊1/q · spot / 2^F⌋
+  uint64_t att = 0;    // 1/q, F fraction bits, saturated (point_att); 2^F otherwise; spot: ⌊1/q · spot / 2^VF⌋
   int64_t sdl = 0;     // spot: ⌊−L̂·ŝ / 2^VF⌋ (ŝ the direction register · 2^spec_guard), VF fraction bits
   bool in_cone = false;  // spot: sdl >= the spot cos register
-  uint64_t spot = 0;   // spot: in_cone ? powi_chain(clamp(⌊sdl / 2^spec_guard⌋, 0, 2^F), exponent) : 0 (F bits)
+  uint64_t spot = 0;   // spot: in_cone ? powi_chain(VF, clamp(sdl, 0, 2^VF), exponent) : 0 (VF fraction bits)
   int64_t ndl = 0;     // ⌊N̂·L / 2^VF⌋, signed, VF fraction bits
   uint32_t diff = 0;   // clamp(⌊ndl / 2^(VF−F)⌋, 0, 2^F)
   bool f = false;      // ndl > 0 (and the material's unit exists)
@@ -314,9 +314,9 @@ class LightCore {
           const int64_t sd[3] = {L.sdir[0] * (int64_t{1} << E), L.sdir[1] * (int64_t{1} << E), L.sdir[2] * (int64_t{1} << E)};
           lt.sdl = (-dot3(lt.l, sd)) >> VF;
           lt.in_cone = lt.sdl >= L.scos;
-          const uint64_t xs = static_cast<uint64_t>(std::clamp<int64_t>(lt.sdl >> E, 0, one));
-          lt.spot = lt.in_cone ? powi_chain(F, xs, L.sexp, kSpotExpBits) : 0;
-          lt.att = (lt.att * lt.spot) >> F;
+          const uint64_t xs = static_cast<uint64_t>(std::clamp<int64_t>(lt.sdl, 0, int64_t{1} << VF));
+          lt.spot = lt.in_cone ? powi_chain(VF, xs, L.sexp, kSpotExpBits) : 0;
+          lt.att = (lt.att * lt.spot) >> VF;
         }
       }
       // N̂·L at VF fraction bits, and R below, saturated to [−8, 8) (signed VF+4 bits): never with a unit L
