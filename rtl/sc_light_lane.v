@@ -109,7 +109,6 @@ module sc_light_lane #(
   localparam integer RVW = NW + 2;                           // of R saturated to [−8, 8) per component
   localparam integer NEED_L = (NEED_N != 0 || CAN_ATT != 0) ? 1 : 0;
   localparam integer POINT_L = (CAN_PT != 0 && NEED_L != 0) ? 1 : 0;   // an L̂ = normalise(P_j − P)
-  localparam [CL-1:0] ONE   = {1'b1, {FRAC{1'b0}}};
   localparam [PW-1:0] ATT_ONE = {{7{1'b0}}, 1'b1, {FRAC{1'b0}}};
 
   genvar gi, k;
@@ -310,10 +309,8 @@ module sc_light_lane #(
       wire [VF+1:0]  scos = scos_i[idx_s2*(VF+2) +: VF+2];
       wire [SDW-1:0] scos_x = {{(SDW-VF-2){scos[VF+1]}}, scos};
       wire           in_cone = $signed(sdl_q) >= $signed(scos_x);
-      localparam [VF:0] VONE = {1'b1, {VF{1'b0}}};
-      wire           sneg = sdl_q[SDW-1];
-      wire           sbig = !sneg && (sdl_q > {{(SDW-VF-1){1'b0}}, VONE});
-      wire [VF:0]    sx = sneg ? {(VF+1){1'b0}} : (sbig ? VONE : sdl_q[VF:0]);
+      wire [VF:0]    sx;
+      sc_clamp01 #(.IW(SDW), .FRAC(VF)) u_clamp_sx (.d_i(sdl_q), .q_o(sx));
       localparam integer PH0 = (T_L + 2) % SH;
       sc_powi #(.FRAC(VF), .EB(T_SP - T_L - 2), .SH(SH), .PH0(PH0)) u_powi (
           .clk_i(clk_i), .en_i(en_i), .x_i(sx), .e_i(sexp_i[8*idx_s2 +: 8]), .zero_i(!in_cone),
@@ -477,10 +474,9 @@ module sc_light_lane #(
       end
       assign ndl = ndl_q;
       localparam integer NSW = NDW - SG;   // ⌊ndl / 2^SG⌋: F fraction bits
-      wire [NSW-1:0] ndl_s = ndl_q[NDW-1:SG];
       wire          neg   = ndl_q[NDW-1];
-      wire          big   = !neg && (ndl_s > {{(NSW-CL){1'b0}}, ONE});
-      wire [CL-1:0] diff1 = neg ? {CL{1'b0}} : (big ? ONE : ndl_s[CL-1:0]);
+      wire [CL-1:0] diff1;
+      sc_clamp01 #(.IW(NSW), .FRAC(FRAC)) u_clamp_diff (.d_i(ndl_q[NDW-1:SG]), .q_o(diff1));
       wire          f1    = !neg && (ndl_q != {NDW{1'b0}});
       if (DIFFUSE != 0) begin : g_diff
         sc_delay #(.W(CL), .DEPTH(T_F - T_A - 1)) u_dly_diff (

@@ -215,6 +215,12 @@ TEST(LightHardCases, SpotBoundaryAndZeroPower) {
     static_cast<void>(r.core.eval(r.regs, Fragment{{0, 0, one}, {x, 0, -x}}, &u));
     EXPECT_EQ(u.light[0].spot, vone);
   }
+  // the cos register at the ends of the range: exactly 0 at 90° (a perpendicular ŝ is inside), 2^VF at 0°
+  const int VF = r.core.unit_format().frac;
+  EXPECT_EQ(spot_cos_code(VF, 90), 0u);
+  EXPECT_EQ(spot_cos_code(VF, 0), uint32_t{1} << VF);
+  EXPECT_EQ(spot_cos_code(VF, 60), (uint32_t{1} << VF) / 2);  // cos 60° = ½: ⌈2^VF·½⌉ when sin(30°) rounds to ½
+  EXPECT_EQ(spot_cos_code(VF, 180), uint32_t{1} << (VF + 1));  // the smallest VF+2-bit word, −2
   for (double c : {-1.0, 90.5, 179.0, 181.0}) {
     lp.spot_cutoff = c;
     EXPECT_THROW(light_writes(r.core, 0, lp), std::invalid_argument) << c;

@@ -594,6 +594,15 @@ inline int64_t pos_code(int F, double x, const char* what) {
   return std::clamp<int64_t>(std::llround(std::ldexp(x, F)), -(int64_t{1} << (F + kPosIntBits)),
                              (int64_t{1} << (F + kPosIntBits)) - 1);
 }
+// The three register words of a unit direction: d normalised in double, each component rounded to F fraction
+// bits, masked to the register's width (a directional light's position, a spot direction).
+inline void push_unit_direction(std::vector<RegWrite>& w, uint32_t addr, int F, const double d[3], uint32_t mask,
+                                const std::string& zero_error) {
+  const double l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (!(l > 0)) throw std::invalid_argument(zero_error);
+  for (uint32_t c = 0; c < 3; ++c)
+    w.push_back({addr + c, static_cast<uint32_t>(std::llround(std::ldexp(d[c] / l, F))) & mask});
+}
 }  // namespace detail
 
 // Material registers (n, thr, coef and the four colours).
@@ -626,11 +635,13 @@ inline std::vector<RegWrite> material_writes(const LightCore& core, const Materi
 
 // The spot cos register for a cutoff in degrees: ⌈cos(cutoff)·2^VF⌉ (so a code sdl is inside iff sdl >=
 // cos(cutoff)·2^VF, GL's >=), as a VF+2-bit two's-complement word; cutoff 180: the smallest word (−2), every
-// fragment inside. cos is taken at the cutoff in radians, cutoff·π/180 in double.
+// fragment inside. cos(cutoff) is computed as sin((90 − cutoff)·π/180) in double, exact at both ends of the
+// range: cutoff 90 gives 0 (inside iff −L̂·ŝ >= 0, as GL's cos 90° = 0; cos(π/2) in double is 6e-17, which
+// would put a perpendicular ŝ outside) and cutoff 0 gives 1.
 inline uint32_t spot_cos_code(int vf, double cutoff_deg) {
   const uint32_t m = static_cast<uint32_t>(mask_bits(vf + 2));
   if (cutoff_deg == 180.0) return (uint32_t{1} << (vf + 1)) & m;
-  const double c = std::cos(cutoff_deg * (std::acos(-1.0) / 180.0));
+  const double c = std::sin((90.0 - cutoff_deg) * (std::acos(-1.0) / 180.0));
   const int64_t code = static_cast<int64_t>(std::ceil(std::ldexp(c, vf)));
   return static_cast<uint32_t>(code) & m;
 }
@@ -667,12 +678,7 @@ inline std::vector<RegWrite> light_writes(const LightCore& core, int j, const Li
   const uint32_t pmask = static_cast<uint32_t>(mask_bits(light_pos_bits(F)));
   if (kind == LightKind::Directional) {
     if (lp.position[3] != 0.0) throw std::invalid_argument("light " + std::to_string(j) + " is directional (w = 0 expected)");
-    const double l = std::sqrt(lp.position[0] * lp.position[0] + lp.position[1] * lp.position[1] +
-                               lp.position[2] * lp.position[2]);
-    if (!(l > 0)) throw std::invalid_argument("light " + std::to_string(j) + ": zero direction");
-    for (uint32_t c = 0; c < 3; ++c)
-      w.push_back({base + kReg_light_position + c,
-                   static_cast<uint32_t>(std::llround(std::ldexp(lp.position[c] / l, F))) & pmask});
+    detail::push_unit_direction(w, base + kReg_light_position, F, lp.position, pmask, lj + ": zero direction");
   } else {
     if (lp.position[3] == 0.0) throw std::invalid_argument("light " + std::to_string(j) + " is a point light (w != 0 expected)");
     for (uint32_t c = 0; c < 3; ++c)
@@ -697,12 +703,8 @@ inline std::vector<RegWrite> light_writes(const LightCore& core, int j, const Li
     w.push_back({base + kReg_light_kq, kq});
   }
   if (kind == LightKind::Spot) {
-    const double* sd = lp.spot_direction;
-    const double l = std::sqrt(sd[0] * sd[0] + sd[1] * sd[1] + sd[2] * sd[2]);
-    if (!(l > 0)) throw std::invalid_argument(lj + ": zero spot direction");
-    const uint32_t dmask = static_cast<uint32_t>(mask_bits(F + 2));
-    for (uint32_t c = 0; c < 3; ++c)
-      w.push_back({base + kReg_light_spot_direction + c, static_cast<uint32_t>(std::llround(std::ldexp(sd[c] / l, F))) & dmask});
+    detail::push_unit_direction(w, base + kReg_light_spot_direction, F, lp.spot_direction,
+                                static_cast<uint32_t>(mask_bits(F + 2)), lj + ": zero spot direction");
     w.push_back({base + kReg_light_spot_cos, spot_cos_code(core.unit_format().frac, lp.spot_cutoff)});
     // cutoff 180 on a spot slot: exponent 0 and the smallest cos, so the factor is 1 everywhere (GL)
     w.push_back({base + kReg_light_spot_exponent, lp.spot_cutoff == 180.0 ? 0u : static_cast<uint32_t>(lp.spot_exponent)});

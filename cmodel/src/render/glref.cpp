@@ -14,6 +14,7 @@
 #include <string>
 
 #include "shadecore/render/mesh.hpp"
+#include "shadecore/render/render.hpp"
 
 namespace shadecore::glref {
 
@@ -26,28 +27,19 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kGlMaxShininess = 128;  // GL_SHININESS is 0..128 (larger values are GL_INVALID_VALUE)
 
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3 unit(const Vec3& v) {
-  const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  return {v[0] / l, v[1] / l, v[2] / l};
-}
-
 // gluPerspective(fovy, aspect, near, far) as the glFrustum it is.
 void gl_perspective(const scene::Camera& c, double aspect) {
   const double ymax = c.near * std::tan(c.fovy * kPi / 360.0), xmax = ymax * aspect;
   glFrustum(-xmax, xmax, -ymax, ymax, c.near, c.far);
 }
 
-// gluLookAt(eye, center, up): the rotation (s, u, −f) by rows, then the translation by −eye.
+// gluLookAt(eye, center, up): the project's own view matrix (render::view_matrix, row-major) as GL's column-major.
 void gl_look_at(const scene::Camera& c) {
-  const Vec3 f = unit({c.center[0] - c.eye[0], c.center[1] - c.eye[1], c.center[2] - c.eye[2]});
-  const Vec3 s = unit(cross(f, c.up));
-  const Vec3 u = cross(s, f);
-  const GLdouble m[16] = {s[0], u[0], -f[0], 0, s[1], u[1], -f[1], 0, s[2], u[2], -f[2], 0, 0, 0, 0, 1};  // column-major
+  const std::array<double, 16> v = render::view_matrix(c);
+  GLdouble m[16];
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) m[j * 4 + i] = v[i * 4 + j];
   glMultMatrixd(m);
-  glTranslated(-c.eye[0], -c.eye[1], -c.eye[2]);
 }
 
 void rgba(const Vec3& c, GLfloat out[4]) {

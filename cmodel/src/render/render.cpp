@@ -135,6 +135,8 @@ bool pos_in_range(const Vec3& p) {
 
 }  // namespace
 
+std::array<double, 16> view_matrix(const Camera& c) { return look_at(c); }
+
 // ---- feature sets ---------------------------------------------------------------------------------
 
 FeatureSet full_core_for(const FeatureSet& spec, std::vector<std::string>& subs) {

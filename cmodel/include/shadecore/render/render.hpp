@@ -124,6 +124,10 @@ struct Frame {
   std::array<uint32_t, 3> background{};       // codes
 };
 
+// The view matrix of the scene's camera, gluLookAt(eye, center, up), row-major: what prepare() puts on the
+// modelview stack before lights and objects (also shadecore_glref's, so both renderers share one camera).
+std::array<double, 16> view_matrix(const scene::Camera& c);
+
 Frame prepare(const scene::Scene& sc, MeshSource& meshes, const Settings& s);
 Frame prepare(const scene::Scene& sc, const std::vector<scene::Mesh>& meshes, const Settings& s);
 
