@@ -140,6 +140,8 @@ TEST(LightSweep, QuantisationContractAtTheDefaultGuard) {
     for (const auto& u : j["units"]) {
       EXPECT_GE(u["quant_min_lsb"].get<double>(), -128.0) << set << " " << u["specular"];
       EXPECT_LE(u["quant_max_lsb"].get<double>(), 128.0) << set << " " << u["specular"];
+      // spot cone edges (full has spot slots) are counted apart: a step, rare (docs/lighting.md §7)
+      EXPECT_LE(u["spot_edge_fragments"].get<uint64_t>() * 1000, u["samples"].get<uint64_t>()) << set;
     }
   }
   const TempDir d;

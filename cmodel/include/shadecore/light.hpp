@@ -365,7 +365,11 @@ class LightCore {
   // (every code read as code/2^F): exact normalisation, exact 1/q, and spec = cos^n (exact) or the
   // variant's own double formula, times coef (the register value) with norm. Channel values in [0, 1].
   enum class SpecRef { Exact, Variant };
-  [[nodiscard]] std::array<double, 3> eval_double(const LightRegs& r, const Fragment& fr, SpecRef ref) const;
+  // `cone`, when given, gets bit j set for a spot light j inside its cone in double (−L̂·ŝ >= the cos register's
+  // value): where it differs from the trace's in_cone the fragment is on the cone's edge, a step the fixed-point
+  // sdl (truncated, from the normalised L̂) and the double can put on different sides (docs/lighting.md §3.4).
+  [[nodiscard]] std::array<double, 3> eval_double(const LightRegs& r, const Fragment& fr, SpecRef ref,
+                                                  uint32_t* cone = nullptr) const;
 
   static int64_t dot3(const int64_t a[3], const int64_t b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
@@ -473,7 +477,9 @@ inline int LightCore::latency_min() const {
   return pass_latency(0);
 }
 
-inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fragment& fr, SpecRef ref) const {
+inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fragment& fr, SpecRef ref,
+                                                    uint32_t* cone) const {
+  if (cone) *cone = 0;
   const int F = f_.frac;
   const LightModes md = modes(r);
   auto v = [F](int64_t code) { return std::ldexp(static_cast<double>(code), -F); };
@@ -512,6 +518,7 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
       if (kind == LightKind::Spot) {  // the same registers read exactly: ŝ = code/2^F, cos = code/2^VF
         const double sd = -(l[0] * v(L.sdir[0]) + l[1] * v(L.sdir[1]) + l[2] * v(L.sdir[2]));
         const bool in = sd >= std::ldexp(static_cast<double>(L.scos), -uf_.frac);
+        if (cone && in) *cone |= 1u << j;
         att *= in ? (L.sexp == 0 ? 1.0 : std::pow(std::clamp(sd, 0.0, 1.0), static_cast<double>(L.sexp))) : 0.0;
       }
     }
