@@ -93,7 +93,8 @@
 //               T_H  = the first t >= max(T_L, T_V) with t ≡ K_H (mod S);  T_RV = max(T_A+2, T_V)
 //               T_XB = T_H+NL+1 (BLINN), T_XP = LV ? T_RV+1 : T_A+2 (PHONG)      unit input x
 //               T_ATT = T_L+3+RL (+1 with SHARE > 1)       att (point_att)
-//               T_SP = T_L+2+8                             the spot factor (sc_powi, 8 exponent bits)
+//               T_SP = T_L+2+SPOT_EXP_BITS                 the spot factor (sc_powi, one stage per exponent bit;
+//                                                          SPOT_EXP_BITS = 8, sc_light_regs.vh)
 //               T_F  = max(1, NEED_N ? T_A+1 : 0, UNITS ? max(T_XB, T_XP) : 0, ANY_ATT ? T_ATT : 0,
 //                          ANY_SPOT ? max(T_ATT, T_SP)+1 : 0)
 //               (with S = 1 every op enters at stage 0: T_V = T_L = NL, T_H = max(T_L, T_V))
@@ -281,7 +282,7 @@ module sc_light #(
   // att (point_att; T_L = NL with SHARE 1); with SHARE > 1 q takes one stage more, its three products at
   // three stages sharing one multiplier (rtl/sc_light_lane.v)
   localparam integer T_ATT = T_L + 3 + RL + ((SH > 1) ? 1 : 0);
-  localparam integer SPEB  = 8;                                            // spot exponent bits (sc_powi stages)
+  localparam integer SPEB  = SPOT_EXP_BITS;                                // spot exponent bits (sc_powi stages)
   localparam integer T_SP  = T_L + 2 + SPEB;                               // the spot factor
   localparam integer T_F   = sc_max(sc_max(sc_max(1, (NEED_N != 0) ? T_A + 1 : 0),
                                   sc_max((SPECULAR != 0) ? T_X : 0, (ANY_ATT != 0) ? T_ATT : 0)),
@@ -409,7 +410,7 @@ module sc_light #(
   wire [NLT*2-1:0]       kind_all;
   wire [NLT*3*(FRAC+2)-1:0] sdir_all;
   wire [NLT*(VF+2)-1:0]  scos_all;
-  wire [NLT*8-1:0]       sexp_all;
+  wire [NLT*SPEB-1:0]    sexp_all;
   wire [NLT-1:0]         on_all;
   wire [NLT*NCH*CL-1:0]  lamb_all;
   wire [NCH*CL-1:0]      mamb_w;
@@ -422,7 +423,7 @@ module sc_light #(
   wire [7:0]             unit_sel;
   wire                   unit_kill, lv_mode, phong_mode, norm_mode;
   sc_light_regfile #(
-      .FRAC(FRAC), .UFRAC(VF), .SLOT_KINDS(SLOT_KINDS), .SLOT_SPOT(SLOT_SPOT), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
+      .FRAC(FRAC), .UFRAC(VF), .SLOT_KINDS(SLOT_KINDS), .SLOT_SPOT(SLOT_SPOT), .SEB(SPEB), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
       .UNITS(UNITS), .ENERGY(ENERGY), .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER),
       .NORMALIZE(NORMALIZE), .NLT(NLT), .NCH(NCH), .AW(AW)
   ) u_regs (
@@ -718,7 +719,7 @@ module sc_light #(
       wire [2:0]      idx_f;
       sc_light_lane #(
           .FRAC(FRAC), .SG(SGUARD), .NLT(NLT), .CAN_DIR(CAN_DIR), .CAN_PT(CAN_PT), .CAN_ATT(ANY_ATT),
-          .CAN_SPOT(ANY_SPOT), .T_SP(T_SP),
+          .CAN_SPOT(ANY_SPOT), .T_SP(T_SP), .SEB(SPEB),
           .NEED_N(NEED_N), .SPECULAR(SPECULAR), .DIFFUSE(DIFFUSE), .BLINN(BLINN), .PHONG(PHONG),
           .LV(LV), .T_L(T_L), .T_A(T_A), .T_H(T_H), .T_RV(T_RV), .T_XB(T_XB), .T_XP(T_XP),
           .T_ATT(T_ATT), .T_F(T_F), .EXT_NORM((SH > 1) ? 1 : 0), .SH(SH)

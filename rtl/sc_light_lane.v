@@ -26,7 +26,8 @@
 // Parameters: FRAC, SG, NLT (slots), capabilities CAN_DIR / CAN_PT (point, point_att or spot) / CAN_ATT
 //             (point_att or spot) / CAN_SPOT, NEED_N,
 //             SPECULAR, DIFFUSE, BLINN, PHONG, LV, and the stage times of rtl/sc_light.v's header
-//             (T_L, T_A, T_H, T_RV, T_XB, T_XP, T_ATT, T_SP, T_F); SH (SHARE of rtl/sc_light.v: the lane's
+//             (T_L, T_A, T_H, T_RV, T_XB, T_XP, T_ATT, T_SP = T_L+2+SEB, T_F); SEB (spot exponent bits,
+//             SPOT_EXP_BITS); SH (SHARE of rtl/sc_light.v: the lane's
 //             dot-product multipliers are shared by ops whose stages differ mod SH, chosen by the
 //             phase ph_i; "dot-product multipliers" below); EXT_NORM = 1 (rtl/sc_light.v's SHARE > 1):
 //             L̂ and Ĥ are normalised outside the lane by the core's shared normalisers — the lane
@@ -62,6 +63,7 @@ module sc_light_lane #(
     parameter integer T_XP     = 0,
     parameter integer T_ATT    = 0,
     parameter integer T_SP     = 0,
+    parameter integer SEB      = 8,
     parameter integer T_F      = 1,
     parameter integer EXT_NORM = 0,
     parameter integer SH       = 1
@@ -81,7 +83,7 @@ module sc_light_lane #(
     input  wire [NLT*2-1:0]          kind_i,
     input  wire [NLT*3*(FRAC+2)-1:0] sdir_i,
     input  wire [NLT*(FRAC+SG+2)-1:0] scos_i,
-    input  wire [NLT*8-1:0]          sexp_i,
+    input  wire [NLT*SEB-1:0]        sexp_i,
     output wire [FRAC+SG+1:0]        x_o,
     output wire [FRAC:0]             diff_o,
     output wire                      f_o,
@@ -279,6 +281,9 @@ module sc_light_lane #(
   // ---------------------------------------------------------------------------- spot factor (spot)
   wire [VF:0]   spot_f;    // the spot factor at T_SP (VF fraction bits, <= 2^VF)
   generate
+    if (CAN_SPOT != 0 && T_SP != T_L + 2 + SEB) begin : g_check_tsp
+      sc_light_lane_error_T_SP_must_be_T_L_plus_2_plus_SEB u_error ();
+    end
     if (CAN_SPOT != 0) begin : g_spot
       wire [2:0] idx_s1 = idx_s[3*(T_L+1) +: 3];
       wire [2:0] idx_s2 = idx_s[3*(T_L+2) +: 3];
@@ -312,8 +317,8 @@ module sc_light_lane #(
       wire [VF:0]    sx;
       sc_clamp01 #(.IW(SDW), .FRAC(VF)) u_clamp_sx (.d_i(sdl_q), .q_o(sx));
       localparam integer PH0 = (T_L + 2) % SH;
-      sc_powi #(.FRAC(VF), .EB(T_SP - T_L - 2), .SH(SH), .PH0(PH0)) u_powi (
-          .clk_i(clk_i), .en_i(en_i), .x_i(sx), .e_i(sexp_i[8*idx_s2 +: 8]), .zero_i(!in_cone),
+      sc_powi #(.FRAC(VF), .EB(SEB), .SH(SH), .PH0(PH0)) u_powi (
+          .clk_i(clk_i), .en_i(en_i), .x_i(sx), .e_i(sexp_i[SEB*idx_s2 +: SEB]), .zero_i(!in_cone),
           .ph_i(ph_i), .r_o(spot_f));
     end else begin : g_no_spot
       assign spot_f = {(VF+1){1'b0}};

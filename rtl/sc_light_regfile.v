@@ -24,7 +24,7 @@
 // Ports     : clk_i; wr_i, addr_i[AW-1:0], data_i[31:0] (a write this edge);
 //             per slot j, packed at j: pos_o (3 × F+8), katt_o (kc, kl, kq × F+8), kind_o (2 bits, the
 //             register's kind), on_o (1 bit), spot (slots that can be spot, else 0): sdir_o (3 × F+2),
-//             scos_o (UFRAC+2), sexp_o (8), lamb_o (per channel Ia_jc, F+1 bits),
+//             scos_o (UFRAC+2), sexp_o (SEB = SPOT_EXP_BITS of sc_light_regs.vh, from rtl/sc_light.v), lamb_o (per channel Ia_jc, F+1 bits),
 //             ldif_o, lspec_o (per channel F+1); material: scene_o (min(e + a·A >> F, 2^F)), mdif_o,
 //             mspec_o; unit: mat_we_o, mat_n_o, mat_thr_o, mat_coef_o (the values after this edge's
 //             write, with mat_we_o at the write edge), unit_sel_o (one-hot over variant ids),
@@ -37,6 +37,7 @@ module sc_light_regfile #(
     parameter integer UFRAC        = 16,
     parameter integer SLOT_KINDS   = 1,
     parameter integer SLOT_SPOT    = 0,
+    parameter integer SEB          = 8,
     parameter integer AMBIENT      = 1,
     parameter integer DIFFUSE      = 1,
     parameter integer UNITS        = 1,
@@ -59,7 +60,7 @@ module sc_light_regfile #(
     output wire [NLT-1:0]        on_o,
     output wire [NLT*3*(FRAC+2)-1:0] sdir_o,
     output wire [NLT*(UFRAC+2)-1:0]  scos_o,
-    output wire [NLT*8-1:0]      sexp_o,
+    output wire [NLT*SEB-1:0]    sexp_o,
     output wire [NLT*NCH*(FRAC+1)-1:0] lamb_o,
     output wire [NCH*(FRAC+1)-1:0] mamb_o,
     output wire [NLT*NCH*(FRAC+1)-1:0] ldif_o,
@@ -286,17 +287,17 @@ module sc_light_regfile #(
           assign sdir_o[(3*j + gi)*(F+2) +: F+2] = sdir_q;
         end
         reg [UFRAC+1:0] scos_q;
-        reg [7:0]       sexp_q;
+        reg [SEB-1:0]   sexp_q;
         always @(posedge clk_i) begin
           if (wr_i && addr_i == A_SC[AW-1:0]) scos_q <= data_i[UFRAC+1:0];
-          if (wr_i && addr_i == A_SE[AW-1:0]) sexp_q <= data_i[7:0];
+          if (wr_i && addr_i == A_SE[AW-1:0]) sexp_q <= data_i[SEB-1:0];
         end
         assign scos_o[j*(UFRAC+2) +: UFRAC+2] = scos_q;
-        assign sexp_o[8*j +: 8] = sexp_q;
+        assign sexp_o[SEB*j +: SEB] = sexp_q;
       end else begin : g_no_spot
         assign sdir_o[3*j*(F+2) +: 3*(F+2)] = {3*(F+2){1'b0}};
         assign scos_o[j*(UFRAC+2) +: UFRAC+2] = {(UFRAC+2){1'b0}};
-        assign sexp_o[8*j +: 8] = 8'd0;
+        assign sexp_o[SEB*j +: SEB] = {SEB{1'b0}};
       end
       for (c = 0; c < NCH; c = c + 1) begin : g_col
         localparam integer A_LA = reg_at(REG_LIGHT_AMBIENT, ABASE + c);

@@ -6,7 +6,7 @@
 #   scripts/handoff_corrupt_check.sh BUNDLE_DIR [VECTOR_FILE]     (default vectors/random.hex)
 #
 # The first non-zero expected word of VECTOR_FILE is zeroed: EXPECTED of a specular-unit vector (five
-# words a line) or R of a lighting-core fragment record (ten words, kind 1). Its index among the data
+# words a line) or R of a lighting-core fragment record (ten words, T = 1 + 16·latency: hex ending in 1). Its index among the data
 # lines is the vector both run_icarus.sh and run_verilator.sh must name ("FAIL vector <index>:") while
 # exiting non-zero. Prints "corrupt_check: PASS ..." and exits 0, or "corrupt_check: FAIL ..." and 1.
 set -u
@@ -18,7 +18,7 @@ trap 'rm -rf "$work"' EXIT
 cp -r "$b" "$work/bundle" || exit 1
 awk 'BEGIN{d=0; i=-1} $0 !~ /^\/\// {i++}
      !d && $0 !~ /^\/\// && NF==5 && $5 !~ /^0+$/ {gsub(/./,"0",$5); d=1; print i > "/dev/stderr"}
-     !d && $0 !~ /^\/\// && NF==10 && $1=="1" && $8 !~ /^0+$/ {gsub(/./,"0",$8); d=1; print i > "/dev/stderr"}
+     !d && $0 !~ /^\/\// && NF==10 && $1 ~ /1$/ && $8 !~ /^0+$/ {gsub(/./,"0",$8); d=1; print i > "/dev/stderr"}
      {print}' "$b/$vf" > "$work/bundle/$vf" 2> "$work/idx"
 idx=$(cat "$work/idx")
 [ -n "$idx" ] || { echo "corrupt_check: FAIL: no non-zero expected value in $vf"; exit 1; }

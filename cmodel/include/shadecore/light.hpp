@@ -69,7 +69,8 @@ inline uint64_t powi_chain(int frac, uint64_t x, uint32_t e, int ebits) {
   }
   return r;
 }
-inline constexpr int kSpotExpBits = 8;  // the spot exponent register: 0..255 computed, GL uses 0..128
+// kSpotExpBits (config/configs.json "light" spot_exponent_bits, light_regs.hpp): the spot exponent register's
+// width and the chain's stages; every exponent below 2^kSpotExpBits is computed, GL uses 0..128
 inline constexpr int kSpotExpMax = 128;  // GL_SPOT_EXPONENT's range (the host rejects more)
 
 // The register file of sc_light, as the codes the hardware holds (register map: light_regs.hpp).
