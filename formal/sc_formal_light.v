@@ -54,6 +54,7 @@ module sc_formal_light #(
     parameter integer SGUARD       = 0,
     parameter integer LIGHTS       = 1,
     parameter integer SLOT_KINDS   = 1,
+    parameter integer SLOT_SPOT    = 0,
     parameter integer LANES        = 1,
     parameter integer SHARE        = 1,   // passed through; the l_tput_* issue-slot properties assume 1
     parameter integer AMBIENT      = 1,
@@ -95,7 +96,7 @@ module sc_formal_light #(
   wire [TAGW-1:0] out_tag_o;
 
   sc_light #(
-      .FRAC(FRAC), .GUARD(GUARD), .SGUARD(SGUARD), .LIGHTS(LIGHTS), .SLOT_KINDS(SLOT_KINDS), .LANES(LANES), .SHARE(SHARE),
+      .FRAC(FRAC), .GUARD(GUARD), .SGUARD(SGUARD), .LIGHTS(LIGHTS), .SLOT_KINDS(SLOT_KINDS), .SLOT_SPOT(SLOT_SPOT), .LANES(LANES), .SHARE(SHARE),
       .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE), .UNITS(UNITS), .CUTOFF(CUTOFF), .ENERGY(ENERGY),
       .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER), .NORMALIZE(NORMALIZE),
       .CHANNELS(CHANNELS), .TAGW(TAGW)
@@ -203,7 +204,8 @@ module sc_formal_light #(
     f_k = 4'd0;
     for (j = 0; j < NLT; j = j + 1) begin
       f_kind = f_mode[4*j+1 +: 3];
-      if (f_mode[4*j] && f_kind <= 3'd2 && ((SLOT_KINDS >> (3 * j + f_kind)) & 1) != 0) f_k = f_k + 4'd1;
+      if (f_mode[4*j] && ((f_kind <= 3'd2 && ((SLOT_KINDS >> (3 * j + f_kind)) & 1) != 0) ||
+                          (f_kind == 3'd3 && ((SLOT_SPOT >> j) & 1) != 0))) f_k = f_k + 4'd1;
     end
     f_p = 4'd1;
     for (q = 1; q < 8; q = q + 1) begin
