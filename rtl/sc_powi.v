@@ -13,7 +13,7 @@
 //   x^e·2^FRAC (e >= 1), never above (docs/lighting.md §3.4).
 //
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
-//   FRAC  fraction bits, 1..24                                               (default 16)
+//   FRAC  fraction bits, 8..24 (config/configs.json limits.frac; the core's VF) (default 16)
 //   EB    exponent bits = register stages, 2..8                              (default 8)
 //   SH    stages per pass (the core's SHARE), 1..4: the EB products r·p and the EB−1 squarings share
 //         multipliers over SH consecutive stages (rtl/sc_mul_pool.v), chosen by the phase ph_i
@@ -40,8 +40,8 @@ module sc_powi #(
 
   // ---------------------------------------------------------------------------- check configuration
   generate
-    if (FRAC < 1 || FRAC > 24) begin : g_check_frac
-      sc_powi_error_illegal_FRAC_legal_range_is_1_to_24 u_error ();
+    if (FRAC < 8 || FRAC > 24) begin : g_check_frac
+      sc_powi_error_illegal_FRAC_legal_range_is_8_to_24 u_error ();
     end
     if (EB < 2 || EB > 8) begin : g_check_eb
       sc_powi_error_illegal_EB_legal_range_is_2_to_8 u_error ();
