@@ -34,6 +34,13 @@ struct Stats {
   // they are counted and measured apart, not in the quantisation figures above (docs/lighting.md §7).
   uint64_t edge_fragments = 0;
   double edge_quant_max_abs = 0;
+  // The new terms apart (docs/lighting.md §3.4, §3.5, §7): programs whose shininess is below 16 (low_shininess:
+  // every fourth program) — the whole colour's quantisation against the double core there; and each spot light's
+  // factor against (−L̂·ŝ)^e in double (LSBs of 2^−F), where both cone tests agree.
+  uint64_t low_samples = 0;
+  double low_quant_min = 1e300, low_quant_max = -1e300;
+  uint64_t spot_samples = 0;
+  double spot_factor_max_abs = 0;
 };
 
 Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, uint64_t seed) {
@@ -52,6 +59,8 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
     MaterialParams m;
     for (int c = 0; c < 3; ++c) m.ambient[c] = u(0, 0.3), m.diffuse[c] = u(0, 0.8), m.specular[c] = u(0.2, 1);
     m.shininess = static_cast<int>(std::lround(std::exp(u(std::log(16.0), std::log(1024.0)))));
+    const bool low = fs.specular && fs.low_shininess && prog % 4 == 3;
+    if (low) m.shininess = static_cast<int>(prog / 4 % static_cast<uint64_t>(kNMin));  // 0..15 in turn
     apply(material_writes(core, m));
     for (int j = 0; j < fs.num_lights(); ++j) {
       LightParams lp;
@@ -95,6 +104,22 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
               st.edge_quant_max_abs, std::fabs(std::ldexp(static_cast<double>(c.c[ch]), -F) - va[ch]) * std::ldexp(1.0, F));
         continue;
       }
+      // each spot light's factor against the double one on the double geometry (the register codes read exactly)
+      for (int j = 0; j < fs.num_lights(); ++j) {
+        const LightTrace& lt = t.light[static_cast<size_t>(j)];
+        if (!lt.on || lt.kind != LightKind::Spot || !lt.in_cone) continue;
+        const LightRegs::Light& L = regs.light[static_cast<size_t>(j)];
+        double l[3], ll = 0, sd = 0;
+        for (int k = 0; k < 3; ++k) {
+          l[k] = std::ldexp(static_cast<double>(L.pos[k] - fr.p[k]), -F);
+          ll += l[k] * l[k];
+        }
+        for (int k = 0; k < 3; ++k) sd -= l[k] / std::sqrt(ll) * std::ldexp(static_cast<double>(L.sdir[k]), -F);
+        const double sp = L.sexp == 0 ? 1.0 : std::pow(std::clamp(sd, 0.0, 1.0), static_cast<double>(L.sexp));
+        const double fx = std::ldexp(static_cast<double>(lt.spot), -core.unit_format().frac);
+        st.spot_factor_max_abs = std::max(st.spot_factor_max_abs, std::fabs(fx - sp) * std::ldexp(1.0, F));
+        ++st.spot_samples;
+      }
       for (int ch = 0; ch < fs.channels; ++ch) {
         const double fx = std::ldexp(static_cast<double>(c.c[ch]), -F);
         const double tot = (fx - ex[ch]) * std::ldexp(1.0, F), q = (fx - va[ch]) * std::ldexp(1.0, F);
@@ -106,6 +131,11 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
         st.sq_sum += tot * tot;
         ++st.samples;
         if (ex[ch] > 0) ++st.lit;
+        if (low) {
+          st.low_quant_min = std::min(st.low_quant_min, q);
+          st.low_quant_max = std::max(st.low_quant_max, q);
+          ++st.low_samples;
+        }
       }
     }
   }
@@ -200,6 +230,12 @@ void add_light_sweep(CLI::App& app) {
       const double approx_lsb = std::ldexp(st.approx_max, F);
       fmt::print("  {:<13} {:>12.2f} {:>14.2f} {:>12.2f} {:>12.2f} {:>12.3f} {:>9.1f}\n", name, st.total_max,
                  approx_lsb, st.quant_min, st.quant_max, st.abs_sum / st.samples, psnr);
+      if (st.low_samples)
+        fmt::print("  {:<13} shininess 0..15 (low_shininess chain, every 4th program): quant {:.2f}..{:.2f} LSB over {} samples\n",
+                   "", st.low_quant_min, st.low_quant_max, st.low_samples);
+      if (st.spot_samples)
+        fmt::print("  {:<13} spot factor against (-L.s)^e in double: max |error| {:.2f} LSB over {} lit spot terms\n", "",
+                   st.spot_factor_max_abs, st.spot_samples);
       if (st.edge_fragments)
         fmt::print("  {:<13} spot cone edge: {} fragments where the fixed-point and the double cone test disagree "
                    "(not above); there |fixed - double unit| up to {:.2f} LSB\n",
@@ -214,7 +250,12 @@ void add_light_sweep(CLI::App& app) {
                        {"psnr_db", psnr},
                        {"samples", st.samples},
                        {"spot_edge_fragments", st.edge_fragments},
-                       {"spot_edge_quant_max_abs_lsb", st.edge_quant_max_abs}});
+                       {"spot_edge_quant_max_abs_lsb", st.edge_quant_max_abs},
+                       {"low_shininess_samples", st.low_samples},
+                       {"low_shininess_quant_min_lsb", st.low_samples ? st.low_quant_min : 0.0},
+                       {"low_shininess_quant_max_lsb", st.low_samples ? st.low_quant_max : 0.0},
+                       {"spot_factor_samples", st.spot_samples},
+                       {"spot_factor_max_abs_lsb", st.spot_factor_max_abs}});
     }
     if (!a->json.empty()) {
       nlohmann::json j = {{"features", base.name},

@@ -254,6 +254,7 @@ string(JSON _lmax GET "${_cfg_json}" light max_lights)
 string(JSON _lstride GET "${_cfg_json}" light light_stride)
 string(JSON _labits GET "${_cfg_json}" light addr_bits)
 string(JSON _lspeb GET "${_cfg_json}" light spot_exponent_bits)
+string(JSON _llnb GET "${_cfg_json}" light low_shininess_bits)
 string(JSON _nk LENGTH "${_cfg_json}" light light_kinds)
 math(EXPR _lastk "${_nk} - 1")
 set(_kenum "")
@@ -276,7 +277,7 @@ math(EXPR _lastr "${_nr} - 1")
 set(_rhpp "")
 set(_rvh "")
 set(_rtab "")
-set(_ruse "MAX_LIGHTS[0], LIGHT_STRIDE[0], REG_ADDR_BITS[0], SPOT_EXP_BITS[0]")
+set(_ruse "MAX_LIGHTS[0], LIGHT_STRIDE[0], REG_ADDR_BITS[0], SPOT_EXP_BITS[0], LOW_N_BITS[0]")
 foreach(i RANGE ${_lastr})
   string(JSON _rname GET "${_cfg_json}" light registers ${i} name)
   string(JSON _raddr GET "${_cfg_json}" light registers ${i} addr)
@@ -305,6 +306,7 @@ inline constexpr int kMaxLights = ${_lmax};
 inline constexpr uint32_t kLightStride = ${_lstride};  // address of light j's register = addr + stride·j
 inline constexpr int kRegAddrBits = ${_labits};         // width of reg_addr_i
 inline constexpr int kSpotExpBits = ${_lspeb};          // the spot exponent register = the spot power chain's stages
+inline constexpr int kLowNBits = ${_llnb};             // shininess n < 2^kLowNBits: the low-shininess chain's stages
 ${_rhpp}// reserved: laid out for the GL-completeness issue, no register in this core (a write is ignored)
 struct RegInfo { std::string_view name; uint32_t addr; int count; std::string_view format; bool per_light; bool reserved; };
 inline constexpr std::array<RegInfo, ${_nr}> kRegisters{{
@@ -322,6 +324,7 @@ localparam integer MAX_LIGHTS = ${_lmax};
 localparam integer LIGHT_STRIDE = ${_lstride};
 localparam integer REG_ADDR_BITS = ${_labits};
 localparam integer SPOT_EXP_BITS = ${_lspeb};
+localparam integer LOW_N_BITS = ${_llnb};
 ${_kvh}${_rvh}// every name above, so that a module using a few of them lints clean (Verilator's unused pattern)
 localparam [0:0] unused_light_regs = ^{1'b0, ${_ruse}${_kusestr}};
 " @ONLY)

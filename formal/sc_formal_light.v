@@ -66,6 +66,7 @@ module sc_formal_light #(
     parameter integer PHONG        = 0,
     parameter integer LOCAL_VIEWER = 0,
     parameter integer NORMALIZE    = 1,
+    parameter integer LOW_N        = 0,
     parameter integer CHANNELS     = 3,
     parameter integer TAGW         = 8,
     // harness: bound on fragments in flight and on the clocks to an output (LightCore::latency())
@@ -98,7 +99,7 @@ module sc_formal_light #(
   sc_light #(
       .FRAC(FRAC), .GUARD(GUARD), .SGUARD(SGUARD), .LIGHTS(LIGHTS), .SLOT_KINDS(SLOT_KINDS), .SLOT_SPOT(SLOT_SPOT), .LANES(LANES), .SHARE(SHARE),
       .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE), .UNITS(UNITS), .CUTOFF(CUTOFF), .ENERGY(ENERGY),
-      .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER), .NORMALIZE(NORMALIZE),
+      .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER), .NORMALIZE(NORMALIZE), .LOW_N(LOW_N),
       .CHANNELS(CHANNELS), .TAGW(TAGW)
   ) dut (
       .clk_i(clk_i), .rst_ni(rst_ni), .reg_we_i(reg_we_i), .reg_addr_i(reg_addr_i),

@@ -44,6 +44,9 @@
 //                 R = 2(N̂·L̂)N̂ − L̂ exist                                              (default 1, 0)
 //   LOCAL_VIEWER  0/1: V̂ = normalise(−P) exists (V = (0, 0, 1) always does)          (default 0)
 //   NORMALIZE     0/1: N̂ = normalise(N) exists (GL_NORMALIZE; N as given always does) (default 1)
+//   LOW_N         0/1: a shininess register value below 2^LOW_N_BITS (= 16, the units' smallest n;
+//                 GL's 0..15) selects x^n from an exact chain (rtl/sc_powi.v) in each lane instead of
+//                 the unit's value, unnormalised (feature-set key low_shininess); needs UNITS     (default 0)
 //   CHANNELS      1 (mono: channel 0 only, out_g_o = out_b_o = 0) or 3 (RGB)           (default 3)
 //   TAGW          width of the opaque fragment tag, >= 1                               (default 8)
 //   At least one of AMBIENT, DIFFUSE, UNITS must be non-zero.
@@ -95,8 +98,9 @@
 //               T_ATT = T_L+3+RL (+1 with SHARE > 1)       att (point_att)
 //               T_SP = T_L+2+SPOT_EXP_BITS                 the spot factor (sc_powi, one stage per exponent bit;
 //                                                          SPOT_EXP_BITS = 8, sc_light_regs.vh)
-//               T_F  = max(1, NEED_N ? T_A+1 : 0, UNITS ? max(T_XB, T_XP) : 0, ANY_ATT ? T_ATT : 0,
-//                          ANY_SPOT ? max(T_ATT, T_SP)+1 : 0)
+//               T_X  = max(T_XB, T_XP) of the reflections that exist
+//               T_F  = max(1, NEED_N ? T_A+1 : 0, UNITS ? T_X : 0, ANY_ATT ? T_ATT : 0,
+//                          ANY_SPOT ? max(T_ATT, T_SP)+1 : 0, LOW_N ? T_X+LOW_N_BITS : 0)
 //               (with S = 1 every op enters at stage 0: T_V = T_L = NL, T_H = max(T_L, T_V))
 //               NB   = 3 + ANY_ATT
 //               LATENCY_P = T_F + (UNITS ? L_unit : 0) + NB, L_unit = the material's unit's
@@ -134,6 +138,7 @@ module sc_light #(
     parameter integer PHONG        = 0,
     parameter integer LOCAL_VIEWER = 0,
     parameter integer NORMALIZE    = 1,
+    parameter integer LOW_N        = 0,
     parameter integer CHANNELS     = 3,
     parameter integer TAGW         = 8
 ) (
@@ -284,9 +289,12 @@ module sc_light #(
   localparam integer T_ATT = T_L + 3 + RL + ((SH > 1) ? 1 : 0);
   localparam integer SPEB  = SPOT_EXP_BITS;                                // spot exponent bits (sc_powi stages)
   localparam integer T_SP  = T_L + 2 + SPEB;                               // the spot factor
-  localparam integer T_F   = sc_max(sc_max(sc_max(1, (NEED_N != 0) ? T_A + 1 : 0),
+  localparam integer LNB   = LOW_N_BITS;                                 // the low-shininess chain's stages
+  localparam integer HAS_LO = (SPECULAR != 0 && LOW_N != 0) ? 1 : 0;      // x^n for n < 2^LNB (low_shininess)
+  localparam integer T_F   = sc_max(sc_max(sc_max(sc_max(1, (NEED_N != 0) ? T_A + 1 : 0),
                                   sc_max((SPECULAR != 0) ? T_X : 0, (ANY_ATT != 0) ? T_ATT : 0)),
-                                  (ANY_SPOT != 0) ? sc_max(T_ATT, T_SP) + 1 : 0);
+                                  (ANY_SPOT != 0) ? sc_max(T_ATT, T_SP) + 1 : 0),
+                                  (HAS_LO != 0) ? T_X + LNB : 0);
   localparam integer NB    = (ANY_ATT != 0) ? 4 : 3;                      // back pipeline stages
   // channel-serial back (SHARE >= 4, RGB, units): a pass enters the back as three items, channels 0, 1, 2 on
   // consecutive back-advancing edges, through one set of colour multipliers (rtl/sc_light_shade.v CSER):
@@ -304,13 +312,15 @@ module sc_light #(
   localparam integer ITER  = (UNITS == (1 << VARIANT_SCHLICK_ITER)) ? 1 : 0;
   localparam integer GAP   = VF + 3;                                      // schlick_iter: interval VF+4, minus 1
   localparam integer IDENT = (NLN == NLT) ? 1 : 0;                        // lane j serves slot j
-  // per-lane sideband through the units: {att (point_att), diff (DIFFUSE), f, slot, lane valid}
+  // per-lane sideband through the units: {x^n of the low chain (LOW_N), att (point_att), diff (DIFFUSE), f, slot,
+  // lane valid}
   localparam integer OFF_V = 0;
   localparam integer OFF_I = 1;
   localparam integer OFF_F = 4;
   localparam integer OFF_D = 5;
   localparam integer OFF_A = OFF_D + ((DIFFUSE != 0) ? CL : 0);
-  localparam integer SBW   = OFF_A + ((ANY_ATT != 0) ? FRAC + 8 : 0);
+  localparam integer OFF_LO = OFF_A + ((ANY_ATT != 0) ? FRAC + 8 : 0);
+  localparam integer SBW   = OFF_LO + ((HAS_LO != 0) ? VF + 1 : 0);
   localparam integer FTW   = TAGW + 2;                                    // {fragment tag, first, last}
 
   localparam [CL-1:0] ONE = {1'b1, {FRAC{1'b0}}};                         // 2^F
@@ -389,6 +399,12 @@ module sc_light #(
     end
     if (NORMALIZE != 0 && NORMALIZE != 1) begin : g_check_normalize
       sc_light_error_illegal_NORMALIZE_must_be_0_or_1 u_error ();
+    end
+    if (LOW_N != 0 && LOW_N != 1) begin : g_check_low_n
+      sc_light_error_illegal_LOW_N_must_be_0_or_1 u_error ();
+    end
+    if (LOW_N != 0 && SPECULAR == 0) begin : g_check_low_n_spec
+      sc_light_error_illegal_LOW_N_needs_UNITS u_error ();
     end
     if (ENERGY != 0 && SPECULAR == 0) begin : g_check_energy_spec
       sc_light_error_illegal_ENERGY_needs_SPECULAR u_error ();
@@ -709,6 +725,8 @@ module sc_light #(
   wire [NLN-1:0]        lane_out_valid;                    // per lane: what its back takes is valid
   wire [FTW-1:0]        bk_ftag;     // {fragment tag, first, last} as the back takes it
   wire                  u_kill = unit_kill;
+  // LOW_N: the shininess register holds n < 2^LNB (constant while a fragment is in flight)
+  wire                  lo_mode = (HAS_LO != 0) && (mat_n_u[10:LNB] == {(11-LNB){1'b0}});
 
   generate
     for (j = 0; j < NLN; j = j + 1) begin : g_lane
@@ -717,9 +735,10 @@ module sc_light #(
       wire            f_f;
       wire [PW-1:0]   att_f;
       wire [2:0]      idx_f;
+      wire [VF:0]     lo_f;
       sc_light_lane #(
           .FRAC(FRAC), .SG(SGUARD), .NLT(NLT), .CAN_DIR(CAN_DIR), .CAN_PT(CAN_PT), .CAN_ATT(ANY_ATT),
-          .CAN_SPOT(ANY_SPOT), .T_SP(T_SP), .SEB(SPEB),
+          .CAN_SPOT(ANY_SPOT), .T_SP(T_SP), .SEB(SPEB), .LOW_N(HAS_LO), .LNB(LNB),
           .NEED_N(NEED_N), .SPECULAR(SPECULAR), .DIFFUSE(DIFFUSE), .BLINN(BLINN), .PHONG(PHONG),
           .LV(LV), .T_L(T_L), .T_A(T_A), .T_H(T_H), .T_RV(T_RV), .T_XB(T_XB), .T_XP(T_XP),
           .T_ATT(T_ATT), .T_F(T_F), .EXT_NORM((SH > 1) ? 1 : 0), .SH(SH)
@@ -727,8 +746,8 @@ module sc_light #(
           .clk_i(clk_i), .en_i(adv_f), .idx_i(lane_idx[3*j +: 3]), .p_i(p_in),
           .nn_a_i(nn_a), .nn_b_i(nn_b), .nn_p_i(nn_p), .v_h_i(v_h), .v_p_i(v_p), .phong_i(phong_mode),
           .pos_i(pos_all), .katt_i(katt_all), .kind_i(kind_all),
-          .sdir_i(sdir_all), .scos_i(scos_all), .sexp_i(sexp_all),
-          .x_o(x_f), .diff_o(diff_f), .f_o(f_f), .att_o(att_f), .idx_o(idx_f),
+          .sdir_i(sdir_all), .scos_i(scos_all), .sexp_i(sexp_all), .lo_e_i(mat_n_u[LNB-1:0]),
+          .x_o(x_f), .lo_o(lo_f), .diff_o(diff_f), .f_o(f_f), .att_o(att_f), .idx_o(idx_f),
           .lv_o(lv_all[j*3*(PW+1) +: 3*(PW+1)]), .hv_o(hv_all[j*3*HVW_T +: 3*HVW_T]),
           .lhat_i(pool_lhat), .hhat_i(pool_hhat), .ph_i(ph));
 
@@ -746,6 +765,11 @@ module sc_light #(
         assign sb_f[OFF_A +: PW] = att_f;
       end else begin : g_sb_no_a
         wire unused_att_f = &{1'b0, att_f};
+      end
+      if (HAS_LO != 0) begin : g_sb_lo
+        assign sb_f[OFF_LO +: VF+1] = lo_f;
+      end else begin : g_sb_no_lo
+        wire unused_lo_f = &{1'b0, lo_f};
       end
       localparam integer UTW = SBW + ((j == 0) ? FTW : 0);
       wire [UTW-1:0] ut_in;
@@ -906,11 +930,19 @@ module sc_light #(
       end else begin : g_bk_no_a
         assign bk_att = {PW{1'b0}};
       end
+      // the specular value: the unit's, or with a shininess below 2^LNB the low chain's (unnormalised)
+      wire [SPW-1:0] spec_s;
+      if (HAS_LO != 0) begin : g_bk_lo
+        assign spec_s = lo_mode ? {{(SPW-VF-1){1'b0}}, ut_x[OFF_LO +: VF+1]} : spec_x;
+      end else begin : g_bk_no_lo
+        assign spec_s = spec_x;
+        wire unused_lo_mode = &{1'b0, lo_mode};
+      end
       sc_light_shade #(
           .FRAC(FRAC), .NLT(NLT), .NCH(NCH), .SPW(SPW), .SG(SGUARD), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
           .SPECULAR(SPECULAR), .CAN_ATT(ANY_ATT), .CSER(CSER)
       ) u_shade (
-          .clk_i(clk_i), .en_i(adv_b), .spec_i(spec_x), .f_i(ut_x[OFF_F]), .diff_i(bk_diff),
+          .clk_i(clk_i), .en_i(adv_b), .spec_i(spec_s), .f_i(ut_x[OFF_F]), .diff_i(bk_diff),
           .att_i(bk_att), .idx_i(ut_x[OFF_I +: 3]), .v_i(ut_x[OFF_V]), .ch_i(ser),
           .mamb_i(mamb_w), .mdif_i(mdif_w), .mspec_i(mspec_w), .lamb_i(lamb_all), .ldif_i(ldif_all),
           .lspec_i(lspec_all), .term_o(term_all[j*NCH*CL +: NCH*CL]));

@@ -22,12 +22,16 @@
 //   ndl    ⌊N̂·L / 2^VF⌋ → diff = clamp(⌊ndl / 2^SG⌋, 0, 2^F), f = ndl > 0
 //   x      Blinn: Ĥ = sc_normalize(L̂ + V̂), x = ⌊N̂·Ĥ / 2^VF⌋; Phong: R = ⌊ndl·N̂ / 2^(VF−1)⌋ − L̂,
 //          x = ⌊R·V̂ / 2^VF⌋ (= R_z when only V = (0, 0, 1) exists); saturated to the unit's VF+2-bit
-//          word; with both reflections both are computed and phong_i chooses at T_F.
+//          word, at T_X = max(T_XB, T_XP) of the reflections that exist (phong_i chooses when both do),
+//          then delayed to T_F
+//   low    (LOW_N, rtl/sc_light.v's low_shininess) rtl/sc_powi.v x_lo = clamp(x, 0, 2^VF)^n at VF over LNB
+//          stages from T_X (lo_e_i = the low bits of the shininess register; exact chain, x^0 = 1), to T_F
 // Parameters: FRAC, SG, NLT (slots), capabilities CAN_DIR / CAN_PT (point, point_att or spot) / CAN_ATT
 //             (point_att or spot) / CAN_SPOT, NEED_N,
 //             SPECULAR, DIFFUSE, BLINN, PHONG, LV, and the stage times of rtl/sc_light.v's header
 //             (T_L, T_A, T_H, T_RV, T_XB, T_XP, T_ATT, T_SP = T_L+2+SEB, T_F); SEB (spot exponent bits,
-//             SPOT_EXP_BITS); SH (SHARE of rtl/sc_light.v: the lane's
+//             SPOT_EXP_BITS); LOW_N, LNB (LOW_N_BITS: the low-shininess chain's stages, T_F >= T_X+LNB);
+//             SH (SHARE of rtl/sc_light.v: the lane's
 //             dot-product multipliers are shared by ops whose stages differ mod SH, chosen by the
 //             phase ph_i; "dot-product multipliers" below); EXT_NORM = 1 (rtl/sc_light.v's SHARE > 1):
 //             L̂ and Ĥ are normalised outside the lane by the core's shared normalisers — the lane
@@ -36,7 +40,8 @@
 // Ports     : clk_i, en_i; idx_i (slot, stage 0); p_i (fragment position, stage 0); nn_a_i (N̂ at
 //             T_A), nn_b_i (N̂ at T_H+NL), nn_p_i (N̂ at T_A+1), v_h_i (V̂ at T_H), v_p_i (V̂ at T_RV);
 //             phong_i (mode); pos_i, katt_i, kind_i, sdir_i, scos_i, sexp_i (every slot's registers,
-//             packed as sc_light_regfile.v); outputs at T_F: x_o, diff_o, f_o, att_o, idx_o; EXT_NORM's
+//             packed as sc_light_regfile.v); lo_e_i (LOW_N: the shininess's low LNB bits); outputs at
+//             T_F: x_o, diff_o, f_o, att_o, idx_o, lo_o (LOW_N: x^n of the chain, else 0); EXT_NORM's
 //             lv_o, hv_o, lhat_i, hhat_i (above).
 // ============================================================================================
 `default_nettype none
@@ -64,6 +69,8 @@ module sc_light_lane #(
     parameter integer T_ATT    = 0,
     parameter integer T_SP     = 0,
     parameter integer SEB      = 8,
+    parameter integer LOW_N    = 0,
+    parameter integer LNB      = 4,
     parameter integer T_F      = 1,
     parameter integer EXT_NORM = 0,
     parameter integer SH       = 1
@@ -84,7 +91,9 @@ module sc_light_lane #(
     input  wire [NLT*3*(FRAC+2)-1:0] sdir_i,
     input  wire [NLT*(FRAC+SG+2)-1:0] scos_i,
     input  wire [NLT*SEB-1:0]        sexp_i,
+    input  wire [LNB-1:0]            lo_e_i,
     output wire [FRAC+SG+1:0]        x_o,
+    output wire [FRAC+SG:0]          lo_o,
     output wire [FRAC:0]             diff_o,
     output wire                      f_o,
     output wire [FRAC+7:0]           att_o,
@@ -509,7 +518,12 @@ module sc_light_lane #(
   assign f_o    = f_f;
 
   // ---------------------------------------------------------------------------- x: the unit's input
-  wire [NW-1:0] xb_f, xp_f;   // Blinn's and Phong's x at T_F
+  localparam integer HAS_XB = (SPECULAR != 0 && BLINN != 0) ? 1 : 0;
+  localparam integer HAS_XP = (SPECULAR != 0 && PHONG != 0) ? 1 : 0;
+  localparam integer T_X = (SPECULAR == 0) ? T_F :                                        // x of either reflection
+                           (((HAS_XB != 0 && T_XB > T_XP) || HAS_XP == 0) ? T_XB : T_XP);
+  wire [NW-1:0] xb_f, xp_f;   // Blinn's and Phong's x at T_X
+  wire [NW-1:0] x_t;          // the mode's x at T_X
   generate
     if (SPECULAR != 0 && BLINN != 0) begin : g_blinn
       // H = L + V at T_H (V = (0, 0, 2^F) unless local viewer), Ĥ at T_H+NL
@@ -543,9 +557,9 @@ module sc_light_lane #(
       localparam integer XFW = 2 * NW + 2 - VF;
       wire [XFW-1:0] xs = xsum[2*NW+1:VF];
       wire unused_xsum = &{1'b0, xsum[VF-1:0]};
-      wire [NW-1:0] x_s;   // saturated to the unit's word, registered at T_XB, then to T_F
+      wire [NW-1:0] x_s;   // saturated to the unit's word, registered at T_XB, then to T_X
       sc_sat #(.IW(XFW), .OW(NW)) u_sat_x (.d_i(xs), .q_o(x_s));
-      sc_delay #(.W(NW), .DEPTH(T_F - T_XB + 1)) u_dly_x (
+      sc_delay #(.W(NW), .DEPTH(T_X - T_XB + 1)) u_dly_x (
           .clk_i(clk_i), .en_i(en_i), .d_i(x_s), .q_o(xb_f));
     end else begin : g_no_blinn
       assign xb_f = {NW{1'b0}};
@@ -589,7 +603,7 @@ module sc_light_lane #(
         wire unused_xsum = &{1'b0, xsum[VF-1:0]};
         wire [NW-1:0] x_s;
         sc_sat #(.IW(XFW), .OW(NW)) u_sat_x (.d_i(xs), .q_o(x_s));
-        sc_delay #(.W(NW), .DEPTH(T_F - T_XP + 1)) u_dly_x (
+        sc_delay #(.W(NW), .DEPTH(T_X - T_XP + 1)) u_dly_x (
             .clk_i(clk_i), .en_i(en_i), .d_i(x_s), .q_o(xp_f));
       end else begin : g_inf
         // V = (0, 0, 1): x = R_z exactly (T_A+2)
@@ -597,7 +611,7 @@ module sc_light_lane #(
         wire unused_rxy = &{1'b0, rv[2*RVW-1:0], v_p_i};
         wire [NW-1:0] x_s;
         sc_sat #(.IW(RVW), .OW(NW)) u_sat_x (.d_i(xs), .q_o(x_s));
-        sc_delay #(.W(NW), .DEPTH(T_F - T_XP + 1)) u_dly_x (
+        sc_delay #(.W(NW), .DEPTH(T_X - T_XP + 1)) u_dly_x (
             .clk_i(clk_i), .en_i(en_i), .d_i(x_s), .q_o(xp_f));
       end
     end else begin : g_no_phong
@@ -605,13 +619,30 @@ module sc_light_lane #(
       wire unused_p = &{1'b0, nn_p_i, v_p_i, ndl};
     end
     if (SPECULAR != 0 && BLINN != 0 && PHONG != 0) begin : g_x_both
-      assign x_o = phong_i ? xp_f : xb_f;
+      assign x_t = phong_i ? xp_f : xb_f;
     end else if (SPECULAR != 0 && PHONG != 0) begin : g_x_phong
-      assign x_o = xp_f;
+      assign x_t = xp_f;
       wire unused_xb = &{1'b0, xb_f, phong_i};
     end else begin : g_x_blinn
-      assign x_o = xb_f;
+      assign x_t = xb_f;
       wire unused_xp = &{1'b0, xp_f, phong_i};
+    end
+    sc_delay #(.W(NW), .DEPTH(T_F - T_X)) u_dly_xt (
+        .clk_i(clk_i), .en_i(en_i), .d_i(x_t), .q_o(x_o));
+    // x^n for a shininess below the units' range: the exact chain on clamp(x, 0, 1) from T_X, LNB stages
+    if (SPECULAR != 0 && LOW_N != 0) begin : g_low
+      if (T_F < T_X + LNB) begin : g_check_tlo
+        sc_light_lane_error_T_F_must_be_at_least_T_X_plus_LNB u_error ();
+      end
+      wire [VF:0] lx, lo_r;
+      sc_clamp01 #(.IW(NW), .FRAC(VF)) u_clamp_lx (.d_i(x_t), .q_o(lx));
+      sc_powi #(.FRAC(VF), .EB(LNB), .SH(SH), .PH0(T_X % SH)) u_powi_lo (
+          .clk_i(clk_i), .en_i(en_i), .x_i(lx), .e_i(lo_e_i), .zero_i(1'b0), .ph_i(ph_i), .r_o(lo_r));
+      sc_delay #(.W(VF+1), .DEPTH(T_F - T_X - LNB)) u_dly_lo (
+          .clk_i(clk_i), .en_i(en_i), .d_i(lo_r), .q_o(lo_o));
+    end else begin : g_no_low
+      assign lo_o = {(VF+1){1'b0}};
+      wire unused_lo = &{1'b0, lo_e_i};
     end
     if (SPECULAR != 0 && BLINN != 0 && PHONG == 0) begin : g_ndl_b
       wire unused_ndl_b = &{1'b0, ndl};   // Blinn needs only diff and f of N̂·L

@@ -232,6 +232,70 @@ TEST(LightHardCases, SpotBoundaryAndZeroPower) {
   }
 }
 
+// Shininess below the units' range (feature low_shininess, docs/lighting.md §3.5): spec is the exact chain's
+// x^n on clamp(x, 0, 1), unnormalised, for every n 0..15 — x^0 = 1 also at x = 0 and below (GL) — and the unit's
+// value from n = 16 up; the host writes n < 16 only to a core with the chain; the chain's stages lengthen the front.
+TEST(LightHardCases, LowShininessChain) {
+  const nlohmann::json base = nlohmann::json::parse(
+      R"({"lights": ["directional"], "specular": ["cs16", "schlick_nr"], "norm": true, "reflection": ["blinn", "phong"]})");
+  nlohmann::json lj = base;
+  lj["low_shininess"] = true;
+  const FeatureSet fs = feature_set_from_json(lj, "test");
+  const FeatureSet plain = feature_set_from_json(base, "test");
+  Rig r(fs);
+  const int VF = r.core.unit_format().frac;
+  const int64_t one = int64_t{1} << r.F, vone = int64_t{1} << VF;
+  LightParams lp;
+  lp.position[0] = 0.3, lp.position[1] = 0.2, lp.position[2] = 1, lp.position[3] = 0;
+  r.apply(light_writes(r.core, 0, lp));
+  MaterialParams m;
+  m.specular[0] = m.specular[1] = m.specular[2] = 1.0;
+  int checked_zero = 0;
+  for (int n = 0; n <= 16; ++n) {
+    m.shininess = n;
+    for (bool phong : {false, true}) {
+      ModeParams md = default_modes(fs);
+      md.phong = phong;
+      double ga[3] = {0, 0, 0};
+      r.apply(global_writes(r.core, ga, md));
+      r.apply(material_writes(r.core, m));
+      for (int k = 0; k < 40; ++k) {
+        // normals sweeping from facing the light to grazing: x runs over (−1, 1]
+        const double a = -1.2 + 0.06 * k;
+        Fragment fr;
+        fr.n[0] = static_cast<int64_t>(std::llround(std::sin(a) * static_cast<double>(one)));
+        fr.n[2] = static_cast<int64_t>(std::llround(std::cos(a) * static_cast<double>(one)));
+        LightCoreTrace t;
+        static_cast<void>(r.core.eval(r.regs, fr, &t));
+        const LightTrace& l = t.light[0];
+        if (n < 16) {
+          const uint64_t xc = static_cast<uint64_t>(std::clamp<int64_t>(l.x, 0, vone));
+          EXPECT_EQ(l.spec, powi_chain(VF, xc, static_cast<uint32_t>(n), kLowNBits)) << n << " " << k;
+          if (n == 0) {
+            EXPECT_EQ(l.spec, static_cast<uint32_t>(vone));
+          }
+          if (xc == 0 && n == 0) ++checked_zero;
+        } else {
+          EXPECT_EQ(l.spec, r.core.units()[static_cast<size_t>(r.core.modes(r.regs).unit)].eval(
+                                UnitMaterial{static_cast<int>(r.regs.mat_n), r.regs.mat_thr, r.regs.mat_coef}, l.x));
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked_zero, 0);  // some fragment had x <= 0 with n = 0
+  // the host: n < 16 only with the chain; n > 1024 never
+  LightCore pc(plain);
+  m.shininess = 15;
+  EXPECT_THROW(material_writes(pc, m), std::invalid_argument);
+  m.shininess = -1;
+  EXPECT_THROW(material_writes(r.core, m), std::invalid_argument);
+  m.shininess = 1025;
+  EXPECT_THROW(material_writes(r.core, m), std::invalid_argument);
+  // the chain takes x at the unit's input stage: the front is at least kLowNBits stages longer than x's
+  EXPECT_GE(r.core.latency(), pc.latency());
+  EXPECT_LE(r.core.latency(), pc.latency() + kLowNBits);
+}
+
 // N·L exactly 0 and one code either side, with L = (0, 0, 1) exactly.
 TEST(LightHardCases, NdotLAroundZero) {
   Rig r(named("gl_default"));
@@ -377,8 +441,13 @@ TEST(LightSetup, RejectsAllZeroAttenuationAndBadValues) {
   EXPECT_THROW(light_writes(core, 0, lp), std::invalid_argument);
   EXPECT_THROW(light_writes(core, 8, LightParams{}), std::invalid_argument);
   MaterialParams m;
-  m.shininess = 15;
+  m.shininess = -1;  // full has the low-shininess chain: 0..1024
   EXPECT_THROW(material_writes(core, m), std::invalid_argument);
+  m.shininess = 1025;
+  EXPECT_THROW(material_writes(core, m), std::invalid_argument);
+  m.shininess = 15;
+  EXPECT_NO_THROW(material_writes(core, m));
+  EXPECT_THROW(material_writes(LightCore(named("gl_default")), m), std::invalid_argument);
 }
 
 TEST(FeatureSets, NamedSetsParseAndDiffer) {
@@ -583,11 +652,15 @@ TEST(LightModes, PassesAndLatencyFollowTheEnabledLights) {
 //   S = 4: V̂ at 11, L̂ at 12, H at 15 (≡ 3), x at 26 (att·spot at 24): 39, + 2 for the channel-serial back
 //          (S >= 4, RGB): 41
 //   (S = 1, 2: att·spot at 21, 22, no later than x)
+// That is `full` without its low-shininess chain; with it (§3.5) the chain's value is there 4 stages after x:
+// front 25, 26, 27, 30: 38, 39, 40, 45.
 // Each further pass adds S edges; schlick_iter's F+4 (25 at F = 16 + spec_guard 5) rounds up to S's multiple.
 TEST(LightModes, ShareSpacesThePassesAndMovesTheSharedNormalisations) {
-  const int expect_base[5] = {0, 34, 35, 37, 41};
+  for (bool low : {false, true})
   for (int share = 1; share <= kShareMax; ++share) {
+    const int expect_base[5] = {0, low ? 38 : 34, low ? 39 : 35, low ? 40 : 37, low ? 45 : 41};
     FeatureSet fs = named("full");
+    fs.low_shininess = low;
     fs.lanes = 1;
     fs.share = share;
     const LightCore core(fs);

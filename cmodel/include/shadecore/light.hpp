@@ -72,6 +72,9 @@ inline uint64_t powi_chain(int frac, uint64_t x, uint32_t e, int ebits) {
 // kSpotExpBits (config/configs.json "light" spot_exponent_bits, light_regs.hpp): the spot exponent register's
 // width and the chain's stages; every exponent below 2^kSpotExpBits is computed, GL uses 0..128
 inline constexpr int kSpotExpMax = 128;  // GL_SPOT_EXPONENT's range (the host rejects more)
+// kLowNBits (config/configs.json "light" low_shininess_bits): with the feature low_shininess a shininess n below
+// 2^kLowNBits — the units' smallest n — is x^n from the same chain, kLowNBits stages (docs/lighting.md §3.5)
+static_assert((1 << kLowNBits) == kNMin, "low_shininess_bits must cover exactly the shininess below the units' range");
 
 // The register file of sc_light, as the codes the hardware holds (register map: light_regs.hpp).
 // Mode registers (docs/lighting.md §4): light_model (bit 0 local viewer, bit 1 Phong reflection, bit 2
@@ -198,6 +201,7 @@ struct LightCoreTrace {
 // one that exists; a mat_unit naming an absent unit gives specular 0.
 struct LightModes {
   bool local_viewer = false, phong = false, normalize = false;
+  bool low_n = false;  // mat_n < 2^kLowNBits with the low_shininess chain: spec = x^n from the chain, not the unit
   int unit = -1;  // index into FeatureSet::units(), −1: absent (specular 0)
   uint32_t on = 0;  // bit j: light j contributes
   int enabled = 0;  // lights on
@@ -227,6 +231,7 @@ class LightCore {
     m.local_viewer = fs_.specular && fs_.local_viewer && (r.light_model & kModelLocalViewer);
     m.phong = fs_.phong && (!fs_.blinn || (r.light_model & kModelPhong));
     m.normalize = fs_.normalize && (r.light_model & kModelNormalize);
+    m.low_n = fs_.low_shininess && r.mat_n < (1u << kLowNBits);
     const std::vector<VariantId> us = fs_.units();
     for (size_t i = 0; i < us.size(); ++i)
       if (static_cast<uint32_t>(us[i]) == r.mat_unit) m.unit = static_cast<int>(i);
@@ -340,7 +345,13 @@ class LightCore {
           x = dot3(rv, t.v) >> VF;
         }
         lt.x = std::clamp<int64_t>(x, uf_.in_min(), uf_.in_max());  // the unit's signed VF+2-bit word, saturated
-        lt.spec = units_[static_cast<size_t>(md.unit < 0 ? 0 : md.unit)].eval(mat, lt.x);
+        // shininess below the units' range (low_shininess): x^n exactly by the chain on clamp(x, 0, 1), not
+        // normalised (the unit still carries the pass; its value is not used)
+        if (md.low_n)
+          lt.spec = static_cast<uint32_t>(powi_chain(VF, static_cast<uint64_t>(std::clamp<int64_t>(lt.x, 0, int64_t{1} << VF)),
+                                                     r.mat_n, kLowNBits));
+        else
+          lt.spec = units_[static_cast<size_t>(md.unit < 0 ? 0 : md.unit)].eval(mat, lt.x);
       }
       for (int c = 0; c < ch; ++c) {
         uint64_t sum = 0;
@@ -416,6 +427,8 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   int t_f = 1;
   if (need_n) t_f = std::max(t_f, t_a + 1);
   if (fs.specular) t_f = std::max(t_f, t_x);
+  // low_shininess: the chain takes x at t_x, kLowNBits stages (rtl/sc_light_lane.v)
+  if (fs.specular && fs.low_shininess) t_f = std::max(t_f, t_x + kLowNBits);
   if (any_att) t_f = std::max(t_f, t_att);
   // spot: ŝ·L̂ at t_l+1, sdl registered at t_l+2, then kSpotExpBits chain stages (rtl/sc_powi.v); att · spot
   // registered one stage after both are there
@@ -537,11 +550,12 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
         x = rv[0] * vv[0] + rv[1] * vv[1] + rv[2] * vv[2];
       }
       x = std::clamp(x, 0.0, 1.0);
-      if (ref == SpecRef::Exact) spec = golden::cos_pow(x, n);
+      if (md.low_n) spec = n == 0 ? 1.0 : std::pow(x, n);  // GL: x^0 = 1, 0 included; not normalised
+      else if (ref == SpecRef::Exact) spec = golden::cos_pow(x, n);
       else if (var == VariantId::cs16 || squarer_form(var))  // cs16 and its forms
         spec = fs_.cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(x, n) : golden::cs16_sign_clamp(x, n);
       else spec = golden::schlick(x, n);
-      if (fs_.norm) spec *= std::ldexp(static_cast<double>(r.mat_coef), -uf_.frac);  // the units' format
+      if (fs_.norm && !md.low_n) spec *= std::ldexp(static_cast<double>(r.mat_coef), -uf_.frac);  // the units' format
     }
     const double diff = std::clamp(ndl, 0.0, 1.0);
     for (int c = 0; c < fs_.channels; ++c) {
@@ -572,7 +586,7 @@ struct LightParams {
 struct MaterialParams {
   double emission[3] = {0, 0, 0}, ambient[3] = {0.2, 0.2, 0.2}, diffuse[3] = {0.8, 0.8, 0.8},
          specular[3] = {0, 0, 0};
-  int shininess = 64;       // n, 16..1024
+  int shininess = 64;       // n, 16..1024 (0..1024 with the feature low_shininess)
   int norm_model = 0;       // index into kModels (feature norm only); −1: no normalisation (coef = 1)
   CoefKind norm_kind = CoefKind::Fitted;
   std::optional<VariantId> unit;  // the specular unit (mat_unit); default: the core's first unit
@@ -618,7 +632,13 @@ inline std::vector<RegWrite> material_writes(const LightCore& core, const Materi
   const int F = core.format().frac;
   const FeatureSet& fs = core.features();
   std::vector<RegWrite> w;
-  validate_n(m.shininess);
+  // n < 16 goes to the chain (low_shininess); a core without units has no n register (the words are ignored)
+  const bool any_n = fs.low_shininess || !fs.specular;
+  const bool low = any_n && m.shininess >= 0 && m.shininess < kNMin;
+  if (!low && (m.shininess < kNMin || m.shininess > kNMax))
+    throw std::invalid_argument("shininess " + std::to_string(m.shininess) + " out of range " +
+                                (any_n ? std::string("0") : std::to_string(kNMin)) + ".." + std::to_string(kNMax) +
+                                (any_n || m.shininess > kNMax ? "" : " (this core has no low_shininess chain)"));
   const VariantId var = m.unit.value_or(fs.variant);
   if (fs.specular && !fs.has_unit(var))
     throw std::invalid_argument(std::string("specular unit ") + std::string(variant_name(var)) + " is not in this core (" +
@@ -626,12 +646,19 @@ inline std::vector<RegWrite> material_writes(const LightCore& core, const Materi
   Unit u(var, core.unit_format(), core.unit().cutoff());
   const bool norm = fs.norm && m.norm_model >= 0;
   if (norm) u.set_energy(true, m.norm_model, m.norm_kind);
-  const UnitMaterial um = u.setup(m.shininess);
   w.push_back({kReg_mat_unit, static_cast<uint32_t>(var)});
-  w.push_back({kReg_mat_n, static_cast<uint32_t>(um.n)});
-  w.push_back({kReg_mat_thr, um.thr});
-  // with the norm hardware and no normalisation: coef = 1.0 (sc_energy then passes the unit's value)
-  w.push_back({kReg_mat_coef, norm ? um.coef : (fs.norm ? (uint32_t{1} << core.unit_format().frac) : um.coef)});
+  if (low) {
+    // n < 2^kLowNBits: the chain computes x^n; the unit's thr and coef are not used (written 0 and 1.0)
+    w.push_back({kReg_mat_n, static_cast<uint32_t>(m.shininess)});
+    w.push_back({kReg_mat_thr, 0u});
+    w.push_back({kReg_mat_coef, uint32_t{1} << core.unit_format().frac});
+  } else {
+    const UnitMaterial um = u.setup(m.shininess);
+    w.push_back({kReg_mat_n, static_cast<uint32_t>(um.n)});
+    w.push_back({kReg_mat_thr, um.thr});
+    // with the norm hardware and no normalisation: coef = 1.0 (sc_energy then passes the unit's value)
+    w.push_back({kReg_mat_coef, norm ? um.coef : (fs.norm ? (uint32_t{1} << core.unit_format().frac) : um.coef)});
+  }
   for (uint32_t c = 0; c < 3; ++c) {
     w.push_back({kReg_mat_emission + c, detail::colour_code(F, m.emission[c], "material emission")});
     w.push_back({kReg_mat_ambient + c, detail::colour_code(F, m.ambient[c], "material ambient")});

@@ -163,6 +163,7 @@ FeatureSet full_core_for(const FeatureSet& spec, std::vector<std::string>& subs)
     need(!spec.blinn || f.blinn, "Blinn reflection");
     need(!spec.phong || f.phong, "Phong reflection");
     need(!spec.local_viewer || f.local_viewer, "the local viewer");
+    need(!spec.low_shininess || f.low_shininess, "the low-shininess chain (shininess below 16)");
   }
   // A width is not a mode: a scene of another config is rendered by the full set at that width.
   if (f.config != spec.config) {
@@ -291,6 +292,10 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
     fs.blinn = fs.specular ? sc.blinn : true;
     fs.phong = !fs.blinn;
     fs.local_viewer = fs.specular && sc.local_viewer;
+    // a shininess below the units' range (GL's 0..15): the exact chain beside the unit
+    fs.low_shininess = false;
+    if (fs.specular)
+      for (int m : g.materials) fs.low_shininess = fs.low_shininess || sc.materials[m].shininess < kNMin;
     fs.normalize = false;
     for (int m : g.materials) fs.normalize = fs.normalize || needs_normalize[m];
     // Mono when every colour that reaches the core is grey.

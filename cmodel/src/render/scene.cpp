@@ -449,7 +449,7 @@ Material parse_material(const Parser& P, const json& j, const std::string& path,
   if (j.contains("diffuse")) m.diffuse = P.colour(j["diffuse"], path + ".diffuse");
   if (j.contains("specular")) m.specular = P.colour(j["specular"], path + ".specular");
   if (j.contains("shininess"))
-    m.shininess = P.integer(j["shininess"], path + ".shininess", kNMin, kNMax);
+    m.shininess = P.integer(j["shininess"], path + ".shininess", 0, kNMax);
   if (j.contains("specular_unit")) m.unit = core_unit(P, j["specular_unit"], path + ".specular_unit");
   if (j.contains("cutoff")) {
     if (m.unit != VariantId::cs16) P.fail(path + ".cutoff", "applies to the cs16 unit only");
@@ -478,6 +478,10 @@ Material parse_material(const Parser& P, const json& j, const std::string& path,
       }
     }
     m.normalization = nz;
+    // the fitted coefficients cover the units' range; the chain below it (GL's 0..15) is not normalised
+    if (m.shininess < kNMin)
+      P.fail(np, "needs shininess " + std::to_string(kNMin) + ".." + std::to_string(kNMax) + " (got " +
+                     std::to_string(m.shininess) + "; below " + std::to_string(kNMin) + " the power is not normalised)");
   }
   return m;
 }

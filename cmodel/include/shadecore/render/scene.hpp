@@ -62,7 +62,7 @@ struct Normalization {     // optional energy normalisation of the specular term
 struct Material {          // glMaterialfv(GL_FRONT_AND_BACK, ...)
   std::string name;
   Vec3 emission{0, 0, 0}, ambient{0.2, 0.2, 0.2}, diffuse{0.8, 0.8, 0.8}, specular{0, 0, 0};
-  int shininess = 16;      // n, 16..1024
+  int shininess = 16;      // n, 0..1024 (below 16: the low-shininess chain, docs/lighting.md §3.5); GL's default is 0
   VariantId unit = VariantId::cs16;
   Cutoff cutoff = Cutoff::ThetaCr;
   std::optional<Normalization> normalization;

@@ -173,6 +173,8 @@ class LightStimulus {
       m.specular[c] = u(0, 1.5);
     }
     m.shininess = static_cast<int>(rng_.uniform(kNMin, kNMax));
+    // a core with the low-shininess chain: a quarter of the materials below the units' range (GL's 0..15)
+    if (core_.features().low_shininess && rng_.next() % 4 == 0) m.shininess = static_cast<int>(rng_.next() % kNMin);
     m.norm_model = static_cast<int>(rng_.uniform(0, kNumModels - 1));
     if (rng_.next() % 4 == 0) m.norm_model = -1;  // no normalisation (coef = 1 with the norm hardware)
     m.norm_kind = rng_.next() & 1 ? CoefKind::Classical : CoefKind::Fitted;
@@ -516,6 +518,46 @@ class LightStimulus {
       add_writes({{static_cast<uint32_t>(j) * kLightStride + kReg_light_mode, (static_cast<uint32_t>(j) % 5 + 3) << 1 | 1u}});
     for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
     build_directed_spot();
+    build_directed_low_n();
+  }
+  // 9. shininess below the units' range (low_shininess, docs/lighting.md §3.5): every n 0..15 with both
+  //    reflections, on the hard fragments and on x exactly 0 and below (n = 0: x^0 = 1, also at x = 0); the
+  //    shininess register then written raw to 16, 17, 31, 1024 (thr and coef of the chain's material kept): the unit's value
+  void build_directed_low_n() {
+    if (!core_.features().low_shininess) return;
+    const int nl = core_.features().num_lights();
+    const int64_t one = int64_t{1} << F_;
+    for (int j = 0; j < nl; ++j) {
+      LightParams lp;
+      lp.kind = slot_kind(j, static_cast<uint64_t>(j));
+      lp.position[2] = *lp.kind == LightKind::Directional ? 1 : 10;
+      lp.position[3] = *lp.kind == LightKind::Directional ? 0 : 1;
+      lp.spot_cutoff = *lp.kind == LightKind::Spot ? 90 : 180;
+      lp.spot_direction[2] = -1;
+      add_writes(light_writes(core_, j, lp));
+    }
+    MaterialParams m;
+    m.specular[0] = m.specular[1] = m.specular[2] = 1.0;
+    const uint32_t models[2] = {kModelNormalize, kModelNormalize | kModelPhong};
+    for (int n = 0; n < kNMin; ++n) {
+      m.shininess = n;
+      add_writes(material_writes(core_, m));
+      for (uint32_t model : models) {
+        add_writes({{kReg_light_model, model}});
+        for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
+        // L̂ = (0, 0, 1): N at 45° gives R = (1, 0, 0), R·V̂ = 0; N tilted further, x < 0 with N·L > 0
+        for (int64_t t : {1, 2, 3}) {
+          Fragment f;
+          f.n[0] = t * one / 2;
+          f.n[2] = one / 2;
+          add_frag(f);
+        }
+      }
+    }
+    for (uint32_t raw : {16u, 17u, 31u, 1024u}) {
+      add_writes({{kReg_mat_n, raw}});
+      for (uint64_t k = 0; k < 4; ++k) add_frag(hard_fragment(k));
+    }
   }
   // 8. spot lights (docs/lighting.md §3.4), on every slot that can be spot, the others off: −L̂·ŝ exactly at the
   //    spot cos register and one code either side (the register written raw from the model's own sdl);
