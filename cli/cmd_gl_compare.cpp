@@ -118,7 +118,7 @@ void run_gl_compare(const GlCompareArgs& a, bool json_given, bool size_given, bo
   } catch (const scene::SceneError& e) {
     throw std::runtime_error(e.what());
   }
-  std::vector<std::vector<std::array<double, 3>>> ex;
+  std::vector<std::vector<render::RefColour>> ex;
   for (const auto& g : fr.groups) ex.push_back(render::run_reference(g, LightCore::SpecRef::Exact));
   const render::RefImage exact = render::resolve_reference(fr, ex);
   const std::vector<uint8_t> exact_rgb = render::to_rgb8(exact);

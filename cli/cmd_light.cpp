@@ -55,7 +55,10 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
       for (const auto& w : ws) regs.write(core.widths(), w.addr, w.data);
     };
     double ga[3] = {u(0, 0.2), u(0, 0.2), u(0, 0.2)};
-    apply(global_writes(core, ga));
+    // separate_specular: every other program in the separate mode, compared as GL's colour sum
+    ModeParams modes = default_modes(fs);
+    modes.separate_specular = fs.separate_specular && prog % 2 == 1;
+    apply(global_writes(core, ga, modes));
     MaterialParams m;
     for (int c = 0; c < 3; ++c) m.ambient[c] = u(0, 0.3), m.diffuse[c] = u(0, 0.8), m.specular[c] = u(0.2, 1);
     m.shininess = static_cast<int>(std::lround(std::exp(u(std::log(16.0), std::log(1024.0)))));
@@ -101,7 +104,8 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
         ++st.edge_fragments;
         for (int ch = 0; ch < fs.channels; ++ch)
           st.edge_quant_max_abs = std::max(
-              st.edge_quant_max_abs, std::fabs(std::ldexp(static_cast<double>(c.c[ch]), -F) - va[ch]) * std::ldexp(1.0, F));
+              st.edge_quant_max_abs,
+              std::fabs(std::ldexp(static_cast<double>(c.colour_sum(ch, 1u << F)), -F) - va[ch]) * std::ldexp(1.0, F));
         continue;
       }
       // each spot light's factor against the double one on the double geometry (the register codes read exactly)
@@ -121,7 +125,7 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
         ++st.spot_samples;
       }
       for (int ch = 0; ch < fs.channels; ++ch) {
-        const double fx = std::ldexp(static_cast<double>(c.c[ch]), -F);
+        const double fx = std::ldexp(static_cast<double>(c.colour_sum(ch, 1u << F)), -F);
         const double tot = (fx - ex[ch]) * std::ldexp(1.0, F), q = (fx - va[ch]) * std::ldexp(1.0, F);
         st.total_max = std::max(st.total_max, std::fabs(tot));
         st.approx_max = std::max(st.approx_max, std::fabs(va[ch] - ex[ch]));

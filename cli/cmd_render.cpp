@@ -259,7 +259,7 @@ Rendered render_cmodel(const scene::Scene& sc, render::MeshSource& meshes, const
   std::unique_ptr<Step> step;
   if (!quiet) step = std::make_unique<Step>(fmt::format("C model and references, {}: {} fragments", what, frags));
   std::vector<std::vector<Colour>> cols;
-  std::vector<std::vector<std::array<double, 3>>> ex, ud;
+  std::vector<std::vector<render::RefColour>> ex, ud;
   for (const auto& g : r.frame.groups) {
     cols.push_back(render::run_cmodel(g));
     ex.push_back(render::run_reference(g, LightCore::SpecRef::Exact));

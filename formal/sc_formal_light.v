@@ -67,6 +67,7 @@ module sc_formal_light #(
     parameter integer LOCAL_VIEWER = 0,
     parameter integer NORMALIZE    = 1,
     parameter integer LOW_N        = 0,
+    parameter integer SEP_SPEC     = 0,
     parameter integer CHANNELS     = 3,
     parameter integer TAGW         = 8,
     // harness: bound on fragments in flight and on the clocks to an output (LightCore::latency())
@@ -93,13 +94,13 @@ module sc_formal_light #(
   (* anyseq *) reg [TAGW-1:0]   in_tag_i;
   (* anyseq *) reg              out_ready_i;
   wire            reg_ready_o, in_ready_o, out_valid_o;
-  wire [CL-1:0]   out_r_o, out_g_o, out_b_o;
+  wire [CL-1:0]   out_r_o, out_g_o, out_b_o, out_sr_o, out_sg_o, out_sb_o;
   wire [TAGW-1:0] out_tag_o;
 
   sc_light #(
       .FRAC(FRAC), .GUARD(GUARD), .SGUARD(SGUARD), .LIGHTS(LIGHTS), .SLOT_KINDS(SLOT_KINDS), .SLOT_SPOT(SLOT_SPOT), .LANES(LANES), .SHARE(SHARE),
       .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE), .UNITS(UNITS), .CUTOFF(CUTOFF), .ENERGY(ENERGY),
-      .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER), .NORMALIZE(NORMALIZE), .LOW_N(LOW_N),
+      .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER), .NORMALIZE(NORMALIZE), .LOW_N(LOW_N), .SEP_SPEC(SEP_SPEC),
       .CHANNELS(CHANNELS), .TAGW(TAGW)
   ) dut (
       .clk_i(clk_i), .rst_ni(rst_ni), .reg_we_i(reg_we_i), .reg_addr_i(reg_addr_i),
@@ -107,7 +108,7 @@ module sc_formal_light #(
       .in_ready_o(in_ready_o), .in_nx_i(in_nx_i), .in_ny_i(in_ny_i), .in_nz_i(in_nz_i),
       .in_px_i(in_px_i), .in_py_i(in_py_i), .in_pz_i(in_pz_i), .in_tag_i(in_tag_i),
       .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .out_r_o(out_r_o), .out_g_o(out_g_o),
-      .out_b_o(out_b_o), .out_tag_o(out_tag_o));
+      .out_b_o(out_b_o), .out_sr_o(out_sr_o), .out_sg_o(out_sg_o), .out_sb_o(out_sb_o), .out_tag_o(out_tag_o));
 
   wire accept = in_valid_i && in_ready_o;
   wire take   = out_valid_o && out_ready_i;
@@ -128,6 +129,7 @@ module sc_formal_light #(
       l_hold_r:     assert (out_r_o == $past(out_r_o));
       l_hold_g:     assert (out_g_o == $past(out_g_o));
       l_hold_b:     assert (out_b_o == $past(out_b_o));
+      l_hold_s:     assert ({out_sr_o, out_sg_o, out_sb_o} == $past({out_sr_o, out_sg_o, out_sb_o}));
       l_hold_tag:   assert (out_tag_o == $past(out_tag_o));
     end
   end

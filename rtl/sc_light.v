@@ -47,6 +47,11 @@
 //   LOW_N         0/1: a shininess register value below 2^LOW_N_BITS (= 16, the units' smallest n;
 //                 GL's 0..15) selects x^n from an exact chain (rtl/sc_powi.v) in each lane instead of
 //                 the unit's value, unnormalised (feature-set key low_shininess); needs UNITS     (default 0)
+//   SEP_SPEC      0/1: GL_SEPARATE_SPECULAR_COLOR exists (feature-set key separate_specular; needs UNITS):
+//                 with light_model bit 4 set each lane attenuates the ambient + diffuse and the specular
+//                 sums apart and the back accumulates them apart: out_* = the primary sum, out_s* = the
+//                 specular sum (each saturated); clear: as without SEP_SPEC (bit for bit), out_s* = 0
+//                                                                                         (default 0)
 //   CHANNELS      1 (mono: channel 0 only, out_g_o = out_b_o = 0) or 3 (RGB)           (default 3)
 //   TAGW          width of the opaque fragment tag, >= 1                               (default 8)
 //   At least one of AMBIENT, DIFFUSE, UNITS must be non-zero.
@@ -63,6 +68,9 @@
 //   in_tag_i[TAGW-1:0]                                returned with the colour
 //   out_valid_o, out_ready_i                          colour handshake; a held colour keeps data and tag
 //   out_r_o, out_g_o, out_b_o [F:0]                   colour, unsigned, saturated to [0, 2^F]
+//   out_sr_o, out_sg_o, out_sb_o [F:0]                secondary colour (SEP_SPEC, separate mode: the specular
+//                                                     sum, saturated; else 0); GL's colour sum is
+//                                                     min(2^F, out + out_s), formed by the renderer
 //   out_tag_o[TAGW-1:0]
 //
 // Registers : a write happens at a rising edge with reg_we_i && reg_ready_o (LightRegs::write):
@@ -139,6 +147,7 @@ module sc_light #(
     parameter integer LOCAL_VIEWER = 0,
     parameter integer NORMALIZE    = 1,
     parameter integer LOW_N        = 0,
+    parameter integer SEP_SPEC     = 0,
     parameter integer CHANNELS     = 3,
     parameter integer TAGW         = 8
 ) (
@@ -165,6 +174,9 @@ module sc_light #(
     output wire [FRAC:0]     out_r_o,
     output wire [FRAC:0]     out_g_o,
     output wire [FRAC:0]     out_b_o,
+    output wire [FRAC:0]     out_sr_o,
+    output wire [FRAC:0]     out_sg_o,
+    output wire [FRAC:0]     out_sb_o,
     output wire [TAGW-1:0]   out_tag_o
 );
 
@@ -291,6 +303,7 @@ module sc_light #(
   localparam integer T_SP  = T_L + 2 + SPEB;                               // the spot factor
   localparam integer LNB   = LOW_N_BITS;                                 // the low-shininess chain's stages
   localparam integer HAS_LO = (SPECULAR != 0 && LOW_N != 0) ? 1 : 0;      // x^n for n < 2^LNB (low_shininess)
+  localparam integer HAS_SEP = (SPECULAR != 0 && SEP_SPEC != 0) ? 1 : 0;   // the secondary colour (separate_specular)
   localparam integer T_F   = sc_max(sc_max(sc_max(sc_max(1, (NEED_N != 0) ? T_A + 1 : 0),
                                   sc_max((SPECULAR != 0) ? T_X : 0, (ANY_ATT != 0) ? T_ATT : 0)),
                                   (ANY_SPOT != 0) ? sc_max(T_ATT, T_SP) + 1 : 0),
@@ -406,6 +419,12 @@ module sc_light #(
     if (LOW_N != 0 && SPECULAR == 0) begin : g_check_low_n_spec
       sc_light_error_illegal_LOW_N_needs_UNITS u_error ();
     end
+    if (SEP_SPEC != 0 && SEP_SPEC != 1) begin : g_check_sep
+      sc_light_error_illegal_SEP_SPEC_must_be_0_or_1 u_error ();
+    end
+    if (SEP_SPEC != 0 && SPECULAR == 0) begin : g_check_sep_spec
+      sc_light_error_illegal_SEP_SPEC_needs_UNITS u_error ();
+    end
     if (ENERGY != 0 && SPECULAR == 0) begin : g_check_energy_spec
       sc_light_error_illegal_ENERGY_needs_SPECULAR u_error ();
     end
@@ -437,11 +456,11 @@ module sc_light #(
   wire [VF:0]            mat_thr_u;
   wire [VF+7:0]          mat_coef_u;
   wire [7:0]             unit_sel;
-  wire                   unit_kill, lv_mode, phong_mode, norm_mode;
+  wire                   unit_kill, lv_mode, phong_mode, norm_mode, sep_mode;
   sc_light_regfile #(
       .FRAC(FRAC), .UFRAC(VF), .SLOT_KINDS(SLOT_KINDS), .SLOT_SPOT(SLOT_SPOT), .SEB(SPEB), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
       .UNITS(UNITS), .ENERGY(ENERGY), .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER),
-      .NORMALIZE(NORMALIZE), .NLT(NLT), .NCH(NCH), .AW(AW)
+      .NORMALIZE(NORMALIZE), .SEP(HAS_SEP), .NLT(NLT), .NCH(NCH), .AW(AW)
   ) u_regs (
       .clk_i(clk_i), .wr_i(wr), .addr_i(reg_addr_i[AW-1:0]), .data_i(reg_data_i),
       .pos_o(pos_all), .katt_o(katt_all), .kind_o(kind_all), .on_o(on_all),
@@ -450,7 +469,7 @@ module sc_light #(
       .scene_o(scene_w), .mdif_o(mdif_w), .mspec_o(mspec_w),
       .mat_we_o(mat_we_u), .mat_n_o(mat_n_u), .mat_thr_o(mat_thr_u), .mat_coef_o(mat_coef_u),
       .unit_sel_o(unit_sel), .unit_kill_o(unit_kill),
-      .lv_o(lv_mode), .phong_o(phong_mode), .normalize_o(norm_mode));
+      .lv_o(lv_mode), .phong_o(phong_mode), .normalize_o(norm_mode), .sep_o(sep_mode));
 
   // ---------------------------------------------------------------------------- handshake, pass issue
   // front: T_F stages, enable adv_f; back: NB stages, enable adv_b (the core's advancing condition)
@@ -721,6 +740,7 @@ module sc_light #(
   wire [NLN*3*(PW+1)-1:0] lv_all;    // lane j's P_j − P at stage 0 (SHARE > 1)
   wire [NLN*3*HVW_T-1:0]  hv_all;    // lane j's H at T_H (SHARE > 1)
   wire [NLN*NCH*CL-1:0] term_all;    // lane l's saturated term of channel c at (l*NCH + c)*CL
+  wire [NLN*NCH*CL-1:0] sterm_all;   // SEP_SPEC: lane l's saturated specular term, likewise
   wire [NLN*8-1:0]      u_in_ready_all, u_out_valid_all;   // per lane and variant id
   wire [NLN-1:0]        lane_out_valid;                    // per lane: what its back takes is valid
   wire [FTW-1:0]        bk_ftag;     // {fragment tag, first, last} as the back takes it
@@ -940,12 +960,13 @@ module sc_light #(
       end
       sc_light_shade #(
           .FRAC(FRAC), .NLT(NLT), .NCH(NCH), .SPW(SPW), .SG(SGUARD), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
-          .SPECULAR(SPECULAR), .CAN_ATT(ANY_ATT), .CSER(CSER)
+          .SPECULAR(SPECULAR), .CAN_ATT(ANY_ATT), .CSER(CSER), .SEP(HAS_SEP)
       ) u_shade (
-          .clk_i(clk_i), .en_i(adv_b), .spec_i(spec_s), .f_i(ut_x[OFF_F]), .diff_i(bk_diff),
+          .clk_i(clk_i), .en_i(adv_b), .spec_i(spec_s), .f_i(ut_x[OFF_F]), .sep_i(sep_mode), .diff_i(bk_diff),
           .att_i(bk_att), .idx_i(ut_x[OFF_I +: 3]), .v_i(ut_x[OFF_V]), .ch_i(ser),
           .mamb_i(mamb_w), .mdif_i(mdif_w), .mspec_i(mspec_w), .lamb_i(lamb_all), .ldif_i(ldif_all),
-          .lspec_i(lspec_all), .term_o(term_all[j*NCH*CL +: NCH*CL]));
+          .lspec_i(lspec_all), .term_o(term_all[j*NCH*CL +: NCH*CL]),
+          .sterm_o(sterm_all[j*NCH*CL +: NCH*CL]));
     end
   endgenerate
   // lane 0's selected unit gives the handshake (the lanes run in lock-step)
@@ -1066,37 +1087,60 @@ module sc_light #(
       .clk_i(clk_i), .en_i(adv_b), .d_i({ser, bk_ftag[1]}), .q_o({ch_acc, first_acc}));
   wire acc_en = adv_b && vb_q[NB-2];
 
-  wire [NCH*CL-1:0] out_w;
+  wire [NCH*CL-1:0] out_w, outs_w;
   generate
     for (c = 0; c < NCH; c = c + 1) begin : g_acc
       localparam integer TOTW = CL + 4;   // <= 9 addends of <= 2^F
-      reg [CL-1:0]   acc_q;
-      reg [TOTW-1:0] tot;
-      integer        k;
       localparam integer TC = (CSER != 0) ? 0 : c;   // where a lane's term of this channel is
       localparam integer CI = c;
       wire ch_on = (CSER == 0) || (ch_acc == CI[1:0]);
-      always @* begin
-        tot = {{(TOTW-CL){1'b0}}, first_acc ? scene_w[c*CL +: CL] : acc_q};
-        for (k = 0; k < NLN; k = k + 1) begin
-          tot = tot + {{(TOTW-CL){1'b0}}, term_all[(k*NCH + TC)*CL +: CL]};
+      // the primary sum (from the scene term) and, with SEP_SPEC, the specular sum (from 0), each saturated
+      localparam integer NSUM = (HAS_SEP != 0) ? 2 : 1;
+      wire [NSUM*CL-1:0] acc_w;
+      for (gi = 0; gi < NSUM; gi = gi + 1) begin : g_sum
+        reg [CL-1:0]   acc_q;
+        reg [TOTW-1:0] tot;
+        integer        k;
+        wire [NLN*NCH*CL-1:0] terms = (gi == 0) ? term_all : sterm_all;
+        wire [CL-1:0] start = (gi == 0) ? scene_w[c*CL +: CL] : {CL{1'b0}};
+        always @* begin
+          tot = {{(TOTW-CL){1'b0}}, first_acc ? start : acc_q};
+          for (k = 0; k < NLN; k = k + 1) begin
+            tot = tot + {{(TOTW-CL){1'b0}}, terms[(k*NCH + TC)*CL +: CL]};
+          end
         end
+        always @(posedge clk_i) begin
+          if (acc_en && ch_on) acc_q <= (tot > {{(TOTW-CL){1'b0}}, ONE}) ? ONE : tot[CL-1:0];
+        end
+        assign acc_w[gi*CL +: CL] = acc_q;
       end
-      always @(posedge clk_i) begin
-        if (acc_en && ch_on) acc_q <= (tot > {{(TOTW-CL){1'b0}}, ONE}) ? ONE : tot[CL-1:0];
+      // the separate mode: the primary and the specular sum apart (the single mode's specular sum is 0)
+      if (HAS_SEP != 0) begin : g_sep_out
+        assign out_w[c*CL +: CL]  = acc_w[CL-1:0];
+        assign outs_w[c*CL +: CL] = acc_w[NSUM*CL-1:CL];
+      end else begin : g_one_out
+        assign out_w[c*CL +: CL]  = acc_w[CL-1:0];
+        assign outs_w[c*CL +: CL] = {CL{1'b0}};
       end
-      assign out_w[c*CL +: CL] = acc_q;
+    end
+    if (HAS_SEP == 0) begin : g_no_sep
+      wire unused_sep = &{1'b0, sterm_all};
     end
   endgenerate
 
-  assign out_r_o = out_w[CL-1:0];
+  assign out_r_o  = out_w[CL-1:0];
+  assign out_sr_o = outs_w[CL-1:0];
   generate
     if (NCH == 3) begin : g_rgb
-      assign out_g_o = out_w[2*CL-1:CL];
-      assign out_b_o = out_w[3*CL-1:2*CL];
+      assign out_g_o  = out_w[2*CL-1:CL];
+      assign out_b_o  = out_w[3*CL-1:2*CL];
+      assign out_sg_o = outs_w[2*CL-1:CL];
+      assign out_sb_o = outs_w[3*CL-1:2*CL];
     end else begin : g_mono
-      assign out_g_o = {CL{1'b0}};
-      assign out_b_o = {CL{1'b0}};
+      assign out_g_o  = {CL{1'b0}};
+      assign out_b_o  = {CL{1'b0}};
+      assign out_sg_o = {CL{1'b0}};
+      assign out_sb_o = {CL{1'b0}};
     end
   endgenerate
 

@@ -28,7 +28,7 @@
 //             ldif_o, lspec_o (per channel F+1); material: scene_o (min(e + a·A >> F, 2^F)), mdif_o,
 //             mspec_o; unit: mat_we_o, mat_n_o, mat_thr_o, mat_coef_o (the values after this edge's
 //             write, with mat_we_o at the write edge), unit_sel_o (one-hot over variant ids),
-//             unit_kill_o; modes: lv_o, phong_o, normalize_o.
+//             unit_kill_o; modes: lv_o, phong_o, normalize_o, sep_o (light_model bit 4 with SEP).
 // ============================================================================================
 `default_nettype none
 
@@ -46,6 +46,7 @@ module sc_light_regfile #(
     parameter integer PHONG        = 0,
     parameter integer LOCAL_VIEWER = 0,
     parameter integer NORMALIZE    = 1,
+    parameter integer SEP          = 0,
     parameter integer NLT          = 1,
     parameter integer NCH          = 3,
     parameter integer AW           = 9
@@ -76,7 +77,8 @@ module sc_light_regfile #(
     output wire                  unit_kill_o,
     output wire                  lv_o,
     output wire                  phong_o,
-    output wire                  normalize_o
+    output wire                  normalize_o,
+    output wire                  sep_o
 );
 
 `include "sc_light_regs.vh"
@@ -122,6 +124,16 @@ module sc_light_regfile #(
       assign lv_o = 1'b0;
       assign phong_o = 1'b0;
       assign normalize_o = 1'b0;
+    end
+    // GL_SEPARATE_SPECULAR_COLOR (light_model bit 4; SEP needs units, so g_model exists)
+    if (SEP != 0) begin : g_sep
+      reg sep_q;
+      always @(posedge clk_i) begin
+        if (wr_i && addr_i == REG_LIGHT_MODEL) sep_q <= data_i[4];
+      end
+      assign sep_o = sep_q;
+    end else begin : g_no_sep
+      assign sep_o = 1'b0;
     end
   endgenerate
 

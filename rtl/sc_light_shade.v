@@ -15,12 +15,17 @@
 //   item — the core feeds a pass as three items, channels 0, 1, 2 on consecutive back-advancing edges
 //   (ch_i at B0, travelling with the item) — through one set of multipliers instead of three; the
 //   item's term is at term_o[CL-1:0] (the other channels' bits are 0).
+//   SEP = 1 (separate_specular) with sep_i (light_model bit 4): B2 keeps the ambient + diffuse sum and the
+//   specular product apart and B3 attenuates each (two products): term_o = ⌊att·(amb + diff)/2^F⌋, sterm_o =
+//   ⌊att·spec/2^F⌋, each saturated to 2^F; without sep_i the whole sum in term_o as with SEP = 0 (bit for bit)
+//   and sterm_o = 0.
 // Parameters: FRAC, NLT, NCH, SPW (unit output width), SG (the unit's extra fraction bits, SGUARD of
-//             rtl/sc_light.v), AMBIENT, DIFFUSE, SPECULAR, CAN_ATT, CSER.
+//             rtl/sc_light.v), AMBIENT, DIFFUSE, SPECULAR, CAN_ATT, CSER, SEP.
 // Ports     : clk_i, en_i (the back-advancing condition); at B0 (the unit's output): spec_i, f_i,
 //             diff_i, att_i, idx_i, v_i (a light in this lane); material mamb_i, mdif_i, mspec_i; every slot's
 //             lamb_i, ldif_i, lspec_i (packed as sc_light_regfile.v); ch_i (CSER: the item's channel at
-//             B0); term_o at the last stage.
+//             B0); sep_i (SEP: the separate mode, constant while a pass is in flight); term_o, sterm_o at the
+//             last stage.
 // ============================================================================================
 `default_nettype none
 
@@ -34,12 +39,14 @@ module sc_light_shade #(
     parameter integer DIFFUSE  = 1,
     parameter integer SPECULAR = 1,
     parameter integer CAN_ATT  = 0,
-    parameter integer CSER     = 0
+    parameter integer CSER     = 0,
+    parameter integer SEP      = 0
 ) (
     input  wire                          clk_i,
     input  wire                          en_i,
     input  wire [SPW-1:0]                spec_i,
     input  wire                          f_i,
+    input  wire                          sep_i,
     input  wire [FRAC:0]                 diff_i,
     input  wire [FRAC+7:0]               att_i,
     input  wire [2:0]                    idx_i,
@@ -51,7 +58,8 @@ module sc_light_shade #(
     input  wire [NLT*NCH*(FRAC+1)-1:0]   ldif_i,
     input  wire [NLT*NCH*(FRAC+1)-1:0]   lspec_i,
     input  wire [1:0]                    ch_i,
-    output wire [NCH*(FRAC+1)-1:0]       term_o
+    output wire [NCH*(FRAC+1)-1:0]       term_o,
+    output wire [NCH*(FRAC+1)-1:0]       sterm_o
 );
 
   localparam integer F    = FRAC;
@@ -60,8 +68,9 @@ module sc_light_shade #(
   localparam integer SUMW = ((SPF + 2 > FRAC + 3) ? SPF + 2 : FRAC + 3) + 2;   // per-light sum
   localparam [CL-1:0] ONE = {1'b1, {FRAC{1'b0}}};
   localparam integer NPC = (CSER != 0) ? 1 : NCH;   // channels computed per item
+  localparam integer NSUM = (SEP != 0) ? 2 : 1;       // sums attenuated per channel
 
-  genvar c;
+  genvar c, k;
 
   // spec only counts when N̂·L > 0
   wire [SPW-1:0] spec_e = f_i ? spec_i : {SPW{1'b0}};
@@ -146,28 +155,52 @@ module sc_light_shade #(
       end else begin : g_no_s
         assign ts = {(SPF+2){1'b0}};
       end
-      // B2: sum = amb + td + ts (0 without a light in this lane)
-      wire [SUMW-1:0] sum_d = {{(SUMW-CL-1){1'b0}}, amb} + {{(SUMW-CL-2){1'b0}}, td}
-                            + {{(SUMW-SPF-2){1'b0}}, ts};
+      // B2: sum = amb + td + ts (0 without a light in this lane); SEP: amb + td and ts apart
+      wire [SUMW-1:0] sum_p = {{(SUMW-CL-1){1'b0}}, amb} + {{(SUMW-CL-2){1'b0}}, td};
+      wire [SUMW-1:0] sum_s = {{(SUMW-SPF-2){1'b0}}, ts};
+      wire [SUMW-1:0] sum_d = sum_p + sum_s;
       reg  [SUMW-1:0] b2_sum_q;
       always @(posedge clk_i) begin
-        if (en_i) b2_sum_q <= b1_v_q ? sum_d : {SUMW{1'b0}};
+        if (en_i) b2_sum_q <= b1_v_q ? ((SEP != 0 && sep_i) ? sum_p : sum_d) : {SUMW{1'b0}};
       end
-      if (CAN_ATT != 0) begin : g_b3
-        wire [SUMW+FRAC+7:0] at_p = {{SUMW{1'b0}}, b2_att} * {{(FRAC+8){1'b0}}, b2_sum_q};
-        wire unused_at = &{1'b0, at_p[F-1:0]};
-        wire [SUMW+7:0] t_d = at_p[SUMW+FRAC+7:F];
-        reg [CL-1:0] b3_term_q;
+      wire [SUMW-1:0] b2_ssum;
+      if (SEP != 0) begin : g_b2_sep
+        reg [SUMW-1:0] b2_ssum_q;
         always @(posedge clk_i) begin
-          if (en_i) b3_term_q <= (t_d > {{(SUMW+7-F){1'b0}}, ONE}) ? ONE : t_d[CL-1:0];
+          if (en_i) b2_ssum_q <= (b1_v_q && sep_i) ? sum_s : {SUMW{1'b0}};
         end
-        assign term_o[c*CL +: CL] = b3_term_q;
-      end else begin : g_sat
-        assign term_o[c*CL +: CL] = (b2_sum_q > {{(SUMW-CL){1'b0}}, ONE}) ? ONE : b2_sum_q[CL-1:0];
+        assign b2_ssum = b2_ssum_q;
+      end else begin : g_b2_one
+        assign b2_ssum = {SUMW{1'b0}};
+      end
+      // B3: ⌊att·sum / 2^F⌋ (point_att), saturated to 2^F; SEP: the specular sum likewise
+      wire [NSUM*CL-1:0] t_out;   // the primary term, and with SEP the specular term
+      for (k = 0; k < NSUM; k = k + 1) begin : g_b3
+        wire [SUMW-1:0] sq = (k == 0) ? b2_sum_q : b2_ssum;
+        if (CAN_ATT != 0) begin : g_att
+          wire [SUMW+FRAC+7:0] at_p = {{SUMW{1'b0}}, b2_att} * {{(FRAC+8){1'b0}}, sq};
+          wire unused_at = &{1'b0, at_p[F-1:0]};
+          wire [SUMW+7:0] t_d = at_p[SUMW+FRAC+7:F];
+          reg [CL-1:0] b3_term_q;
+          always @(posedge clk_i) begin
+            if (en_i) b3_term_q <= (t_d > {{(SUMW+7-F){1'b0}}, ONE}) ? ONE : t_d[CL-1:0];
+          end
+          assign t_out[k*CL +: CL] = b3_term_q;
+        end else begin : g_sat
+          assign t_out[k*CL +: CL] = (sq > {{(SUMW-CL){1'b0}}, ONE}) ? ONE : sq[CL-1:0];
+        end
+      end
+      assign term_o[c*CL +: CL] = t_out[CL-1:0];
+      if (SEP != 0) begin : g_sterm
+        assign sterm_o[c*CL +: CL] = t_out[NSUM*CL-1:CL];
+      end else begin : g_no_sterm
+        assign sterm_o[c*CL +: CL] = {CL{1'b0}};
+        wire unused_ssum = &{1'b0, b2_ssum, sep_i};
       end
     end
     if (NPC < NCH) begin : g_ser_pad
       assign term_o[NCH*CL-1:NPC*CL] = {((NCH-NPC)*CL){1'b0}};
+      assign sterm_o[NCH*CL-1:NPC*CL] = {((NCH-NPC)*CL){1'b0}};
     end
     if (CSER == 0) begin : g_ch_unused
       wire unused_ch = &{1'b0, ch_i, b1_ch_q};

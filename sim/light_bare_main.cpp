@@ -55,7 +55,8 @@ struct BarePins : LightPinOps<BarePins> {
       : rst_n(t.rst_ni), reg_we(t.reg_we_i), reg_addr(t.reg_addr_i), reg_data(t.reg_data_i), reg_ready{t.reg_ready_o},
         in_valid(t.in_valid_i), in_ready{t.in_ready_o}, in_nx(t.in_nx_i), in_ny(t.in_ny_i), in_nz(t.in_nz_i),
         in_px(t.in_px_i), in_py(t.in_py_i), in_pz(t.in_pz_i), in_tag(t.in_tag_i), out_valid{t.out_valid_o},
-        out_ready(t.out_ready_i), out_r{t.out_r_o}, out_g{t.out_g_o}, out_b{t.out_b_o}, out_tag{t.out_tag_o} {}
+        out_ready(t.out_ready_i), out_r{t.out_r_o}, out_g{t.out_g_o}, out_b{t.out_b_o},
+        out_sr{t.out_sr_o}, out_sg{t.out_sg_o}, out_sb{t.out_sb_o}, out_tag{t.out_tag_o} {}
   BareIn<Field<decltype(M::rst_ni)>> rst_n;
   BareIn<Field<decltype(M::reg_we_i)>> reg_we;
   BareIn<Field<decltype(M::reg_addr_i)>> reg_addr;
@@ -68,7 +69,7 @@ struct BarePins : LightPinOps<BarePins> {
   BareIn<Field<decltype(M::in_tag_i)>> in_tag;
   BareOut<Field<decltype(M::out_valid_o)>> out_valid;
   BareIn<Field<decltype(M::out_ready_i)>> out_ready;
-  BareOut<Field<decltype(M::out_r_o)>> out_r, out_g, out_b;
+  BareOut<Field<decltype(M::out_r_o)>> out_r, out_g, out_b, out_sr, out_sg, out_sb;
   BareOut<Field<decltype(M::out_tag_o)>> out_tag;
   int frac = 16;
   int in_bits = 0;  // unused (MonitorLogic::set_in_bits is for the unit)

@@ -84,6 +84,9 @@ struct LightPinOps {
     c.c[0] = d.out_r.read();
     c.c[1] = d.out_g.read();
     c.c[2] = d.out_b.read();
+    c.s[0] = d.out_sr.read();
+    c.s[1] = d.out_sg.read();
+    c.s[2] = d.out_sb.read();
     return c;
   }
   static Colour corrupt(Colour c) {

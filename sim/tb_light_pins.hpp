@@ -28,6 +28,7 @@ struct LightPins : LightPinOps<LightPins> {
   sc_core::sc_signal<bool> out_valid{"out_valid", false};
   sc_core::sc_signal<bool> out_ready{"out_ready", false};
   sc_core::sc_signal<uint32_t> out_r{"out_r", 0}, out_g{"out_g", 0}, out_b{"out_b", 0};
+  sc_core::sc_signal<uint32_t> out_sr{"out_sr", 0}, out_sg{"out_sg", 0}, out_sb{"out_sb", 0};
   sc_core::sc_signal<uint32_t> out_tag{"out_tag", 0};
 
   int frac = 16;
@@ -55,6 +56,9 @@ struct LightPins : LightPinOps<LightPins> {
     dut.out_r_o(out_r);
     dut.out_g_o(out_g);
     dut.out_b_o(out_b);
+    dut.out_sr_o(out_sr);
+    dut.out_sg_o(out_sg);
+    dut.out_sb_o(out_sb);
     dut.out_tag_o(out_tag);
   }
 };

@@ -123,10 +123,12 @@ inline int light_run(const LightOptions& o, const FeatureSet& fs, const std::str
   const bool ok = sb.ok() && !hs.watchdog && sb.checked_ > 0;
   const double vps = wall > 0 ? static_cast<double>(sb.checked_) / wall : 0.0;
   for (const auto& m : sb.first_)
-    std::printf("MISMATCH tag %u N=(%lld,%lld,%lld) P=(%lld,%lld,%lld) expected=(%u,%u,%u) got=(%u,%u,%u) cycle %llu\n",
+    std::printf("MISMATCH tag %u N=(%lld,%lld,%lld) P=(%lld,%lld,%lld) expected=(%u,%u,%u)+(%u,%u,%u) "
+                "got=(%u,%u,%u)+(%u,%u,%u) cycle %llu\n",
                 m.tag, (long long)m.n[0], (long long)m.n[1], (long long)m.n[2], (long long)m.p[0], (long long)m.p[1],
-                (long long)m.p[2], m.expected.c[0], m.expected.c[1], m.expected.c[2], m.got.c[0], m.got.c[1],
-                m.got.c[2], (unsigned long long)m.cycle);
+                (long long)m.p[2], m.expected.c[0], m.expected.c[1], m.expected.c[2], m.expected.s[0], m.expected.s[1],
+                m.expected.s[2], m.got.c[0], m.got.c[1], m.got.c[2], m.got.s[0], m.got.s[1], m.got.s[2],
+                (unsigned long long)m.cycle);
   if (!o.quiet || !ok)
     std::printf("cosim: %s: %llu fragments checked, %llu mismatches, %llu lost, %llu duplicated/reordered, "
                 "%llu latency errors, %llu protocol errors; %llu register writes; %llu flushed by %llu mid-stream "

@@ -296,6 +296,76 @@ TEST(LightHardCases, LowShininessChain) {
   EXPECT_LE(r.core.latency(), pc.latency() + kLowNBits);
 }
 
+// Separate specular colour (feature separate_specular, docs/lighting.md §3.6): light_model bit 4 makes the
+// specular sum the secondary output, each sum saturated apart; clear, the output is bit for bit the core without
+// the capability and s = 0; a saturating specular term leaves the primary below 1 in the separate mode; without
+// the capability bit 4 is ignored; the double reference returns the two apart only when asked and in the mode.
+TEST(LightHardCases, SeparateSpecularSplitsTheSums) {
+  const nlohmann::json base = nlohmann::json::parse(R"({"lights": ["directional", "point_att"], "specular": "cs16"})");
+  nlohmann::json sj = base;
+  sj["separate_specular"] = true;
+  Rig r(feature_set_from_json(sj, "test"));
+  const LightCore plain(feature_set_from_json(base, "test"));
+  const uint32_t one = 1u << r.F;
+  LightParams lp;
+  lp.position[0] = 0, lp.position[1] = 0, lp.position[2] = 1, lp.position[3] = 0;
+  lp.specular[0] = lp.specular[1] = lp.specular[2] = 1.9;
+  lp.diffuse[0] = 0.3, lp.diffuse[1] = 0.2, lp.diffuse[2] = 0.1;
+  r.apply(light_writes(r.core, 0, lp));
+  LightParams pp;
+  pp.position[0] = 1, pp.position[1] = 2, pp.position[2] = 3, pp.position[3] = 1;
+  pp.kq = 0.1;
+  r.apply(light_writes(r.core, 1, pp));
+  MaterialParams m;
+  m.specular[0] = m.specular[1] = m.specular[2] = 1.5;
+  m.shininess = 32;
+  r.apply(material_writes(r.core, m));
+  int saturated = 0;
+  for (int k = 0; k < 30; ++k) {
+    Fragment fr;
+    fr.n[0] = (k - 15) * (int64_t{1} << r.F) / 20;
+    fr.n[2] = int64_t{1} << r.F;
+    fr.p[2] = -(int64_t{k + 1} << r.F);
+    for (bool sep : {false, true}) {
+      ModeParams md = default_modes(r.core.features());
+      md.separate_specular = sep;
+      double ga[3] = {0.1, 0.1, 0.1};
+      r.apply(global_writes(r.core, ga, md));
+      LightCoreTrace t;
+      const Colour c = r.core.eval(r.regs, fr, &t);
+      for (int ch = 0; ch < 3; ++ch) {
+        const uint64_t p = std::min<uint64_t>(t.total[ch], one), s = std::min<uint64_t>(t.stotal[ch], one);
+        EXPECT_EQ(t.total[ch], t.scene[ch] + t.light[0].term[ch] + t.light[1].term[ch]);
+        EXPECT_EQ(t.stotal[ch], t.light[0].sterm[ch] + t.light[1].sterm[ch]);
+        EXPECT_EQ(c.c[ch], p);
+        EXPECT_EQ(c.s[ch], s);
+        if (sep && s == one && p < one) ++saturated;
+        if (!sep) {
+          EXPECT_EQ(s, 0u);
+          EXPECT_EQ(c, plain.eval(r.regs, fr));  // the single mode is the core without the capability
+        }
+      }
+      std::array<double, 3> sd{};
+      const auto pd = r.core.eval_double(r.regs, fr, LightCore::SpecRef::Exact, nullptr, &sd);
+      const auto sum = r.core.eval_double(r.regs, fr, LightCore::SpecRef::Exact);
+      for (int ch = 0; ch < 3; ++ch) {
+        if (!sep) {
+          EXPECT_EQ(sd[ch], 0.0);
+        }
+        EXPECT_NEAR(sum[ch], std::min(1.0, pd[ch] + sd[ch]), 1e-12);
+      }
+    }
+  }
+  EXPECT_GT(saturated, 0);  // the separate mode kept a primary below 1 beside a saturated specular sum
+  // without the capability, bit 4 changes nothing and s stays 0
+  LightRegs pr = r.regs;
+  pr.light_model |= kModelSeparateSpecular;
+  const Colour pc = plain.eval(pr, Fragment{{0, 0, int64_t{1} << r.F}, {0, 0, -(int64_t{3} << r.F)}});
+  pr.light_model &= ~kModelSeparateSpecular;
+  EXPECT_EQ(pc, plain.eval(pr, Fragment{{0, 0, int64_t{1} << r.F}, {0, 0, -(int64_t{3} << r.F)}}));
+  EXPECT_EQ(pc.s[0] + pc.s[1] + pc.s[2], 0u);
+}
+
 // N·L exactly 0 and one code either side, with L = (0, 0, 1) exactly.
 TEST(LightHardCases, NdotLAroundZero) {
   Rig r(named("gl_default"));

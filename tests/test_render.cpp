@@ -266,7 +266,7 @@ TEST(RenderImage, DeterministicAndReferenceClose) {
   EXPECT_EQ(ia.code, ib.code);
   // Against the unit's own double formula the core is within a few LSB on average (quantisation only);
   // flat faces are one colour each.
-  std::vector<std::vector<std::array<double, 3>>> ud;
+  std::vector<std::vector<render::RefColour>> ud;
   for (const auto& g : a.groups) ud.push_back(render::run_reference(g, LightCore::SpecRef::Variant));
   const auto e = render::error_vs(ia, render::resolve_reference(a, ud));
   EXPECT_LT(e.mean_lsb, 8.0);

@@ -63,6 +63,8 @@ struct FeatureSet {
   bool normalize = true;                // GL_NORMALIZE: the normal normaliser exists
   bool low_shininess = false;           // shininess n < 2^kLowNBits (GL's 0..15): x^n by an exact chain beside
                                         // the units (rtl/sc_powi.v, docs/lighting.md §3.5); needs a unit
+  bool separate_specular = false;       // GL_SEPARATE_SPECULAR_COLOR: the specular sum as a second output colour,
+                                        // chosen by light_model bit 4 (docs/lighting.md §3.6); needs a unit
   int channels = 3;                     // 1 (mono, channel 0 only) or 3 (RGB)
   int lanes = 1;                        // per-light datapaths; enabled lights take ⌈k/lanes⌉ passes
   int share = 1;                        // clocks per pass (1..kShareMax): the vector normalisations of a
@@ -247,6 +249,7 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
     } else if (k == "local_viewer") fs.local_viewer = detail::fs_bool(v, "local_viewer", where);
     else if (k == "normalize") fs.normalize = detail::fs_bool(v, "normalize", where);
     else if (k == "low_shininess") fs.low_shininess = detail::fs_bool(v, "low_shininess", where);
+    else if (k == "separate_specular") fs.separate_specular = detail::fs_bool(v, "separate_specular", where);
     else if (k == "channels") {
       if (!v.is_number_integer() || (v.get<int>() != 1 && v.get<int>() != 3))
         fs_fail(where, "'channels' must be 1 or 3");
@@ -281,6 +284,7 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
   if (cutoff_given && !fs.has_unit(VariantId::cs16)) fs_fail(where, "'cutoff' applies to the cs16 unit only");
   if (fs.norm && !fs.specular) fs_fail(where, "'norm' needs a specular unit");
   if (fs.low_shininess && !fs.specular) fs_fail(where, "'low_shininess' needs a specular unit");
+  if (fs.separate_specular && !fs.specular) fs_fail(where, "'separate_specular' needs a specular unit");
   if (!fs.ambient && !fs.diffuse && !fs.specular) fs_fail(where, "no term enabled (ambient, diffuse, specular)");
   if (lanes_given && fs.lanes > fs.num_lights())
     fs_fail(where, "'lanes' " + std::to_string(fs.lanes) + " exceeds the " + std::to_string(fs.num_lights()) +
@@ -357,6 +361,7 @@ inline nlohmann::ordered_json FeatureSet::canonical() const {
   j["local_viewer"] = local_viewer;
   j["normalize"] = normalize;
   j["low_shininess"] = low_shininess;
+  j["separate_specular"] = separate_specular;
   j["channels"] = channels;
   j["lanes"] = lanes;
   j["share"] = share;
@@ -404,6 +409,7 @@ inline std::vector<std::string> FeatureSet::verilog_params(int tagw) const {
       "LOCAL_VIEWER=" + std::to_string(local_viewer ? 1 : 0),
       "NORMALIZE=" + std::to_string(normalize ? 1 : 0),
       "LOW_N=" + std::to_string(low_shininess ? 1 : 0),
+      "SEP_SPEC=" + std::to_string(separate_specular ? 1 : 0),
       "CHANNELS=" + std::to_string(channels),
       "TAGW=" + std::to_string(tagw),
   };
@@ -431,6 +437,7 @@ inline std::string FeatureSet::summary() const {
     s += blinn && phong ? ", blinn|phong" : (blinn ? ", blinn" : ", phong");
     s += local_viewer ? ", local viewer" : ", infinite viewer";
     if (low_shininess) s += ", shininess 0..1024";
+    if (separate_specular) s += ", separate specular";
   } else {
     s += ", no specular";
   }

@@ -80,10 +80,11 @@ static_assert((1 << kLowNBits) == kNMin, "low_shininess_bits must cover exactly 
 // Mode registers (docs/lighting.md §4): light_model (bit 0 local viewer, bit 1 Phong reflection, bit 2
 // normalize), mat_unit (a variant id), per light mode (bit 0 enable, bits 3:1 kind). Registers are not
 // reset, in the RTL as here: a program writes every register it relies on.
-inline constexpr uint32_t kLightModelBits = 3;  // stored bits of light_model (bits 3..4 reserved)
+inline constexpr uint32_t kLightModelBits = 5;  // stored bits of light_model (bit 3 reserved: two-sided)
 inline constexpr uint32_t kMatUnitBits = 4;
 inline constexpr uint32_t kLightModeBits = 4;
 inline constexpr uint32_t kModelLocalViewer = 1u, kModelPhong = 2u, kModelNormalize = 4u;
+inline constexpr uint32_t kModelSeparateSpecular = 16u;  // GL_SEPARATE_SPECULAR_COLOR (feature separate_specular)
 inline constexpr uint32_t kModeEnable = 1u;
 inline constexpr uint32_t light_mode_word(bool enable, LightKind k) {
   return (enable ? kModeEnable : 0u) | (static_cast<uint32_t>(k) << 1);
@@ -162,9 +163,15 @@ struct Fragment {
   int64_t p[3] = {0, 0, 0};  // signed F+8-bit codes
 };
 
+// The core's output: the primary colour c and, with separate_specular in the separate mode, the secondary
+// colour s (the specular sum; 0 otherwise). GL's colour sum is min(1, c + s) (colour_sum()).
 struct Colour {
   uint32_t c[3] = {0, 0, 0};
-  bool operator==(const Colour& o) const { return c[0] == o.c[0] && c[1] == o.c[1] && c[2] == o.c[2]; }
+  uint32_t s[3] = {0, 0, 0};
+  bool operator==(const Colour& o) const {
+    return c[0] == o.c[0] && c[1] == o.c[1] && c[2] == o.c[2] && s[0] == o.s[0] && s[1] == o.s[1] && s[2] == o.s[2];
+  }
+  [[nodiscard]] uint32_t colour_sum(int ch, uint32_t one) const { return std::min(c[ch] + s[ch], one); }
   bool operator!=(const Colour& o) const { return !(*this == o); }
 };
 
@@ -184,7 +191,9 @@ struct LightTrace {
   bool f = false;      // ndl > 0 (and the material's unit exists)
   int64_t x = 0;       // the specular unit's input code (clamped to its signed VF+2-bit word)
   uint32_t spec = 0;   // the unit's output (VF+1 bits, or VF+8 bits with norm)
-  uint64_t term[3] = {};  // the light's contribution per channel (after attenuation)
+  uint64_t term[3] = {};  // the light's contribution per channel (after attenuation); in the separate-specular
+                          // mode the ambient and diffuse part ⌊att·(amb + diff)/2^F⌋ only
+  uint64_t sterm[3] = {}; // the separate-specular mode: the specular part ⌊att·spec/2^F⌋ (else 0)
 };
 struct LightCoreTrace {
   int64_t nn[3] = {};  // N̂ (or N unchanged without normalize)
@@ -193,6 +202,7 @@ struct LightCoreTrace {
   uint64_t scene[3] = {};
   std::array<LightTrace, kMaxLights> light{};
   uint64_t total[3] = {};
+  uint64_t stotal[3] = {};  // separate_specular: Σ sterm
 };
 
 // The modes a register state selects among a core's capabilities (docs/lighting.md §4, the RTL's
@@ -202,6 +212,7 @@ struct LightCoreTrace {
 struct LightModes {
   bool local_viewer = false, phong = false, normalize = false;
   bool low_n = false;  // mat_n < 2^kLowNBits with the low_shininess chain: spec = x^n from the chain, not the unit
+  bool separate = false;  // light_model bit 4 with separate_specular: the specular sum is the secondary output
   int unit = -1;  // index into FeatureSet::units(), −1: absent (specular 0)
   uint32_t on = 0;  // bit j: light j contributes
   int enabled = 0;  // lights on
@@ -232,6 +243,7 @@ class LightCore {
     m.phong = fs_.phong && (!fs_.blinn || (r.light_model & kModelPhong));
     m.normalize = fs_.normalize && (r.light_model & kModelNormalize);
     m.low_n = fs_.low_shininess && r.mat_n < (1u << kLowNBits);
+    m.separate = fs_.separate_specular && (r.light_model & kModelSeparateSpecular);
     const std::vector<VariantId> us = fs_.units();
     for (size_t i = 0; i < us.size(); ++i)
       if (static_cast<uint32_t>(us[i]) == r.mat_unit) m.unit = static_cast<int>(i);
@@ -354,20 +366,34 @@ class LightCore {
           lt.spec = units_[static_cast<size_t>(md.unit < 0 ? 0 : md.unit)].eval(mat, lt.x);
       }
       for (int c = 0; c < ch; ++c) {
-        uint64_t sum = 0;
+        uint64_t sum = 0, ssum = 0;
         if (fs_.ambient) sum += (uint64_t{r.ambient[c]} * L.ambient[c]) >> F;
         if (fs_.diffuse) sum += (((uint64_t{lt.diff} * r.diffuse[c]) >> F) * L.diffuse[c]) >> F;
-        if (fs_.specular && lt.f) sum += (((uint64_t{lt.spec} * r.specular[c]) >> VF) * L.specular[c]) >> F;
-        lt.term[c] = (lt.att * sum) >> F;  // att = 2^F unless point_att: exactly sum
+        if (fs_.specular && lt.f) ssum = (((uint64_t{lt.spec} * r.specular[c]) >> VF) * L.specular[c]) >> F;
+        if (md.separate) {  // the separate mode: the two parts attenuated apart (rtl/sc_light_shade.v SEP)
+          lt.term[c] = (lt.att * sum) >> F;
+          lt.sterm[c] = (lt.att * ssum) >> F;
+        } else {
+          lt.term[c] = (lt.att * (sum + ssum)) >> F;  // att = 2^F unless point_att: exactly sum
+        }
       }
     }
-    // The sum over the lights is exact (no rounding) and saturated once (docs/spec.md §10.4).
+    // The sum over the lights is exact (no rounding) and saturated once (docs/spec.md §10.4). In the
+    // separate-specular mode the primary and the specular sums are saturated apart (docs/lighting.md §3.6);
+    // otherwise the specular sum is 0 and the primary is the whole sum, bit for bit as without the capability.
     Colour out;
     for (int c = 0; c < ch; ++c) {
-      uint64_t tot = t.scene[c];
-      for (int j = 0; j < fs_.num_lights(); ++j) tot += t.light[static_cast<size_t>(j)].term[c];
+      uint64_t tot = t.scene[c], stot = 0;
+      for (int j = 0; j < fs_.num_lights(); ++j) {
+        tot += t.light[static_cast<size_t>(j)].term[c];
+        stot += t.light[static_cast<size_t>(j)].sterm[c];
+      }
       t.total[c] = tot;
-      out.c[c] = static_cast<uint32_t>(std::min<uint64_t>(tot, static_cast<uint64_t>(one)));
+      t.stotal[c] = stot;
+      const uint64_t o = static_cast<uint64_t>(one);
+      const uint64_t p = std::min<uint64_t>(tot, o), q = std::min<uint64_t>(stot, o);
+      out.c[c] = static_cast<uint32_t>(p);
+      out.s[c] = static_cast<uint32_t>(q);
     }
     if (tr) *tr = t;
     return out;
@@ -380,8 +406,12 @@ class LightCore {
   // `cone`, when given, gets bit j set for a spot light j inside its cone in double (−L̂·ŝ >= the cos register's
   // value): where it differs from the trace's in_cone the fragment is on the cone's edge, a step the fixed-point
   // sdl (truncated, from the normalised L̂) and the double can put on different sides (docs/lighting.md §3.4).
+  // `secondary`, when given and the separate-specular mode is on (§3.6): the return value is the primary colour
+  // and *secondary the specular sum, each clamped to [0, 1]; otherwise the return value is GL's colour sum
+  // min(1, primary + specular) and *secondary is 0.
   [[nodiscard]] std::array<double, 3> eval_double(const LightRegs& r, const Fragment& fr, SpecRef ref,
-                                                  uint32_t* cone = nullptr) const;
+                                                  uint32_t* cone = nullptr,
+                                                  std::array<double, 3>* secondary = nullptr) const;
 
   static int64_t dot3(const int64_t a[3], const int64_t b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
@@ -492,8 +522,9 @@ inline int LightCore::latency_min() const {
 }
 
 inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fragment& fr, SpecRef ref,
-                                                    uint32_t* cone) const {
+                                                    uint32_t* cone, std::array<double, 3>* secondary) const {
   if (cone) *cone = 0;
+  if (secondary) *secondary = {0, 0, 0};
   const int F = f_.frac;
   const LightModes md = modes(r);
   auto v = [F](int64_t code) { return std::ldexp(static_cast<double>(code), -F); };
@@ -510,7 +541,7 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
   }
   const int n = static_cast<int>(r.mat_n);
   const VariantId var = md.unit >= 0 ? units_[static_cast<size_t>(md.unit)].variant() : fs_.variant;
-  std::array<double, 3> out{0, 0, 0};
+  std::array<double, 3> out{0, 0, 0}, sout{0, 0, 0};
   for (int c = 0; c < fs_.channels; ++c)
     if (fs_.ambient) out[c] = v(r.emission[c]) + v(r.ambient[c]) * v(r.global_ambient[c]);
   for (int j = 0; j < fs_.num_lights(); ++j) {
@@ -562,11 +593,15 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
       double s = 0;
       if (fs_.ambient) s += v(r.ambient[c]) * v(L.ambient[c]);
       if (fs_.diffuse) s += diff * v(r.diffuse[c]) * v(L.diffuse[c]);
-      if (fs_.specular) s += spec * v(r.specular[c]) * v(L.specular[c]);
       out[c] += att * s;
+      if (fs_.specular) sout[c] += att * spec * v(r.specular[c]) * v(L.specular[c]);
     }
   }
-  for (auto& o : out) o = std::clamp(o, 0.0, 1.0);
+  if (secondary && md.separate) {
+    for (int c = 0; c < 3; ++c) out[c] = std::clamp(out[c], 0.0, 1.0), (*secondary)[c] = std::clamp(sout[c], 0.0, 1.0);
+    return out;
+  }
+  for (int c = 0; c < 3; ++c) out[c] = std::clamp(out[c] + sout[c], 0.0, 1.0);
   return out;
 }
 
@@ -594,9 +629,10 @@ struct MaterialParams {
 // Global modes (light_model): default — every capability the core has that has no alternative.
 struct ModeParams {
   bool local_viewer = false, phong = false, normalize = false;
+  bool separate_specular = false;  // GL_LIGHT_MODEL_COLOR_CONTROL = GL_SEPARATE_SPECULAR_COLOR
 };
 inline ModeParams default_modes(const FeatureSet& fs) {
-  return {fs.local_viewer, !fs.blinn, fs.normalize};
+  return {fs.local_viewer, !fs.blinn, fs.normalize, false};
 }
 
 namespace detail {
@@ -753,7 +789,8 @@ inline std::vector<RegWrite> light_off_writes(int j) {
 }
 
 inline uint32_t light_model_word(const ModeParams& m) {
-  return (m.local_viewer ? kModelLocalViewer : 0u) | (m.phong ? kModelPhong : 0u) | (m.normalize ? kModelNormalize : 0u);
+  return (m.local_viewer ? kModelLocalViewer : 0u) | (m.phong ? kModelPhong : 0u) | (m.normalize ? kModelNormalize : 0u) |
+         (m.separate_specular ? kModelSeparateSpecular : 0u);
 }
 
 // Global ambient and the global modes (light_model).

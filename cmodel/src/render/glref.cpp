@@ -91,6 +91,7 @@ void set_gl_light_model(const Scene& sc) {
   rgba(sc.global_ambient, v);
   glLightModelfv(GL_LIGHT_MODEL_AMBIENT, v);
   glLightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, sc.local_viewer ? GL_TRUE : GL_FALSE);
+  glLightModeli(GL_LIGHT_MODEL_COLOR_CONTROL, sc.separate_specular ? GL_SEPARATE_SPECULAR_COLOR : GL_SINGLE_COLOR);
   glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_FALSE);  // back faces lit with the front normal, as the core
 }
 

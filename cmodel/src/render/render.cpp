@@ -164,6 +164,7 @@ FeatureSet full_core_for(const FeatureSet& spec, std::vector<std::string>& subs)
     need(!spec.phong || f.phong, "Phong reflection");
     need(!spec.local_viewer || f.local_viewer, "the local viewer");
     need(!spec.low_shininess || f.low_shininess, "the low-shininess chain (shininess below 16)");
+    need(!spec.separate_specular || f.separate_specular, "the separate specular colour");
   }
   // A width is not a mode: a scene of another config is rendered by the full set at that width.
   if (f.config != spec.config) {
@@ -292,6 +293,7 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
     fs.blinn = fs.specular ? sc.blinn : true;
     fs.phong = !fs.blinn;
     fs.local_viewer = fs.specular && sc.local_viewer;
+    fs.separate_specular = fs.specular && sc.separate_specular;  // GL_SEPARATE_SPECULAR_COLOR
     // a shininess below the units' range (GL's 0..15): the exact chain beside the unit
     fs.low_shininess = false;
     if (fs.specular)
@@ -593,7 +595,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
     };
     // the modes of the specialised set, programmed (the same words on the full core)
     const FeatureSet& sp = g.specialised;
-    const ModeParams modes{sp.specular && sp.local_viewer, sp.specular && !sp.blinn, sp.normalize};
+    const ModeParams modes{sp.specular && sp.local_viewer, sp.specular && !sp.blinn, sp.normalize, sp.separate_specular};
     add_writes(global_writes(core, sc.global_ambient.data(), modes));
     for (int j = 0; j < g.fs.num_lights(); ++j) {
       if (j >= sp.num_lights()) {  // a slot of the full core the scene does not use: off
@@ -705,14 +707,19 @@ std::vector<Colour> run_cmodel(const CoreGroup& g) {
   return out;
 }
 
-std::vector<std::array<double, 3>> run_reference(const CoreGroup& g, LightCore::SpecRef ref) {
+std::vector<RefColour> run_reference(const CoreGroup& g, LightCore::SpecRef ref) {
   const LightCore core(g.fs);
   LightRegs regs;
-  std::vector<std::array<double, 3>> out;
+  std::vector<RefColour> out;
   out.reserve(g.dests.size());
   for (const auto& c : g.cmds) {
-    if (c.is_write) regs.write(core.widths(), c.w.addr, c.w.data);
-    else out.push_back(core.eval_double(regs, c.f, ref));
+    if (c.is_write) {
+      regs.write(core.widths(), c.w.addr, c.w.data);
+      continue;
+    }
+    std::array<double, 3> s{};
+    const std::array<double, 3> p = core.eval_double(regs, c.f, ref, nullptr, &s);
+    out.push_back({p[0], p[1], p[2], s[0], s[1], s[2]});
   }
   return out;
 }
@@ -767,7 +774,7 @@ Image resolve(const Frame& fr, const std::vector<std::vector<Colour>>& colours) 
     const bool mono = grp.specialised.channels == 1;
     for (size_t i = 0; i < cols.size(); ++i) {
       Colour c = cols[i];
-      if (mono) c.c[1] = c.c[2] = c.c[0];
+      if (mono) c.c[1] = c.c[2] = c.c[0], c.s[1] = c.s[2] = c.s[0];
       const Dest& d = grp.dests[i];
       (d.kind == DestKind::Face ? face_c : d.kind == DestKind::Vertex ? vert_c : pix_c)[d.index] = c;
     }
@@ -775,28 +782,34 @@ Image resolve(const Frame& fr, const std::vector<std::vector<Colour>>& colours) 
   resolve_pixels<Colour>(
       fr, face_c, vert_c, pix_c,
       [](const raster::Weights& w, const std::array<Colour, 3>& sv) {
-        Colour c;
-        for (int ch = 0; ch < 3; ++ch)
+        Colour c;  // the primary and the secondary colour interpolated apart (GL)
+        for (int ch = 0; ch < 3; ++ch) {
           c.c[ch] = static_cast<uint32_t>(raster::interpolate(
               w, std::array<int64_t, 3>{sv[0].c[ch], sv[1].c[ch], sv[2].c[ch]}));
+          c.s[ch] = static_cast<uint32_t>(raster::interpolate(
+              w, std::array<int64_t, 3>{sv[0].s[ch], sv[1].s[ch], sv[2].s[ch]}));
+        }
         return c;
       },
       [](const std::array<double, 3>& b, const Colour& a, const Colour& bb, const Colour& cc) {
         Colour r;
-        for (int ch = 0; ch < 3; ++ch)
+        for (int ch = 0; ch < 3; ++ch) {
           r.c[ch] = static_cast<uint32_t>(std::llround(b[0] * a.c[ch] + b[1] * bb.c[ch] + b[2] * cc.c[ch]));
+          r.s[ch] = static_cast<uint32_t>(std::llround(b[0] * a.s[ch] + b[1] * bb.s[ch] + b[2] * cc.s[ch]));
+        }
         return r;
       },
       [&](size_t p, int oi, const Colour& c) {
-        for (int ch = 0; ch < 3; ++ch) img.code[p * 3 + ch] = c.c[ch];
+        // GL's colour sum (no texturing): min(1, primary + secondary)
+        for (int ch = 0; ch < 3; ++ch) img.code[p * 3 + ch] = c.colour_sum(ch, uint32_t{1} << fr.F);
         img.covered[p] = 1;
         img.group[p] = static_cast<int8_t>(fr.object_group[oi]);
       });
   return img;
 }
 
-RefImage resolve_reference(const Frame& fr, const std::vector<std::vector<std::array<double, 3>>>& values) {
-  using V = std::array<double, 3>;
+RefImage resolve_reference(const Frame& fr, const std::vector<std::vector<RefColour>>& values) {
+  using V = RefColour;
   RefImage ref;
   ref.width = fr.width, ref.height = fr.height;
   const size_t np = static_cast<size_t>(fr.width) * fr.height;
@@ -810,7 +823,7 @@ RefImage resolve_reference(const Frame& fr, const std::vector<std::vector<std::a
     const bool mono = grp.specialised.channels == 1;
     for (size_t i = 0; i < vals.size(); ++i) {
       V v = vals[i];
-      if (mono) v[1] = v[2] = v[0];
+      if (mono) v[1] = v[2] = v[0], v[4] = v[5] = v[3];
       const Dest& d = grp.dests[i];
       (d.kind == DestKind::Face ? face_v : d.kind == DestKind::Vertex ? vert_v : pix_v)[d.index] = v;
     }
@@ -819,16 +832,16 @@ RefImage resolve_reference(const Frame& fr, const std::vector<std::vector<std::a
       fr, face_v, vert_v, pix_v,
       [](const raster::Weights& w, const std::array<V, 3>& sv) {
         V r;
-        for (int ch = 0; ch < 3; ++ch) r[ch] = raster::interpolate(w, std::array<double, 3>{sv[0][ch], sv[1][ch], sv[2][ch]});
+        for (int ch = 0; ch < 6; ++ch) r[ch] = raster::interpolate(w, std::array<double, 3>{sv[0][ch], sv[1][ch], sv[2][ch]});
         return r;
       },
       [](const std::array<double, 3>& b, const V& a, const V& bb, const V& cc) {
         V r;
-        for (int ch = 0; ch < 3; ++ch) r[ch] = b[0] * a[ch] + b[1] * bb[ch] + b[2] * cc[ch];
+        for (int ch = 0; ch < 6; ++ch) r[ch] = b[0] * a[ch] + b[1] * bb[ch] + b[2] * cc[ch];
         return r;
       },
       [&](size_t p, int, const V& v) {
-        for (int ch = 0; ch < 3; ++ch) ref.value[p * 3 + ch] = v[ch];
+        for (int ch = 0; ch < 3; ++ch) ref.value[p * 3 + ch] = std::min(1.0, v[ch] + v[ch + 3]);
       });
   return ref;
 }

@@ -794,13 +794,19 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
   }
   if (root.contains("light_model")) {
     const json& lm = root["light_model"];
-    P.keys(lm, "light_model", {"ambient", "local_viewer", "reflection"});
+    P.keys(lm, "light_model", {"ambient", "local_viewer", "reflection", "color_control"});
     if (lm.contains("ambient")) sc.global_ambient = P.colour(lm["ambient"], "light_model.ambient");
     if (lm.contains("local_viewer")) sc.local_viewer = P.boolean(lm["local_viewer"], "light_model.local_viewer");
     if (lm.contains("reflection")) {
       const std::string r = P.string(lm["reflection"], "light_model.reflection");
       if (r != "blinn" && r != "phong") P.fail("light_model.reflection", "must be blinn or phong");
       sc.blinn = r == "blinn";
+    }
+    if (lm.contains("color_control")) {
+      const std::string c = P.string(lm["color_control"], "light_model.color_control");
+      if (c != "single" && c != "separate_specular")
+        P.fail("light_model.color_control", "must be single or separate_specular");
+      sc.separate_specular = c == "separate_specular";
     }
   }
   int light_frac = 16;

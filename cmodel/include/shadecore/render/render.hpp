@@ -133,10 +133,13 @@ Frame prepare(const scene::Scene& sc, const std::vector<scene::Mesh>& meshes, co
 
 // The C model over one core's command stream: one colour per fragment command, in order.
 std::vector<Colour> run_cmodel(const CoreGroup& g);
-// The double reference over the same stream (values in [0, 1] per channel).
-std::vector<std::array<double, 3>> run_reference(const CoreGroup& g, LightCore::SpecRef ref);
+// The double reference over the same stream (values in [0, 1] per channel): the primary colour and, in the
+// separate-specular mode, the secondary (specular) colour, each clamped; else the colour sum and 0.
+using RefColour = std::array<double, 6>;  // primary r, g, b, secondary r, g, b
+std::vector<RefColour> run_reference(const CoreGroup& g, LightCore::SpecRef ref);
 
-// An image of colour codes (F fraction bits, 0..2^F), 3 channels per pixel, row-major from the top.
+// An image of colour codes (F fraction bits, 0..2^F), 3 channels per pixel, row-major from the top: GL's colour
+// sum min(2^F, primary + secondary), the two interpolated apart (resolve()).
 struct Image {
   int width = 0, height = 0, F = 16;
   std::vector<uint32_t> code;
@@ -149,7 +152,9 @@ struct RefImage {
 };
 
 Image resolve(const Frame& fr, const std::vector<std::vector<Colour>>& colours);
-RefImage resolve_reference(const Frame& fr, const std::vector<std::vector<std::array<double, 3>>>& values);
+// Interpolates the primary and the secondary colour apart (GL: Gouraud interpolates both) and stores their
+// colour sum min(1, primary + secondary) per pixel.
+RefImage resolve_reference(const Frame& fr, const std::vector<std::vector<RefColour>>& values);
 
 struct ErrorStats {
   double max_lsb = 0;       // max |code − 2^F·ref| over covered pixels and channels, in output LSBs (2^−F)

@@ -119,6 +119,7 @@ struct Scene {
   Camera camera;
   Vec3 global_ambient{0.2, 0.2, 0.2};  // GL_LIGHT_MODEL_AMBIENT
   bool local_viewer = false;           // GL_LIGHT_MODEL_LOCAL_VIEWER
+  bool separate_specular = false;      // GL_LIGHT_MODEL_COLOR_CONTROL: color_control "separate_specular"
   bool blinn = true;                   // reflection: blinn (N·H, what GL does) or phong (R·V)
   std::string config = "default";      // the core's width (configs.json, frac <= 16)
   std::vector<Light> lights;

@@ -197,7 +197,7 @@ class LightStimulus {
   }
   ModeParams random_modes() {
     const uint64_t r = rng_.next();
-    return {(r & 1) != 0, (r & 2) != 0, (r & 4) != 0};
+    return {(r & 1) != 0, (r & 2) != 0, (r & 4) != 0, (r & 8) != 0};
   }
   std::vector<RegWrite> random_light(int j) {
     LightParams lp;
