@@ -11,7 +11,8 @@
 // of |exact 8-bit − GL 8-bit|; the verdict (PASS: exit 0, FAIL: exit 2 with every output written) is
 // p99 <= --tolerance (2) over the pixels of comparable objects, none covered by one image only, none shown by
 // different objects, and at least one comparable pixel. Objects GL cannot show (Phong shading, R·V reflection,
-// shininess > 128, energy normalisation, flat shading of position-dependent lighting) are reported and left out
+// shininess > 128, energy normalisation, flat shading of position-dependent lighting under the scene's flat_rule
+// centroid; flat_rule provoking_vertex is GL_FLAT's rule and compares) are reported and left out
 // of the verdict unless --all-objects. Into DIR (all outputs staged and committed together, docs/cli.md):
 //   mesa.png    GL's image;   exact.png   shadecore's exact image;
 //   diff.png    amplified difference (glref::Comparison::diff_rgb: grey <= tolerance, red exact brighter, blue GL

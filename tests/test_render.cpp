@@ -4,6 +4,8 @@
 // core's image bit for bit (for every example scene and for scenes built to hit every substitution).
 #include <gtest/gtest.h>
 
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -257,6 +259,97 @@ TEST(RenderFullCore, ModeRegistersDecide) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("lacks the unit schlick_div"), std::string::npos) << e.what();
   }
+}
+
+// flat_rule provoking_vertex (issue 19): GL_FLAT's rule. Every pixel of a flat triangle (v0, vk, vk+1) has the
+// colour the C model computes at vk+1 from that vertex's own fragment (its vertex normal and eye-space position,
+// the fragment Gouraud sends for it), one fragment per distinct provoking vertex; the image differs from the
+// centroid rule's (the default) under a point light and a local viewer, with the same coverage.
+TEST(RenderFlatRule, ProvokingVertexIsTheLastVertexsColour) {
+  const std::string lights = R"({"position": [1.5, 1, 2.5, 1], "diffuse": [0.9, 0.8, 0.7], "specular": [1, 1, 1]},
+                                {"position": [-1, 1, 1, 0], "diffuse": [0.3, 0.3, 0.4]})";
+  const std::string mats = R"("m": {"diffuse": [0.8, 0.5, 0.3], "specular": [0.6, 0.6, 0.6], "shininess": 30})";
+  const std::string text = make(lights, mats, objects("flat", "flat"), R"({"local_viewer": true})");
+  auto with_rule = [&text](const std::string& r) {
+    std::string s = text;
+    s.replace(s.find("\"image\""), 7, "\"flat_rule\": \"" + r + "\", \"image\"");
+    return s;
+  };
+  const auto dflt = parse(text), cen = parse(with_rule("centroid")), pv = parse(with_rule("provoking_vertex"));
+  EXPECT_EQ(dflt.sc.flat_rule, scene::FlatRule::Centroid);
+  EXPECT_EQ(cen.sc.flat_rule, scene::FlatRule::Centroid);
+  ASSERT_EQ(pv.sc.flat_rule, scene::FlatRule::ProvokingVertex);
+  const Frame fd = frame(dflt, false), fc = frame(cen, false), fp = frame(pv, false);
+  const auto id = cmodel_image(fd), ic = cmodel_image(fc), ip = cmodel_image(fp);
+  EXPECT_EQ(id.code, ic.code);  // centroid is the default
+  EXPECT_EQ(ic.covered, ip.covered);
+  EXPECT_GT(covered(ip), 600u);
+  EXPECT_GT(render::mismatching_pixels(ic, ip), covered(ip) / 2);
+
+  // Fragments: no face fragment; one vertex fragment per distinct provoking vertex of a shown triangle.
+  std::set<uint32_t> provoking;
+  for (int y = 0; y < fp.height; ++y)
+    for (int x = 0; x < fp.width; ++x)
+      if (fp.raster.at(x, y) >= 0) provoking.insert(fp.tri_vertices[fp.raster.tris()[fp.raster.at(x, y)].source][2]);
+  uint64_t faces = 0, vertices = 0;
+  for (const auto& g : fp.groups) faces += g.faces, vertices += g.vertices;
+  EXPECT_EQ(faces, 0u);
+  EXPECT_EQ(vertices, provoking.size());
+
+  // The C model's eval at each provoking vertex, on the vertex's own fragment, with the registers the stream
+  // programs before it.
+  std::map<uint32_t, Colour> at_vertex;
+  for (const auto& g : fp.groups) {
+    const LightCore core(g.fs);
+    LightRegs regs;
+    size_t k = 0;
+    for (const auto& c : g.cmds) {
+      if (c.is_write) {
+        regs.write(core.widths(), c.w.addr, c.w.data);
+        continue;
+      }
+      const render::Dest& d = g.dests.at(k++);
+      ASSERT_EQ(d.kind, render::DestKind::Vertex);
+      Colour col = core.eval(regs, fp.vertex_frag.at(d.index));
+      if (g.specialised.channels == 1) col.c[1] = col.c[2] = col.c[0];
+      at_vertex[d.index] = col;
+    }
+  }
+  // The same geometry Gouraud-shaded: the same vertex fragments (normal and position of each vertex) and colours.
+  Settings gs;
+  gs.width = 96, gs.height = 64, gs.mode = scene::Shading::Gouraud;
+  const Frame fg = render::prepare(pv.sc, pv.meshes, gs);
+  ASSERT_EQ(fg.vertex_frag.size(), fp.vertex_frag.size());
+  for (size_t v = 0; v < fp.vertex_frag.size(); ++v)
+    for (int i = 0; i < 3; ++i) {
+      ASSERT_EQ(fg.vertex_frag[v].n[i], fp.vertex_frag[v].n[i]);
+      ASSERT_EQ(fg.vertex_frag[v].p[i], fp.vertex_frag[v].p[i]);
+    }
+  std::map<uint32_t, Colour> gouraud;
+  for (const auto& g : fg.groups) {
+    const auto cols = render::run_cmodel(g);
+    for (size_t i = 0; i < cols.size(); ++i) {
+      Colour col = cols[i];
+      if (g.specialised.channels == 1) col.c[1] = col.c[2] = col.c[0];
+      if (g.dests[i].kind == render::DestKind::Vertex) gouraud[g.dests[i].index] = col;
+    }
+  }
+  uint64_t checked = 0, not_v0 = 0;
+  for (int y = 0; y < fp.height; ++y)
+    for (int x = 0; x < fp.width; ++x) {
+      const int32_t t = fp.raster.at(x, y);
+      if (t < 0) continue;
+      const auto& tv = fp.tri_vertices[fp.raster.tris()[t].source];
+      const size_t p = static_cast<size_t>(y) * fp.width + x;
+      Colour px;
+      for (int ch = 0; ch < 3; ++ch) px.c[ch] = ip.code[p * 3 + ch];
+      ASSERT_EQ(px, at_vertex.at(tv[2])) << "pixel (" << x << ", " << y << ")";
+      ASSERT_EQ(px, gouraud.at(tv[2])) << "pixel (" << x << ", " << y << ")";
+      not_v0 += px != gouraud.at(tv[0]);
+      ++checked;
+    }
+  EXPECT_EQ(checked, covered(ip));
+  EXPECT_GT(not_v0, checked / 2);  // the last vertex, not the first
 }
 
 TEST(RenderImage, DeterministicAndReferenceClose) {

@@ -82,6 +82,21 @@ TEST(SceneInput, IntegralNumbersForEveryIntegerField) {
   EXPECT_EQ(sc.materials[0].shininess, 16);
 }
 
+// flat_rule (issue 19): centroid by default; centroid and provoking_vertex as written; anything else one line.
+TEST(SceneInput, FlatRuleParses) {
+  EXPECT_EQ(parse_scene(kBase, "s.json", ".").flat_rule, FlatRule::Centroid);
+  EXPECT_EQ(parse_scene(edit("\"image\"", "\"flat_rule\": \"centroid\", \"image\""), "s.json", ".").flat_rule, FlatRule::Centroid);
+  EXPECT_EQ(parse_scene(edit("\"image\"", "\"flat_rule\": \"provoking_vertex\", \"image\""), "s.json", ".").flat_rule,
+            FlatRule::ProvokingVertex);
+  EXPECT_STREQ(to_string(FlatRule::Centroid), "centroid");
+  EXPECT_STREQ(to_string(FlatRule::ProvokingVertex), "provoking_vertex");
+  EXPECT_EQ(error_of(edit("\"image\"", "\"flat_rule\": \"last\", \"image\"")),
+            "s.json: flat_rule: unknown flat rule 'last' (known: centroid, provoking_vertex)");
+  EXPECT_EQ(error_of(edit("\"image\"", "\"flat_rule\": true, \"image\"")), "s.json: flat_rule: must be a string");
+  EXPECT_EQ(error_of(edit("\"image\"", "\"flat_rule\": \"Centroid\", \"image\"")),
+            "s.json: flat_rule: unknown flat rule 'Centroid' (known: centroid, provoking_vertex)");
+}
+
 TEST(SceneInput, MissingCameraIsTheDefaultCamera) {
   const Scene sc = parse_scene(kBase, "s.json", ".");
   const Camera d;

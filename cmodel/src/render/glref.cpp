@@ -114,9 +114,12 @@ void check_gl(const char* where) {
 }
 
 // The object's polygons as render::prepare draws them: the fan (v0, vk, vk+1) of each face.
-//   smooth: vertex normals, GL_SMOOTH (Gouraud; Phong objects too, only for coverage);
-//   flat:   the face's Newell normal, GL_FLAT; each fan triangle is sent as (vk, vk+1, v0) so that its provoking
-//           vertex (GL_TRIANGLES: the last) is v0 for every triangle of the face: one colour per face, lit at v0.
+//   smooth: vertex normals in the fan's order (v0, vk, vk+1): GL_SMOOTH for Gouraud (Phong objects too, only for
+//           coverage), and GL_FLAT for flat objects under flat_rule provoking_vertex (each triangle takes the colour
+//           of its provoking vertex, GL_TRIANGLES' last: vk+1, as render::prepare);
+//   flat:   (flat_rule centroid) the face's Newell normal, GL_FLAT; each fan triangle is sent as (vk, vk+1, v0) so
+//           that its provoking vertex (GL_TRIANGLES: the last) is v0 for every triangle of the face: one colour per
+//           face, lit at v0.
 //   ids:    no normals (lighting off, the colour is set by the caller).
 enum class Draw { Smooth, Flat, Ids };
 void draw_mesh(const scene::Mesh& m, Draw how) {
@@ -215,7 +218,8 @@ GlImage render_gl(const Scene& sc, render::MeshSource& meshes, const GlSettings&
     glPushMatrix();
     object_transform(o.transform);
     out.object_mvp.push_back(current_mvp());
-    draw_mesh(*meshes.get(static_cast<int>(oi)), sh == Shading::Flat ? Draw::Flat : Draw::Smooth);
+    const bool by_face = sh == Shading::Flat && sc.flat_rule == scene::FlatRule::Centroid;
+    draw_mesh(*meshes.get(static_cast<int>(oi)), by_face ? Draw::Flat : Draw::Smooth);
     glPopMatrix();
   }
   glFinish();
@@ -274,7 +278,10 @@ std::vector<ObjectCheck> check_objects(const Scene& sc, const std::vector<Shadin
       if (M.normalization) no("energy normalisation of the specular term has no GL equivalent");
       c.notes.push_back("GL_SHININESS " + std::to_string(std::min(M.shininess, kGlMaxShininess)));
     }
-    if (sh == Shading::Flat) {
+    if (sh == Shading::Flat && sc.flat_rule == scene::FlatRule::ProvokingVertex) {
+      // both: GL_FLAT's rule, the last vertex of each fan triangle with its vertex normal and position
+      c.notes.push_back("flat: GL_FLAT, each triangle lit at its provoking (last) vertex with the vertex normal (flat_rule provoking_vertex)");
+    } else if (sh == Shading::Flat) {
       // shadecore lights the face's centroid, GL the provoking vertex (here v0 of the face): equal only when
       // the lighting does not depend on the position (directional lights; a local viewer only without specular).
       bool positional = false;
@@ -283,7 +290,8 @@ std::vector<ObjectCheck> check_objects(const Scene& sc, const std::vector<Shadin
       const bool viewer = spec && sc.local_viewer;
       if (positional || viewer)
         no(std::string("flat: shadecore lights the face centroid, GL the provoking vertex, and the lighting depends on the position (") +
-           (positional ? "a positional light" : "") + (positional && viewer ? ", " : "") + (viewer ? "local viewer" : "") + ")");
+           (positional ? "a positional light" : "") + (positional && viewer ? ", " : "") + (viewer ? "local viewer" : "") +
+           "; flat_rule provoking_vertex makes it comparable)");
       else
         c.notes.push_back("flat: the face normal at GL's provoking vertex; the lighting does not depend on the position");
     }

@@ -370,6 +370,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
   fr.width = s.width > 0 ? s.width : sc.width;
   fr.height = s.height > 0 ? s.height : sc.height;
   fr.F = config_named(sc.config).format.frac;
+  fr.flat_rule = sc.flat_rule;
   const int F = fr.F;
   const Camera cam = s.camera ? *s.camera : sc.camera;
   const Mat4 view = look_at(cam);
@@ -567,7 +568,12 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
       const int src = fr.raster.tris()[id].source;
       const int oi = fr.tri_object[src];
       switch (fr.object_shading[oi]) {
-        case Shading::Flat: face_vis[fr.tri_face[src]] = 1; break;
+        case Shading::Flat:
+          // provoking_vertex: the triangle (v0, vk, vk+1) takes vk+1's colour, its vertex fragment (shared by the
+          // triangles it provokes); centroid: the face's fragment
+          if (fr.flat_rule == scene::FlatRule::ProvokingVertex) vert_need[fr.tri_vertices[src][2]] = 1;
+          else face_vis[fr.tri_face[src]] = 1;
+          break;
         case Shading::Gouraud:
           for (uint32_t v : fr.tri_vertices[src]) vert_need[v] = 1;
           break;
@@ -740,7 +746,9 @@ void resolve_pixels(const Frame& fr, const std::vector<T>& face_v, const std::ve
       const int src = st.source;
       const int oi = fr.tri_object[src];
       switch (fr.object_shading[oi]) {
-        case Shading::Flat: store(p, oi, face_v[fr.tri_face[src]]); break;
+        case Shading::Flat:
+          store(p, oi, fr.flat_rule == scene::FlatRule::ProvokingVertex ? vert_v[fr.tri_vertices[src][2]] : face_v[fr.tri_face[src]]);
+          break;
         case Shading::Phong: store(p, oi, pix_v[p]); break;
         case Shading::Gouraud: {
           const auto& tv = fr.tri_vertices[src];

@@ -40,6 +40,20 @@ Shading parse_shading(const std::string& s) {
   throw std::invalid_argument("unknown shading mode '" + s + "' (known: flat, gouraud, phong)");
 }
 
+const char* to_string(FlatRule r) {
+  switch (r) {
+    case FlatRule::Centroid: return "centroid";
+    case FlatRule::ProvokingVertex: return "provoking_vertex";
+  }
+  return "?";
+}
+
+FlatRule parse_flat_rule(const std::string& s) {
+  if (s == "centroid") return FlatRule::Centroid;
+  if (s == "provoking_vertex") return FlatRule::ProvokingVertex;
+  throw std::invalid_argument("unknown flat rule '" + s + "' (known: centroid, provoking_vertex)");
+}
+
 
 std::string printable(std::string_view s, std::size_t max_chars) {
   static const char* hex = "0123456789abcdef";
@@ -765,7 +779,8 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
   Scene sc;
   sc.file = printable(name, 0);  // for messages only
   sc.dir = dir;
-  P.keys(root, "", {"image", "camera", "light_model", "lights", "materials", "objects", "contact_sheet", "config"});
+  P.keys(root, "", {"image", "camera", "light_model", "lights", "materials", "objects", "contact_sheet", "config",
+                    "flat_rule"});
   if (!root.contains("image")) P.fail("", "missing 'image' {width, height}");
   {
     const json& im = root["image"];
@@ -790,6 +805,14 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
                              std::to_string(kLightFracMax));
     } catch (const std::invalid_argument& e) {
       P.fail("config", e.what());
+    }
+  }
+  if (root.contains("flat_rule")) {
+    const std::string r = P.string(root["flat_rule"], "flat_rule");
+    try {
+      sc.flat_rule = parse_flat_rule(r);
+    } catch (const std::invalid_argument& e) {
+      P.fail("flat_rule", Parser::quoted(e.what(), r));
     }
   }
   if (root.contains("light_model")) {

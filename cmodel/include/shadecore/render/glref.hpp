@@ -10,7 +10,9 @@
 //
 // What fixed-function GL cannot show is reported per object (check_objects): Phong shading (per-fragment
 // lighting), Phong's R·V reflection, shininess above GL's cap of 128, energy normalisation; and flat shading
-// where the lighting depends on the position (shadecore lights the face centroid, GL the provoking vertex).
+// under the scene's flat_rule centroid where the lighting depends on the position (shadecore lights the face
+// centroid, GL the provoking vertex). Under flat_rule provoking_vertex flat objects are drawn with their vertex
+// normals in the fan's order under GL_FLAT and compare like Gouraud ones.
 // Such objects are still drawn by GL (Phong ones as Gouraud) so that coverage and occlusion compare.
 #pragma once
 

@@ -6,12 +6,15 @@
 //               (global, lights, then per material its registers and its fragments);
 //   run_cmodel  the bit-accurate C model (LightCore::eval) over one core's stream; the RTL path sends the
 //               same stream to the Verilated core instead;
-//   resolve()   colours back into the image: flat = one colour per face, Gouraud = vertex colours
+//   resolve()   colours back into the image: flat = one colour per face (flat_rule centroid) or per triangle,
+//               its provoking vertex's (provoking_vertex), Gouraud = vertex colours
 //               interpolated (perspective-correct, integers), Phong = one core colour per pixel;
 //   reference() the same fragments through LightCore::eval_double (exact cos^n, or the unit's own double
 //               formula), interpolated the same way in double.
 //
-// Shading modes (seed 001): flat — one normal per face, the face lit once at its centroid; Gouraud —
+// Shading modes (seed 001): flat — one normal per face, the face lit once at its centroid (the scene's flat_rule
+// provoking_vertex: GL_FLAT, each triangle (v0, vk, vk+1) takes the colour of vertex vk+1, lit with its vertex
+// normal and position — the vertex fragment Gouraud would send, one per distinct provoking vertex); Gouraud —
 // lighting per vertex through the core, colours interpolated; Phong — normals and positions interpolated,
 // lighting per pixel through the core.
 #pragma once
@@ -54,7 +57,7 @@ struct CoreGroup {
   std::string unit_label;               // "cs16/theta_cr", "schlick_nr", "none"
   std::vector<CoreCmd> cmds;
   std::vector<Dest> dests;              // one per fragment command, in order
-  uint64_t faces = 0, vertices = 0, pixels = 0;
+  uint64_t faces = 0, vertices = 0, pixels = 0;  // fragments by kind (vertices: Gouraud's and flat provoking vertices)
   uint64_t writes = 0;
 };
 
@@ -110,16 +113,17 @@ struct Frame {
   std::vector<CoreGroup> groups;
   // Geometry that some pixel shows (triangles no pixel shows are dropped object by object, with the
   // vertices and faces only they used); numbering in drawing order (objects, then their vertices / faces).
-  std::vector<Fragment> vertex_frag;          // per vertex: N̂ and P codes
+  std::vector<Fragment> vertex_frag;          // per vertex: N̂ and P codes (Gouraud; flat by provoking vertex)
   std::vector<Fragment> face_frag;            // per face: face normal and centroid codes
   std::vector<int> vertex_object, face_object;  // per vertex / face: its scene object
   std::vector<int> tri_object, tri_face;      // per triangle (the rasteriser's source id)
-  std::vector<std::array<uint32_t, 3>> tri_vertices;
+  std::vector<std::array<uint32_t, 3>> tri_vertices;  // (v0, vk, vk+1) of the face's fan: [2] provokes
   uint64_t drawn_vertices = 0, drawn_faces = 0, drawn_triangles = 0;  // before dropping the hidden ones
   double tessellate_seconds = 0, rasterise_seconds = 0;  // prepare()'s phases (mesh building; the rest)
   std::vector<int> object_group;              // per scene object: its core group (−1 not drawn)
   std::vector<scene::Shading> object_shading; // per scene object (after overrides)
   std::vector<int> object_material;           // per scene object (after overrides)
+  scene::FlatRule flat_rule = scene::FlatRule::Centroid;  // the scene's: flat objects by face or by provoking vertex
   raster::Rasterizer raster{1, 1, 1.0};
   std::array<uint32_t, 3> background{};       // codes
 };

@@ -38,6 +38,14 @@ enum class Shading { Flat, Gouraud, Phong };
 const char* to_string(Shading s);
 Shading parse_shading(const std::string& s);  // throws std::invalid_argument
 
+// How flat shading picks the one colour of a polygon (the scene's top-level "flat_rule"):
+//   Centroid         the face lit once at its centroid with its geometric (Newell) normal (the default);
+//   ProvokingVertex  OpenGL's GL_FLAT: each triangle (v0, vk, vk+1) of the face's fan takes the colour of its
+//                    provoking vertex, GL_TRIANGLES' last vertex vk+1, lit with that vertex's normal and position.
+enum class FlatRule { Centroid, ProvokingVertex };
+const char* to_string(FlatRule r);
+FlatRule parse_flat_rule(const std::string& s);  // throws std::invalid_argument
+
 struct Camera {            // gluLookAt(eye, center, up) + gluPerspective(fovy, aspect = width/height, near, far)
   Vec3 eye{0, 0, 5}, center{0, 0, 0}, up{0, 1, 0};
   double fovy = 45.0;      // degrees, (0, 180)
@@ -122,6 +130,7 @@ struct Scene {
   bool separate_specular = false;      // GL_LIGHT_MODEL_COLOR_CONTROL: color_control "separate_specular"
   bool blinn = true;                   // reflection: blinn (N·H, what GL does) or phong (R·V)
   std::string config = "default";      // the core's width (configs.json, frac <= 16)
+  FlatRule flat_rule = FlatRule::Centroid;  // flat shading: centroid or GL_FLAT's provoking vertex
   std::vector<Light> lights;
   std::vector<Material> materials;
   std::vector<Object> objects;
