@@ -5,7 +5,7 @@
 //
 //   commands file: "SCLCMD01", then records: u8 kind; kind 0 (write): u32 addr, u32 data;
 //                  kind 1 (fragment): i64 n[3], i64 p[3]  (the fragment's tag is its index, 0, 1, ...)
-//   results file:  "SCLOUT01", then per fragment in tag order: u32 tag, u32 c[3]
+//   results file:  "SCLOUT02", then per fragment in tag order: u32 tag, u32 c[3], u32 s[3] (the secondary colour)
 #pragma once
 
 #include <cstdint>
@@ -25,7 +25,7 @@ struct CoreCommand {
 };
 
 inline constexpr char kCmdMagic[9] = "SCLCMD01";
-inline constexpr char kOutMagic[9] = "SCLOUT01";
+inline constexpr char kOutMagic[9] = "SCLOUT02";  // 02: the secondary colour after the primary
 
 inline void write_commands(const std::string& path, const std::vector<CoreCommand>& cmds) {
   std::FILE* fp = std::fopen(path.c_str(), "wb");
@@ -88,6 +88,7 @@ inline void write_results(const std::string& path, const std::vector<ResultRecor
   for (const auto& r : res) {
     std::fwrite(&r.tag, 4, 1, fp);
     std::fwrite(r.c.c, 4, 3, fp);
+    std::fwrite(r.c.s, 4, 3, fp);  // the secondary colour (separate_specular; else 0)
   }
   if (std::fclose(fp) != 0) throw std::runtime_error("cannot write " + path);
 }
@@ -103,7 +104,7 @@ inline std::vector<ResultRecord> read_results(const std::string& path) {
   std::vector<ResultRecord> out;
   ResultRecord r;
   while (std::fread(&r.tag, 4, 1, fp) == 1) {
-    if (std::fread(r.c.c, 4, 3, fp) != 3) {
+    if (std::fread(r.c.c, 4, 3, fp) != 3 || std::fread(r.c.s, 4, 3, fp) != 3) {
       std::fclose(fp);
       throw std::runtime_error(path + ": truncated result stream");
     }
