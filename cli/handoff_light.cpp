@@ -132,7 +132,8 @@ std::string format_records(const FeatureSet& fset, const std::string& what, cons
   s += "// format: one record per line, thirteen hex words ($readmemh into a 32-bit memory, 13 words a record;\n";
   s += "// // lines are comments):\n";
   s += "//   0 ADDR DATA 0 0 0 0 0 0 0 0 0 0    register write: reg_addr_i (9 bits), reg_data_i (32 bits)\n";
-  s += fmt::format("//   T NX NY NZ PX PY PZ R G B SR SG SB    fragment: T = 1 + 16·L, L its latency without backpressure (the\n"
+  s += fmt::format("//   T NX NY NZ PX PY PZ R G B SR SG SB    fragment: T = 1 + 2·B + 16·L, B its in_back_i (facing bit),\n"
+                   "//                                L its latency without backpressure (the\n"
                    "//                                registers set its passes and unit: LightCore::latency(regs));\n"
                    "//                                normal in_n*_i ({} bits, two's complement, 1.0 = 0x{:x}),\n",
                    F + 2, uint64_t{1} << F);
@@ -148,7 +149,7 @@ std::string format_records(const FeatureSet& fset, const std::string& what, cons
       s += fmt::format("0 {:03x} {:08x} 0 0 0 0 0 0 0 0 0 0\n", r.w.addr & 0x1ff, r.w.data);
     else
       s += fmt::format("{:x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x}\n",
-                       1 + 16 * r.latency,
+                       1 + 2 * (r.f.back ? 1 : 0) + 16 * r.latency,
                        static_cast<uint64_t>(r.f.n[0]) & nmask, wn, static_cast<uint64_t>(r.f.n[1]) & nmask, wn,
                        static_cast<uint64_t>(r.f.n[2]) & nmask, wn, static_cast<uint64_t>(r.f.p[0]) & pmask, wp,
                        static_cast<uint64_t>(r.f.p[1]) & pmask, wp, static_cast<uint64_t>(r.f.p[2]) & pmask, wp,

@@ -47,6 +47,10 @@
 //   LOW_N         0/1: a shininess register value below 2^LOW_N_BITS (= 16, the units' smallest n;
 //                 GL's 0..15) selects x^n from an exact chain (rtl/sc_powi.v) in each lane instead of
 //                 the unit's value, unnormalised (feature-set key low_shininess); needs UNITS     (default 0)
+//   TWO_SIDE      0/1: GL_LIGHT_MODEL_TWO_SIDE exists (feature-set key two_side): with light_model bit 3
+//                 a fragment with in_back_i is lit with −N (each component negated, −(−2^(F+1))
+//                 saturating to 2^(F+1)−1) and the back colour bank back_mat_* (emission, ambient,
+//                 diffuse, specular; the unit material n/thr/coef/unit is shared with the front) (default 0)
 //   SEP_SPEC      0/1: GL_SEPARATE_SPECULAR_COLOR exists (feature-set key separate_specular; needs UNITS):
 //                 with light_model bit 4 set each lane attenuates the ambient + diffuse and the specular
 //                 sums apart and the back accumulates them apart: out_* = the primary sum, out_s* = the
@@ -66,6 +70,8 @@
 //   in_nx_i, in_ny_i, in_nz_i [F+1:0]                 normal N, signed, 1.0 = 2^F (any length)
 //   in_px_i, in_py_i, in_pz_i [F+7:0]                 eye-space position P, signed, [−128, 128)
 //   in_tag_i[TAGW-1:0]                                returned with the colour
+//   in_back_i                                         the fragment's polygon faces away (window-space winding,
+//                                                     glFrontFace CCW); used only by TWO_SIDE's two-sided mode
 //   out_valid_o, out_ready_i                          colour handshake; a held colour keeps data and tag
 //   out_r_o, out_g_o, out_b_o [F:0]                   colour, unsigned, saturated to [0, 2^F]
 //   out_sr_o, out_sg_o, out_sb_o [F:0]                secondary colour (SEP_SPEC, separate mode: the specular
@@ -148,6 +154,7 @@ module sc_light #(
     parameter integer NORMALIZE    = 1,
     parameter integer LOW_N        = 0,
     parameter integer SEP_SPEC     = 0,
+    parameter integer TWO_SIDE     = 0,
     parameter integer CHANNELS     = 3,
     parameter integer TAGW         = 8
 ) (
@@ -168,6 +175,7 @@ module sc_light #(
     input  wire [FRAC+7:0]   in_py_i,
     input  wire [FRAC+7:0]   in_pz_i,
     input  wire [TAGW-1:0]   in_tag_i,
+    input  wire              in_back_i,
     // colour out
     output wire              out_valid_o,
     input  wire              out_ready_i,
@@ -334,7 +342,8 @@ module sc_light #(
   localparam integer OFF_A = OFF_D + ((DIFFUSE != 0) ? CL : 0);
   localparam integer OFF_LO = OFF_A + ((ANY_ATT != 0) ? FRAC + 8 : 0);
   localparam integer SBW   = OFF_LO + ((HAS_LO != 0) ? VF + 1 : 0);
-  localparam integer FTW   = TAGW + 2;                                    // {fragment tag, first, last}
+  localparam integer FTW   = TAGW + 3;                                    // {fragment tag, back, first, last}
+  localparam integer HAS_TWO = (TWO_SIDE != 0) ? 1 : 0;                   // two-sided lighting
 
   localparam [CL-1:0] ONE = {1'b1, {FRAC{1'b0}}};                         // 2^F
 
@@ -422,6 +431,9 @@ module sc_light #(
     if (SEP_SPEC != 0 && SEP_SPEC != 1) begin : g_check_sep
       sc_light_error_illegal_SEP_SPEC_must_be_0_or_1 u_error ();
     end
+    if (TWO_SIDE != 0 && TWO_SIDE != 1) begin : g_check_two
+      sc_light_error_illegal_TWO_SIDE_must_be_0_or_1 u_error ();
+    end
     if (SEP_SPEC != 0 && SPECULAR == 0) begin : g_check_sep_spec
       sc_light_error_illegal_SEP_SPEC_needs_UNITS u_error ();
     end
@@ -456,11 +468,12 @@ module sc_light #(
   wire [VF:0]            mat_thr_u;
   wire [VF+7:0]          mat_coef_u;
   wire [7:0]             unit_sel;
-  wire                   unit_kill, lv_mode, phong_mode, norm_mode, sep_mode;
+  wire                   unit_kill, lv_mode, phong_mode, norm_mode, sep_mode, two_mode;
+  wire [NCH*CL-1:0]      bamb_w, bscene_w, bdif_w, bspec_w;   // TWO_SIDE: the back colour bank
   sc_light_regfile #(
       .FRAC(FRAC), .UFRAC(VF), .SLOT_KINDS(SLOT_KINDS), .SLOT_SPOT(SLOT_SPOT), .SEB(SPEB), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
       .UNITS(UNITS), .ENERGY(ENERGY), .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER),
-      .NORMALIZE(NORMALIZE), .SEP(HAS_SEP), .NLT(NLT), .NCH(NCH), .AW(AW)
+      .NORMALIZE(NORMALIZE), .SEP(HAS_SEP), .TWO_SIDE(HAS_TWO), .NLT(NLT), .NCH(NCH), .AW(AW)
   ) u_regs (
       .clk_i(clk_i), .wr_i(wr), .addr_i(reg_addr_i[AW-1:0]), .data_i(reg_data_i),
       .pos_o(pos_all), .katt_o(katt_all), .kind_o(kind_all), .on_o(on_all),
@@ -469,7 +482,8 @@ module sc_light #(
       .scene_o(scene_w), .mdif_o(mdif_w), .mspec_o(mspec_w),
       .mat_we_o(mat_we_u), .mat_n_o(mat_n_u), .mat_thr_o(mat_thr_u), .mat_coef_o(mat_coef_u),
       .unit_sel_o(unit_sel), .unit_kill_o(unit_kill),
-      .lv_o(lv_mode), .phong_o(phong_mode), .normalize_o(norm_mode), .sep_o(sep_mode));
+      .lv_o(lv_mode), .phong_o(phong_mode), .normalize_o(norm_mode), .sep_o(sep_mode), .two_o(two_mode),
+      .bamb_o(bamb_w), .bscene_o(bscene_w), .bdif_o(bdif_w), .bspec_o(bspec_w));
 
   // ---------------------------------------------------------------------------- handshake, pass issue
   // front: T_F stages, enable adv_f; back: NB stages, enable adv_b (the core's advancing condition)
@@ -490,6 +504,7 @@ module sc_light #(
   reg  [3*NW-1:0]  hold_n_q;
   reg  [3*PW-1:0]  hold_p_q;
   reg  [TAGW-1:0]  hold_tag_q;
+  reg              hold_back_q;
 
   assign out_valid_o = vb_q[NB-1] && out_last;
   assign adv_b       = !out_valid_o || out_ready_i;   // a pass that is not its fragment's last leaves at once
@@ -532,6 +547,7 @@ module sc_light #(
       hold_n_q   <= {in_nz_i, in_ny_i, in_nx_i};
       hold_p_q   <= {in_pz_i, in_py_i, in_px_i};
       hold_tag_q <= in_tag_i;
+      hold_back_q <= in_back_i;
     end
   end
 
@@ -624,14 +640,24 @@ module sc_light #(
   // ---------------------------------------------------------------------------- front: the pass's operands
   // the shared normalisers' results (SHARE > 1; see "shared normalisers" below)
   wire [3*NV-1:0] pool_nhat, pool_vhat, pool_lhat, pool_hhat;
-  wire [3*NW-1:0] n_in   = hold_q ? hold_n_q : {in_nz_i, in_ny_i, in_nx_i};
+  wire [3*NW-1:0] n_pick = hold_q ? hold_n_q : {in_nz_i, in_ny_i, in_nx_i};
+  // the two-sided mode lights a back-facing fragment with −N, each component saturated (−(−2^(F+1)) is 2^(F+1)−1)
+  wire            bk_in  = (HAS_TWO != 0) && two_mode && (hold_q ? hold_back_q : in_back_i);
+  wire [3*NW-1:0] n_in;
+  generate
+    for (gi = 0; gi < 3; gi = gi + 1) begin : g_nneg
+      wire [NW-1:0] e   = n_pick[gi*NW +: NW];
+      wire [NW-1:0] neg = (e == {1'b1, {(NW-1){1'b0}}}) ? {1'b0, {(NW-1){1'b1}}} : ({NW{1'b0}} - e);
+      assign n_in[gi*NW +: NW] = bk_in ? neg : e;
+    end
+  endgenerate
   wire [3*PW-1:0] p_in   = hold_q ? hold_p_q : {in_pz_i, in_py_i, in_px_i};
   wire [TAGW-1:0] tag_in = hold_q ? hold_tag_q : in_tag_i;
 
   // fragment tag, first and last through the front
   wire [FTW-1:0] ftag_f;
   sc_delay #(.W(FTW), .DEPTH(T_F)) u_dly_tag (
-      .clk_i(clk_i), .en_i(adv_f), .d_i({tag_in, pass_first, pass_last}), .q_o(ftag_f));
+      .clk_i(clk_i), .en_i(adv_f), .d_i({tag_in, bk_in, pass_first, pass_last}), .q_o(ftag_f));
   // lane valid bits through the front
   wire [NLN-1:0] lv_f;
   sc_delay #(.W(NLN), .DEPTH(T_F)) u_dly_lv (
@@ -743,7 +769,7 @@ module sc_light #(
   wire [NLN*NCH*CL-1:0] sterm_all;   // SEP_SPEC: lane l's saturated specular term, likewise
   wire [NLN*8-1:0]      u_in_ready_all, u_out_valid_all;   // per lane and variant id
   wire [NLN-1:0]        lane_out_valid;                    // per lane: what its back takes is valid
-  wire [FTW-1:0]        bk_ftag;     // {fragment tag, first, last} as the back takes it
+  wire [FTW-1:0]        bk_ftag;     // {fragment tag, back, first, last} as the back takes it
   wire                  u_kill = unit_kill;
   // LOW_N: the shininess register holds n < 2^LNB (constant while a fragment is in flight)
   wire                  lo_mode = (HAS_LO != 0) && (mat_n_u[10:LNB] == {(11-LNB){1'b0}});
@@ -960,9 +986,10 @@ module sc_light #(
       end
       sc_light_shade #(
           .FRAC(FRAC), .NLT(NLT), .NCH(NCH), .SPW(SPW), .SG(SGUARD), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
-          .SPECULAR(SPECULAR), .CAN_ATT(ANY_ATT), .CSER(CSER), .SEP(HAS_SEP)
+          .SPECULAR(SPECULAR), .CAN_ATT(ANY_ATT), .CSER(CSER), .SEP(HAS_SEP), .TWO(HAS_TWO)
       ) u_shade (
-          .clk_i(clk_i), .en_i(adv_b), .spec_i(spec_s), .f_i(ut_x[OFF_F]), .sep_i(sep_mode), .diff_i(bk_diff),
+          .clk_i(clk_i), .en_i(adv_b), .spec_i(spec_s), .f_i(ut_x[OFF_F]), .sep_i(sep_mode),
+          .back_i(bk_ftag[2]), .bamb_i(bamb_w), .bdif_i(bdif_w), .bspec_i(bspec_w), .diff_i(bk_diff),
           .att_i(bk_att), .idx_i(ut_x[OFF_I +: 3]), .v_i(ut_x[OFF_V]), .ch_i(ser),
           .mamb_i(mamb_w), .mdif_i(mdif_w), .mspec_i(mspec_w), .lamb_i(lamb_all), .ldif_i(ldif_all),
           .lspec_i(lspec_all), .term_o(term_all[j*NCH*CL +: NCH*CL]),
@@ -1078,13 +1105,14 @@ module sc_light #(
   wire [TAGW:0] tl_out;
   wire item_last = bk_ftag[0] && (CSER == 0 || ser == 2'd2);
   sc_delay #(.W(TAGW+1), .DEPTH(NB)) u_dly_btag (
-      .clk_i(clk_i), .en_i(adv_b), .d_i({bk_ftag[FTW-1:2], item_last}), .q_o(tl_out));
+      .clk_i(clk_i), .en_i(adv_b), .d_i({bk_ftag[FTW-1:3], item_last}), .q_o(tl_out));
   assign out_tag_o = tl_out[TAGW:1];
   assign out_last  = tl_out[0];
   wire first_acc;
   wire [1:0] ch_acc;   // CSER: the channel the accumulator adds this edge
-  sc_delay #(.W(3), .DEPTH(NB-1)) u_dly_bfirst (
-      .clk_i(clk_i), .en_i(adv_b), .d_i({ser, bk_ftag[1]}), .q_o({ch_acc, first_acc}));
+  wire back_acc;       // TWO_SIDE: the item's fragment is lit as a back face (the back scene term)
+  sc_delay #(.W(4), .DEPTH(NB-1)) u_dly_bfirst (
+      .clk_i(clk_i), .en_i(adv_b), .d_i({ser, bk_ftag[2:1]}), .q_o({ch_acc, back_acc, first_acc}));
   wire acc_en = adv_b && vb_q[NB-2];
 
   wire [NCH*CL-1:0] out_w, outs_w;
@@ -1102,7 +1130,8 @@ module sc_light #(
         reg [TOTW-1:0] tot;
         integer        k;
         wire [NLN*NCH*CL-1:0] terms = (gi == 0) ? term_all : sterm_all;
-        wire [CL-1:0] start = (gi == 0) ? scene_w[c*CL +: CL] : {CL{1'b0}};
+        wire [CL-1:0] start = (gi != 0) ? {CL{1'b0}} :
+                              ((HAS_TWO != 0 && back_acc) ? bscene_w[c*CL +: CL] : scene_w[c*CL +: CL]);
         always @* begin
           tot = {{(TOTW-CL){1'b0}}, first_acc ? start : acc_q};
           for (k = 0; k < NLN; k = k + 1) begin
@@ -1125,6 +1154,9 @@ module sc_light #(
     end
     if (HAS_SEP == 0) begin : g_no_sep
       wire unused_sep = &{1'b0, sterm_all};
+    end
+    if (HAS_TWO == 0) begin : g_no_two
+      wire unused_two = &{1'b0, two_mode, bamb_w, bscene_w, bdif_w, bspec_w, back_acc, in_back_i, hold_back_q};
     end
   endgenerate
 

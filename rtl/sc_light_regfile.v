@@ -28,7 +28,8 @@
 //             ldif_o, lspec_o (per channel F+1); material: scene_o (min(e + a·A >> F, 2^F)), mdif_o,
 //             mspec_o; unit: mat_we_o, mat_n_o, mat_thr_o, mat_coef_o (the values after this edge's
 //             write, with mat_we_o at the write edge), unit_sel_o (one-hot over variant ids),
-//             unit_kill_o; modes: lv_o, phong_o, normalize_o, sep_o (light_model bit 4 with SEP).
+//             unit_kill_o; modes: lv_o, phong_o, normalize_o, sep_o (light_model bit 4 with SEP), two_o (bit 3
+//             with TWO_SIDE); TWO_SIDE's back colour bank bamb_o, bscene_o, bdif_o, bspec_o (0 without it).
 // ============================================================================================
 `default_nettype none
 
@@ -47,6 +48,7 @@ module sc_light_regfile #(
     parameter integer LOCAL_VIEWER = 0,
     parameter integer NORMALIZE    = 1,
     parameter integer SEP          = 0,
+    parameter integer TWO_SIDE     = 0,
     parameter integer NLT          = 1,
     parameter integer NCH          = 3,
     parameter integer AW           = 9
@@ -69,6 +71,10 @@ module sc_light_regfile #(
     output wire [NCH*(FRAC+1)-1:0] scene_o,
     output wire [NCH*(FRAC+1)-1:0] mdif_o,
     output wire [NCH*(FRAC+1)-1:0] mspec_o,
+    output wire [NCH*(FRAC+1)-1:0] bamb_o,
+    output wire [NCH*(FRAC+1)-1:0] bscene_o,
+    output wire [NCH*(FRAC+1)-1:0] bdif_o,
+    output wire [NCH*(FRAC+1)-1:0] bspec_o,
     output wire                  mat_we_o,
     output wire [10:0]           mat_n_o,
     output wire [UFRAC:0]        mat_thr_o,
@@ -78,7 +84,8 @@ module sc_light_regfile #(
     output wire                  lv_o,
     output wire                  phong_o,
     output wire                  normalize_o,
-    output wire                  sep_o
+    output wire                  sep_o,
+    output wire                  two_o
 );
 
 `include "sc_light_regs.vh"
@@ -125,6 +132,16 @@ module sc_light_regfile #(
       assign phong_o = 1'b0;
       assign normalize_o = 1'b0;
     end
+    // GL_LIGHT_MODEL_TWO_SIDE (light_model bit 3)
+    if (TWO_SIDE != 0) begin : g_two
+      reg two_q;
+      always @(posedge clk_i) begin
+        if (wr_i && addr_i == REG_LIGHT_MODEL) two_q <= data_i[3];
+      end
+      assign two_o = two_q;
+    end else begin : g_no_two
+      assign two_o = 1'b0;
+    end
     // GL_SEPARATE_SPECULAR_COLOR (light_model bit 4; SEP needs units, so g_model exists)
     if (SEP != 0) begin : g_sep
       reg sep_q;
@@ -138,53 +155,83 @@ module sc_light_regfile #(
   endgenerate
 
   // ---------------------------------------------------------------------------- material colours, scene term
-  wire [NCH*CL-1:0] mamb_w;
+  // bank 0 the front material (mat_*), bank 1 with TWO_SIDE the back colour bank (back_mat_*: two-sided lighting)
+  localparam integer NBK = (TWO_SIDE != 0) ? 2 : 1;
+  wire [NCH*CL-1:0]   mamb_w;
+  wire [NCH*CL-1:0]   ga_w;          // global ambient
+  wire [2*NCH*CL-1:0] amb_bk, dif_bk, spec_bk, scene_bk;
   generate
-    for (c = 0; c < NCH; c = c + 1) begin : g_mat
+    for (c = 0; c < NCH; c = c + 1) begin : g_ga
       localparam integer A_GA = reg_at(REG_GLOBAL_AMBIENT, c);
-      localparam integer A_EM = reg_at(REG_MAT_EMISSION, c);
-      localparam integer A_MA = reg_at(REG_MAT_AMBIENT, c);
-      localparam integer A_MD = reg_at(REG_MAT_DIFFUSE, c);
-      localparam integer A_MS = reg_at(REG_MAT_SPECULAR, c);
       if (AMBIENT != 0) begin : g_amb
-        reg [CL-1:0] ga_q, em_q, mamb_q, scene_q;
+        reg [CL-1:0] ga_q;
         always @(posedge clk_i) begin
-          if (wr_i && addr_i == A_GA[AW-1:0]) ga_q   <= data_i[CL-1:0];
-          if (wr_i && addr_i == A_EM[AW-1:0]) em_q   <= data_i[CL-1:0];
-          if (wr_i && addr_i == A_MA[AW-1:0]) mamb_q <= data_i[CL-1:0];
+          if (wr_i && addr_i == A_GA[AW-1:0]) ga_q <= data_i[CL-1:0];
         end
-        wire [2*CL-1:0] ag = {{CL{1'b0}}, mamb_q} * {{CL{1'b0}}, ga_q};
-        wire [CL+1:0]   sc = {2'b00, em_q} + {1'b0, ag[2*CL-1:F]};
-        wire unused_ag = &{1'b0, ag[F-1:0]};
-        always @(posedge clk_i) begin
-          scene_q <= (sc > {2'b00, ONE}) ? ONE : sc[CL-1:0];
-        end
-        assign mamb_w[c*CL +: CL]  = mamb_q;
-        assign scene_o[c*CL +: CL] = scene_q;
+        assign ga_w[c*CL +: CL] = ga_q;
       end else begin : g_no_amb
-        assign mamb_w[c*CL +: CL]  = {CL{1'b0}};
-        assign scene_o[c*CL +: CL] = {CL{1'b0}};
+        assign ga_w[c*CL +: CL] = {CL{1'b0}};
       end
-      if (DIFFUSE != 0) begin : g_dif
-        reg [CL-1:0] mdif_q;
-        always @(posedge clk_i) begin
-          if (wr_i && addr_i == A_MD[AW-1:0]) mdif_q <= data_i[CL-1:0];
+    end
+    for (gi = 0; gi < 2; gi = gi + 1) begin : g_bank
+      for (c = 0; c < NCH; c = c + 1) begin : g_mat
+        localparam integer O = (gi * NCH + c) * CL;
+        localparam integer A_EM = reg_at((gi == 0) ? REG_MAT_EMISSION : REG_BACK_MAT_EMISSION, c);
+        localparam integer A_MA = reg_at((gi == 0) ? REG_MAT_AMBIENT : REG_BACK_MAT_AMBIENT, c);
+        localparam integer A_MD = reg_at((gi == 0) ? REG_MAT_DIFFUSE : REG_BACK_MAT_DIFFUSE, c);
+        localparam integer A_MS = reg_at((gi == 0) ? REG_MAT_SPECULAR : REG_BACK_MAT_SPECULAR, c);
+        if (AMBIENT != 0 && gi < NBK) begin : g_amb
+          reg [CL-1:0] em_q, mamb_q, scene_q;
+          always @(posedge clk_i) begin
+            if (wr_i && addr_i == A_EM[AW-1:0]) em_q   <= data_i[CL-1:0];
+            if (wr_i && addr_i == A_MA[AW-1:0]) mamb_q <= data_i[CL-1:0];
+          end
+          wire [2*CL-1:0] ag = {{CL{1'b0}}, mamb_q} * {{CL{1'b0}}, ga_w[c*CL +: CL]};
+          wire [CL+1:0]   sc = {2'b00, em_q} + {1'b0, ag[2*CL-1:F]};
+          wire unused_ag = &{1'b0, ag[F-1:0]};
+          always @(posedge clk_i) begin
+            scene_q <= (sc > {2'b00, ONE}) ? ONE : sc[CL-1:0];
+          end
+          assign amb_bk[O +: CL]   = mamb_q;
+          assign scene_bk[O +: CL] = scene_q;
+        end else begin : g_no_amb
+          assign amb_bk[O +: CL]   = {CL{1'b0}};
+          assign scene_bk[O +: CL] = {CL{1'b0}};
         end
-        assign mdif_o[c*CL +: CL] = mdif_q;
-      end else begin : g_no_dif
-        assign mdif_o[c*CL +: CL] = {CL{1'b0}};
-      end
-      if (SPECULAR != 0) begin : g_spec
-        reg [CL-1:0] mspec_q;
-        always @(posedge clk_i) begin
-          if (wr_i && addr_i == A_MS[AW-1:0]) mspec_q <= data_i[CL-1:0];
+        if (DIFFUSE != 0 && gi < NBK) begin : g_dif
+          reg [CL-1:0] mdif_q;
+          always @(posedge clk_i) begin
+            if (wr_i && addr_i == A_MD[AW-1:0]) mdif_q <= data_i[CL-1:0];
+          end
+          assign dif_bk[O +: CL] = mdif_q;
+        end else begin : g_no_dif
+          assign dif_bk[O +: CL] = {CL{1'b0}};
         end
-        assign mspec_o[c*CL +: CL] = mspec_q;
-      end else begin : g_no_spec
-        assign mspec_o[c*CL +: CL] = {CL{1'b0}};
+        if (SPECULAR != 0 && gi < NBK) begin : g_spec
+          reg [CL-1:0] mspec_q;
+          always @(posedge clk_i) begin
+            if (wr_i && addr_i == A_MS[AW-1:0]) mspec_q <= data_i[CL-1:0];
+          end
+          assign spec_bk[O +: CL] = mspec_q;
+        end else begin : g_no_spec
+          assign spec_bk[O +: CL] = {CL{1'b0}};
+        end
       end
     end
   endgenerate
+  generate
+    if (AMBIENT == 0) begin : g_no_ga
+      wire unused_ga = &{1'b0, ga_w};
+    end
+  endgenerate
+  assign mamb_w   = amb_bk[NCH*CL-1:0];
+  assign scene_o  = scene_bk[NCH*CL-1:0];
+  assign mdif_o   = dif_bk[NCH*CL-1:0];
+  assign mspec_o  = spec_bk[NCH*CL-1:0];
+  assign bamb_o   = amb_bk[2*NCH*CL-1:NCH*CL];
+  assign bscene_o = scene_bk[2*NCH*CL-1:NCH*CL];
+  assign bdif_o   = dif_bk[2*NCH*CL-1:NCH*CL];
+  assign bspec_o  = spec_bk[2*NCH*CL-1:NCH*CL];
 
   // ---------------------------------------------------------------------------- unit material, unit select
   // The units' own copies are loaded at the same edge with the same values (mat_we_o with the next

@@ -20,7 +20,8 @@
 //   ⌊att·spec/2^F⌋, each saturated to 2^F; without sep_i the whole sum in term_o as with SEP = 0 (bit for bit)
 //   and sterm_o = 0.
 // Parameters: FRAC, NLT, NCH, SPW (unit output width), SG (the unit's extra fraction bits, SGUARD of
-//             rtl/sc_light.v), AMBIENT, DIFFUSE, SPECULAR, CAN_ATT, CSER, SEP.
+//             rtl/sc_light.v), AMBIENT, DIFFUSE, SPECULAR, CAN_ATT, CSER, SEP, TWO (two-sided: back_i at B0
+//             chooses the back colour bank bamb_i / bdif_i / bspec_i for the item, each read at its stage).
 // Ports     : clk_i, en_i (the back-advancing condition); at B0 (the unit's output): spec_i, f_i,
 //             diff_i, att_i, idx_i, v_i (a light in this lane); material mamb_i, mdif_i, mspec_i; every slot's
 //             lamb_i, ldif_i, lspec_i (packed as sc_light_regfile.v); ch_i (CSER: the item's channel at
@@ -40,13 +41,18 @@ module sc_light_shade #(
     parameter integer SPECULAR = 1,
     parameter integer CAN_ATT  = 0,
     parameter integer CSER     = 0,
-    parameter integer SEP      = 0
+    parameter integer SEP      = 0,
+    parameter integer TWO      = 0
 ) (
     input  wire                          clk_i,
     input  wire                          en_i,
     input  wire [SPW-1:0]                spec_i,
     input  wire                          f_i,
     input  wire                          sep_i,
+    input  wire                          back_i,
+    input  wire [NCH*(FRAC+1)-1:0]       bamb_i,
+    input  wire [NCH*(FRAC+1)-1:0]       bdif_i,
+    input  wire [NCH*(FRAC+1)-1:0]       bspec_i,
     input  wire [FRAC:0]                 diff_i,
     input  wire [FRAC+7:0]               att_i,
     input  wire [2:0]                    idx_i,
@@ -74,6 +80,15 @@ module sc_light_shade #(
 
   // spec only counts when N̂·L > 0
   wire [SPW-1:0] spec_e = f_i ? spec_i : {SPW{1'b0}};
+  // TWO: the item's colour bank — diffuse and specular read at B0, ambient at B1
+  reg  b1_back_q;
+  always @(posedge clk_i) begin
+    if (en_i) b1_back_q <= back_i;
+  end
+  wire [NCH*CL-1:0] mdif_s  = (TWO != 0 && back_i) ? bdif_i : mdif_i;
+  wire [NCH*CL-1:0] mspec_s = (TWO != 0 && back_i) ? bspec_i : mspec_i;
+  wire [NCH*CL-1:0] mamb_s  = (TWO != 0 && b1_back_q) ? bamb_i : mamb_i;
+
   reg  [2:0] b1_idx_q;
   reg  [1:0] b1_ch_q;
   reg        b1_v_q, b2_v_q;
@@ -101,13 +116,16 @@ module sc_light_shade #(
       wire unused_b_att = &{1'b0, att_i, b2_att};
     end
     if (SPECULAR == 0) begin : g_spec_unused
-      wire unused_spec = &{1'b0, spec_e, mspec_i, lspec_i};
+      wire unused_spec = &{1'b0, spec_e, mspec_i, lspec_i, mspec_s};
     end
     if (DIFFUSE == 0) begin : g_diff_unused
-      wire unused_diff = &{1'b0, diff_i, mdif_i, ldif_i};
+      wire unused_diff = &{1'b0, diff_i, mdif_i, ldif_i, mdif_s};
     end
     if (AMBIENT == 0) begin : g_amb_unused
-      wire unused_amb = &{1'b0, lamb_i, mamb_i};
+      wire unused_amb = &{1'b0, lamb_i, mamb_i, mamb_s};
+    end
+    if (TWO == 0) begin : g_no_two
+      wire unused_two = &{1'b0, back_i, b1_back_q, bamb_i, bdif_i, bspec_i};
     end
     for (c = 0; c < NPC; c = c + 1) begin : g_ch
       // the colour channel of this product set: c, or the item's channel (CSER) at B0 and B1
@@ -121,14 +139,14 @@ module sc_light_shade #(
       wire [CL:0]     amb;   // ⌊a_c·Ia_jc / 2^F⌋
       if (AMBIENT != 0) begin : g_a
         wire [CL-1:0]   la   = lamb_i[(NCH*b1_idx_q + {30'd0, c1})*CL +: CL];
-        wire [2*CL-1:0] pa_p = {{CL{1'b0}}, mamb_i[c1*CL +: CL]} * {{CL{1'b0}}, la};
+        wire [2*CL-1:0] pa_p = {{CL{1'b0}}, mamb_s[c1*CL +: CL]} * {{CL{1'b0}}, la};
         wire unused_pa = &{1'b0, pa_p[F-1:0]};
         assign amb = pa_p[2*CL-1:F];
       end else begin : g_no_a
         assign amb = {(CL+1){1'b0}};
       end
       if (DIFFUSE != 0) begin : g_d
-        wire [2*CL-1:0] pd_p = {{CL{1'b0}}, diff_i} * {{CL{1'b0}}, mdif_i[c0*CL +: CL]};
+        wire [2*CL-1:0] pd_p = {{CL{1'b0}}, diff_i} * {{CL{1'b0}}, mdif_s[c0*CL +: CL]};
         wire unused_pd = &{1'b0, pd_p[F-1:0]};
         reg  [CL:0] b1_pd_q;
         always @(posedge clk_i) begin
@@ -142,7 +160,7 @@ module sc_light_shade #(
         assign td = {(CL+2){1'b0}};
       end
       if (SPECULAR != 0) begin : g_s
-        wire [SPW+CL-1:0] ps_p = {{CL{1'b0}}, spec_e} * {{SPW{1'b0}}, mspec_i[c0*CL +: CL]};
+        wire [SPW+CL-1:0] ps_p = {{CL{1'b0}}, spec_e} * {{SPW{1'b0}}, mspec_s[c0*CL +: CL]};
         wire unused_ps = &{1'b0, ps_p[F+SG-1:0]};
         reg  [SPF:0] b1_ps_q;
         always @(posedge clk_i) begin

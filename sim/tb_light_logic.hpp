@@ -76,6 +76,7 @@ struct LightPinOps {
     f.p[0] = sign_extend(d.in_px.read(), pb);
     f.p[1] = sign_extend(d.in_py.read(), pb);
     f.p[2] = sign_extend(d.in_pz.read(), pb);
+    f.back = d.in_back.read() != 0;
     return f;
   }
   [[nodiscard]] Colour out_payload() const {
@@ -118,6 +119,7 @@ struct LightPinOps {
     d.in_px.write(static_cast<uint32_t>(f.p[0]) & pm);
     d.in_py.write(static_cast<uint32_t>(f.p[1]) & pm);
     d.in_pz.write(static_cast<uint32_t>(f.p[2]) & pm);
+    d.in_back.write(f.back);
     d.in_tag.write(tag);
   }
 

@@ -25,6 +25,7 @@ struct LightPins : LightPinOps<LightPins> {
   sc_core::sc_signal<uint32_t> in_nx{"in_nx", 0}, in_ny{"in_ny", 0}, in_nz{"in_nz", 0};
   sc_core::sc_signal<uint32_t> in_px{"in_px", 0}, in_py{"in_py", 0}, in_pz{"in_pz", 0};
   sc_core::sc_signal<uint32_t> in_tag{"in_tag", 0};
+  sc_core::sc_signal<bool> in_back{"in_back", false};
   sc_core::sc_signal<bool> out_valid{"out_valid", false};
   sc_core::sc_signal<bool> out_ready{"out_ready", false};
   sc_core::sc_signal<uint32_t> out_r{"out_r", 0}, out_g{"out_g", 0}, out_b{"out_b", 0};
@@ -51,6 +52,7 @@ struct LightPins : LightPinOps<LightPins> {
     dut.in_py_i(in_py);
     dut.in_pz_i(in_pz);
     dut.in_tag_i(in_tag);
+    dut.in_back_i(in_back);
     dut.out_valid_o(out_valid);
     dut.out_ready_i(out_ready);
     dut.out_r_o(out_r);

@@ -366,6 +366,82 @@ TEST(LightHardCases, SeparateSpecularSplitsTheSums) {
   EXPECT_EQ(pc.s[0] + pc.s[1] + pc.s[2], 0u);
 }
 
+// Two-sided lighting (feature two_side, docs/lighting.md §3.7): in the two-sided mode a back fragment is lit
+// exactly as the front fragment with −N and the back colour bank in place of the front one; −N saturates at the
+// most negative code; outside the mode, or without the capability, the facing bit changes nothing.
+TEST(LightHardCases, TwoSidedBackFaceIsTheFrontWithMinusNAndTheBackBank) {
+  const nlohmann::json base = nlohmann::json::parse(R"({"lights": ["directional", "point_att"], "specular": "cs16"})");
+  nlohmann::json tj = base;
+  tj["two_side"] = true;
+  Rig r(feature_set_from_json(tj, "test"));
+  const LightCore plain(feature_set_from_json(base, "test"));
+  const int64_t one = int64_t{1} << r.F;
+  LightParams lp;
+  lp.position[0] = 0.2, lp.position[1] = 0.4, lp.position[2] = 1, lp.position[3] = 0;
+  r.apply(light_writes(r.core, 0, lp));
+  LightParams pp;
+  pp.position[0] = 1, pp.position[1] = 2, pp.position[2] = -3, pp.position[3] = 1;
+  pp.kq = 0.05;
+  r.apply(light_writes(r.core, 1, pp));
+  MaterialParams front, back;
+  for (int c = 0; c < 3; ++c) {
+    front.emission[c] = 0.05, front.ambient[c] = 0.3, front.diffuse[c] = 0.7, front.specular[c] = 0.6;
+    back.emission[c] = 0.1 * c, back.ambient[c] = 0.5, back.diffuse[c] = 0.2 + 0.3 * c, back.specular[c] = 0.9;
+  }
+  front.shininess = back.shininess = 40;
+  r.apply(material_writes(r.core, front));
+  r.apply(back_material_writes(r.core, front, back));
+  // the same core with the back bank as its front material: the reference for a back fragment
+  Rig swapped(feature_set_from_json(tj, "test"));
+  swapped.regs = r.regs;
+  for (int c = 0; c < 3; ++c) {
+    swapped.regs.emission[c] = r.regs.back_emission[c], swapped.regs.ambient[c] = r.regs.back_ambient[c];
+    swapped.regs.diffuse[c] = r.regs.back_diffuse[c], swapped.regs.specular[c] = r.regs.back_specular[c];
+  }
+  double ga[3] = {0.1, 0.1, 0.1};
+  ModeParams md = default_modes(r.core.features());
+  md.two_side = true;
+  r.apply(global_writes(r.core, ga, md));
+  swapped.regs.light_model = r.regs.light_model;
+  int lit_back = 0;
+  for (int k = 0; k < 40; ++k) {
+    Fragment fr;
+    fr.n[0] = (k % 7 - 3) * one / 3;
+    fr.n[1] = (k % 5 - 2) * one / 2;
+    fr.n[2] = (k % 3 - 1) * one;
+    fr.p[0] = k * one / 10, fr.p[2] = -(int64_t{5} << r.F);
+    Fragment bf = fr;
+    bf.back = true;
+    Fragment neg = fr;
+    for (int i = 0; i < 3; ++i) neg.n[i] = -fr.n[i];
+    const Colour cb = r.core.eval(r.regs, bf);
+    EXPECT_EQ(cb, swapped.core.eval(swapped.regs, neg)) << k;
+    if (cb != r.core.eval(r.regs, fr)) ++lit_back;
+  }
+  EXPECT_GT(lit_back, 20);
+  // −N saturates: the most negative code becomes the largest positive one
+  Fragment ext;
+  for (int i = 0; i < 3; ++i) ext.n[i] = -(int64_t{2} << r.F);
+  ext.back = true;
+  Fragment sat;
+  for (int i = 0; i < 3; ++i) sat.n[i] = (int64_t{2} << r.F) - 1;
+  EXPECT_EQ(r.core.eval(r.regs, ext), swapped.core.eval(swapped.regs, sat));
+  // the facing bit is ignored outside the two-sided mode and without the capability
+  md.two_side = false;
+  r.apply(global_writes(r.core, ga, md));
+  Fragment f1;
+  f1.n[2] = one, f1.p[2] = -one;
+  Fragment f2 = f1;
+  f2.back = true;
+  EXPECT_EQ(r.core.eval(r.regs, f1), r.core.eval(r.regs, f2));
+  LightRegs pr = r.regs;
+  pr.light_model |= kModelTwoSide;
+  EXPECT_EQ(plain.eval(pr, f1), plain.eval(pr, f2));
+  // the back face shares the unit material: a different back shininess is rejected
+  back.shininess = 41;
+  EXPECT_THROW(back_material_writes(r.core, front, back), std::invalid_argument);
+}
+
 // N·L exactly 0 and one code either side, with L = (0, 0, 1) exactly.
 TEST(LightHardCases, NdotLAroundZero) {
   Rig r(named("gl_default"));

@@ -16,7 +16,7 @@ using namespace shadecore;
 
 namespace {
 struct Coverage {
-  uint64_t frags = 0, low = 0, separate = 0, secondary = 0, spot_in = 0;
+  uint64_t frags = 0, low = 0, separate = 0, secondary = 0, spot_in = 0, back_lit = 0;
   std::set<uint32_t> low_n;
 };
 Coverage run(const LightCore& core, sim::LightMode mode, uint64_t count, uint64_t seed) {
@@ -35,6 +35,7 @@ Coverage run(const LightCore& core, sim::LightMode mode, uint64_t count, uint64_
     const LightModes md = core.modes(regs);
     if (md.low_n && md.unit >= 0) ++cv.low, cv.low_n.insert(regs.mat_n);
     if (md.separate) ++cv.separate;
+    if (md.two_side && c.f.back) ++cv.back_lit;
     if (out.s[0] | out.s[1] | out.s[2]) ++cv.secondary;
     for (const auto& l : t.light)
       if (l.on && l.kind == LightKind::Spot && l.in_cone) ++cv.spot_in;
@@ -51,9 +52,11 @@ TEST(LightStimulus, RandomAndDirectedReachTheGlModes) {
   EXPECT_GT(r.separate, r.frags / 10) << "random: too few fragments in the separate-specular mode";
   EXPECT_GT(r.secondary, r.frags / 100) << "random: too few non-zero secondary colours";
   EXPECT_GT(r.spot_in, 0u);
+  EXPECT_GT(r.back_lit, r.frags / 10) << "random: too few back fragments in the two-sided mode";
   const Coverage d = run(core, sim::LightMode::Directed, 0, 3);
   for (uint32_t n = 0; n < static_cast<uint32_t>(kNMin); ++n) EXPECT_TRUE(d.low_n.count(n)) << "directed: shininess " << n;
   EXPECT_GT(d.separate, 0u);
   EXPECT_GT(d.secondary, 0u);
   EXPECT_GT(d.spot_in, 0u);
+  EXPECT_GT(d.back_lit, 0u);
 }

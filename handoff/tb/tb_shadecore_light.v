@@ -33,7 +33,8 @@
 //
 // Vector records (one per line, thirteen hex words; // lines are comments; see the file headers):
 //   0 ADDR DATA 0 0 0 0 0 0 0 0 0 0   register write: reg_addr_i = ADDR, reg_data_i = DATA
-//   T NX NY NZ PX PY PZ R G B SR SG SB  fragment: T = 1 + 16·L with L its latency without backpressure
+//   T NX NY NZ PX PY PZ R G B SR SG SB  fragment: T = 1 + 2·B + 16·L with L its latency without backpressure
+//                                     and B its in_back_i (the two-sided mode's facing bit)
 //                                     (its passes and unit depend on the registers); in_n*_i (F+2-bit
 //                                     two's complement), in_p*_i (F+8-bit two's complement); expected
 //                                     out_r_o, out_g_o, out_b_o and out_sr_o, out_sg_o, out_sb_o (F+1 bits)
@@ -74,6 +75,7 @@ module tb_shadecore_light;
   reg  [FRAC+1:0]     in_nx, in_ny, in_nz;
   reg  [FRAC+7:0]     in_px, in_py, in_pz;
   reg  [TAGW-1:0]     in_tag;
+  reg                 in_back;
   wire                out_valid;
   reg                 out_ready;
   wire [FRAC:0]       out_r, out_g, out_b, out_sr, out_sg, out_sb;
@@ -174,10 +176,10 @@ module tb_shadecore_light;
           $display("FAIL vector file has fewer than %0d records or a malformed word (record %0d word %0d)", nrec, e, k);
           fail_exit;
         end
-      if (mem[RW*e][3:0] == 4'd1 && (mem[RW*e] >> 4) != 32'd0) nfrag = nfrag + 1;
+      if ((mem[RW*e][3:0] == 4'd1 || mem[RW*e][3:0] == 4'd3) && (mem[RW*e] >> 4) != 32'd0) nfrag = nfrag + 1;
       else if (mem[RW*e] == 32'd0) nwrite = nwrite + 1;
       else begin
-        $display("FAIL vector file: record %0d has kind 0x%0h (0 write, 1 + 16*latency fragment)", e, mem[RW*e]);
+        $display("FAIL vector file: record %0d has kind 0x%0h (0 write, 1 + 2*back + 16*latency fragment)", e, mem[RW*e]);
         fail_exit;
       end
     end
@@ -189,7 +191,7 @@ module tb_shadecore_light;
     have = 1'b0; cur_w = 1'b0; valid_q = 1'b0; mid_done = 1'b0; held = 1'b0; done = 1'b0;
     held_tag = 0; held_rgb = 0;
     rst_n = 1'b0; reg_we = 1'b0; reg_addr = 9'd0; reg_data = 32'd0;
-    in_valid = 1'b0; in_nx = 0; in_ny = 0; in_nz = 0; in_px = 0; in_py = 0; in_pz = 0; in_tag = 0;
+    in_valid = 1'b0; in_nx = 0; in_ny = 0; in_nz = 0; in_px = 0; in_py = 0; in_pz = 0; in_tag = 0; in_back = 0;
     out_ready = 1'b0;
 
     while (!done) begin
@@ -305,6 +307,7 @@ module tb_shadecore_light;
         w = mem[RW*cur+5]; in_py = w[FRAC+7:0];
         w = mem[RW*cur+6]; in_pz = w[FRAC+7:0];
         w = cur;           in_tag = w[TAGW-1:0];
+        w = mem[RW*cur];   in_back = w[1];
       end
       rng       = xs32(rng);
       out_ready = (rng % 100) >= out_stall;

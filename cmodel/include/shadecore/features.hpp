@@ -63,6 +63,9 @@ struct FeatureSet {
   bool normalize = true;                // GL_NORMALIZE: the normal normaliser exists
   bool low_shininess = false;           // shininess n < 2^kLowNBits (GL's 0..15): x^n by an exact chain beside
                                         // the units (rtl/sc_powi.v, docs/lighting.md §3.5); needs a unit
+  bool two_side = false;                // GL_LIGHT_MODEL_TWO_SIDE: a back-facing fragment (in_back_i) is lit with
+                                        // −N and the back colour bank, chosen by light_model bit 3 (docs/lighting.md
+                                        // §3.7)
   bool separate_specular = false;       // GL_SEPARATE_SPECULAR_COLOR: the specular sum as a second output colour,
                                         // chosen by light_model bit 4 (docs/lighting.md §3.6); needs a unit
   int channels = 3;                     // 1 (mono, channel 0 only) or 3 (RGB)
@@ -250,6 +253,7 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
     else if (k == "normalize") fs.normalize = detail::fs_bool(v, "normalize", where);
     else if (k == "low_shininess") fs.low_shininess = detail::fs_bool(v, "low_shininess", where);
     else if (k == "separate_specular") fs.separate_specular = detail::fs_bool(v, "separate_specular", where);
+    else if (k == "two_side") fs.two_side = detail::fs_bool(v, "two_side", where);
     else if (k == "channels") {
       if (!v.is_number_integer() || (v.get<int>() != 1 && v.get<int>() != 3))
         fs_fail(where, "'channels' must be 1 or 3");
@@ -362,6 +366,7 @@ inline nlohmann::ordered_json FeatureSet::canonical() const {
   j["normalize"] = normalize;
   j["low_shininess"] = low_shininess;
   j["separate_specular"] = separate_specular;
+  j["two_side"] = two_side;
   j["channels"] = channels;
   j["lanes"] = lanes;
   j["share"] = share;
@@ -410,6 +415,7 @@ inline std::vector<std::string> FeatureSet::verilog_params(int tagw) const {
       "NORMALIZE=" + std::to_string(normalize ? 1 : 0),
       "LOW_N=" + std::to_string(low_shininess ? 1 : 0),
       "SEP_SPEC=" + std::to_string(separate_specular ? 1 : 0),
+      "TWO_SIDE=" + std::to_string(two_side ? 1 : 0),
       "CHANNELS=" + std::to_string(channels),
       "TAGW=" + std::to_string(tagw),
   };
@@ -442,6 +448,7 @@ inline std::string FeatureSet::summary() const {
     s += ", no specular";
   }
   s += normalize ? ", normalize" : ", unit normals";
+  if (two_side) s += ", two-sided";
   s += channels == 3 ? ", RGB" : ", mono";
   s += ", " + config + " (F=" + std::to_string(format().frac) + ")";
   return s;

@@ -80,10 +80,11 @@ static_assert((1 << kLowNBits) == kNMin, "low_shininess_bits must cover exactly 
 // Mode registers (docs/lighting.md §4): light_model (bit 0 local viewer, bit 1 Phong reflection, bit 2
 // normalize), mat_unit (a variant id), per light mode (bit 0 enable, bits 3:1 kind). Registers are not
 // reset, in the RTL as here: a program writes every register it relies on.
-inline constexpr uint32_t kLightModelBits = 5;  // stored bits of light_model (bit 3 reserved: two-sided)
+inline constexpr uint32_t kLightModelBits = 5;  // stored bits of light_model
 inline constexpr uint32_t kMatUnitBits = 4;
 inline constexpr uint32_t kLightModeBits = 4;
 inline constexpr uint32_t kModelLocalViewer = 1u, kModelPhong = 2u, kModelNormalize = 4u;
+inline constexpr uint32_t kModelTwoSide = 8u;            // GL_LIGHT_MODEL_TWO_SIDE (feature two_side)
 inline constexpr uint32_t kModelSeparateSpecular = 16u;  // GL_SEPARATE_SPECULAR_COLOR (feature separate_specular)
 inline constexpr uint32_t kModeEnable = 1u;
 inline constexpr uint32_t light_mode_word(bool enable, LightKind k) {
@@ -101,6 +102,8 @@ struct LightRegs {
   uint32_t light_model = 0, mat_unit = 0;
   uint32_t mat_n = kNMin, mat_thr = 0, mat_coef = 0;
   uint32_t emission[3] = {}, ambient[3] = {}, diffuse[3] = {}, specular[3] = {};
+  // the back colour bank (two_side): a back-facing fragment's material colours in the two-sided mode
+  uint32_t back_emission[3] = {}, back_ambient[3] = {}, back_diffuse[3] = {}, back_specular[3] = {};
   struct Light {
     uint32_t mode = 0;
     int64_t pos[3] = {};
@@ -125,13 +128,17 @@ struct LightRegs {
       if (addr == kReg_mat_ambient + c) return ambient[c] = col, true;
       if (addr == kReg_mat_diffuse + c) return diffuse[c] = col, true;
       if (addr == kReg_mat_specular + c) return specular[c] = col, true;
+      if (addr == kReg_back_mat_emission + c) return back_emission[c] = col, true;
+      if (addr == kReg_back_mat_ambient + c) return back_ambient[c] = col, true;
+      if (addr == kReg_back_mat_diffuse + c) return back_diffuse[c] = col, true;
+      if (addr == kReg_back_mat_specular + c) return back_specular[c] = col, true;
     }
     if (addr == kReg_light_model) return light_model = data & mask_bits(kLightModelBits), true;
     if (addr == kReg_mat_unit) return mat_unit = data & mask_bits(kMatUnitBits), true;
     if (addr == kReg_mat_n) return mat_n = data & 0x7FF, true;
     if (addr == kReg_mat_thr) return mat_thr = static_cast<uint32_t>(data & mask_bits(w.UF + 1)), true;
     if (addr == kReg_mat_coef) return mat_coef = static_cast<uint32_t>(data & mask_bits(light_coef_bits(w.UF))), true;
-    if (addr < kReg_light_position) return false;
+    if (addr < kReg_light_position || addr >= kReg_light_position + kMaxLights * kLightStride) return false;
     const uint32_t j = (addr - kReg_light_position) / kLightStride;
     const uint32_t off = addr - j * kLightStride;
     if (j >= static_cast<uint32_t>(kMaxLights)) return false;
@@ -161,6 +168,7 @@ struct RegWrite {
 struct Fragment {
   int64_t n[3] = {0, 0, 0};  // signed F+2-bit codes
   int64_t p[3] = {0, 0, 0};  // signed F+8-bit codes
+  bool back = false;         // in_back_i: the fragment's polygon faces away (window-space winding; two_side)
 };
 
 // The core's output: the primary colour c and, with separate_specular in the separate mode, the secondary
@@ -213,6 +221,7 @@ struct LightModes {
   bool local_viewer = false, phong = false, normalize = false;
   bool low_n = false;  // mat_n < 2^kLowNBits with the low_shininess chain: spec = x^n from the chain, not the unit
   bool separate = false;  // light_model bit 4 with separate_specular: the specular sum is the secondary output
+  bool two_side = false;  // light_model bit 3 with two_side: a back fragment is lit with −N and the back colours
   int unit = -1;  // index into FeatureSet::units(), −1: absent (specular 0)
   uint32_t on = 0;  // bit j: light j contributes
   int enabled = 0;  // lights on
@@ -244,6 +253,7 @@ class LightCore {
     m.normalize = fs_.normalize && (r.light_model & kModelNormalize);
     m.low_n = fs_.low_shininess && r.mat_n < (1u << kLowNBits);
     m.separate = fs_.separate_specular && (r.light_model & kModelSeparateSpecular);
+    m.two_side = fs_.two_side && (r.light_model & kModelTwoSide);
     const std::vector<VariantId> us = fs_.units();
     for (size_t i = 0; i < us.size(); ++i)
       if (static_cast<uint32_t>(us[i]) == r.mat_unit) m.unit = static_cast<int>(i);
@@ -290,9 +300,18 @@ class LightCore {
     const LightModes md = modes(r);
     LightCoreTrace t;
     t.passes = md.enabled == 0 ? 1 : (md.enabled + fs_.lanes - 1) / fs_.lanes;
+    // two-sided mode, back-facing fragment: −N (saturated to the signed F+2 bits: −(−2) is 2 − 2^−F) and the
+    // back colour bank (docs/lighting.md §3.7)
+    const bool bk = md.two_side && fr.back;
+    int64_t nin[3];
+    for (int i = 0; i < 3; ++i) nin[i] = bk ? std::min<int64_t>(-fr.n[i], (int64_t{1} << (F + 1)) - 1) : fr.n[i];
+    const uint32_t* m_em = bk ? r.back_emission : r.emission;
+    const uint32_t* m_am = bk ? r.back_ambient : r.ambient;
+    const uint32_t* m_di = bk ? r.back_diffuse : r.diffuse;
+    const uint32_t* m_sp = bk ? r.back_specular : r.specular;
     // N̂ (GL_NORMALIZE) — rtl/sc_normalize.v
-    if (md.normalize) normalize3(VF, fr.n, t.nn);
-    else for (int i = 0; i < 3; ++i) t.nn[i] = fr.n[i] * (int64_t{1} << E);
+    if (md.normalize) normalize3(VF, nin, t.nn);
+    else for (int i = 0; i < 3; ++i) t.nn[i] = nin[i] * (int64_t{1} << E);
     // V̂: local viewer normalise(−P), else (0, 0, 1)
     if (md.local_viewer) {
       const int64_t mp[3] = {-fr.p[0], -fr.p[1], -fr.p[2]};
@@ -304,7 +323,7 @@ class LightCore {
     const UnitMaterial mat{static_cast<int>(r.mat_n), r.mat_thr, r.mat_coef};
     const int ch = fs_.channels;
     for (int c = 0; c < ch; ++c)
-      t.scene[c] = fs_.ambient ? r.emission[c] + ((uint64_t{r.ambient[c]} * r.global_ambient[c]) >> F) : 0;
+      t.scene[c] = fs_.ambient ? m_em[c] + ((uint64_t{m_am[c]} * r.global_ambient[c]) >> F) : 0;
     for (int j = 0; j < fs_.num_lights(); ++j) {
       if (!(md.on & (1u << j))) continue;
       const LightRegs::Light& L = r.light[static_cast<size_t>(j)];
@@ -367,9 +386,9 @@ class LightCore {
       }
       for (int c = 0; c < ch; ++c) {
         uint64_t sum = 0, ssum = 0;
-        if (fs_.ambient) sum += (uint64_t{r.ambient[c]} * L.ambient[c]) >> F;
-        if (fs_.diffuse) sum += (((uint64_t{lt.diff} * r.diffuse[c]) >> F) * L.diffuse[c]) >> F;
-        if (fs_.specular && lt.f) ssum = (((uint64_t{lt.spec} * r.specular[c]) >> VF) * L.specular[c]) >> F;
+        if (fs_.ambient) sum += (uint64_t{m_am[c]} * L.ambient[c]) >> F;
+        if (fs_.diffuse) sum += (((uint64_t{lt.diff} * m_di[c]) >> F) * L.diffuse[c]) >> F;
+        if (fs_.specular && lt.f) ssum = (((uint64_t{lt.spec} * m_sp[c]) >> VF) * L.specular[c]) >> F;
         if (md.separate) {  // the separate mode: the two parts attenuated apart (rtl/sc_light_shade.v SEP)
           lt.term[c] = (lt.att * sum) >> F;
           lt.sterm[c] = (lt.att * ssum) >> F;
@@ -532,7 +551,14 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
     const double l = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
     for (int i = 0; i < 3; ++i) a[i] = l > 0 ? a[i] / l : 0.0;
   };
-  double nn[3] = {v(fr.n[0]), v(fr.n[1]), v(fr.n[2])}, p[3] = {v(fr.p[0]), v(fr.p[1]), v(fr.p[2])};
+  const bool bk = md.two_side && fr.back;  // −N as the core saturates it, and the back colours
+  const int64_t nmax = (int64_t{1} << (F + 1)) - 1;
+  double nn[3], p[3] = {v(fr.p[0]), v(fr.p[1]), v(fr.p[2])};
+  for (int i = 0; i < 3; ++i) nn[i] = v(bk ? std::min<int64_t>(-fr.n[i], nmax) : fr.n[i]);
+  const uint32_t* m_em = bk ? r.back_emission : r.emission;
+  const uint32_t* m_am = bk ? r.back_ambient : r.ambient;
+  const uint32_t* m_di = bk ? r.back_diffuse : r.diffuse;
+  const uint32_t* m_sp = bk ? r.back_specular : r.specular;
   if (md.normalize) norm3(nn);
   double vv[3] = {0, 0, 1};
   if (md.local_viewer) {
@@ -543,7 +569,7 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
   const VariantId var = md.unit >= 0 ? units_[static_cast<size_t>(md.unit)].variant() : fs_.variant;
   std::array<double, 3> out{0, 0, 0}, sout{0, 0, 0};
   for (int c = 0; c < fs_.channels; ++c)
-    if (fs_.ambient) out[c] = v(r.emission[c]) + v(r.ambient[c]) * v(r.global_ambient[c]);
+    if (fs_.ambient) out[c] = v(m_em[c]) + v(m_am[c]) * v(r.global_ambient[c]);
   for (int j = 0; j < fs_.num_lights(); ++j) {
     if (!(md.on & (1u << j))) continue;
     const LightRegs::Light& L = r.light[static_cast<size_t>(j)];
@@ -591,10 +617,10 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
     const double diff = std::clamp(ndl, 0.0, 1.0);
     for (int c = 0; c < fs_.channels; ++c) {
       double s = 0;
-      if (fs_.ambient) s += v(r.ambient[c]) * v(L.ambient[c]);
-      if (fs_.diffuse) s += diff * v(r.diffuse[c]) * v(L.diffuse[c]);
+      if (fs_.ambient) s += v(m_am[c]) * v(L.ambient[c]);
+      if (fs_.diffuse) s += diff * v(m_di[c]) * v(L.diffuse[c]);
       out[c] += att * s;
-      if (fs_.specular) sout[c] += att * spec * v(r.specular[c]) * v(L.specular[c]);
+      if (fs_.specular) sout[c] += att * spec * v(m_sp[c]) * v(L.specular[c]);
     }
   }
   if (secondary && md.separate) {
@@ -630,9 +656,10 @@ struct MaterialParams {
 struct ModeParams {
   bool local_viewer = false, phong = false, normalize = false;
   bool separate_specular = false;  // GL_LIGHT_MODEL_COLOR_CONTROL = GL_SEPARATE_SPECULAR_COLOR
+  bool two_side = false;           // GL_LIGHT_MODEL_TWO_SIDE
 };
 inline ModeParams default_modes(const FeatureSet& fs) {
-  return {fs.local_viewer, !fs.blinn, fs.normalize, false};
+  return {fs.local_viewer, !fs.blinn, fs.normalize, false, false};
 }
 
 namespace detail {
@@ -700,6 +727,25 @@ inline std::vector<RegWrite> material_writes(const LightCore& core, const Materi
     w.push_back({kReg_mat_ambient + c, detail::colour_code(F, m.ambient[c], "material ambient")});
     w.push_back({kReg_mat_diffuse + c, detail::colour_code(F, m.diffuse[c], "material diffuse")});
     w.push_back({kReg_mat_specular + c, detail::colour_code(F, m.specular[c], "material specular")});
+  }
+  return w;
+}
+
+// The back colour bank (two_side, docs/lighting.md §3.7): a back-facing fragment's emission, ambient, diffuse and
+// specular in the two-sided mode. The back face shares the front's specular unit, shininess, thr and coef (the
+// units hold one material); the host checks that the two shininess values agree.
+inline std::vector<RegWrite> back_material_writes(const LightCore& core, const MaterialParams& front,
+                                                  const MaterialParams& back) {
+  if (back.shininess != front.shininess)
+    throw std::invalid_argument("back shininess " + std::to_string(back.shininess) + " differs from the front's " +
+                                std::to_string(front.shininess) + " (the core has one specular material)");
+  const int F = core.format().frac;
+  std::vector<RegWrite> w;
+  for (uint32_t c = 0; c < 3; ++c) {
+    w.push_back({kReg_back_mat_emission + c, detail::colour_code(F, back.emission[c], "back material emission")});
+    w.push_back({kReg_back_mat_ambient + c, detail::colour_code(F, back.ambient[c], "back material ambient")});
+    w.push_back({kReg_back_mat_diffuse + c, detail::colour_code(F, back.diffuse[c], "back material diffuse")});
+    w.push_back({kReg_back_mat_specular + c, detail::colour_code(F, back.specular[c], "back material specular")});
   }
   return w;
 }
@@ -790,7 +836,7 @@ inline std::vector<RegWrite> light_off_writes(int j) {
 
 inline uint32_t light_model_word(const ModeParams& m) {
   return (m.local_viewer ? kModelLocalViewer : 0u) | (m.phong ? kModelPhong : 0u) | (m.normalize ? kModelNormalize : 0u) |
-         (m.separate_specular ? kModelSeparateSpecular : 0u);
+         (m.separate_specular ? kModelSeparateSpecular : 0u) | (m.two_side ? kModelTwoSide : 0u);
 }
 
 // Global ambient and the global modes (light_model).

@@ -601,7 +601,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
     };
     // the modes of the specialised set, programmed (the same words on the full core)
     const FeatureSet& sp = g.specialised;
-    const ModeParams modes{sp.specular && sp.local_viewer, sp.specular && !sp.blinn, sp.normalize, sp.separate_specular};
+    const ModeParams modes{sp.specular && sp.local_viewer, sp.specular && !sp.blinn, sp.normalize, sp.separate_specular, false};
     add_writes(global_writes(core, sc.global_ambient.data(), modes));
     for (int j = 0; j < g.fs.num_lights(); ++j) {
       if (j >= sp.num_lights()) {  // a slot of the full core the scene does not use: off

@@ -110,6 +110,7 @@ class LightStimulus {
     rng_ = Rng::for_item(seed_, index);
     c.is_write = false;
     c.f = random_fragment();
+    if (core_.features().two_side) c.f.back = (rng_.next() & 1) != 0;  // the facing bit (drawn only where it exists)
     digest_ += fragment_digest(index, c.f);
     ++frags_;
     return true;
@@ -197,7 +198,7 @@ class LightStimulus {
   }
   ModeParams random_modes() {
     const uint64_t r = rng_.next();
-    return {(r & 1) != 0, (r & 2) != 0, (r & 4) != 0, (r & 8) != 0};
+    return {(r & 1) != 0, (r & 2) != 0, (r & 4) != 0, (r & 8) != 0, (r & 16) != 0};
   }
   std::vector<RegWrite> random_light(int j) {
     LightParams lp;
@@ -519,6 +520,57 @@ class LightStimulus {
     for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
     build_directed_spot();
     build_directed_low_n();
+    build_directed_two_side();
+  }
+  // 10. two-sided lighting (two_side, docs/lighting.md §3.7): front and back colour banks far apart (the back bank at
+  //     its extremes), each hard fragment with the facing bit flipped, in and out of the two-sided mode; N with the
+  //     most negative components (−N saturates); the same fragment front and back in a row
+  void build_directed_two_side() {
+    if (!core_.features().two_side) return;
+    const int nl = core_.features().num_lights();
+    const int64_t one = int64_t{1} << F_;
+    std::vector<RegWrite> ws;
+    const uint32_t cmax = (1u << (F_ + 1)) - 1;
+    for (uint32_t c = 0; c < 3; ++c) {
+      ws.push_back({kReg_back_mat_emission + c, c == 0 ? cmax : 0u});
+      ws.push_back({kReg_back_mat_ambient + c, c == 1 ? cmax : static_cast<uint32_t>(one / 4)});
+      ws.push_back({kReg_back_mat_diffuse + c, c == 2 ? cmax : static_cast<uint32_t>(one / 3)});
+      ws.push_back({kReg_back_mat_specular + c, static_cast<uint32_t>(one / 2 + c)});
+      ws.push_back({kReg_mat_emission + c, 0u});
+    }
+    add_writes(ws);
+    for (int j = 0; j < nl; ++j) {
+      LightParams lp;
+      lp.kind = slot_kind(j, static_cast<uint64_t>(j));
+      lp.position[0] = 1, lp.position[1] = 2;
+      lp.position[2] = *lp.kind == LightKind::Directional ? 1 : 8;
+      lp.position[3] = *lp.kind == LightKind::Directional ? 0 : 1;
+      lp.spot_cutoff = *lp.kind == LightKind::Spot ? 90 : 180;
+      add_writes(light_writes(core_, j, lp));
+    }
+    for (uint32_t model : {kModelNormalize | kModelTwoSide, kModelNormalize, kModelTwoSide | kModelPhong,
+                           kModelTwoSide | kModelSeparateSpecular | kModelNormalize}) {
+      add_writes({{kReg_light_model, model}});
+      for (uint64_t k = 0; k < 10; ++k) {
+        Fragment f = hard_fragment(k);
+        for (bool b : {false, true}) {
+          f.back = b;
+          add_frag(f);
+        }
+      }
+      Fragment f;  // the most negative normal codes: −N saturates to the largest positive code
+      for (int i = 0; i < 3; ++i) f.n[i] = -(int64_t{1} << (F_ + 1));
+      f.p[2] = -(int64_t{3} << F_);
+      for (bool b : {false, true, true, false}) {
+        f.back = b;
+        add_frag(f);
+      }
+      f.n[0] = f.n[1] = 0, f.n[2] = -one;  // a back face seen from behind: −N faces the viewer and the light
+      for (bool b : {true, false}) {
+        f.back = b;
+        add_frag(f);
+      }
+    }
   }
   // 9. shininess below the units' range (low_shininess, docs/lighting.md §3.5): every n 0..15 with both
   //    reflections, on the hard fragments and on x exactly 0 and below (n = 0: x^0 = 1, also at x = 0); the
