@@ -574,7 +574,7 @@ class LightStimulus {
   }
   // 9. shininess below the units' range (low_shininess, docs/lighting.md §3.5): every n 0..15 with both
   //    reflections, on the hard fragments and on x exactly 0 and below (n = 0: x^0 = 1, also at x = 0); the
-  //    shininess register then written raw to 16, 17, 31, 1024 (thr and coef of the chain's material kept): the unit's value
+  //    materials with shininess 16, 17, 31, 1024 after them (the unit's value again)
   void build_directed_low_n() {
     if (!core_.features().low_shininess) return;
     const int nl = core_.features().num_lights();
@@ -606,8 +606,11 @@ class LightStimulus {
         }
       }
     }
-    for (uint32_t raw : {16u, 17u, 31u, 1024u}) {
-      add_writes({{kReg_mat_n, raw}});
+    // the boundary: n = 16 (and up) goes to the unit, with its own thr and coef (a unit with the chain material's
+    // thr = 0 is outside the unit's contract, as random_writes() notes)
+    for (int n : {16, 17, 31, 1024}) {
+      m.shininess = n;
+      add_writes(material_writes(core_, m));
       for (uint64_t k = 0; k < 4; ++k) add_frag(hard_fragment(k));
     }
   }
