@@ -181,7 +181,14 @@ class LightStimulus {
     m.norm_kind = rng_.next() & 1 ? CoefKind::Classical : CoefKind::Fitted;
     const std::vector<VariantId> us = core_.features().units();
     if (!us.empty()) m.unit = us[rng_.next() % us.size()];
-    return material_writes(core_, m);
+    std::vector<RegWrite> w = material_writes(core_, m);
+    if (core_.features().two_side) {  // the back colour bank too (registers are not reset: a program writes them)
+      MaterialParams b = m;
+      for (int c = 0; c < 3; ++c) b.emission[c] = u(0, 0.5), b.ambient[c] = u(0, 1), b.diffuse[c] = u(0, 1), b.specular[c] = u(0, 1.5);
+      const auto bw = back_material_writes(core_, m, b);
+      w.insert(w.end(), bw.begin(), bw.end());
+    }
+    return w;
   }
   // A kind slot j can take: the r-th of its kinds (mod their count).
   LightKind slot_kind(int j, uint64_t r) const {
@@ -392,6 +399,7 @@ class LightStimulus {
     m.specular[0] = m.specular[1] = m.specular[2] = 0.8;
     m.shininess = 128;
     add_writes(material_writes(core_, m));
+    if (core_.features().two_side) add_writes(back_material_writes(core_, m, m));  // every register a program relies on
     for (int j = 0; j < nl; ++j) {
       LightParams lp;
       lp.kind = slot_kind(j, static_cast<uint64_t>(j));
