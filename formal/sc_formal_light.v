@@ -249,7 +249,7 @@ module sc_formal_light #(
   (* keep *) wire [2:0]  o_vb;      // dut.vb_q
   (* keep *) wire        o_hold;    // dut.hold_q
   (* keep *) wire [2:0]  o_cnt;     // dut.cnt_q
-  (* keep *) wire [TAGW+1:0] o_ftag;  // dut.u_dly_tag's register {tag, first, last}
+  (* keep *) wire [TAGW+2:0] o_ftag;  // dut.u_dly_tag's register {tag, back, first, last}
   (* keep *) wire [3*(TAGW+1)-1:0] o_btag;  // dut.u_dly_btag's line, stage k = {tag, last} at k*(TAGW+1)
   wire [2:0] f_inflight = o_vf + o_vb[0] + o_vb[1] + o_vb[2];
   always @* begin
