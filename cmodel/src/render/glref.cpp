@@ -279,7 +279,9 @@ std::vector<ObjectCheck> check_objects(const Scene& sc, const std::vector<Shadin
       c.reasons.push_back(std::move(why));
     };
     if (sh == Shading::Phong) no("phong shading (per-fragment lighting) has no fixed-function equivalent (GL draws it Gouraud)");
-    const bool spec = M.has_specular() && any_light_spec;
+    // under two_side the back colours are drawn too (GL_BACK): a back-only specular colour counts
+    const bool back_spec = sc.two_side && M.back && nonzero(M.back->specular);
+    const bool spec = (M.has_specular() || back_spec) && any_light_spec;
     if (spec) {
       if (!sc.blinn) no("reflection 'phong' (R·V): fixed-function GL has only Blinn's N·H");
       if (M.shininess > kGlMaxShininess)
