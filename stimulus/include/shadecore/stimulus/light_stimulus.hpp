@@ -181,7 +181,14 @@ class LightStimulus {
     m.norm_kind = rng_.next() & 1 ? CoefKind::Classical : CoefKind::Fitted;
     const std::vector<VariantId> us = core_.features().units();
     if (!us.empty()) m.unit = us[rng_.next() % us.size()];
-    return material_writes(core_, m);
+    std::vector<RegWrite> w = material_writes(core_, m);
+    if (core_.features().two_side) {  // the back colour bank too (registers are not reset: a program writes them)
+      MaterialParams b = m;
+      for (int c = 0; c < 3; ++c) b.emission[c] = u(0, 0.5), b.ambient[c] = u(0, 1), b.diffuse[c] = u(0, 1), b.specular[c] = u(0, 1.5);
+      const auto bw = back_material_writes(core_, m, b);
+      w.insert(w.end(), bw.begin(), bw.end());
+    }
+    return w;
   }
   // A kind slot j can take: the r-th of its kinds (mod their count).
   LightKind slot_kind(int j, uint64_t r) const {
@@ -392,6 +399,7 @@ class LightStimulus {
     m.specular[0] = m.specular[1] = m.specular[2] = 0.8;
     m.shininess = 128;
     add_writes(material_writes(core_, m));
+    if (core_.features().two_side) add_writes(back_material_writes(core_, m, m));  // every register a program relies on
     for (int j = 0; j < nl; ++j) {
       LightParams lp;
       lp.kind = slot_kind(j, static_cast<uint64_t>(j));
@@ -574,7 +582,7 @@ class LightStimulus {
   }
   // 9. shininess below the units' range (low_shininess, docs/lighting.md §3.5): every n 0..15 with both
   //    reflections, on the hard fragments and on x exactly 0 and below (n = 0: x^0 = 1, also at x = 0); the
-  //    shininess register then written raw to 16, 17, 31, 1024 (thr and coef of the chain's material kept): the unit's value
+  //    materials with shininess 16, 17, 31, 1024 after them (the unit's value again)
   void build_directed_low_n() {
     if (!core_.features().low_shininess) return;
     const int nl = core_.features().num_lights();
@@ -606,8 +614,11 @@ class LightStimulus {
         }
       }
     }
-    for (uint32_t raw : {16u, 17u, 31u, 1024u}) {
-      add_writes({{kReg_mat_n, raw}});
+    // the boundary: n = 16 (and up) goes to the unit, with its own thr and coef (a unit with the chain material's
+    // thr = 0 is outside the unit's contract, as random_writes() notes)
+    for (int n : {16, 17, 31, 1024}) {
+      m.shininess = n;
+      add_writes(material_writes(core_, m));
       for (uint64_t k = 0; k < 4; ++k) add_frag(hard_fragment(k));
     }
   }
