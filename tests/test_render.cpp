@@ -4,10 +4,15 @@
 // core's image bit for bit (for every example scene and for scenes built to hit every substitution).
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include "shadecore/render/mesh.hpp"
 #include "shadecore/render/render.hpp"
@@ -350,6 +355,153 @@ TEST(RenderFlatRule, ProvokingVertexIsTheLastVertexsColour) {
     }
   EXPECT_EQ(checked, covered(ip));
   EXPECT_GT(not_v0, checked / 2);  // the last vertex, not the first
+}
+
+// ---- GL_LIGHT_MODEL_TWO_SIDE (issue 19) -----------------------------------------------------------------
+
+TEST(RenderTwoSide, ParsesTheKeysWithTheirDefaults) {
+  const std::string mats = R"("m": {"ambient": [0.3, 0.2, 0.1], "diffuse": [0.8, 0.5, 0.3], "specular": [0.6, 0.6, 0.6],
+                                    "shininess": 30, "back": {"diffuse": [0.1, 0.7, 0.2], "emission": [0, 0, 0.1]}},
+                              "n": {"diffuse": [0.5, 0.5, 0.5], "back": {"shininess": 16}})";
+  const auto a = parse(make(R"({"position": [0, 1, 1, 0]})", mats, objects("gouraud", "flat", "n"), R"({"two_side": true})"));
+  EXPECT_TRUE(a.sc.two_side);
+  const auto& m = a.sc.materials.at(0);
+  ASSERT_TRUE(m.back.has_value());
+  EXPECT_EQ(m.back->diffuse, (scene::Vec3{0.1, 0.7, 0.2}));
+  EXPECT_EQ(m.back->emission, (scene::Vec3{0, 0, 0.1}));
+  EXPECT_EQ(m.back->ambient, m.ambient);    // a key not given: the front's
+  EXPECT_EQ(m.back->specular, m.specular);
+  EXPECT_EQ(m.back->shininess, 30);
+  const auto& n = a.sc.materials.at(1);
+  ASSERT_TRUE(n.back.has_value());          // only the (equal) shininess given: the front's colours
+  EXPECT_EQ(n.back->diffuse, n.diffuse);
+  const auto b = parse(make(R"({"position": [0, 1, 1, 0]})", R"("m": {"diffuse": [0.8, 0.5, 0.3]})", objects("phong", "phong"),
+                            R"({"two_side": false})"));
+  EXPECT_FALSE(b.sc.two_side);
+  EXPECT_FALSE(b.sc.materials[0].back.has_value());
+  const auto bf = b.sc.materials[0].back_or_front();  // no "back": the front's colours (GL_FRONT_AND_BACK)
+  EXPECT_EQ(bf.diffuse, b.sc.materials[0].diffuse);
+  EXPECT_EQ(bf.shininess, b.sc.materials[0].shininess);
+  EXPECT_FALSE(parse(make(R"({"position": [0, 1, 1, 0]})", R"("m": {})", objects("phong", "phong"))).sc.two_side);
+}
+
+TEST(RenderTwoSide, DerivationCountsTheBackColours) {
+  const std::string lights = R"({"position": [0, 1, 1, 0], "specular": [1, 1, 1]})";
+  // grey front without specular, a coloured specular back
+  const std::string mats = R"("m": {"diffuse": [0.5, 0.5, 0.5], "back": {"specular": [0.2, 0.5, 0.7]}})";
+  const auto on = parse(make(lights, mats, objects("gouraud", "gouraud"), R"({"two_side": true})"));
+  const auto off = parse(make(lights, mats, objects("gouraud", "gouraud"), R"({"two_side": false})"));
+  const Frame fon = frame(on, false), foff = frame(off, false);
+  ASSERT_EQ(fon.groups.size(), 1u);
+  ASSERT_EQ(foff.groups.size(), 1u);
+  EXPECT_TRUE(fon.groups[0].fs.two_side);
+  EXPECT_TRUE(fon.groups[0].fs.specular);
+  EXPECT_EQ(fon.groups[0].fs.channels, 3);
+  EXPECT_FALSE(foff.groups[0].fs.two_side);  // without two_side the back colours never reach the core
+  EXPECT_FALSE(foff.groups[0].fs.specular);
+  EXPECT_EQ(foff.groups[0].fs.channels, 1);
+  // the full core has two_side (config/configs.json 'full'): the same image
+  expect_full_identical(on);
+  const Frame full = frame(on, true);
+  EXPECT_TRUE(full.groups[0].fs.two_side);
+}
+
+// A plane turned away from the camera under two_side with back material B gives the image of the plane facing the
+// camera with front material B: −N of the turned plane is the facing plane's N, and under a directional light and
+// the infinite viewer the position does not matter (every vertex, face and pixel has one colour). Every mode.
+TEST(RenderTwoSide, BackFaceIsTheFrontOfTheTurnedPlane) {
+  const std::string lights = R"({"position": [0.3, 0.5, 1, 0], "diffuse": [0.9, 0.8, 0.7], "specular": [1, 1, 1]})";
+  const std::string mats = R"("b": {"emission": [0.05, 0, 0.1], "ambient": [0.2, 0.4, 0.3], "diffuse": [0.3, 0.6, 0.5],
+                                    "specular": [0.4, 0.5, 0.6], "shininess": 24},
+                              "fb": {"ambient": [0.5, 0.1, 0.1], "diffuse": [0.9, 0.2, 0.1], "specular": [0.1, 0.1, 0.1],
+                                     "shininess": 24, "back": {"emission": [0.05, 0, 0.1], "ambient": [0.2, 0.4, 0.3],
+                                     "diffuse": [0.3, 0.6, 0.5], "specular": [0.4, 0.5, 0.6]}})";
+  auto plane = [](const std::string& mat, const std::string& shading, double angle) {
+    return R"({"type": "plane", "size": [2.4, 1.6], "subdivisions": 3, "material": ")" + mat + R"(", "shading": ")" +
+           shading + R"(", "transform": {"rotate": [)" + std::to_string(angle) + R"(, 0, 1, 0]}})";
+  };
+  for (const std::string rule : {"centroid", "provoking_vertex"})
+    for (const std::string sh : {"flat", "gouraud", "phong"}) {
+      if (rule != "centroid" && sh != "flat") continue;
+      SCOPED_TRACE(sh + " " + rule);
+      auto with_rule = [&rule](std::string s) { return s.replace(s.find("\"image\""), 7, "\"flat_rule\": \"" + rule + "\", \"image\""); };
+      const auto turned = parse(with_rule(make(lights, mats, plane("fb", sh, 180), R"({"two_side": true})")));
+      const auto facing = parse(with_rule(make(lights, mats, plane("b", sh, 0), R"({"two_side": true})")));
+      const auto one_sided = parse(with_rule(make(lights, mats, plane("fb", sh, 180))));
+      const Frame ft = frame(turned, false), ff = frame(facing, false), fo = frame(one_sided, false);
+      const auto it = cmodel_image(ft), iff = cmodel_image(ff), io = cmodel_image(fo);
+      EXPECT_GT(covered(it), 500u);
+      EXPECT_EQ(it.covered, iff.covered);
+      EXPECT_EQ(render::mismatching_pixels(it, iff), 0u);
+      // every fragment of the turned plane is a back fragment; none without two_side
+      for (const auto& g : ft.groups)
+        for (size_t i = 0; i < g.dests.size(); ++i) EXPECT_TRUE(g.dests[i].back);
+      size_t back_cmds = 0;
+      for (const auto& g : fo.groups)
+        for (const auto& c : g.cmds) back_cmds += !c.is_write && c.f.back;
+      EXPECT_EQ(back_cmds, 0u);
+      EXPECT_EQ(render::mismatching_pixels(it, io), covered(it));  // one-sided: the front material, lit with +N
+      // the double reference (the unit's own formula) lights the back fragments alike: quantisation only
+      std::vector<std::vector<render::RefColour>> ref;
+      for (const auto& g : ft.groups) ref.push_back(render::run_reference(g, LightCore::SpecRef::Variant));
+      EXPECT_LT(render::error_vs(it, render::resolve_reference(ft, ref)).max_lsb, 16.0);
+      expect_full_identical(turned);
+    }
+}
+
+// Gouraud: a vertex on a silhouette is seen by front- and back-facing triangles and is lit for both faces; each
+// pixel takes the colours of its triangle's facing. A fold: triangle A faces the camera, B shares A's edge and folds
+// over it towards the camera, so B is seen from behind (clockwise in the window) and covers part of A.
+TEST(RenderTwoSide, GouraudFoldVerticesGetBothFragments) {
+  const std::string obj = (std::filesystem::temp_directory_path() /
+                           ("shadecore_fold_" + std::to_string(::getpid()) + ".obj")).string();
+  std::ofstream(obj) << "v -1 -1 0\nv 1 -1 0\nv -1 1 0\nv -0.6 -0.6 1.5\nf 1 2 3\nf 3 2 4\n";
+  const std::string lights = R"({"position": [0.2, 0.3, 1, 0], "diffuse": [0.8, 0.8, 0.8], "specular": [0.5, 0.5, 0.5]})";
+  const std::string mats = R"("m": {"diffuse": [0.8, 0.4, 0.2], "specular": [0.3, 0.3, 0.3], "shininess": 20,
+                                    "back": {"diffuse": [0.2, 0.5, 0.8]}})";
+  const std::string object = R"({"type": "mesh", "file": ")" + obj + R"(", "material": "m", "shading": "gouraud"})";
+  const auto l = parse(make(lights, mats, object, R"({"two_side": true})"));
+  std::remove(obj.c_str());
+  const Frame fr = frame(l, false);
+  std::map<uint32_t, int> sides;
+  for (const auto& d : fr.groups.at(0).dests) sides[d.index] |= d.back ? 2 : 1;
+  ASSERT_EQ(sides.size(), 4u);
+  int both = 0;
+  for (const auto& [v, s] : sides) both += s == 3;
+  EXPECT_EQ(both, 2);  // the shared edge's two vertices: a front and a back fragment each
+  std::set<bool> facings;
+  for (const auto& st : fr.raster.tris()) facings.insert(st.back);
+  EXPECT_EQ(facings.size(), 2u);  // both triangles are seen
+  const auto img = cmodel_image(fr);
+  std::vector<std::vector<render::RefColour>> ref{render::run_reference(fr.groups[0], LightCore::SpecRef::Variant)};
+  EXPECT_LT(render::error_vs(img, render::resolve_reference(fr, ref)).max_lsb, 16.0);
+  expect_full_identical(l);
+}
+
+// The tube of gl_two_side.json: its inside (back faces) and its rim.
+TEST(RenderTwoSide, GouraudRimVerticesGetBothFragments) {
+  const auto l = load("gl_two_side.json");
+  ASSERT_TRUE(l.sc.two_side);
+  const Frame fr = frame(l, false, 160, 100);
+  std::map<uint32_t, int> sides;  // vertex -> bit 0 front, bit 1 back
+  for (const auto& g : fr.groups)
+    for (const auto& d : g.dests) {
+      ASSERT_EQ(d.kind, render::DestKind::Vertex);
+      sides[d.index] |= d.back ? 2 : 1;
+    }
+  int both = 0, back_only = 0;
+  for (const auto& [v, s] : sides) both += s == 3, back_only += s == 2;
+  EXPECT_GE(both, 1);  // the silhouette meets the open rim at a few vertices
+  EXPECT_GT(back_only, 10);
+  // the fragments a pixel's triangle needs exist for its facing
+  for (int y = 0; y < fr.height; ++y)
+    for (int x = 0; x < fr.width; ++x) {
+      const int32_t id = fr.raster.at(x, y);
+      if (id < 0) continue;
+      const auto& st = fr.raster.tris()[id];
+      for (uint32_t v : fr.tri_vertices[st.source]) ASSERT_TRUE(sides[v] & (st.back ? 2 : 1));
+    }
+  expect_full_identical(l, 160, 100);
 }
 
 TEST(RenderImage, DeterministicAndReferenceClose) {

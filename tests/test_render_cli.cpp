@@ -108,6 +108,11 @@ TEST_F(RenderCli, BadScenesOneLineExit1NoOutput) {
     return edit(R"("position": [0, 1, 1, 0], "specular": [1, 1, 1]})",
                 R"("position": [0, 1, 4, 1], "specular": [1, 1, 1], )" + keys + "}");
   };
+  // light_model.two_side with the given value; the material's "back" object with the given value
+  auto two_side = [&](const std::string& v) {
+    return edit("\"ambient\": [0.2, 0.2, 0.2]}", "\"ambient\": [0.2, 0.2, 0.2], \"two_side\": " + v + "}");
+  };
+  auto back = [&](const std::string& v) { return edit("\"shininess\": 32}", "\"shininess\": 32, \"back\": " + v + "}"); };
   const std::vector<Bad> cases = {
       {"malformed JSON", edit("\"fovy\": 40,", "\"fovy\": 40,,"), ":3:"},
       {"malformed JSON line/column", std::string(kGood).substr(0, 120), "malformed JSON"},
@@ -254,6 +259,31 @@ TEST_F(RenderCli, BadScenesOneLineExit1NoOutput) {
        "scene.json: materials: more than 256 keys in one object"},
       {"OBJ face with 300 vertices", with_mesh("face300.obj"), "face300.obj:4: a face with 300 vertices; at most 255"},
       {"OBJ coordinate 1e300", with_mesh("big_coord.obj"), "big_coord.obj:4: '1e300' out of range [-1e6, 1e6]"},
+      // GL_LIGHT_MODEL_TWO_SIDE and the back material (issue 19): every bad value of the new keys
+      {"two_side a number", two_side("1"), "light_model.two_side: must be true or false"},
+      {"two_side a string", two_side("\"true\""), "light_model.two_side: must be true or false"},
+      {"two_side null", two_side("null"), "light_model.two_side: must be true or false"},
+      {"back not an object", back("[0.1, 0.2, 0.3]"), "materials.m.back: must be a JSON object"},
+      {"back a string", back("\"m\""), "materials.m.back: must be a JSON object"},
+      {"back unknown key", back(R"({"colour": [0, 0, 0]})"),
+       "materials.m.back.colour: unknown key (known here: emission, ambient, diffuse, specular, shininess)"},
+      {"back nested back", back(R"({"back": {}})"), "materials.m.back.back: unknown key"},
+      {"back specular_unit", back(R"({"specular_unit": "cs16"})"),
+       "materials.m.back.specular_unit: applies to the front material only"},
+      {"back cutoff", back(R"({"cutoff": "sign_clamp"})"), "materials.m.back.cutoff: applies to the front material only"},
+      {"back normalization", back(R"({"normalization": {"model": "phong"}})"),
+       "materials.m.back.normalization: applies to the front material only"},
+      {"back shininess differs", back(R"({"shininess": 8})"),
+       "materials.m.back.shininess: back shininess 8 differs from the front's 32 (the core has one specular material"},
+      {"back shininess differs, front default", edit("\"shininess\": 32}", "\"back\": {\"shininess\": 0}}"),
+       "materials.m.back.shininess: back shininess 0 differs from the front's 16"},
+      {"back shininess out of range", back(R"({"shininess": 2000})"), "materials.m.back.shininess: 2000 out of range 0..1024"},
+      {"back shininess fractional", back(R"({"shininess": 32.5})"), "materials.m.back.shininess: must be an integer (32.5 is not)"},
+      {"back negative colour", back(R"({"diffuse": [0.1, -0.2, 0.3]})"), "materials.m.back.diffuse[1]: -0.2 out of range"},
+      {"back colour 2", back(R"({"emission": [2, 0, 0]})"), "materials.m.back.emission[0]: 2 out of range [0, 2)"},
+      {"back colour two numbers", back(R"({"specular": [1, 1]})"), "materials.m.back.specular: must be a colour [r, g, b]"},
+      {"back colour a number", back(R"({"ambient": 0.3})"), "materials.m.back.ambient: must be a colour [r, g, b]"},
+      {"back colour not a number", back(R"({"ambient": [0.1, "a", 0.1]})"), "materials.m.back.ambient[1]: must be a number"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.what);

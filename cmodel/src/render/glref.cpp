@@ -72,18 +72,24 @@ void set_gl_light(int i, const scene::Light& L) {
   glEnable(id);
 }
 
+// GL_FRONT from the material, GL_BACK from its "back" object (the front's colours when it has none); GL uses the
+// back material only under GL_LIGHT_MODEL_TWO_SIDE, as the core its back colour bank.
 void set_gl_material(const scene::Material& M) {
   GLfloat v[4];
-  rgba(M.emission, v);
-  glMaterialfv(GL_FRONT_AND_BACK, GL_EMISSION, v);
-  rgba(M.ambient, v);
-  glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, v);
-  rgba(M.diffuse, v);
-  glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, v);
-  rgba(M.specular, v);
-  glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, v);
-  // GL caps the exponent at 128; a larger one is not comparable (check_objects) and is drawn at 128.
-  glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, static_cast<GLfloat>(std::min(M.shininess, kGlMaxShininess)));
+  const scene::BackMaterial B = M.back_or_front();
+  for (const GLenum face : {GLenum(GL_FRONT), GLenum(GL_BACK)}) {
+    const bool bk = face == GL_BACK;
+    rgba(bk ? B.emission : M.emission, v);
+    glMaterialfv(face, GL_EMISSION, v);
+    rgba(bk ? B.ambient : M.ambient, v);
+    glMaterialfv(face, GL_AMBIENT, v);
+    rgba(bk ? B.diffuse : M.diffuse, v);
+    glMaterialfv(face, GL_DIFFUSE, v);
+    rgba(bk ? B.specular : M.specular, v);
+    glMaterialfv(face, GL_SPECULAR, v);
+    // GL caps the exponent at 128; a larger one is not comparable (check_objects) and is drawn at 128.
+    glMaterialf(face, GL_SHININESS, static_cast<GLfloat>(std::min(bk ? B.shininess : M.shininess, kGlMaxShininess)));
+  }
 }
 
 void set_gl_light_model(const Scene& sc) {
@@ -92,7 +98,9 @@ void set_gl_light_model(const Scene& sc) {
   glLightModelfv(GL_LIGHT_MODEL_AMBIENT, v);
   glLightModeli(GL_LIGHT_MODEL_LOCAL_VIEWER, sc.local_viewer ? GL_TRUE : GL_FALSE);
   glLightModeli(GL_LIGHT_MODEL_COLOR_CONTROL, sc.separate_specular ? GL_SEPARATE_SPECULAR_COLOR : GL_SINGLE_COLOR);
-  glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_FALSE);  // back faces lit with the front normal, as the core
+  // GL_FALSE: back faces lit with the front normal and material, as the core without light_model bit 3; GL_TRUE:
+  // back-facing polygons (glFrontFace(GL_CCW)) lit with −N and the GL_BACK material, as the core's two-sided mode
+  glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, sc.two_side ? GL_TRUE : GL_FALSE);
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -189,6 +197,7 @@ GlImage render_gl(const Scene& sc, render::MeshSource& meshes, const GlSettings&
   glViewport(0, 0, W, H);
   glDepthRange(0.0, 1.0);
   glDisable(GL_CULL_FACE);  // both faces drawn, as the rasteriser
+  glFrontFace(GL_CCW);      // counter-clockwise in window coordinates is front (GL's default; raster::ScreenTri::back)
   glDisable(GL_DITHER);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -270,7 +279,9 @@ std::vector<ObjectCheck> check_objects(const Scene& sc, const std::vector<Shadin
       c.reasons.push_back(std::move(why));
     };
     if (sh == Shading::Phong) no("phong shading (per-fragment lighting) has no fixed-function equivalent (GL draws it Gouraud)");
-    const bool spec = M.has_specular() && any_light_spec;
+    // under two_side the back colours are drawn too (GL_BACK): a back-only specular colour counts
+    const bool back_spec = sc.two_side && M.back && nonzero(M.back->specular);
+    const bool spec = (M.has_specular() || back_spec) && any_light_spec;
     if (spec) {
       if (!sc.blinn) no("reflection 'phong' (R·V): fixed-function GL has only Blinn's N·H");
       if (M.shininess > kGlMaxShininess)

@@ -125,6 +125,7 @@ int Rasterizer::draw_screen(int source, const std::array<ScreenVertex, 3>& v) {
   t.v = v;
   t.area = edge(t.v[0], t.v[1], t.v[2].X, t.v[2].Y);
   if (t.area == 0) return 0;
+  t.back = t.area > 0;  // y down: a positive area is clockwise in GL's y-up window, a back face (GL_CCW front)
   if (t.area < 0) {
     std::swap(t.v[1], t.v[2]);
     t.area = -t.area;

@@ -157,6 +157,7 @@ FeatureSet full_core_for(const FeatureSet& spec, std::vector<std::string>& subs)
          "light slot " + std::to_string(j) + " of kind " + to_string(s));
   }
   need(!spec.normalize || f.normalize, "the normal normaliser (normalize)");
+  need(!spec.two_side || f.two_side, "two-sided lighting (two_side)");
   if (spec.specular) {
     // the two cs16 cut-offs give bit-identical outputs (docs/results.md): the cut-off needs no mode
     need(f.has_unit(spec.variant), std::string("the unit ") + std::string(variant_name(spec.variant)));
@@ -194,6 +195,13 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
       if (nz(l.specular, ch)) return true;
     return false;
   };
+  // The colour sets that reach the core per material: the front's and, with GL_LIGHT_MODEL_TWO_SIDE, the back's
+  // (the back face shares the front's unit, cut-off, normalisation and shininess).
+  std::vector<std::vector<scene::Material>> sides(nm);
+  for (size_t m = 0; m < nm; ++m) {
+    sides[m].push_back(sc.materials[m]);
+    if (sc.two_side) sides[m].push_back(sc.materials[m].back_face());
+  }
   // Effective specular term and unit of each material.
   std::vector<bool> spec(nm, false);
   std::vector<std::string> unit_key(nm);
@@ -201,7 +209,8 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
   std::vector<Cutoff> unit_cut(nm, Cutoff::ThetaCr);
   for (size_t m = 0; m < nm; ++m) {
     const auto& M = sc.materials[m];
-    for (int ch = 0; ch < 3; ++ch) spec[m] = spec[m] || (nz(M.specular, ch) && light_spec(ch));
+    for (const auto& S : sides[m])
+      for (int ch = 0; ch < 3; ++ch) spec[m] = spec[m] || (nz(S.specular, ch) && light_spec(ch));
     unit_var[m] = unit_override ? *unit_override : M.unit;
     unit_cut[m] = unit_var[m] == VariantId::cs16 && M.unit == VariantId::cs16 ? M.cutoff : Cutoff::ThetaCr;
     unit_key[m] = std::string(variant_name(unit_var[m])) +
@@ -240,8 +249,9 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
     const int m0 = g.materials.front();
     auto any_mat = [&](auto pred) {
       for (int m : g.materials)
-        for (int ch = 0; ch < 3; ++ch)
-          if (pred(sc.materials[m], ch)) return true;
+        for (const auto& S : sides[m])
+          for (int ch = 0; ch < 3; ++ch)
+            if (pred(S, ch)) return true;
       return false;
     };
     // Which lights contribute to any material of this core.
@@ -300,16 +310,18 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
       for (int m : g.materials) fs.low_shininess = fs.low_shininess || sc.materials[m].shininess < kNMin;
     fs.normalize = false;
     for (int m : g.materials) fs.normalize = fs.normalize || needs_normalize[m];
+    // GL_LIGHT_MODEL_TWO_SIDE: back-facing fragments lit with −N and the back colour bank. Any object of the scene
+    // may show a back face (open meshes, planes, a camera inside), so the scene's flag alone decides.
+    fs.two_side = sc.two_side;
     // Mono when every colour that reaches the core is grey.
     bool grey = true;
     auto is_grey = [F](const Vec3& c) {
       return colour_code(F, c[0]) == colour_code(F, c[1]) && colour_code(F, c[1]) == colour_code(F, c[2]);
     };
     if (fs.ambient) grey = grey && is_grey(sc.global_ambient);
-    for (int m : g.materials) {
-      const auto& M = sc.materials[m];
-      grey = grey && is_grey(M.emission) && is_grey(M.ambient) && is_grey(M.diffuse) && is_grey(M.specular);
-    }
+    for (int m : g.materials)
+      for (const auto& M : sides[m])
+        grey = grey && is_grey(M.emission) && is_grey(M.ambient) && is_grey(M.diffuse) && is_grey(M.specular);
     for (int j : g.light_slot)
       if (j >= 0) grey = grey && is_grey(sc.lights[j].ambient) && is_grey(sc.lights[j].diffuse) && is_grey(sc.lights[j].specular);
     fs.channels = grey ? 1 : 3;
@@ -371,6 +383,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
   fr.height = s.height > 0 ? s.height : sc.height;
   fr.F = config_named(sc.config).format.frac;
   fr.flat_rule = sc.flat_rule;
+  fr.two_side = sc.two_side;
   const int F = fr.F;
   const Camera cam = s.camera ? *s.camera : sc.camera;
   const Mat4 view = look_at(cam);
@@ -557,25 +570,35 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
   fr.groups = d.groups;
   for (int oi : drawn) fr.object_group[oi] = d.group_of_material[sc.objects[oi].material];
 
-  // Visibility: what each pixel shows, per material.
+  // Visibility: what each pixel shows, per material. With two_side a face or vertex seen by front- and by
+  // back-facing triangles needs both fragments (bit 0 front, bit 1 back): GL lights a vertex for both faces and
+  // the rasteriser takes the colour of the triangle's facing (OpenGL 2.1 §2.14.1, §2.14.6). Without two_side every
+  // triangle counts as front facing (the core's light_model bit 3 is off and in_back_i stays 0).
+  struct Item {
+    uint32_t index;
+    bool back;
+  };
   const size_t nmat = sc.materials.size();
-  std::vector<std::vector<uint32_t>> mat_faces(nmat), mat_verts(nmat), mat_pixels(nmat);
-  std::vector<char> face_vis(fr.face_frag.size(), 0), vert_need(fr.vertex_frag.size(), 0);
+  std::vector<std::vector<Item>> mat_faces(nmat), mat_verts(nmat);
+  std::vector<std::vector<uint32_t>> mat_pixels(nmat);
+  std::vector<uint8_t> face_vis(fr.face_frag.size(), 0), vert_need(fr.vertex_frag.size(), 0);
   for (int y = 0; y < fr.height; ++y)
     for (int x = 0; x < fr.width; ++x) {
       const int32_t id = fr.raster.at(x, y);
       if (id < 0) continue;
-      const int src = fr.raster.tris()[id].source;
+      const auto& st = fr.raster.tris()[id];
+      const int src = st.source;
       const int oi = fr.tri_object[src];
+      const uint8_t side = fr.two_side && st.back ? 2 : 1;
       switch (fr.object_shading[oi]) {
         case Shading::Flat:
           // provoking_vertex: the triangle (v0, vk, vk+1) takes vk+1's colour, its vertex fragment (shared by the
           // triangles it provokes); centroid: the face's fragment
-          if (fr.flat_rule == scene::FlatRule::ProvokingVertex) vert_need[fr.tri_vertices[src][2]] = 1;
-          else face_vis[fr.tri_face[src]] = 1;
+          if (fr.flat_rule == scene::FlatRule::ProvokingVertex) vert_need[fr.tri_vertices[src][2]] |= side;
+          else face_vis[fr.tri_face[src]] |= side;
           break;
         case Shading::Gouraud:
-          for (uint32_t v : fr.tri_vertices[src]) vert_need[v] = 1;
+          for (uint32_t v : fr.tri_vertices[src]) vert_need[v] |= side;
           break;
         case Shading::Phong:
           mat_pixels[sc.objects[oi].material].push_back(static_cast<uint32_t>(y * fr.width + x));
@@ -583,9 +606,13 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
       }
     }
   for (size_t f = 0; f < face_vis.size(); ++f)
-    if (face_vis[f]) mat_faces[sc.objects[fr.face_object[f]].material].push_back(static_cast<uint32_t>(f));
+    for (uint8_t b = 0; b < 2; ++b)
+      if (face_vis[f] & (1u << b))
+        mat_faces[sc.objects[fr.face_object[f]].material].push_back({static_cast<uint32_t>(f), b != 0});
   for (size_t v = 0; v < vert_need.size(); ++v)
-    if (vert_need[v]) mat_verts[sc.objects[fr.vertex_object[v]].material].push_back(static_cast<uint32_t>(v));
+    for (uint8_t b = 0; b < 2; ++b)
+      if (vert_need[v] & (1u << b))
+        mat_verts[sc.objects[fr.vertex_object[v]].material].push_back({static_cast<uint32_t>(v), b != 0});
 
   // Command streams.
   for (auto& g : fr.groups) {
@@ -601,7 +628,8 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
     };
     // the modes of the specialised set, programmed (the same words on the full core)
     const FeatureSet& sp = g.specialised;
-    const ModeParams modes{sp.specular && sp.local_viewer, sp.specular && !sp.blinn, sp.normalize, sp.separate_specular, false};
+    const ModeParams modes{sp.specular && sp.local_viewer, sp.specular && !sp.blinn, sp.normalize, sp.separate_specular,
+                           sp.two_side};
     add_writes(global_writes(core, sc.global_ambient.data(), modes));
     for (int j = 0; j < g.fs.num_lights(); ++j) {
       if (j >= sp.num_lights()) {  // a slot of the full core the scene does not use: off
@@ -662,14 +690,27 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
       if (sp.specular) mp.unit = sp.variant;
       auto ws = material_writes(core, mp);
       add_writes(ws);
-      auto frag = [&g](const Fragment& f, DestKind k, uint32_t idx) {
+      if (sp.two_side) {  // glMaterial(GL_BACK, ...): the back colour bank (the front's when the scene gives none)
+        const scene::BackMaterial B = M.back_or_front();
+        MaterialParams bp = mp;
+        for (int c = 0; c < 3; ++c) {
+          bp.emission[c] = B.emission[c];
+          bp.ambient[c] = B.ambient[c];
+          bp.diffuse[c] = B.diffuse[c];
+          bp.specular[c] = B.specular[c];
+        }
+        bp.shininess = B.shininess;  // equal to the front's (the scene parser refuses another)
+        add_writes(back_material_writes(core, mp, bp));
+      }
+      auto frag = [&g](const Fragment& f, DestKind k, uint32_t idx, bool back) {
         CoreCmd c;
         c.f = f;
+        c.f.back = back;
         g.cmds.push_back(c);
-        g.dests.push_back({k, idx});
+        g.dests.push_back({k, idx, back});
       };
-      for (uint32_t f : mat_faces[m]) frag(fr.face_frag[f], DestKind::Face, f), ++g.faces;
-      for (uint32_t v : mat_verts[m]) frag(fr.vertex_frag[v], DestKind::Vertex, v), ++g.vertices;
+      for (const Item& f : mat_faces[m]) frag(fr.face_frag[f.index], DestKind::Face, f.index, f.back), ++g.faces;
+      for (const Item& v : mat_verts[m]) frag(fr.vertex_frag[v.index], DestKind::Vertex, v.index, v.back), ++g.vertices;
       for (uint32_t p : mat_pixels[m]) {
         const int x = static_cast<int>(p % fr.width), y = static_cast<int>(p / fr.width);
         const int32_t id = fr.raster.at(x, y);
@@ -691,7 +732,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
           f.n[i] = raster::interpolate(w, n);
           f.p[i] = raster::interpolate(w, pp);
         }
-        frag(f, DestKind::Pixel, p);
+        frag(f, DestKind::Pixel, p, fr.two_side && st.back);
         ++g.pixels;
       }
     }
@@ -734,9 +775,19 @@ std::vector<RefColour> run_reference(const CoreGroup& g, LightCore::SpecRef ref)
 
 namespace {
 
+// Face and vertex values per facing: [0] front, [1] back (two_side only; empty otherwise).
+template <typename T>
+struct Sided {
+  std::array<std::vector<T>, 2> face, vert;
+  std::vector<T> pix;
+  std::vector<T>& of(const Dest& d) {
+    return d.kind == DestKind::Face ? face[d.back ? 1 : 0] : d.kind == DestKind::Vertex ? vert[d.back ? 1 : 0] : pix;
+  }
+};
+
 template <typename T, typename Interp, typename VertexValue, typename Store>
-void resolve_pixels(const Frame& fr, const std::vector<T>& face_v, const std::vector<T>& vert_v,
-                    const std::vector<T>& pix_v, Interp interp, VertexValue vertex_value, Store store) {
+void resolve_pixels(const Frame& fr, const Sided<T>& sv_, Interp interp, VertexValue vertex_value, Store store) {
+  const std::vector<T>& pix_v = sv_.pix;
   for (int y = 0; y < fr.height; ++y)
     for (int x = 0; x < fr.width; ++x) {
       const size_t p = static_cast<size_t>(y) * fr.width + x;
@@ -745,6 +796,9 @@ void resolve_pixels(const Frame& fr, const std::vector<T>& face_v, const std::ve
       const auto& st = fr.raster.tris()[id];
       const int src = st.source;
       const int oi = fr.tri_object[src];
+      const int side = fr.two_side && st.back ? 1 : 0;  // the triangle's facing picks the face / vertex colours
+      const std::vector<T>& face_v = sv_.face[side];
+      const std::vector<T>& vert_v = sv_.vert[side];
       switch (fr.object_shading[oi]) {
         case Shading::Flat:
           store(p, oi, fr.flat_rule == scene::FlatRule::ProvokingVertex ? vert_v[fr.tri_vertices[src][2]] : face_v[fr.tri_face[src]]);
@@ -772,7 +826,10 @@ Image resolve(const Frame& fr, const std::vector<std::vector<Colour>>& colours) 
   img.group.assign(np, -1);
   for (size_t p = 0; p < np; ++p)
     for (int c = 0; c < 3; ++c) img.code[p * 3 + c] = fr.background[c];
-  std::vector<Colour> face_c(fr.face_frag.size()), vert_c(fr.vertex_frag.size()), pix_c(np);
+  Sided<Colour> sd;
+  const int nsides = fr.two_side ? 2 : 1;
+  for (int b = 0; b < nsides; ++b) sd.face[b].resize(fr.face_frag.size()), sd.vert[b].resize(fr.vertex_frag.size());
+  sd.pix.resize(np);
   for (size_t g = 0; g < fr.groups.size(); ++g) {
     const auto& grp = fr.groups[g];
     const auto& cols = colours.at(g);
@@ -783,12 +840,11 @@ Image resolve(const Frame& fr, const std::vector<std::vector<Colour>>& colours) 
     for (size_t i = 0; i < cols.size(); ++i) {
       Colour c = cols[i];
       if (mono) c.c[1] = c.c[2] = c.c[0], c.s[1] = c.s[2] = c.s[0];
-      const Dest& d = grp.dests[i];
-      (d.kind == DestKind::Face ? face_c : d.kind == DestKind::Vertex ? vert_c : pix_c)[d.index] = c;
+      sd.of(grp.dests[i])[grp.dests[i].index] = c;
     }
   }
   resolve_pixels<Colour>(
-      fr, face_c, vert_c, pix_c,
+      fr, sd,
       [](const raster::Weights& w, const std::array<Colour, 3>& sv) {
         Colour c;  // the primary and the secondary colour interpolated apart (GL)
         for (int ch = 0; ch < 3; ++ch) {
@@ -824,7 +880,10 @@ RefImage resolve_reference(const Frame& fr, const std::vector<std::vector<RefCol
   ref.value.resize(np * 3);
   for (size_t p = 0; p < np; ++p)
     for (int c = 0; c < 3; ++c) ref.value[p * 3 + c] = std::ldexp(static_cast<double>(fr.background[c]), -fr.F);
-  std::vector<V> face_v(fr.face_frag.size()), vert_v(fr.vertex_frag.size()), pix_v(np);
+  Sided<V> sd;
+  const int nsides = fr.two_side ? 2 : 1;
+  for (int b = 0; b < nsides; ++b) sd.face[b].resize(fr.face_frag.size()), sd.vert[b].resize(fr.vertex_frag.size());
+  sd.pix.resize(np);
   for (size_t g = 0; g < fr.groups.size(); ++g) {
     const auto& grp = fr.groups[g];
     const auto& vals = values.at(g);
@@ -832,12 +891,11 @@ RefImage resolve_reference(const Frame& fr, const std::vector<std::vector<RefCol
     for (size_t i = 0; i < vals.size(); ++i) {
       V v = vals[i];
       if (mono) v[1] = v[2] = v[0], v[4] = v[5] = v[3];
-      const Dest& d = grp.dests[i];
-      (d.kind == DestKind::Face ? face_v : d.kind == DestKind::Vertex ? vert_v : pix_v)[d.index] = v;
+      sd.of(grp.dests[i])[grp.dests[i].index] = v;
     }
   }
   resolve_pixels<V>(
-      fr, face_v, vert_v, pix_v,
+      fr, sd,
       [](const raster::Weights& w, const std::array<V, 3>& sv) {
         V r;
         for (int ch = 0; ch < 6; ++ch) r[ch] = raster::interpolate(w, std::array<double, 3>{sv[0][ch], sv[1][ch], sv[2][ch]});

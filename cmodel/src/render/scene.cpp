@@ -455,7 +455,7 @@ VariantId core_unit(const Parser& P, const json& v, const std::string& path) {
 
 Material parse_material(const Parser& P, const json& j, const std::string& path, const std::string& name) {
   P.keys(j, path, {"emission", "ambient", "diffuse", "specular", "shininess", "specular_unit", "cutoff",
-                   "normalization"});
+                   "normalization", "back"});
   Material m;
   m.name = name;
   if (j.contains("emission")) m.emission = P.colour(j["emission"], path + ".emission");
@@ -496,6 +496,29 @@ Material parse_material(const Parser& P, const json& j, const std::string& path,
     if (m.shininess < kNMin)
       P.fail(np, "needs shininess " + std::to_string(kNMin) + ".." + std::to_string(kNMax) + " (got " +
                      std::to_string(m.shininess) + "; below " + std::to_string(kNMin) + " the power is not normalised)");
+  }
+  if (j.contains("back")) {  // glMaterial(GL_BACK, ...): the back face's colours (light_model.two_side)
+    const std::string bp = path + ".back";
+    const json& b = j["back"];
+    if (!b.is_object()) P.fail(bp, "must be a JSON object (the back material's colours)");
+    // the units hold one material: the back face uses the front's unit, cut-off and normalisation
+    for (const char* k : {"specular_unit", "cutoff", "normalization"})
+      if (b.contains(k))
+        P.fail(Parser::join(bp, k), "applies to the front material only: the back face shares its specular unit, "
+                                    "cut-off and normalisation (the core has one specular material)");
+    P.keys(b, bp, {"emission", "ambient", "diffuse", "specular", "shininess"});
+    BackMaterial bm = m.back_or_front();  // a key not given: the front's
+    if (b.contains("emission")) bm.emission = P.colour(b["emission"], bp + ".emission");
+    if (b.contains("ambient")) bm.ambient = P.colour(b["ambient"], bp + ".ambient");
+    if (b.contains("diffuse")) bm.diffuse = P.colour(b["diffuse"], bp + ".diffuse");
+    if (b.contains("specular")) bm.specular = P.colour(b["specular"], bp + ".specular");
+    if (b.contains("shininess")) {
+      bm.shininess = P.integer(b["shininess"], bp + ".shininess", 0, kNMax);
+      if (bm.shininess != m.shininess)
+        P.fail(bp + ".shininess", "back shininess " + std::to_string(bm.shininess) + " differs from the front's " +
+                                      std::to_string(m.shininess) + " (the core has one specular material: both faces use one shininess)");
+    }
+    m.back = bm;
   }
   return m;
 }
@@ -817,9 +840,10 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
   }
   if (root.contains("light_model")) {
     const json& lm = root["light_model"];
-    P.keys(lm, "light_model", {"ambient", "local_viewer", "reflection", "color_control"});
+    P.keys(lm, "light_model", {"ambient", "local_viewer", "reflection", "color_control", "two_side"});
     if (lm.contains("ambient")) sc.global_ambient = P.colour(lm["ambient"], "light_model.ambient");
     if (lm.contains("local_viewer")) sc.local_viewer = P.boolean(lm["local_viewer"], "light_model.local_viewer");
+    if (lm.contains("two_side")) sc.two_side = P.boolean(lm["two_side"], "light_model.two_side");
     if (lm.contains("reflection")) {
       const std::string r = P.string(lm["reflection"], "light_model.reflection");
       if (r != "blinn" && r != "phong") P.fail("light_model.reflection", "must be blinn or phong");

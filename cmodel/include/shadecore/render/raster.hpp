@@ -48,6 +48,10 @@ struct ScreenTri {
   int source = 0;        // the id given to draw()
   std::array<ScreenVertex, 3> v{};
   int64_t area = 0;      // twice the signed area in (1/256 pixel)^2, > 0 (vertices reordered if needed)
+  // The facing of the triangle as given to draw(), from its winding in window space (OpenGL 2.1 §2.14.1 with
+  // glFrontFace(GL_CCW)): GL's window y points up, this rasteriser's Y down, so a counter-clockwise (front)
+  // triangle has a negative area here before the reordering; true: clockwise in GL's window, a back face.
+  bool back = false;
 };
 
 struct Weights {

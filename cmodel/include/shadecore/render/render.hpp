@@ -44,7 +44,9 @@ struct CoreCmd {
 enum class DestKind : uint8_t { Face, Vertex, Pixel };
 struct Dest {
   DestKind kind;
-  uint32_t index;  // face, vertex (global numbering) or pixel (y·width + x)
+  uint32_t index;     // face, vertex (global numbering) or pixel (y·width + x)
+  bool back = false;  // two_side: the face's / vertex's back-facing colour (GL computes both per vertex and the
+                      // rasteriser picks by the triangle's facing); pixels: the fragment of a back-facing triangle
 };
 
 // One lighting core of a render and what it shades.
@@ -124,6 +126,8 @@ struct Frame {
   std::vector<scene::Shading> object_shading; // per scene object (after overrides)
   std::vector<int> object_material;           // per scene object (after overrides)
   scene::FlatRule flat_rule = scene::FlatRule::Centroid;  // the scene's: flat objects by face or by provoking vertex
+  bool two_side = false;                      // the scene's light_model.two_side: back-facing triangles (window-space
+                                              // winding, raster::ScreenTri::back) take their back fragments' colours
   raster::Rasterizer raster{1, 1, 1.0};
   std::array<uint32_t, 3> background{};       // codes
 };

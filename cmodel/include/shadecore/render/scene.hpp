@@ -67,14 +67,36 @@ struct Normalization {     // optional energy normalisation of the specular term
   CoefKind kind = CoefKind::Fitted;
 };
 
-struct Material {          // glMaterialfv(GL_FRONT_AND_BACK, ...)
+// A material's "back" object: glMaterialfv(GL_BACK, ...), used for back-facing polygons under
+// GL_LIGHT_MODEL_TWO_SIDE (light_model.two_side). The back face shares the front's specular unit, cut-off,
+// normalisation and shininess (the core holds one specular material: a different shininess is refused).
+struct BackMaterial {
+  Vec3 emission{0, 0, 0}, ambient{0.2, 0.2, 0.2}, diffuse{0.8, 0.8, 0.8}, specular{0, 0, 0};
+  int shininess = 16;
+};
+
+struct Material {          // glMaterialfv(GL_FRONT, ...) (GL_FRONT_AND_BACK without "back")
   std::string name;
   Vec3 emission{0, 0, 0}, ambient{0.2, 0.2, 0.2}, diffuse{0.8, 0.8, 0.8}, specular{0, 0, 0};
   int shininess = 16;      // n, 0..1024 (below 16: the low-shininess chain, docs/lighting.md §3.5); GL's default is 0
   VariantId unit = VariantId::cs16;
   Cutoff cutoff = Cutoff::ThetaCr;
   std::optional<Normalization> normalization;
+  std::optional<BackMaterial> back;  // "back": GL_BACK's colours; nullopt: the front's (GL_FRONT_AND_BACK)
   [[nodiscard]] bool has_specular() const { return specular[0] > 0 || specular[1] > 0 || specular[2] > 0; }
+  // The back face's colours: `back` if given, else the front's.
+  [[nodiscard]] BackMaterial back_or_front() const {
+    return back ? *back : BackMaterial{emission, ambient, diffuse, specular, shininess};
+  }
+  // This material with the back face's colours in place of the front's (unit, cut-off, normalisation kept).
+  [[nodiscard]] Material back_face() const {
+    Material m = *this;
+    const BackMaterial b = back_or_front();
+    m.emission = b.emission, m.ambient = b.ambient, m.diffuse = b.diffuse, m.specular = b.specular;
+    m.shininess = b.shininess;
+    m.back.reset();
+    return m;
+  }
 };
 
 struct Rotation {          // glRotated(angle, x, y, z)
@@ -128,6 +150,7 @@ struct Scene {
   Vec3 global_ambient{0.2, 0.2, 0.2};  // GL_LIGHT_MODEL_AMBIENT
   bool local_viewer = false;           // GL_LIGHT_MODEL_LOCAL_VIEWER
   bool separate_specular = false;      // GL_LIGHT_MODEL_COLOR_CONTROL: color_control "separate_specular"
+  bool two_side = false;               // GL_LIGHT_MODEL_TWO_SIDE: back faces lit with −N and the back material
   bool blinn = true;                   // reflection: blinn (N·H, what GL does) or phong (R·V)
   std::string config = "default";      // the core's width (configs.json, frac <= 16)
   FlatRule flat_rule = FlatRule::Centroid;  // flat shading: centroid or GL_FLAT's provoking vertex
