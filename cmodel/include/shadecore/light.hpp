@@ -300,15 +300,9 @@ class LightCore {
     const LightModes md = modes(r);
     LightCoreTrace t;
     t.passes = md.enabled == 0 ? 1 : (md.enabled + fs_.lanes - 1) / fs_.lanes;
-    // two-sided mode, back-facing fragment: −N (saturated to the signed F+2 bits: −(−2) is 2 − 2^−F) and the
-    // back colour bank (docs/lighting.md §3.7)
-    const bool bk = md.two_side && fr.back;
-    int64_t nin[3];
-    for (int i = 0; i < 3; ++i) nin[i] = bk ? std::min<int64_t>(-fr.n[i], (int64_t{1} << (F + 1)) - 1) : fr.n[i];
-    const uint32_t* m_em = bk ? r.back_emission : r.emission;
-    const uint32_t* m_am = bk ? r.back_ambient : r.ambient;
-    const uint32_t* m_di = bk ? r.back_diffuse : r.diffuse;
-    const uint32_t* m_sp = bk ? r.back_specular : r.specular;
+    const Side sd = side(r, fr, md);
+    const int64_t* nin = sd.n;
+    const uint32_t *m_em = sd.em, *m_am = sd.am, *m_di = sd.di, *m_sp = sd.sp;
     // N̂ (GL_NORMALIZE) — rtl/sc_normalize.v
     if (md.normalize) normalize3(VF, nin, t.nn);
     else for (int i = 0; i < 3; ++i) t.nn[i] = nin[i] * (int64_t{1} << E);
@@ -435,6 +429,25 @@ class LightCore {
   static int64_t dot3(const int64_t a[3], const int64_t b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
  private:
+  // The side a fragment is lit as (docs/lighting.md §3.7): in the two-sided mode a back fragment has −N (each
+  // component saturated to the signed F+2 bits: −(−2) is 2 − 2^−F, rtl/sc_light.v's g_nneg) and the back colour
+  // bank; otherwise N as given and the front colours. One place for eval() and eval_double().
+  struct Side {
+    int64_t n[3];
+    const uint32_t *em, *am, *di, *sp;
+  };
+  [[nodiscard]] Side side(const LightRegs& r, const Fragment& fr, const LightModes& md) const {
+    const bool bk = md.two_side && fr.back;
+    const int64_t nmax = (int64_t{1} << (f_.frac + 1)) - 1;
+    Side sd{};
+    for (int i = 0; i < 3; ++i) sd.n[i] = bk ? std::min<int64_t>(-fr.n[i], nmax) : fr.n[i];
+    sd.em = bk ? r.back_emission : r.emission;
+    sd.am = bk ? r.back_ambient : r.ambient;
+    sd.di = bk ? r.back_diffuse : r.diffuse;
+    sd.sp = bk ? r.back_specular : r.specular;
+    return sd;
+  }
+
   FeatureSet fs_;
   Format f_, uf_;
   std::vector<Unit> units_;
@@ -551,14 +564,10 @@ inline std::array<double, 3> LightCore::eval_double(const LightRegs& r, const Fr
     const double l = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
     for (int i = 0; i < 3; ++i) a[i] = l > 0 ? a[i] / l : 0.0;
   };
-  const bool bk = md.two_side && fr.back;  // −N as the core saturates it, and the back colours
-  const int64_t nmax = (int64_t{1} << (F + 1)) - 1;
+  const Side sd = side(r, fr, md);  // −N as the core saturates it, and the back colours
   double nn[3], p[3] = {v(fr.p[0]), v(fr.p[1]), v(fr.p[2])};
-  for (int i = 0; i < 3; ++i) nn[i] = v(bk ? std::min<int64_t>(-fr.n[i], nmax) : fr.n[i]);
-  const uint32_t* m_em = bk ? r.back_emission : r.emission;
-  const uint32_t* m_am = bk ? r.back_ambient : r.ambient;
-  const uint32_t* m_di = bk ? r.back_diffuse : r.diffuse;
-  const uint32_t* m_sp = bk ? r.back_specular : r.specular;
+  for (int i = 0; i < 3; ++i) nn[i] = v(sd.n[i]);
+  const uint32_t *m_em = sd.em, *m_am = sd.am, *m_di = sd.di, *m_sp = sd.sp;
   if (md.normalize) norm3(nn);
   double vv[3] = {0, 0, 1};
   if (md.local_viewer) {
