@@ -129,10 +129,10 @@ std::string format_records(const FeatureSet& fset, const std::string& what, cons
   s += "// made by: " + command_line() + "\n";
   s += "// expected colours: the bit-exact C model (LightCore::eval, cmodel/include/shadecore/light.hpp), as the\n";
   s += "// co-simulation; each fragment is shaded with the registers written before it in this file.\n";
-  s += "// format: one record per line, thirteen hex words ($readmemh into a 32-bit memory, 13 words a record;\n";
+  s += "// format: one record per line, sixteen hex words ($readmemh into a 32-bit memory, 16 words a record;\n";
   s += "// // lines are comments):\n";
-  s += "//   0 ADDR DATA 0 0 0 0 0 0 0 0 0 0    register write: reg_addr_i (9 bits), reg_data_i (32 bits)\n";
-  s += fmt::format("//   T NX NY NZ PX PY PZ R G B SR SG SB    fragment: T = 1 + 2·B + 16·L, B its in_back_i (facing bit),\n"
+  s += "//   0 ADDR DATA 0 0 0 0 0 0 0 0 0 0 0 0 0    register write: reg_addr_i (9 bits), reg_data_i (32 bits)\n";
+  s += fmt::format("//   T NX NY NZ PX PY PZ R G B SR SG SB CR CG CB    fragment: T = 1 + 2·B + 16·L, B its in_back_i (facing bit),\n"
                    "//                                L its latency without backpressure (the\n"
                    "//                                registers set its passes and unit: LightCore::latency(regs));\n"
                    "//                                normal in_n*_i ({} bits, two's complement, 1.0 = 0x{:x}),\n",
@@ -141,19 +141,22 @@ std::string format_records(const FeatureSet& fset, const std::string& what, cons
   s += fmt::format("//                                out_r_o, out_g_o, out_b_o ({} bits, 1.0 = 0x{:x}; 0 on g, b when mono)\n",
                    F + 1, uint64_t{1} << F);
   s += "//                                and secondary colour out_sr_o, out_sg_o, out_sb_o (separate_specular's\n"
-       "//                                specular sum in the separate mode; else 0)\n";
+       "//                                specular sum in the separate mode; else 0); the fragment's colour\n"
+       "//                                in_cr_i, in_cg_i, in_cb_i (colour material's input; 0 when unused)\n";
   s += "// apply: in file order; a write when no fragment is in flight (reg_we_i held until reg_ready_o), a\n";
   s += "// fragment with its tag; every colour must equal R G B bit for bit, in order.\n";
   for (const auto& r : v) {
     if (r.write)
-      s += fmt::format("0 {:03x} {:08x} 0 0 0 0 0 0 0 0 0 0\n", r.w.addr & 0x1ff, r.w.data);
+      s += fmt::format("0 {:03x} {:08x} 0 0 0 0 0 0 0 0 0 0 0 0 0\n", r.w.addr & 0x1ff, r.w.data);
     else
-      s += fmt::format("{:x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x}\n",
+      s += fmt::format("{:x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} "
+                       "{:0{}x} {:0{}x} {:0{}x}\n",
                        1 + 2 * (r.f.back ? 1 : 0) + 16 * r.latency,
                        static_cast<uint64_t>(r.f.n[0]) & nmask, wn, static_cast<uint64_t>(r.f.n[1]) & nmask, wn,
                        static_cast<uint64_t>(r.f.n[2]) & nmask, wn, static_cast<uint64_t>(r.f.p[0]) & pmask, wp,
                        static_cast<uint64_t>(r.f.p[1]) & pmask, wp, static_cast<uint64_t>(r.f.p[2]) & pmask, wp,
-                       r.c.c[0], wc, r.c.c[1], wc, r.c.c[2], wc, r.c.s[0], wc, r.c.s[1], wc, r.c.s[2], wc);
+                       r.c.c[0], wc, r.c.c[1], wc, r.c.c[2], wc, r.c.s[0], wc, r.c.s[1], wc, r.c.s[2], wc,
+                       r.f.col[0], wc, r.f.col[1], wc, r.f.col[2], wc);
   }
   return s;
 }

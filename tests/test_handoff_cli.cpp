@@ -459,13 +459,14 @@ TEST(HandoffLighting, DiffuseBundlePassesAndACorruptedCopyFails) {
     if (line.rfind("//", 0) != 0) {
       ++rec;
       std::stringstream ss(line);
-      std::vector<std::string> w(13);  // words per record (docs/handoff.md)
-      for (auto& x : w) ss >> x;
+      std::vector<std::string> w;  // the record's words (16 per record, docs/handoff.md)
+      for (std::string x; ss >> x;) w.push_back(x);
+      ASSERT_EQ(w.size(), 16u) << line;
       if (bad < 0 && w[0] != "0" && std::stoul(w[7], nullptr, 16) != 0) {
         bad = rec;
         w[7] = fmt_hex(std::stoul(w[7], nullptr, 16) + 1, w[7].size());
         line = w[0];
-        for (int i = 1; i < 13; ++i) line += " " + w[i];
+        for (size_t i = 1; i < w.size(); ++i) line += " " + w[i];
       }
     }
     text += line + "\n";
