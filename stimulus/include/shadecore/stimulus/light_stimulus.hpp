@@ -548,7 +548,8 @@ class LightStimulus {
   }
   // 11. colour material (colour_material, docs/lighting.md §3.8): every mode field 0..7 enabled and disabled, the
   //     hard fragments with extreme colours (0, 1.0, the largest code 2 − 2^−F, one channel each), both facings in
-  //     the two-sided mode, the separate mode; a material whose registers are far from the colours
+  //     the two-sided mode, the separate mode; a material whose registers are far from the colours, every
+  //     slot on with a non-zero ambient
   void build_directed_colour_material() {
     if (!core_.features().colour_material) return;
     const int64_t one = int64_t{1} << F_;
@@ -557,6 +558,19 @@ class LightStimulus {
     for (uint32_t c = 0; c < 3; ++c)
       for (uint32_t a : {kReg_mat_emission, kReg_mat_ambient, kReg_mat_diffuse, kReg_mat_specular})
         ws.push_back({a + c, o / 8 + c});
+    // every slot on (section 1 left them off), with a non-zero ambient (GL's default is 0: the ambient product
+    // a·Ia then shows the colour)
+    for (int j = 0; j < core_.features().num_lights(); ++j) {
+      LightParams lp;
+      lp.kind = slot_kind(j, static_cast<uint64_t>(j));
+      lp.position[0] = 1.0 - j, lp.position[1] = 2;
+      lp.position[2] = *lp.kind == LightKind::Directional ? 1 : 8;
+      lp.position[3] = *lp.kind == LightKind::Directional ? 0 : 1;
+      lp.spot_cutoff = *lp.kind == LightKind::Spot ? 90 : 180;
+      for (int c = 0; c < 3; ++c) lp.ambient[c] = 0.4 + 0.1 * c;
+      const auto lw = light_writes(core_, j, lp);
+      ws.insert(ws.end(), lw.begin(), lw.end());
+    }
     double ga[3] = {0.5, 1.5, 1.0};
     ModeParams md = default_modes(core_.features());
     md.two_side = md.separate_specular = false;
