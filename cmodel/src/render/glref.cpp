@@ -136,11 +136,13 @@ void draw_mesh(const scene::Mesh& m, Draw how, const Vec3* colour = nullptr) {
   auto vcol = [&](int v) -> const Vec3& { return m.col.empty() ? *colour : m.col[static_cast<size_t>(v)]; };
   glBegin(GL_TRIANGLES);
   for (const auto& face : m.faces) {
-    Vec3 fn{0, 0, 0}, fc{0, 0, 0};
+    Vec3 fn{0, 0, 0}, fc = colour ? *colour : Vec3{0, 0, 0};
     if (how == Draw::Flat) fn = scene::polygon_normal(m.pos, face);
-    if (how == Draw::Flat && colour)
+    if (how == Draw::Flat && colour && !m.col.empty()) {  // the mean of the face's vertex colours (render::prepare's)
+      fc = {0, 0, 0};
       for (int v : face)
         for (int i = 0; i < 3; ++i) fc[i] += vcol(v)[i] / static_cast<double>(face.size());
+    }
     for (size_t k = 1; k + 1 < face.size(); ++k) {
       const int tv[3] = {face[0], face[k], face[k + 1]};
       for (int q = 0; q < 3; ++q) {

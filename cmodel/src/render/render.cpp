@@ -488,11 +488,12 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
     auto face_fragment = [&](size_t fi) {
       const auto& face = mesh.faces[fi];
       const Vec3 fn = unit(apply3(nmat, scene::polygon_normal(mesh.pos, face)));
-      Vec3 cen{0, 0, 0}, col{0, 0, 0};
+      Vec3 cen{0, 0, 0}, col = o.colour;  // one colour for the whole mesh: exactly it
+      if (!mesh.col.empty()) col = {0, 0, 0};
       for (int v : face)
         for (int i = 0; i < 3; ++i) {
           cen[i] += eye[v][i] / static_cast<double>(face.size());
-          col[i] += vertex_colour(static_cast<size_t>(v))[i] / static_cast<double>(face.size());
+          if (!mesh.col.empty()) col[i] += mesh.col[static_cast<size_t>(v)][i] / static_cast<double>(face.size());
         }
       Fragment f;
       const auto nc = normal_code(F, fn, &fixed);
