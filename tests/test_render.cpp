@@ -763,10 +763,22 @@ TEST(RenderColourMaterial, DerivationAndStream) {
 }
 
 // Example scenes without colour material: every derived stream neither writes the colour_material register nor
-// sends a colour (stream kinds 1 and 2 only: the same bytes as before the feature).
+// sends a colour (stream kinds 1 and 2 only: the same bytes as before the feature). gl_features.json: only the core of
+// the colour-material wave (cs16) has it; the schlick_nr core's stream is as before.
 TEST(RenderColourMaterial, ExampleScenesWithoutItUnchanged) {
-  for (const std::string name : {"diffuse.json", "spheres.json", "shading_modes.json", "mesh.json", "gl_features.json",
-                                 "gl_two_side.json", "gl_shininess.json"}) {
+  {
+    const auto l = load("gl_features.json");
+    const Frame fr = frame(l, false, 64, 48);
+    ASSERT_EQ(fr.groups.size(), 2u);
+    EXPECT_TRUE(fr.groups[0].fs.colour_material);
+    EXPECT_FALSE(fr.groups[1].fs.colour_material);
+    for (const auto& c : fr.groups[1].cmds) {
+      if (c.is_write) EXPECT_NE(c.w.addr, kReg_colour_material);
+      else EXPECT_EQ(c.f.col[0] | c.f.col[1] | c.f.col[2], 0u);
+    }
+  }
+  for (const std::string name : {"diffuse.json", "spheres.json", "shading_modes.json", "mesh.json", "gl_two_side.json",
+                                 "gl_shininess.json"}) {
     SCOPED_TRACE(name);
     const auto l = load(name);
     const Frame fr = frame(l, false, 64, 48);
