@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "shadecore/light.hpp"
 #include "shadecore/units/coef.hpp"
 #include "shadecore/units/cs16.hpp"
 #include "shadecore/unit.hpp"
@@ -45,6 +46,11 @@ Shading parse_shading(const std::string& s);  // throws std::invalid_argument
 enum class FlatRule { Centroid, ProvokingVertex };
 const char* to_string(FlatRule r);
 FlatRule parse_flat_rule(const std::string& s);  // throws std::invalid_argument
+
+// glColorMaterial(GL_FRONT_AND_BACK, mode) with GL_COLOR_MATERIAL enabled, per object (the scene's
+// objects[i].color_material); nullopt: `none`, GL_COLOR_MATERIAL disabled.
+const char* to_string(std::optional<ColourMaterial> m);
+std::optional<ColourMaterial> parse_colour_material(const std::string& s);  // throws std::invalid_argument
 
 struct Camera {            // gluLookAt(eye, center, up) + gluPerspective(fovy, aspect = width/height, near, far)
   Vec3 eye{0, 0, 5}, center{0, 0, 0}, up{0, 1, 0};
@@ -129,6 +135,10 @@ struct Object {
   Transform transform;
   int material = 0;        // index into Scene::materials
   Shading shading = Shading::Phong;
+  // GL_COLOR_MATERIAL: the material colour(s) the object's colours replace (nullopt: none), and GL's current colour
+  // (glColor3f) where the mesh has no per-vertex colours (built-in primitives, OBJ files without `v x y z r g b`)
+  std::optional<ColourMaterial> colour_material;
+  Vec3 colour{1, 1, 1};
   std::string where;       // "objects[i]" for messages
   std::string scene_file;  // the scene file it comes from (messages)
 };
