@@ -124,41 +124,33 @@ module sc_light_regfile #(
   genvar j, c, gi;
 
   // ---------------------------------------------------------------------------- global modes
+  // light_model: one register of the fields this core has (positions LM_* from config/configs.json
+  // light_model_bits); a field of an absent capability reads 0 (no flip-flop)
+  localparam [LIGHT_MODEL_BITS-1:0] LM_HAS =
+      (((SPECULAR != 0 || NORMALIZE != 0) ? 1 : 0) << LM_LOCAL_VIEWER) |
+      (((SPECULAR != 0 || NORMALIZE != 0) ? 1 : 0) << LM_PHONG) |
+      (((SPECULAR != 0 || NORMALIZE != 0) ? 1 : 0) << LM_NORMALIZE) |
+      (((TWO_SIDE != 0) ? 1 : 0) << LM_TWO_SIDE) |
+      (((SEP != 0) ? 1 : 0) << LM_SEPARATE_SPECULAR);
+  wire [LIGHT_MODEL_BITS-1:0] model_w;
   generate
-    if (SPECULAR != 0 || NORMALIZE != 0) begin : g_model
-      reg [2:0] model_q;
-      always @(posedge clk_i) begin
-        if (wr_i && addr_i == REG_LIGHT_MODEL) model_q <= data_i[2:0];
+    for (gi = 0; gi < LIGHT_MODEL_BITS; gi = gi + 1) begin : g_model
+      if (LM_HAS[gi]) begin : g_bit
+        reg b_q;
+        always @(posedge clk_i) begin
+          if (wr_i && addr_i == REG_LIGHT_MODEL) b_q <= data_i[gi];
+        end
+        assign model_w[gi] = b_q;
+      end else begin : g_none
+        assign model_w[gi] = 1'b0;
       end
-      assign lv_o        = (LV != 0) && model_q[0];
-      assign phong_o     = (SPECULAR != 0) && (PHONG != 0) && (BLINN == 0 || model_q[1]);
-      assign normalize_o = (NORMALIZE != 0) && model_q[2];
-    end else begin : g_no_model
-      assign lv_o = 1'b0;
-      assign phong_o = 1'b0;
-      assign normalize_o = 1'b0;
-    end
-    // GL_LIGHT_MODEL_TWO_SIDE (light_model bit 3)
-    if (TWO_SIDE != 0) begin : g_two
-      reg two_q;
-      always @(posedge clk_i) begin
-        if (wr_i && addr_i == REG_LIGHT_MODEL) two_q <= data_i[3];
-      end
-      assign two_o = two_q;
-    end else begin : g_no_two
-      assign two_o = 1'b0;
-    end
-    // GL_SEPARATE_SPECULAR_COLOR (light_model bit 4; SEP needs units, so g_model exists)
-    if (SEP != 0) begin : g_sep
-      reg sep_q;
-      always @(posedge clk_i) begin
-        if (wr_i && addr_i == REG_LIGHT_MODEL) sep_q <= data_i[4];
-      end
-      assign sep_o = sep_q;
-    end else begin : g_no_sep
-      assign sep_o = 1'b0;
     end
   endgenerate
+  assign lv_o        = (LV != 0) && model_w[LM_LOCAL_VIEWER];
+  assign phong_o     = (SPECULAR != 0) && (PHONG != 0) && (BLINN == 0 || model_w[LM_PHONG]);
+  assign normalize_o = (NORMALIZE != 0) && model_w[LM_NORMALIZE];
+  assign two_o       = model_w[LM_TWO_SIDE];       // GL_LIGHT_MODEL_TWO_SIDE
+  assign sep_o       = model_w[LM_SEPARATE_SPECULAR];  // GL_SEPARATE_SPECULAR_COLOR
 
   // ---------------------------------------------------------------------------- material colours, scene term
   // bank 0 the front material (mat_*), bank 1 with TWO_SIDE the back colour bank (back_mat_*: two-sided lighting)

@@ -80,12 +80,14 @@ static_assert((1 << kLowNBits) == kNMin, "low_shininess_bits must cover exactly 
 // Mode registers (docs/lighting.md §4): light_model (bit 0 local viewer, bit 1 Phong reflection, bit 2
 // normalize), mat_unit (a variant id), per light mode (bit 0 enable, bits 3:1 kind). Registers are not
 // reset, in the RTL as here: a program writes every register it relies on.
-inline constexpr uint32_t kLightModelBits = 5;  // stored bits of light_model
 inline constexpr uint32_t kMatUnitBits = 4;
 inline constexpr uint32_t kLightModeBits = 4;
-inline constexpr uint32_t kModelLocalViewer = 1u, kModelPhong = 2u, kModelNormalize = 4u;
-inline constexpr uint32_t kModelTwoSide = 8u;            // GL_LIGHT_MODEL_TWO_SIDE (feature two_side)
-inline constexpr uint32_t kModelSeparateSpecular = 16u;  // GL_SEPARATE_SPECULAR_COLOR (feature separate_specular)
+// light_model's fields: kLightModelBits and the bit positions kLmBit_* from config/configs.json (light_regs.hpp;
+// the RTL's LM_* of sc_light_regs.vh)
+inline constexpr uint32_t kModelLocalViewer = 1u << kLmBit_local_viewer, kModelPhong = 1u << kLmBit_phong,
+                          kModelNormalize = 1u << kLmBit_normalize;
+inline constexpr uint32_t kModelTwoSide = 1u << kLmBit_two_side;  // GL_LIGHT_MODEL_TWO_SIDE (feature two_side)
+inline constexpr uint32_t kModelSeparateSpecular = 1u << kLmBit_separate_specular;  // GL_SEPARATE_SPECULAR_COLOR
 inline constexpr uint32_t kModeEnable = 1u;
 // colour_material (feature colour_material, docs/lighting.md §3.8): bit 0 GL_COLOR_MATERIAL, bits 3:1 the
 // glColorMaterial mode; the fragment's colour replaces that material colour of the side it is lit as (both
