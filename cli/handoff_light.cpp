@@ -197,7 +197,9 @@ std::string register_table(const FeatureSet& fs) {
   const int F = fs.format().frac, UF = fs.unit_format().frac;  // UF: the units' format (F + spec_guard)
   auto fmt_of = [&](std::string_view f) -> std::string {
     if (f == "colour") return fmt::format("colour: unsigned {} bits, 1.0 = 2^F, [0, 2)", F + 1);
-    if (f == "n") return "exponent n: unsigned 11 bits, 16..1024";
+    if (f == "n")
+      return fs.low_shininess ? "exponent n: unsigned 11 bits, 0..1024 (below 16: the exact chain x^n, not normalised)"
+                              : "exponent n: unsigned 11 bits, 16..1024";
     if (f == "thr") return fmt::format("thr(n) = ⌈cos(6/√n)·2^{}⌉, unsigned {} bits (cs16 θcr only)", UF, UF + 1);
     if (f == "coef")
       return fmt::format("energy-normalisation coefficient ⌊coef(n)·2^{} + ½⌋, unsigned {} bits (norm only)", UF,
@@ -212,8 +214,12 @@ std::string register_table(const FeatureSet& fs) {
                          "the smallest word with exponent 0", UF + 2, UF, UF);
     if (f == "spot_exponent") return std::string("unsigned 8 bits: the spot exponent e (GL 0..128), x^e by an exact chain");
     if (f == "light_model")
-      return std::string("mode: bit 0 local viewer, bit 1 reflection (0 Blinn N·H, 1 Phong R·V), bit 2 normalize; "
-                         "a bit naming absent hardware reads as off (with one reflection bit 1 is ignored)");
+      return std::string("mode: bit 0 local viewer, bit 1 reflection (0 Blinn N·H, 1 Phong R·V), bit 2 normalize, bit 3 "
+                         "two-sided lighting, bit 4 separate specular colour; a bit naming absent hardware reads as off "
+                         "(with one reflection bit 1 is ignored)");
+    if (f == "colour_material")
+      return std::string("mode: bit 0 GL_COLOR_MATERIAL, bits 3:1 0 emission, 1 ambient, 2 diffuse, 3 specular, 4 ambient "
+                         "and diffuse, 5..7 none: in_cr_i/in_cg_i/in_cb_i replace those material colours");
     if (f == "unit") return std::string("mode: 4 bits, the variant id of the material's specular unit; an absent unit gives specular 0");
     if (f == "light_mode")
       return std::string("mode: bit 0 enable, bits 3:1 kind (0 directional, 1 point, 2 point_att, 3 spot); "
@@ -223,7 +229,9 @@ std::string register_table(const FeatureSet& fs) {
   // Which registers this feature set reads (the others exist in the map but are ignored here).
   const bool any_att = fs.any_att();
   auto used = [&](std::string_view name) -> std::string {
-    if (name == "light_model") return "yes (local viewer, reflection, normalize where they exist)";
+    if (name == "light_model")
+      return "yes (local viewer, reflection, normalize, two-sided, separate specular where they exist)";
+    if (name == "colour_material") return fs.colour_material ? "yes" : "no";
     if (name == "mat_unit") return fs.specular ? "yes" : "no";
     if (name == "light_mode") return "yes";
     const bool mono = fs.channels == 1;
@@ -231,6 +239,9 @@ std::string register_table(const FeatureSet& fs) {
     if (name == "global_ambient" || name == "mat_emission" || name == "mat_ambient" || name == "light_ambient")
       return col(fs.ambient);
     if (name == "mat_diffuse" || name == "light_diffuse") return col(fs.diffuse);
+    if (name == "back_mat_emission" || name == "back_mat_ambient") return col(fs.two_side && fs.ambient);
+    if (name == "back_mat_diffuse") return col(fs.two_side && fs.diffuse);
+    if (name == "back_mat_specular") return col(fs.two_side && fs.specular);
     if (name == "mat_specular" || name == "light_specular") return col(fs.specular);
     if (name == "mat_n") return fs.specular ? "yes" : "no";
     if (name == "mat_thr") return fs.specular && fs.variant == VariantId::cs16 && fs.cutoff == Cutoff::ThetaCr ? "yes" : "no";

@@ -416,6 +416,9 @@ TEST(HandoffLighting, DiffuseBundlePassesAndACorruptedCopyFails) {
   EXPECT_NE(md.find("| `reg_ready_o` | out | 1 |"), std::string::npos);
   EXPECT_NE(md.find("| `mat_diffuse` | 0x18..0x1a | 3"), std::string::npos) << md;
   EXPECT_NE(md.find("**4 cycles**"), std::string::npos);
+  // every register of the map says whether this core reads it (no "?" row: a register the table forgot)
+  EXPECT_EQ(md.find("| ? |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| `colour_material` | 0x08 | 1 | mode: bit 0 GL_COLOR_MATERIAL"), std::string::npos) << md;
 
   // Replay vectors/random.hex through the C model: every expected colour is LightCore::eval's.
   const shadecore::FeatureSet fs = shadecore::feature_set_named_or_file("diffuse");
