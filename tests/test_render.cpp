@@ -572,7 +572,9 @@ TEST(RenderTwoSide, BackShininessGetsABatchOfItsOwn) {
       const bool back = fr.raster.tris()[id].back;
       back_px += back;
       differ += d;
-      if (!back) EXPECT_FALSE(d) << x << "," << y;  // front-facing pixels: the front's shininess either way
+      if (!back) {
+        EXPECT_FALSE(d) << x << "," << y;  // front-facing pixels: the front's shininess either way
+      }
     }
   EXPECT_GT(back_px, 500u);
   EXPECT_GT(differ, back_px / 2);
@@ -581,6 +583,45 @@ TEST(RenderTwoSide, BackShininessGetsABatchOfItsOwn) {
   for (const auto& g : fr.groups) ref.push_back(render::run_reference(g, LightCore::SpecRef::Variant));
   EXPECT_LT(render::error_vs(img, render::resolve_reference(fr, ref)).max_lsb, 16.0);
   expect_full_identical(l);
+}
+
+// The back batch under colour material (tests/data/render/gl_colour_material_flat.json, two-sided, every object flat
+// under provoking_vertex, with back shininess 6 and 90 added): each fragment is lit with its object's colour material
+// mode and its facing's shininess — the back batch writes each mode's colour_material word again.
+TEST(RenderTwoSide, BackBatchKeepsEachObjectsColourMaterial) {
+  Loaded l;
+  l.sc = scene::load_scene(std::string(SHADECORE_SOURCE_DIR) + "/tests/data/render/gl_colour_material_flat.json");
+  for (const auto& o : l.sc.objects) l.meshes.push_back(scene::build_mesh(o));
+  ASSERT_TRUE(l.sc.two_side);
+  ASSERT_EQ(l.sc.materials.size(), 2u);
+  const int back_n[2] = {6, 90};
+  for (int m = 0; m < 2; ++m) {
+    scene::BackMaterial b = l.sc.materials[m].back_or_front();
+    b.shininess = back_n[m];
+    l.sc.materials[m].back = b;
+  }
+  const Frame fr = frame(l, false, 160, 110);
+  ASSERT_EQ(fr.groups.size(), 1u);
+  const auto& g = fr.groups[0];
+  ASSERT_TRUE(g.fs.colour_material);
+  uint32_t n = ~0u, cm = ~0u;
+  size_t checked[2] = {0, 0}, i = 0;
+  for (const auto& c : g.cmds) {
+    if (c.is_write) {
+      if (c.w.addr == kReg_mat_n) n = c.w.data;
+      if (c.w.addr == kReg_colour_material) cm = c.w.data;
+      continue;
+    }
+    const auto& d = g.dests[i++];
+    ASSERT_EQ(d.kind, render::DestKind::Vertex);
+    const auto& o = l.sc.objects[static_cast<size_t>(fr.vertex_object[d.index])];
+    const auto& M = l.sc.materials[static_cast<size_t>(o.material)];
+    EXPECT_EQ(cm, o.colour_material ? colour_material_word(true, *o.colour_material) : 0u) << i;
+    EXPECT_EQ(n, static_cast<uint32_t>(d.back ? M.back->shininess : M.shininess)) << i;
+    ++checked[d.back ? 1 : 0];
+  }
+  EXPECT_GT(checked[0], 100u);
+  EXPECT_GT(checked[1], 20u);
 }
 
 // ---- GL_COLOR_MATERIAL (issue 19) -----------------------------------------------------------------------
