@@ -84,7 +84,7 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
     if (fs.two_side) {
       MaterialParams b = m;
       for (int c = 0; c < 3; ++c) b.ambient[c] = u2(0, 0.3), b.diffuse[c] = u2(0, 0.8), b.specular[c] = u2(0.2, 1);
-      apply(back_material_writes(core, m, b));
+      apply(back_material_writes(core, b));
     }
     for (int j = 0; j < fs.num_lights(); ++j) {
       LightParams lp;

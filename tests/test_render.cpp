@@ -505,6 +505,125 @@ TEST(RenderTwoSide, GouraudRimVerticesGetBothFragments) {
   expect_full_identical(l, 160, 100);
 }
 
+// A back shininess of its own (tests/data/render/gl_two_side_shininess.json: tube front 32 / back 8, cards front 32 /
+// back 100): the core holds one unit material, so each material's back-facing fragments come in a batch of their own
+// after the back's unit material (mat_n written twice per material). Every fragment is lit with its face's
+// shininess, the double reference follows the same register state, and the image differs from the same scene with
+// back shininess = front in back-facing pixels only.
+TEST(RenderTwoSide, BackShininessGetsABatchOfItsOwn) {
+  Loaded l;
+  l.sc = scene::load_scene(std::string(SHADECORE_SOURCE_DIR) + "/tests/data/render/gl_two_side_shininess.json");
+  for (const auto& o : l.sc.objects) l.meshes.push_back(scene::build_mesh(o));
+  ASSERT_TRUE(l.sc.two_side);
+  ASSERT_EQ(l.sc.materials.size(), 2u);
+  std::set<int> back_n;
+  for (const auto& m : l.sc.materials) {
+    ASSERT_TRUE(m.back.has_value());
+    EXPECT_NE(m.back->shininess, m.shininess);
+    back_n.insert(m.back->shininess);
+  }
+  // the same scene, back shininess = front: one batch per material (the stream as before back shininess existed)
+  Loaded same = l;
+  for (auto& m : same.sc.materials) m.back->shininess = m.shininess;
+  const Frame fr = frame(l, false), fs = frame(same, false);
+  ASSERT_EQ(fr.groups.size(), 1u);
+  ASSERT_EQ(fs.groups.size(), 1u);
+  EXPECT_TRUE(fr.groups[0].fs.low_shininess);  // the back's 8: the chain, derived from the back material
+  EXPECT_FALSE(fs.groups[0].fs.low_shininess);
+  // mat_n writes, and the value each fragment is lit with, per facing
+  auto walk = [](const render::CoreGroup& g, std::set<uint32_t> (&seen)[2]) {
+    int writes = 0;
+    uint32_t n = ~0u;
+    bool was_back = false;
+    int switches = 0;
+    for (const auto& c : g.cmds) {
+      if (c.is_write) {
+        if (c.w.addr == kReg_mat_n) n = c.w.data, ++writes;
+        continue;
+      }
+      seen[c.f.back ? 1 : 0].insert(n);
+      switches += c.f.back != was_back;
+      was_back = c.f.back;
+    }
+    return std::pair<int, int>{writes, switches};
+  };
+  std::set<uint32_t> seen[2], seen_same[2];
+  const auto [writes, switches] = walk(fr.groups[0], seen);
+  const auto [writes_same, switches_same] = walk(fs.groups[0], seen_same);
+  EXPECT_EQ(writes, 4);       // two materials, each front then back
+  EXPECT_EQ(writes_same, 2);  // one per material
+  EXPECT_EQ(switches, 3);     // front, back, front, back: the facings never interleave within a material
+  EXPECT_GT(switches_same, switches);
+  EXPECT_EQ(seen[0], (std::set<uint32_t>{32}));
+  EXPECT_EQ(seen[1], (std::set<uint32_t>{8, 100}));
+  EXPECT_EQ(seen_same[1], (std::set<uint32_t>{32}));
+  // the same fragments (reordered): each destination once
+  EXPECT_EQ(fr.groups[0].dests.size(), fs.groups[0].dests.size());
+  const auto img = cmodel_image(fr), img_same = cmodel_image(fs);
+  EXPECT_EQ(img.covered, img_same.covered);
+  uint64_t back_px = 0, differ = 0;
+  for (int y = 0; y < fr.height; ++y)
+    for (int x = 0; x < fr.width; ++x) {
+      const int32_t id = fr.raster.at(x, y);
+      if (id < 0) continue;
+      const size_t p = static_cast<size_t>(y) * fr.width + x;
+      bool d = false;
+      for (int c = 0; c < 3; ++c) d = d || img.code[p * 3 + c] != img_same.code[p * 3 + c];
+      const bool back = fr.raster.tris()[id].back;
+      back_px += back;
+      differ += d;
+      if (!back) {
+        EXPECT_FALSE(d) << x << "," << y;  // front-facing pixels: the front's shininess either way
+      }
+    }
+  EXPECT_GT(back_px, 500u);
+  EXPECT_GT(differ, back_px / 2);
+  // the double reference sees the register state of each fragment: quantisation only
+  std::vector<std::vector<render::RefColour>> ref;
+  for (const auto& g : fr.groups) ref.push_back(render::run_reference(g, LightCore::SpecRef::Variant));
+  EXPECT_LT(render::error_vs(img, render::resolve_reference(fr, ref)).max_lsb, 16.0);
+  expect_full_identical(l);
+}
+
+// The back batch under colour material (tests/data/render/gl_colour_material_flat.json, two-sided, every object flat
+// under provoking_vertex, with back shininess 6 and 90 added): each fragment is lit with its object's colour material
+// mode and its facing's shininess — the back batch writes each mode's colour_material word again.
+TEST(RenderTwoSide, BackBatchKeepsEachObjectsColourMaterial) {
+  Loaded l;
+  l.sc = scene::load_scene(std::string(SHADECORE_SOURCE_DIR) + "/tests/data/render/gl_colour_material_flat.json");
+  for (const auto& o : l.sc.objects) l.meshes.push_back(scene::build_mesh(o));
+  ASSERT_TRUE(l.sc.two_side);
+  ASSERT_EQ(l.sc.materials.size(), 2u);
+  const int back_n[2] = {6, 90};
+  for (int m = 0; m < 2; ++m) {
+    scene::BackMaterial b = l.sc.materials[m].back_or_front();
+    b.shininess = back_n[m];
+    l.sc.materials[m].back = b;
+  }
+  const Frame fr = frame(l, false, 160, 110);
+  ASSERT_EQ(fr.groups.size(), 1u);
+  const auto& g = fr.groups[0];
+  ASSERT_TRUE(g.fs.colour_material);
+  uint32_t n = ~0u, cm = ~0u;
+  size_t checked[2] = {0, 0}, i = 0;
+  for (const auto& c : g.cmds) {
+    if (c.is_write) {
+      if (c.w.addr == kReg_mat_n) n = c.w.data;
+      if (c.w.addr == kReg_colour_material) cm = c.w.data;
+      continue;
+    }
+    const auto& d = g.dests[i++];
+    ASSERT_EQ(d.kind, render::DestKind::Vertex);
+    const auto& o = l.sc.objects[static_cast<size_t>(fr.vertex_object[d.index])];
+    const auto& M = l.sc.materials[static_cast<size_t>(o.material)];
+    EXPECT_EQ(cm, o.colour_material ? colour_material_word(true, *o.colour_material) : 0u) << i;
+    EXPECT_EQ(n, static_cast<uint32_t>(d.back ? M.back->shininess : M.shininess)) << i;
+    ++checked[d.back ? 1 : 0];
+  }
+  EXPECT_GT(checked[0], 100u);
+  EXPECT_GT(checked[1], 20u);
+}
+
 // ---- GL_COLOR_MATERIAL (issue 19) -----------------------------------------------------------------------
 
 std::string temp_obj(const std::string& name, const std::string& text) {

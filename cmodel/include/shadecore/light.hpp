@@ -727,9 +727,10 @@ inline void push_unit_direction(std::vector<RegWrite>& w, uint32_t addr, int F, 
 }
 }  // namespace detail
 
-// Material registers (n, thr, coef and the four colours).
-inline std::vector<RegWrite> material_writes(const LightCore& core, const MaterialParams& m) {
-  const int F = core.format().frac;
+// The unit material: the specular unit's registers mat_unit, mat_n, mat_thr and mat_coef for m's unit, shininess
+// and normalisation. The core holds one; a host that needs another (a back face's own shininess, docs/scenes.md)
+// writes these words again between batches of fragments.
+inline std::vector<RegWrite> unit_material_writes(const LightCore& core, const MaterialParams& m) {
   const FeatureSet& fs = core.features();
   std::vector<RegWrite> w;
   // n < 16 goes to the chain (low_shininess); a core without units has no n register (the words are ignored)
@@ -759,6 +760,13 @@ inline std::vector<RegWrite> material_writes(const LightCore& core, const Materi
     // with the norm hardware and no normalisation: coef = 1.0 (sc_energy then passes the unit's value)
     w.push_back({kReg_mat_coef, norm ? um.coef : (fs.norm ? (uint32_t{1} << core.unit_format().frac) : um.coef)});
   }
+  return w;
+}
+
+// Material registers: the unit material (n, thr, coef) and the four colours.
+inline std::vector<RegWrite> material_writes(const LightCore& core, const MaterialParams& m) {
+  const int F = core.format().frac;
+  std::vector<RegWrite> w = unit_material_writes(core, m);
   for (uint32_t c = 0; c < 3; ++c) {
     w.push_back({kReg_mat_emission + c, detail::colour_code(F, m.emission[c], "material emission")});
     w.push_back({kReg_mat_ambient + c, detail::colour_code(F, m.ambient[c], "material ambient")});
@@ -769,13 +777,9 @@ inline std::vector<RegWrite> material_writes(const LightCore& core, const Materi
 }
 
 // The back colour bank (two_side, docs/lighting.md §3.7): a back-facing fragment's emission, ambient, diffuse and
-// specular in the two-sided mode. The back face shares the front's specular unit, shininess, thr and coef (the
-// units hold one material); the host checks that the two shininess values agree.
-inline std::vector<RegWrite> back_material_writes(const LightCore& core, const MaterialParams& front,
-                                                  const MaterialParams& back) {
-  if (back.shininess != front.shininess)
-    throw std::invalid_argument("back shininess " + std::to_string(back.shininess) + " differs from the front's " +
-                                std::to_string(front.shininess) + " (the core has one specular material)");
+// specular in the two-sided mode. Only the colours: the back face uses the unit material the core holds (one), so
+// a back face with its own shininess is lit by a batch of its own after unit_material_writes(core, back).
+inline std::vector<RegWrite> back_material_writes(const LightCore& core, const MaterialParams& back) {
   const int F = core.format().frac;
   std::vector<RegWrite> w;
   for (uint32_t c = 0; c < 3; ++c) {

@@ -321,10 +321,13 @@ std::vector<ObjectCheck> check_objects(const Scene& sc, const std::vector<Shadin
                         scene::to_string(o.colour_material) + "), glColor per vertex");
     if (spec) {
       if (!sc.blinn) no("reflection 'phong' (R·V): fixed-function GL has only Blinn's N·H");
-      if (M.shininess > kGlMaxShininess)
-        no("shininess " + std::to_string(M.shininess) + " > 128, GL's cap (GL draws it at 128)");
+      // under two_side the back's shininess too (glMaterialf(GL_BACK, GL_SHININESS, ...))
+      const int bn = sc.two_side ? M.back_or_front().shininess : M.shininess;
+      for (const int n : bn == M.shininess ? std::vector<int>{M.shininess} : std::vector<int>{M.shininess, bn})
+        if (n > kGlMaxShininess) no("shininess " + std::to_string(n) + " > 128, GL's cap (GL draws it at 128)");
       if (M.normalization) no("energy normalisation of the specular term has no GL equivalent");
-      c.notes.push_back("GL_SHININESS " + std::to_string(std::min(M.shininess, kGlMaxShininess)));
+      c.notes.push_back("GL_SHININESS " + std::to_string(std::min(M.shininess, kGlMaxShininess)) +
+                        (bn == M.shininess ? std::string() : ", GL_BACK " + std::to_string(std::min(bn, kGlMaxShininess))));
     }
     if (sh == Shading::Flat && sc.flat_rule == scene::FlatRule::ProvokingVertex) {
       // both: GL_FLAT's rule, the last vertex of each fan triangle with its vertex normal and position

@@ -210,9 +210,9 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
     return colour_code(F, c[0]) == colour_code(F, c[1]) && colour_code(F, c[1]) == colour_code(F, c[2]);
   };
   // The colour sets that reach the core per material: the front's and, with GL_LIGHT_MODEL_TWO_SIDE, the back's
-  // (the back face shares the front's unit, cut-off, normalisation and shininess). Under an object's colour
-  // material (GL_FRONT_AND_BACK) its colours replace the chosen term(s) of both: there the set counts the largest of
-  // its colours per channel (what can be non-zero) and `colours_grey` whether they are all grey.
+  // (the back face shares the front's unit, cut-off and normalisation; its shininess may differ). Under an object's
+  // colour material (GL_FRONT_AND_BACK) its colours replace the chosen term(s) of both: there the set counts the
+  // largest of its colours per channel (what can be non-zero) and `colours_grey` whether they are all grey.
   std::vector<std::vector<scene::Material>> sides(nm);
   std::vector<bool> colour_material(nm, false), colours_grey(nm, true), plain(nm, false);
   for (int o : objects_used) {
@@ -336,8 +336,10 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
     fs.separate_specular = fs.specular && sc.separate_specular;  // GL_SEPARATE_SPECULAR_COLOR
     // a shininess below the units' range (GL's 0..15): the exact chain beside the unit
     fs.low_shininess = false;
+    // (with two_side the back's too: its own unit material, written between the facing batches)
     if (fs.specular)
-      for (int m : g.materials) fs.low_shininess = fs.low_shininess || sc.materials[m].shininess < kNMin;
+      for (int m : g.materials)
+        for (const auto& S : sides[m]) fs.low_shininess = fs.low_shininess || S.shininess < kNMin;
     fs.normalize = false;
     for (int m : g.materials) fs.normalize = fs.normalize || needs_normalize[m];
     // GL_LIGHT_MODEL_TWO_SIDE: back-facing fragments lit with −N and the back colour bank. Any object of the scene
@@ -757,20 +759,25 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
         mp.norm_model = -1;  // with the norm hardware: coefficient 1.0, sc_energy passes spec unchanged
       }
       if (sp.specular) mp.unit = sp.variant;
-      auto ws = material_writes(core, mp);
-      add_writes(ws);
-      if (sp.two_side) {  // glMaterial(GL_BACK, ...): the back colour bank (the front's when the scene gives none)
-        const scene::BackMaterial B = M.back_or_front();
-        MaterialParams bp = mp;
-        for (int c = 0; c < 3; ++c) {
-          bp.emission[c] = B.emission[c];
-          bp.ambient[c] = B.ambient[c];
-          bp.diffuse[c] = B.diffuse[c];
-          bp.specular[c] = B.specular[c];
-        }
-        bp.shininess = B.shininess;  // equal to the front's (the scene parser refuses another)
-        add_writes(back_material_writes(core, mp, bp));
+      add_writes(material_writes(core, mp));
+      // glMaterial(GL_BACK, ...): the back colour bank (the front's when the scene gives none)
+      const scene::BackMaterial B = M.back_or_front();
+      MaterialParams bp = mp;
+      for (int c = 0; c < 3; ++c) {
+        bp.emission[c] = B.emission[c];
+        bp.ambient[c] = B.ambient[c];
+        bp.diffuse[c] = B.diffuse[c];
+        bp.specular[c] = B.specular[c];
       }
+      bp.shininess = B.shininess;
+      if (sp.two_side) add_writes(back_material_writes(core, bp));
+      // The core holds one unit material (mat_unit, mat_n, mat_thr, mat_coef). A back face with a shininess of its
+      // own: the front-facing fragments first, then the back's unit material and the back-facing ones (the next
+      // material's writes replace it). Otherwise one batch, in the order below.
+      const bool split = sp.two_side && sp.specular && bp.shininess != mp.shininess;
+      auto pixel_back = [&fr](uint32_t p) {
+        return fr.two_side && fr.raster.tris()[fr.raster.at(static_cast<int>(p % fr.width), static_cast<int>(p / fr.width))].back;
+      };
       auto frag = [&g](const Fragment& f, DestKind k, uint32_t idx, bool back) {
         CoreCmd c;
         c.f = f;
@@ -778,38 +785,49 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
         g.cmds.push_back(c);
         g.dests.push_back({k, idx, back});
       };
-      for (size_t b = b0; b < b0 + kCmBuckets; ++b) {
-        if (mat_faces[b].empty() && mat_verts[b].empty() && mat_pixels[b].empty()) continue;
-        if (g.fs.colour_material)  // glColorMaterial(GL_FRONT_AND_BACK, mode) / glDisable(GL_COLOR_MATERIAL)
-          add_writes(colour_material_writes(b == b0 ? std::nullopt
-                                                    : std::optional<ColourMaterial>(static_cast<ColourMaterial>(b - b0 - 1))));
-        for (const Item& f : mat_faces[b]) frag(fr.face_frag[f.index], DestKind::Face, f.index, f.back), ++g.faces;
-        for (const Item& v : mat_verts[b]) frag(fr.vertex_frag[v.index], DestKind::Vertex, v.index, v.back), ++g.vertices;
-        for (uint32_t p : mat_pixels[b]) {
-          const int x = static_cast<int>(p % fr.width), y = static_cast<int>(p / fr.width);
-          const int32_t id = fr.raster.at(x, y);
-          const auto& st = fr.raster.tris()[id];
-          const auto& tv = fr.tri_vertices[st.source];
-          const raster::Weights w = fr.raster.weights(id, x, y);
-          // the normal, the position and the colour (0 without colour material) interpolated alike: each
-          // screen vertex's value from its weights over the triangle's vertices, then perspective-correct
-          auto interp = [&](auto attr) {
-            std::array<int64_t, 3> a{};
-            for (int k = 0; k < 3; ++k) {
-              double sa = 0;
-              for (int q = 0; q < 3; ++q) sa += st.v[k].b[q] * static_cast<double>(attr(fr.vertex_frag[tv[q]]));
-              a[k] = std::llround(sa);
+      for (int batch = 0; batch < (split ? 2 : 1); ++batch) {
+        auto in_batch = [&](bool back) { return !split || back == (batch == 1); };
+        if (batch == 1) add_writes(unit_material_writes(core, bp));
+        for (size_t b = b0; b < b0 + kCmBuckets; ++b) {
+          bool any_here = false;
+          for (const Item& f : mat_faces[b]) any_here = any_here || in_batch(f.back);
+          for (const Item& v : mat_verts[b]) any_here = any_here || in_batch(v.back);
+          for (uint32_t p : mat_pixels[b]) any_here = any_here || in_batch(pixel_back(p));
+          if (!any_here) continue;
+          if (g.fs.colour_material)  // glColorMaterial(GL_FRONT_AND_BACK, mode) / glDisable(GL_COLOR_MATERIAL)
+            add_writes(colour_material_writes(b == b0 ? std::nullopt
+                                                      : std::optional<ColourMaterial>(static_cast<ColourMaterial>(b - b0 - 1))));
+          for (const Item& f : mat_faces[b])
+            if (in_batch(f.back)) frag(fr.face_frag[f.index], DestKind::Face, f.index, f.back), ++g.faces;
+          for (const Item& v : mat_verts[b])
+            if (in_batch(v.back)) frag(fr.vertex_frag[v.index], DestKind::Vertex, v.index, v.back), ++g.vertices;
+          for (uint32_t p : mat_pixels[b]) {
+            if (!in_batch(pixel_back(p))) continue;
+            const int x = static_cast<int>(p % fr.width), y = static_cast<int>(p / fr.width);
+            const int32_t id = fr.raster.at(x, y);
+            const auto& st = fr.raster.tris()[id];
+            const auto& tv = fr.tri_vertices[st.source];
+            const raster::Weights w = fr.raster.weights(id, x, y);
+            // the normal, the position and the colour (0 without colour material) interpolated alike: each
+            // screen vertex's value from its weights over the triangle's vertices, then perspective-correct
+            auto interp = [&](auto attr) {
+              std::array<int64_t, 3> a{};
+              for (int k = 0; k < 3; ++k) {
+                double sa = 0;
+                for (int q = 0; q < 3; ++q) sa += st.v[k].b[q] * static_cast<double>(attr(fr.vertex_frag[tv[q]]));
+                a[k] = std::llround(sa);
+              }
+              return raster::interpolate(w, a);
+            };
+            Fragment f;
+            for (int i = 0; i < 3; ++i) {
+              f.n[i] = interp([i](const Fragment& v) { return v.n[i]; });
+              f.p[i] = interp([i](const Fragment& v) { return v.p[i]; });
+              f.col[i] = static_cast<uint32_t>(interp([i](const Fragment& v) { return v.col[i]; }));
             }
-            return raster::interpolate(w, a);
-          };
-          Fragment f;
-          for (int i = 0; i < 3; ++i) {
-            f.n[i] = interp([i](const Fragment& v) { return v.n[i]; });
-            f.p[i] = interp([i](const Fragment& v) { return v.p[i]; });
-            f.col[i] = static_cast<uint32_t>(interp([i](const Fragment& v) { return v.col[i]; }));
+            frag(f, DestKind::Pixel, p, fr.two_side && st.back);
+            ++g.pixels;
           }
-          frag(f, DestKind::Pixel, p, fr.two_side && st.back);
-          ++g.pixels;
         }
       }
     }

@@ -524,11 +524,12 @@ Material parse_material(const Parser& P, const json& j, const std::string& path,
     const std::string bp = path + ".back";
     const json& b = j["back"];
     if (!b.is_object()) P.fail(bp, "must be a JSON object (the back material's colours)");
-    // the units hold one material: the back face uses the front's unit, cut-off and normalisation
+    // the back face uses the front's unit, cut-off and normalisation: the renderer writes the back's shininess
+    // into the core's one unit material between the facing batches (a back unit would need a core with two units)
     for (const char* k : {"specular_unit", "cutoff", "normalization"})
       if (b.contains(k))
         P.fail(Parser::join(bp, k), "applies to the front material only: the back face shares its specular unit, "
-                                    "cut-off and normalisation (the core has one specular material)");
+                                    "cut-off and normalisation (only the back shininess may differ)");
     P.keys(b, bp, {"emission", "ambient", "diffuse", "specular", "shininess"});
     BackMaterial bm = m.back_or_front();  // a key not given: the front's
     if (b.contains("emission")) bm.emission = P.colour(b["emission"], bp + ".emission");
@@ -537,9 +538,11 @@ Material parse_material(const Parser& P, const json& j, const std::string& path,
     if (b.contains("specular")) bm.specular = P.colour(b["specular"], bp + ".specular");
     if (b.contains("shininess")) {
       bm.shininess = P.integer(b["shininess"], bp + ".shininess", 0, kNMax);
-      if (bm.shininess != m.shininess)
-        P.fail(bp + ".shininess", "back shininess " + std::to_string(bm.shininess) + " differs from the front's " +
-                                      std::to_string(m.shininess) + " (the core has one specular material: both faces use one shininess)");
+      // the front's normalisation applies to the back's unit material too: the same range
+      if (m.normalization && bm.shininess < kNMin)
+        P.fail(bp + ".shininess", "needs " + std::to_string(kNMin) + ".." + std::to_string(kNMax) + " with the front's "
+                                  "normalization (got " + std::to_string(bm.shininess) + "; below " +
+                                  std::to_string(kNMin) + " the power is not normalised)");
     }
     m.back = bm;
   }

@@ -74,8 +74,9 @@ struct Normalization {     // optional energy normalisation of the specular term
 };
 
 // A material's "back" object: glMaterialfv(GL_BACK, ...), used for back-facing polygons under
-// GL_LIGHT_MODEL_TWO_SIDE (light_model.two_side). The back face shares the front's specular unit, cut-off,
-// normalisation and shininess (the core holds one specular material: a different shininess is refused).
+// GL_LIGHT_MODEL_TWO_SIDE (light_model.two_side). The back face shares the front's specular unit, cut-off and
+// normalisation; its shininess may differ (the core holds one unit material: the renderer writes the back's between
+// the front-facing and the back-facing fragments, docs/scenes.md).
 struct BackMaterial {
   Vec3 emission{0, 0, 0}, ambient{0.2, 0.2, 0.2}, diffuse{0.8, 0.8, 0.8}, specular{0, 0, 0};
   int shininess = 16;
@@ -94,7 +95,8 @@ struct Material {          // glMaterialfv(GL_FRONT, ...) (GL_FRONT_AND_BACK wit
   [[nodiscard]] BackMaterial back_or_front() const {
     return back ? *back : BackMaterial{emission, ambient, diffuse, specular, shininess};
   }
-  // This material with the back face's colours in place of the front's (unit, cut-off, normalisation kept).
+  // This material with the back face's colours and shininess in place of the front's (unit, cut-off, normalisation
+  // kept).
   [[nodiscard]] Material back_face() const {
     Material m = *this;
     const BackMaterial b = back_or_front();

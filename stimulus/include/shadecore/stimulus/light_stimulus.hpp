@@ -196,7 +196,7 @@ class LightStimulus {
     if (core_.features().two_side) {  // the back colour bank too (registers are not reset: a program writes them)
       MaterialParams b = m;
       for (int c = 0; c < 3; ++c) b.emission[c] = u(0, 0.5), b.ambient[c] = u(0, 1), b.diffuse[c] = u(0, 1), b.specular[c] = u(0, 1.5);
-      const auto bw = back_material_writes(core_, m, b);
+      const auto bw = back_material_writes(core_, b);
       w.insert(w.end(), bw.begin(), bw.end());
     }
     if (core_.features().colour_material)  // GL_COLOR_MATERIAL on in 3/4 of the programs, every mode field 0..7
@@ -413,7 +413,7 @@ class LightStimulus {
     m.specular[0] = m.specular[1] = m.specular[2] = 0.8;
     m.shininess = 128;
     add_writes(material_writes(core_, m));
-    if (core_.features().two_side) add_writes(back_material_writes(core_, m, m));  // every register a program relies on
+    if (core_.features().two_side) add_writes(back_material_writes(core_, m));  // every register a program relies on
     if (core_.features().colour_material) add_writes(colour_material_writes(std::nullopt));
     for (int j = 0; j < nl; ++j) {
       LightParams lp;
