@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
@@ -146,6 +147,26 @@ struct Rig {
     for (const auto& w : ws) regs.write(core.widths(), w.addr, w.data);
   }
 };
+// The two-sided tests' program on a core with a directional light in slot 0 and a point_att light in slot 1 at
+// (1, 2, z): a front material and a back colour bank far apart (shininess 40 both); returns them.
+std::pair<MaterialParams, MaterialParams> two_lights_two_banks(Rig& r, double z) {
+  LightParams lp;
+  lp.position[0] = 0.2, lp.position[1] = 0.4, lp.position[2] = 1, lp.position[3] = 0;
+  r.apply(light_writes(r.core, 0, lp));
+  LightParams pp;
+  pp.position[0] = 1, pp.position[1] = 2, pp.position[2] = z, pp.position[3] = 1;
+  pp.kq = 0.05;
+  r.apply(light_writes(r.core, 1, pp));
+  MaterialParams front, back;
+  for (int c = 0; c < 3; ++c) {
+    front.emission[c] = 0.05, front.ambient[c] = 0.3, front.diffuse[c] = 0.7, front.specular[c] = 0.6;
+    back.emission[c] = 0.1 * c, back.ambient[c] = 0.5, back.diffuse[c] = 0.2 + 0.3 * c, back.specular[c] = 0.9;
+  }
+  front.shininess = back.shininess = 40;
+  r.apply(material_writes(r.core, front));
+  r.apply(back_material_writes(r.core, back));
+  return {front, back};
+}
 }  // namespace
 
 // N = 0: no diffuse, no specular (f = 0): only emission + a·A + Σ att·a·Ia remains.
@@ -376,21 +397,7 @@ TEST(LightHardCases, TwoSidedBackFaceIsTheFrontWithMinusNAndTheBackBank) {
   Rig r(feature_set_from_json(tj, "test"));
   const LightCore plain(feature_set_from_json(base, "test"));
   const int64_t one = int64_t{1} << r.F;
-  LightParams lp;
-  lp.position[0] = 0.2, lp.position[1] = 0.4, lp.position[2] = 1, lp.position[3] = 0;
-  r.apply(light_writes(r.core, 0, lp));
-  LightParams pp;
-  pp.position[0] = 1, pp.position[1] = 2, pp.position[2] = -3, pp.position[3] = 1;
-  pp.kq = 0.05;
-  r.apply(light_writes(r.core, 1, pp));
-  MaterialParams front, back;
-  for (int c = 0; c < 3; ++c) {
-    front.emission[c] = 0.05, front.ambient[c] = 0.3, front.diffuse[c] = 0.7, front.specular[c] = 0.6;
-    back.emission[c] = 0.1 * c, back.ambient[c] = 0.5, back.diffuse[c] = 0.2 + 0.3 * c, back.specular[c] = 0.9;
-  }
-  front.shininess = back.shininess = 40;
-  r.apply(material_writes(r.core, front));
-  r.apply(back_material_writes(r.core, back));
+  MaterialParams back = two_lights_two_banks(r, -3).second;
   // the same core with the back bank as its front material: the reference for a back fragment
   Rig swapped(feature_set_from_json(tj, "test"));
   swapped.regs = r.regs;
@@ -459,21 +466,7 @@ TEST(LightHardCases, ColourMaterialIsTheChosenRegistersHoldingTheColour) {
   Rig r(feature_set_from_json(cj, "test"));
   const LightCore plain(feature_set_from_json(base, "test"));
   const int64_t one = int64_t{1} << r.F;
-  LightParams lp;
-  lp.position[0] = 0.2, lp.position[1] = 0.4, lp.position[2] = 1, lp.position[3] = 0;
-  r.apply(light_writes(r.core, 0, lp));
-  LightParams pp;
-  pp.position[0] = 1, pp.position[1] = 2, pp.position[2] = 3, pp.position[3] = 1;
-  pp.kq = 0.05;
-  r.apply(light_writes(r.core, 1, pp));
-  MaterialParams front, back;
-  for (int c = 0; c < 3; ++c) {
-    front.emission[c] = 0.05, front.ambient[c] = 0.3, front.diffuse[c] = 0.7, front.specular[c] = 0.6;
-    back.emission[c] = 0.1 * c, back.ambient[c] = 0.5, back.diffuse[c] = 0.2 + 0.3 * c, back.specular[c] = 0.9;
-  }
-  front.shininess = back.shininess = 40;
-  r.apply(material_writes(r.core, front));
-  r.apply(back_material_writes(r.core, back));
+  two_lights_two_banks(r, 3);
   double ga[3] = {0.3, 0.6, 1.2};
   ModeParams md = default_modes(r.core.features());
   md.two_side = true;

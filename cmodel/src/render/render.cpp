@@ -744,14 +744,18 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
         any = any || !mat_faces[b].empty() || !mat_verts[b].empty() || !mat_pixels[b].empty();
       if (!any) continue;
       const auto& M = sc.materials[m];
+      // a scene material's (or its back's) colours and shininess into the host's MaterialParams
+      auto take = [](MaterialParams& p, const auto& src) {
+        for (int c = 0; c < 3; ++c) {
+          p.emission[c] = src.emission[c];
+          p.ambient[c] = src.ambient[c];
+          p.diffuse[c] = src.diffuse[c];
+          p.specular[c] = src.specular[c];
+        }
+        p.shininess = src.shininess;
+      };
       MaterialParams mp;
-      for (int c = 0; c < 3; ++c) {
-        mp.emission[c] = M.emission[c];
-        mp.ambient[c] = M.ambient[c];
-        mp.diffuse[c] = M.diffuse[c];
-        mp.specular[c] = M.specular[c];
-      }
-      mp.shininess = M.shininess;
+      take(mp, M);
       if (M.normalization && sp.specular) {
         mp.norm_model = static_cast<int>(M.normalization->model);
         mp.norm_kind = M.normalization->kind;
@@ -763,13 +767,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
       // glMaterial(GL_BACK, ...): the back colour bank (the front's when the scene gives none)
       const scene::BackMaterial B = M.back_or_front();
       MaterialParams bp = mp;
-      for (int c = 0; c < 3; ++c) {
-        bp.emission[c] = B.emission[c];
-        bp.ambient[c] = B.ambient[c];
-        bp.diffuse[c] = B.diffuse[c];
-        bp.specular[c] = B.specular[c];
-      }
-      bp.shininess = B.shininess;
+      take(bp, B);
       if (sp.two_side) add_writes(back_material_writes(core, bp));
       // The core holds one unit material (mat_unit, mat_n, mat_thr, mat_coef). A back face with a shininess of its
       // own: the front-facing fragments first, then the back's unit material and the back-facing ones (the next
