@@ -37,8 +37,17 @@ struct Stats {
   // The new terms apart (docs/lighting.md §3.4, §3.5, §7): programs whose shininess is below 16 (low_shininess:
   // every fourth program) — the whole colour's quantisation against the double core there; and each spot light's
   // factor against (−L̂·ŝ)^e in double (LSBs of 2^−F), where both cone tests agree.
-  uint64_t low_samples = 0;
-  double low_quant_min = 1e300, low_quant_max = -1e300;
+  // A subset's quantisation range (LSBs of 2^-F, fixed-point colour sum against the double core's).
+  struct Range {
+    uint64_t samples = 0;
+    double min = 1e300, max = -1e300;
+    void add(double q) { min = std::min(min, q), max = std::max(max, q), ++samples; }
+    [[nodiscard]] double lo() const { return samples ? min : 0.0; }
+    [[nodiscard]] double hi() const { return samples ? max : 0.0; }
+  };
+  Range low;         // shininess below 16 (every fourth program)
+  Range colour_mat;  // colour material (colour_material: every third program, the mode in turn, random colours)
+  Range back;        // back fragments in the two-sided mode (two_side: every fifth program, half the fragments)
   uint64_t spot_samples = 0;
   double spot_factor_max_abs = 0;
 };
@@ -48,6 +57,9 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
   const int F = core.format().frac;
   std::mt19937_64 rng(seed);
   auto u = [&rng](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  // colour material's and two-sided lighting's draws from a stream of their own (the other draws stay as they were)
+  std::mt19937_64 rng2(seed ^ 0xC0102u);
+  auto u2 = [&rng2](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng2); };
   Stats st;
   for (uint64_t prog = 0; prog < programs; ++prog) {
     LightRegs regs;
@@ -58,13 +70,22 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
     // separate_specular: every other program in the separate mode, compared as GL's colour sum
     ModeParams modes = default_modes(fs);
     modes.separate_specular = fs.separate_specular && prog % 2 == 1;
+    modes.two_side = fs.two_side && prog % 5 == 4;
     apply(global_writes(core, ga, modes));
+    const bool cm = fs.colour_material && prog % 3 == 2;
+    if (fs.colour_material)
+      apply(colour_material_writes(cm ? std::optional(static_cast<ColourMaterial>(prog / 3 % 5)) : std::nullopt));
     MaterialParams m;
     for (int c = 0; c < 3; ++c) m.ambient[c] = u(0, 0.3), m.diffuse[c] = u(0, 0.8), m.specular[c] = u(0.2, 1);
     m.shininess = static_cast<int>(std::lround(std::exp(u(std::log(16.0), std::log(1024.0)))));
     const bool low = fs.specular && fs.low_shininess && prog % 4 == 3;
     if (low) m.shininess = static_cast<int>(prog / 4 % static_cast<uint64_t>(kNMin));  // 0..15 in turn
     apply(material_writes(core, m));
+    if (fs.two_side) {
+      MaterialParams b = m;
+      for (int c = 0; c < 3; ++c) b.ambient[c] = u2(0, 0.3), b.diffuse[c] = u2(0, 0.8), b.specular[c] = u2(0.2, 1);
+      apply(back_material_writes(core, b));
+    }
     for (int j = 0; j < fs.num_lights(); ++j) {
       LightParams lp;
       // the most general kind the slot can take (spot on 'full': point_att times a random cone)
@@ -92,7 +113,12 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
       const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
       for (double& x : n) x /= len;
       const double p[3] = {u(-15, 15), u(-15, 15), u(-60, -2)};
-      const Fragment fr = make_fragment(F, n, p);
+      Fragment fr = make_fragment(F, n, p);
+      if (cm) {
+        const double col[3] = {u2(0, 1), u2(0, 1), u2(0, 1)};
+        set_fragment_colour(F, fr, col);
+      }
+      fr.back = modes.two_side && u2(0, 1) < 0.5;
       LightCoreTrace t;
       const Colour c = core.eval(regs, fr, &t);
       uint32_t cone = 0, fixed_cone = 0;
@@ -135,11 +161,9 @@ Stats sweep_one(const FeatureSet& fs, uint64_t programs, uint64_t per_program, u
         st.sq_sum += tot * tot;
         ++st.samples;
         if (ex[ch] > 0) ++st.lit;
-        if (low) {
-          st.low_quant_min = std::min(st.low_quant_min, q);
-          st.low_quant_max = std::max(st.low_quant_max, q);
-          ++st.low_samples;
-        }
+        if (low) st.low.add(q);
+        if (cm) st.colour_mat.add(q);
+        if (fr.back) st.back.add(q);
       }
     }
   }
@@ -234,9 +258,15 @@ void add_light_sweep(CLI::App& app) {
       const double approx_lsb = std::ldexp(st.approx_max, F);
       fmt::print("  {:<13} {:>12.2f} {:>14.2f} {:>12.2f} {:>12.2f} {:>12.3f} {:>9.1f}\n", name, st.total_max,
                  approx_lsb, st.quant_min, st.quant_max, st.abs_sum / st.samples, psnr);
-      if (st.low_samples)
+      if (st.low.samples)
         fmt::print("  {:<13} shininess 0..15 (low_shininess chain, every 4th program): quant {:.2f}..{:.2f} LSB over {} samples\n",
-                   "", st.low_quant_min, st.low_quant_max, st.low_samples);
+                   "", st.low.min, st.low.max, st.low.samples);
+      if (st.colour_mat.samples)
+        fmt::print("  {:<13} colour material (every 3rd program, each mode in turn): quant {:.2f}..{:.2f} LSB over {} samples\n",
+                   "", st.colour_mat.min, st.colour_mat.max, st.colour_mat.samples);
+      if (st.back.samples)
+        fmt::print("  {:<13} back fragments, two-sided mode (every 5th program): quant {:.2f}..{:.2f} LSB over {} samples\n",
+                   "", st.back.min, st.back.max, st.back.samples);
       if (st.spot_samples)
         fmt::print("  {:<13} spot factor against (-L.s)^e in double: max |error| {:.2f} LSB over {} lit spot terms\n", "",
                    st.spot_factor_max_abs, st.spot_samples);
@@ -255,9 +285,15 @@ void add_light_sweep(CLI::App& app) {
                        {"samples", st.samples},
                        {"spot_edge_fragments", st.edge_fragments},
                        {"spot_edge_quant_max_abs_lsb", st.edge_quant_max_abs},
-                       {"low_shininess_samples", st.low_samples},
-                       {"low_shininess_quant_min_lsb", st.low_samples ? st.low_quant_min : 0.0},
-                       {"low_shininess_quant_max_lsb", st.low_samples ? st.low_quant_max : 0.0},
+                       {"low_shininess_samples", st.low.samples},
+                       {"low_shininess_quant_min_lsb", st.low.lo()},
+                       {"low_shininess_quant_max_lsb", st.low.hi()},
+                       {"colour_material_samples", st.colour_mat.samples},
+                       {"colour_material_quant_min_lsb", st.colour_mat.lo()},
+                       {"colour_material_quant_max_lsb", st.colour_mat.hi()},
+                       {"two_side_back_samples", st.back.samples},
+                       {"two_side_back_quant_min_lsb", st.back.lo()},
+                       {"two_side_back_quant_max_lsb", st.back.hi()},
                        {"spot_factor_samples", st.spot_samples},
                        {"spot_factor_max_abs_lsb", st.spot_factor_max_abs}});
     }

@@ -129,10 +129,10 @@ std::string format_records(const FeatureSet& fset, const std::string& what, cons
   s += "// made by: " + command_line() + "\n";
   s += "// expected colours: the bit-exact C model (LightCore::eval, cmodel/include/shadecore/light.hpp), as the\n";
   s += "// co-simulation; each fragment is shaded with the registers written before it in this file.\n";
-  s += "// format: one record per line, thirteen hex words ($readmemh into a 32-bit memory, 13 words a record;\n";
+  s += "// format: one record per line, sixteen hex words ($readmemh into a 32-bit memory, 16 words a record;\n";
   s += "// // lines are comments):\n";
-  s += "//   0 ADDR DATA 0 0 0 0 0 0 0 0 0 0    register write: reg_addr_i (9 bits), reg_data_i (32 bits)\n";
-  s += fmt::format("//   T NX NY NZ PX PY PZ R G B SR SG SB    fragment: T = 1 + 2·B + 16·L, B its in_back_i (facing bit),\n"
+  s += "//   0 ADDR DATA 0 0 0 0 0 0 0 0 0 0 0 0 0    register write: reg_addr_i (9 bits), reg_data_i (32 bits)\n";
+  s += fmt::format("//   T NX NY NZ PX PY PZ R G B SR SG SB CR CG CB    fragment: T = 1 + 2·B + 16·L, B its in_back_i (facing bit),\n"
                    "//                                L its latency without backpressure (the\n"
                    "//                                registers set its passes and unit: LightCore::latency(regs));\n"
                    "//                                normal in_n*_i ({} bits, two's complement, 1.0 = 0x{:x}),\n",
@@ -141,19 +141,22 @@ std::string format_records(const FeatureSet& fset, const std::string& what, cons
   s += fmt::format("//                                out_r_o, out_g_o, out_b_o ({} bits, 1.0 = 0x{:x}; 0 on g, b when mono)\n",
                    F + 1, uint64_t{1} << F);
   s += "//                                and secondary colour out_sr_o, out_sg_o, out_sb_o (separate_specular's\n"
-       "//                                specular sum in the separate mode; else 0)\n";
+       "//                                specular sum in the separate mode; else 0); the fragment's colour\n"
+       "//                                in_cr_i, in_cg_i, in_cb_i (colour material's input; 0 when unused)\n";
   s += "// apply: in file order; a write when no fragment is in flight (reg_we_i held until reg_ready_o), a\n";
   s += "// fragment with its tag; every colour must equal R G B bit for bit, in order.\n";
   for (const auto& r : v) {
     if (r.write)
-      s += fmt::format("0 {:03x} {:08x} 0 0 0 0 0 0 0 0 0 0\n", r.w.addr & 0x1ff, r.w.data);
+      s += fmt::format("0 {:03x} {:08x} 0 0 0 0 0 0 0 0 0 0 0 0 0\n", r.w.addr & 0x1ff, r.w.data);
     else
-      s += fmt::format("{:x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x}\n",
+      s += fmt::format("{:x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} {:0{}x} "
+                       "{:0{}x} {:0{}x} {:0{}x}\n",
                        1 + 2 * (r.f.back ? 1 : 0) + 16 * r.latency,
                        static_cast<uint64_t>(r.f.n[0]) & nmask, wn, static_cast<uint64_t>(r.f.n[1]) & nmask, wn,
                        static_cast<uint64_t>(r.f.n[2]) & nmask, wn, static_cast<uint64_t>(r.f.p[0]) & pmask, wp,
                        static_cast<uint64_t>(r.f.p[1]) & pmask, wp, static_cast<uint64_t>(r.f.p[2]) & pmask, wp,
-                       r.c.c[0], wc, r.c.c[1], wc, r.c.c[2], wc, r.c.s[0], wc, r.c.s[1], wc, r.c.s[2], wc);
+                       r.c.c[0], wc, r.c.c[1], wc, r.c.c[2], wc, r.c.s[0], wc, r.c.s[1], wc, r.c.s[2], wc,
+                       r.f.col[0], wc, r.f.col[1], wc, r.f.col[2], wc);
   }
   return s;
 }
@@ -194,7 +197,9 @@ std::string register_table(const FeatureSet& fs) {
   const int F = fs.format().frac, UF = fs.unit_format().frac;  // UF: the units' format (F + spec_guard)
   auto fmt_of = [&](std::string_view f) -> std::string {
     if (f == "colour") return fmt::format("colour: unsigned {} bits, 1.0 = 2^F, [0, 2)", F + 1);
-    if (f == "n") return "exponent n: unsigned 11 bits, 16..1024";
+    if (f == "n")
+      return fs.low_shininess ? "exponent n: unsigned 11 bits, 0..1024 (below 16: the exact chain x^n, not normalised)"
+                              : "exponent n: unsigned 11 bits, 16..1024";
     if (f == "thr") return fmt::format("thr(n) = ⌈cos(6/√n)·2^{}⌉, unsigned {} bits (cs16 θcr only)", UF, UF + 1);
     if (f == "coef")
       return fmt::format("energy-normalisation coefficient ⌊coef(n)·2^{} + ½⌋, unsigned {} bits (norm only)", UF,
@@ -209,8 +214,12 @@ std::string register_table(const FeatureSet& fs) {
                          "the smallest word with exponent 0", UF + 2, UF, UF);
     if (f == "spot_exponent") return std::string("unsigned 8 bits: the spot exponent e (GL 0..128), x^e by an exact chain");
     if (f == "light_model")
-      return std::string("mode: bit 0 local viewer, bit 1 reflection (0 Blinn N·H, 1 Phong R·V), bit 2 normalize; "
-                         "a bit naming absent hardware reads as off (with one reflection bit 1 is ignored)");
+      return std::string("mode: bit 0 local viewer, bit 1 reflection (0 Blinn N·H, 1 Phong R·V), bit 2 normalize, bit 3 "
+                         "two-sided lighting, bit 4 separate specular colour; a bit naming absent hardware reads as off "
+                         "(with one reflection bit 1 is ignored)");
+    if (f == "colour_material")
+      return std::string("mode: bit 0 GL_COLOR_MATERIAL, bits 3:1 0 emission, 1 ambient, 2 diffuse, 3 specular, 4 ambient "
+                         "and diffuse, 5..7 none: in_cr_i/in_cg_i/in_cb_i replace those material colours");
     if (f == "unit") return std::string("mode: 4 bits, the variant id of the material's specular unit; an absent unit gives specular 0");
     if (f == "light_mode")
       return std::string("mode: bit 0 enable, bits 3:1 kind (0 directional, 1 point, 2 point_att, 3 spot); "
@@ -220,7 +229,9 @@ std::string register_table(const FeatureSet& fs) {
   // Which registers this feature set reads (the others exist in the map but are ignored here).
   const bool any_att = fs.any_att();
   auto used = [&](std::string_view name) -> std::string {
-    if (name == "light_model") return "yes (local viewer, reflection, normalize where they exist)";
+    if (name == "light_model")
+      return "yes (local viewer, reflection, normalize, two-sided, separate specular where they exist)";
+    if (name == "colour_material") return fs.colour_material ? "yes" : "no";
     if (name == "mat_unit") return fs.specular ? "yes" : "no";
     if (name == "light_mode") return "yes";
     const bool mono = fs.channels == 1;
@@ -228,6 +239,9 @@ std::string register_table(const FeatureSet& fs) {
     if (name == "global_ambient" || name == "mat_emission" || name == "mat_ambient" || name == "light_ambient")
       return col(fs.ambient);
     if (name == "mat_diffuse" || name == "light_diffuse") return col(fs.diffuse);
+    if (name == "back_mat_emission" || name == "back_mat_ambient") return col(fs.two_side && fs.ambient);
+    if (name == "back_mat_diffuse") return col(fs.two_side && fs.diffuse);
+    if (name == "back_mat_specular") return col(fs.two_side && fs.specular);
     if (name == "mat_specular" || name == "light_specular") return col(fs.specular);
     if (name == "mat_n") return fs.specular ? "yes" : "no";
     if (name == "mat_thr") return fs.specular && fs.variant == VariantId::cs16 && fs.cutoff == Cutoff::ThetaCr ? "yes" : "no";

@@ -272,12 +272,26 @@ foreach(i RANGE ${_lastk})
 endforeach()
 list(JOIN _kuse ", " _kusestr)
 set(_kusestr ", ${_kusestr}")
+# the light_model register's fields: bit positions for both sides (kLmBit_<name>, LM_<NAME>)
+string(JSON _nlm LENGTH "${_cfg_json}" light light_model_bits)
+math(EXPR _lastlm "${_nlm} - 1")
+set(_lmhpp "")
+set(_lmvh "")
+foreach(i RANGE ${_lastlm})
+  string(JSON _lmname GET "${_cfg_json}" light light_model_bits ${i} name)
+  string(JSON _lmbit GET "${_cfg_json}" light light_model_bits ${i} bit)
+  string(TOUPPER "${_lmname}" _lmup)
+  string(APPEND _lmhpp "inline constexpr int kLmBit_${_lmname} = ${_lmbit};\n")
+  string(APPEND _lmvh "localparam integer LM_${_lmup} = ${_lmbit};\n")
+  string(APPEND _kusestr ", LM_${_lmup}[0]")
+endforeach()
+math(EXPR _lmn "${_nlm}")
 string(JSON _nr LENGTH "${_cfg_json}" light registers)
 math(EXPR _lastr "${_nr} - 1")
 set(_rhpp "")
 set(_rvh "")
 set(_rtab "")
-set(_ruse "MAX_LIGHTS[0], LIGHT_STRIDE[0], REG_ADDR_BITS[0], SPOT_EXP_BITS[0], LOW_N_BITS[0]")
+set(_ruse "MAX_LIGHTS[0], LIGHT_STRIDE[0], REG_ADDR_BITS[0], SPOT_EXP_BITS[0], LOW_N_BITS[0], LIGHT_MODEL_BITS[0]")
 foreach(i RANGE ${_lastr})
   string(JSON _rname GET "${_cfg_json}" light registers ${i} name)
   string(JSON _raddr GET "${_cfg_json}" light registers ${i} addr)
@@ -307,7 +321,8 @@ inline constexpr uint32_t kLightStride = ${_lstride};  // address of light j's r
 inline constexpr int kRegAddrBits = ${_labits};         // width of reg_addr_i
 inline constexpr int kSpotExpBits = ${_lspeb};          // the spot exponent register = the spot power chain's stages
 inline constexpr int kLowNBits = ${_llnb};             // shininess n < 2^kLowNBits: the low-shininess chain's stages
-${_rhpp}// reserved: laid out for the GL-completeness issue, no register in this core (a write is ignored)
+inline constexpr int kLightModelBits = ${_lmn};        // stored bits of light_model (its fields below)
+${_lmhpp}${_rhpp}// reserved: laid out for the GL-completeness issue, no register in this core (a write is ignored)
 struct RegInfo { std::string_view name; uint32_t addr; int count; std::string_view format; bool per_light; bool reserved; };
 inline constexpr std::array<RegInfo, ${_nr}> kRegisters{{
 ${_rtab}}};
@@ -325,7 +340,8 @@ localparam integer LIGHT_STRIDE = ${_lstride};
 localparam integer REG_ADDR_BITS = ${_labits};
 localparam integer SPOT_EXP_BITS = ${_lspeb};
 localparam integer LOW_N_BITS = ${_llnb};
-${_kvh}${_rvh}// every name above, so that a module using a few of them lints clean (Verilator's unused pattern)
+localparam integer LIGHT_MODEL_BITS = ${_lmn};
+${_lmvh}${_kvh}${_rvh}// every name above, so that a module using a few of them lints clean (Verilator's unused pattern)
 localparam [0:0] unused_light_regs = ^{1'b0, ${_ruse}${_kusestr}};
 " @ONLY)
 file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/configs_json.hpp" CONTENT

@@ -69,6 +69,7 @@ module sc_formal_light #(
     parameter integer LOW_N        = 0,
     parameter integer SEP_SPEC     = 0,
     parameter integer TWO_SIDE     = 0,
+    parameter integer COL_MAT      = 0,
     parameter integer CHANNELS     = 3,
     parameter integer TAGW         = 8,
     // harness: bound on fragments in flight and on the clocks to an output (LightCore::latency())
@@ -94,6 +95,7 @@ module sc_formal_light #(
   (* anyseq *) reg [FRAC+7:0]   in_px_i, in_py_i, in_pz_i;
   (* anyseq *) reg [TAGW-1:0]   in_tag_i;
   (* anyseq *) reg              in_back_i;
+  (* anyseq *) reg [FRAC:0]     in_cr_i, in_cg_i, in_cb_i;
   (* anyseq *) reg              out_ready_i;
   wire            reg_ready_o, in_ready_o, out_valid_o;
   wire [CL-1:0]   out_r_o, out_g_o, out_b_o, out_sr_o, out_sg_o, out_sb_o;
@@ -102,13 +104,14 @@ module sc_formal_light #(
   sc_light #(
       .FRAC(FRAC), .GUARD(GUARD), .SGUARD(SGUARD), .LIGHTS(LIGHTS), .SLOT_KINDS(SLOT_KINDS), .SLOT_SPOT(SLOT_SPOT), .LANES(LANES), .SHARE(SHARE),
       .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE), .UNITS(UNITS), .CUTOFF(CUTOFF), .ENERGY(ENERGY),
-      .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER), .NORMALIZE(NORMALIZE), .LOW_N(LOW_N), .SEP_SPEC(SEP_SPEC), .TWO_SIDE(TWO_SIDE),
+      .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER), .NORMALIZE(NORMALIZE), .LOW_N(LOW_N), .SEP_SPEC(SEP_SPEC), .TWO_SIDE(TWO_SIDE), .COL_MAT(COL_MAT),
       .CHANNELS(CHANNELS), .TAGW(TAGW)
   ) dut (
       .clk_i(clk_i), .rst_ni(rst_ni), .reg_we_i(reg_we_i), .reg_addr_i(reg_addr_i),
       .reg_data_i(reg_data_i), .reg_ready_o(reg_ready_o), .in_valid_i(in_valid_i),
       .in_ready_o(in_ready_o), .in_nx_i(in_nx_i), .in_ny_i(in_ny_i), .in_nz_i(in_nz_i),
       .in_px_i(in_px_i), .in_py_i(in_py_i), .in_pz_i(in_pz_i), .in_tag_i(in_tag_i), .in_back_i(in_back_i),
+      .in_cr_i(in_cr_i), .in_cg_i(in_cg_i), .in_cb_i(in_cb_i),
       .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .out_r_o(out_r_o), .out_g_o(out_g_o),
       .out_b_o(out_b_o), .out_sr_o(out_sr_o), .out_sg_o(out_sg_o), .out_sb_o(out_sb_o), .out_tag_o(out_tag_o));
 

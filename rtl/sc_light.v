@@ -56,6 +56,11 @@
 //                 sums apart and the back accumulates them apart: out_* = the primary sum, out_s* = the
 //                 specular sum (each saturated); clear: as without SEP_SPEC (bit for bit), out_s* = 0
 //                                                                                         (default 0)
+//   COL_MAT       0/1: GL_COLOR_MATERIAL exists (feature-set key colour_material): with the colour_material
+//                 register's bit 0 the fragment's colour in_cr_i/in_cg_i/in_cb_i replaces the material
+//                 colour(s) its mode names (emission, ambient, diffuse, specular, ambient and diffuse) of
+//                 the bank the fragment is lit with; the colour travels with the fragment (the internal
+//                 tag widens by 3·(F+1) bits) and the scene term is formed per fragment    (default 0)
 //   CHANNELS      1 (mono: channel 0 only, out_g_o = out_b_o = 0) or 3 (RGB)           (default 3)
 //   TAGW          width of the opaque fragment tag, >= 1                               (default 8)
 //   At least one of AMBIENT, DIFFUSE, UNITS must be non-zero.
@@ -72,6 +77,8 @@
 //   in_tag_i[TAGW-1:0]                                returned with the colour
 //   in_back_i                                         the fragment's polygon faces away (window-space winding,
 //                                                     glFrontFace CCW); used only by TWO_SIDE's two-sided mode
+//   in_cr_i, in_cg_i, in_cb_i [F:0]                   the fragment's colour, a material colour code (1.0 =
+//                                                     2^F, [0, 2)); used only by COL_MAT's colour material
 //   out_valid_o, out_ready_i                          colour handshake; a held colour keeps data and tag
 //   out_r_o, out_g_o, out_b_o [F:0]                   colour, unsigned, saturated to [0, 2^F]
 //   out_sr_o, out_sg_o, out_sb_o [F:0]                secondary colour (SEP_SPEC, separate mode: the specular
@@ -155,6 +162,7 @@ module sc_light #(
     parameter integer LOW_N        = 0,
     parameter integer SEP_SPEC     = 0,
     parameter integer TWO_SIDE     = 0,
+    parameter integer COL_MAT      = 0,
     parameter integer CHANNELS     = 3,
     parameter integer TAGW         = 8
 ) (
@@ -176,6 +184,9 @@ module sc_light #(
     input  wire [FRAC+7:0]   in_pz_i,
     input  wire [TAGW-1:0]   in_tag_i,
     input  wire              in_back_i,
+    input  wire [FRAC:0]     in_cr_i,
+    input  wire [FRAC:0]     in_cg_i,
+    input  wire [FRAC:0]     in_cb_i,
     // colour out
     output wire              out_valid_o,
     input  wire              out_ready_i,
@@ -342,8 +353,10 @@ module sc_light #(
   localparam integer OFF_A = OFF_D + ((DIFFUSE != 0) ? CL : 0);
   localparam integer OFF_LO = OFF_A + ((ANY_ATT != 0) ? FRAC + 8 : 0);
   localparam integer SBW   = OFF_LO + ((HAS_LO != 0) ? VF + 1 : 0);
-  localparam integer FTW   = TAGW + 3;                                    // {fragment tag, back, first, last}
   localparam integer HAS_TWO = (TWO_SIDE != 0) ? 1 : 0;                   // two-sided lighting
+  localparam integer HAS_CM  = (COL_MAT != 0) ? 1 : 0;                    // colour material
+  localparam integer CMW   = (HAS_CM != 0) ? NCH * CL : 0;                // the fragment colour in the tag
+  localparam integer FTW   = CMW + TAGW + 3;                              // {colour, fragment tag, back, first, last}
 
   localparam [CL-1:0] ONE = {1'b1, {FRAC{1'b0}}};                         // 2^F
 
@@ -434,6 +447,9 @@ module sc_light #(
     if (TWO_SIDE != 0 && TWO_SIDE != 1) begin : g_check_two
       sc_light_error_illegal_TWO_SIDE_must_be_0_or_1 u_error ();
     end
+    if (COL_MAT != 0 && COL_MAT != 1) begin : g_check_cm
+      sc_light_error_illegal_COL_MAT_must_be_0_or_1 u_error ();
+    end
     if (SEP_SPEC != 0 && SPECULAR == 0) begin : g_check_sep_spec
       sc_light_error_illegal_SEP_SPEC_needs_UNITS u_error ();
     end
@@ -470,10 +486,12 @@ module sc_light #(
   wire [7:0]             unit_sel;
   wire                   unit_kill, lv_mode, phong_mode, norm_mode, sep_mode, two_mode;
   wire [NCH*CL-1:0]      bamb_w, bscene_w, bdif_w, bspec_w;   // TWO_SIDE: the back colour bank
+  wire [NCH*CL-1:0]      em_w, bem_w, ga_w;                   // the scene term's operands (COL_MAT)
+  wire [3:0]             cm_w;   // COL_MAT: {specular, diffuse, ambient, emission} take the fragment's colour
   sc_light_regfile #(
       .FRAC(FRAC), .UFRAC(VF), .SLOT_KINDS(SLOT_KINDS), .SLOT_SPOT(SLOT_SPOT), .SEB(SPEB), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
       .UNITS(UNITS), .ENERGY(ENERGY), .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER),
-      .NORMALIZE(NORMALIZE), .SEP(HAS_SEP), .TWO_SIDE(HAS_TWO), .NLT(NLT), .NCH(NCH), .AW(AW)
+      .NORMALIZE(NORMALIZE), .SEP(HAS_SEP), .TWO_SIDE(HAS_TWO), .COL_MAT(HAS_CM), .NLT(NLT), .NCH(NCH), .AW(AW)
   ) u_regs (
       .clk_i(clk_i), .wr_i(wr), .addr_i(reg_addr_i[AW-1:0]), .data_i(reg_data_i),
       .pos_o(pos_all), .katt_o(katt_all), .kind_o(kind_all), .on_o(on_all),
@@ -483,7 +501,8 @@ module sc_light #(
       .mat_we_o(mat_we_u), .mat_n_o(mat_n_u), .mat_thr_o(mat_thr_u), .mat_coef_o(mat_coef_u),
       .unit_sel_o(unit_sel), .unit_kill_o(unit_kill),
       .lv_o(lv_mode), .phong_o(phong_mode), .normalize_o(norm_mode), .sep_o(sep_mode), .two_o(two_mode),
-      .bamb_o(bamb_w), .bscene_o(bscene_w), .bdif_o(bdif_w), .bspec_o(bspec_w));
+      .bamb_o(bamb_w), .bscene_o(bscene_w), .bdif_o(bdif_w), .bspec_o(bspec_w),
+      .em_o(em_w), .bem_o(bem_w), .ga_o(ga_w), .cm_o(cm_w));
 
   // ---------------------------------------------------------------------------- handshake, pass issue
   // front: T_F stages, enable adv_f; back: NB stages, enable adv_b (the core's advancing condition)
@@ -505,6 +524,7 @@ module sc_light #(
   reg  [3*PW-1:0]  hold_p_q;
   reg  [TAGW-1:0]  hold_tag_q;
   reg              hold_back_q;
+  reg  [3*CL-1:0]  hold_col_q;
 
   assign out_valid_o = vb_q[NB-1] && out_last;
   assign adv_b       = !out_valid_o || out_ready_i;   // a pass that is not its fragment's last leaves at once
@@ -548,6 +568,7 @@ module sc_light #(
       hold_p_q   <= {in_pz_i, in_py_i, in_px_i};
       hold_tag_q <= in_tag_i;
       hold_back_q <= in_back_i;
+      hold_col_q <= {in_cb_i, in_cg_i, in_cr_i};
     end
   end
 
@@ -654,10 +675,23 @@ module sc_light #(
   wire [3*PW-1:0] p_in   = hold_q ? hold_p_q : {in_pz_i, in_py_i, in_px_i};
   wire [TAGW-1:0] tag_in = hold_q ? hold_tag_q : in_tag_i;
 
-  // fragment tag, first and last through the front
+  // fragment tag, first and last (and with COL_MAT the fragment's colour) through the front
+  wire [FTW-1:0] ftag_in;
+  wire [3*CL-1:0] col_in = hold_q ? hold_col_q : {in_cb_i, in_cg_i, in_cr_i};
+  generate
+    if (HAS_CM != 0) begin : g_ftag_col
+      assign ftag_in = {col_in[NCH*CL-1:0], tag_in, bk_in, pass_first, pass_last};
+      if (NCH < 3) begin : g_col_mono
+        wire unused_col_gb = &{1'b0, col_in[3*CL-1:NCH*CL]};
+      end
+    end else begin : g_ftag
+      assign ftag_in = {tag_in, bk_in, pass_first, pass_last};
+      wire unused_col = &{1'b0, col_in};
+    end
+  endgenerate
   wire [FTW-1:0] ftag_f;
   sc_delay #(.W(FTW), .DEPTH(T_F)) u_dly_tag (
-      .clk_i(clk_i), .en_i(adv_f), .d_i({tag_in, bk_in, pass_first, pass_last}), .q_o(ftag_f));
+      .clk_i(clk_i), .en_i(adv_f), .d_i(ftag_in), .q_o(ftag_f));
   // lane valid bits through the front
   wire [NLN-1:0] lv_f;
   sc_delay #(.W(NLN), .DEPTH(T_F)) u_dly_lv (
@@ -769,7 +803,22 @@ module sc_light #(
   wire [NLN*NCH*CL-1:0] sterm_all;   // SEP_SPEC: lane l's saturated specular term, likewise
   wire [NLN*8-1:0]      u_in_ready_all, u_out_valid_all;   // per lane and variant id
   wire [NLN-1:0]        lane_out_valid;                    // per lane: what its back takes is valid
-  wire [FTW-1:0]        bk_ftag;     // {fragment tag, back, first, last} as the back takes it
+  wire [FTW-1:0]        bk_ftag;     // {colour, fragment tag, back, first, last} as the back takes it
+  // COL_MAT: the fragment's colour at B0 (as the back takes it) and at B1 (one back-advancing edge later)
+  wire [NCH*CL-1:0]     col_b0, col_b1;
+  generate
+    if (HAS_CM != 0) begin : g_col_b
+      reg [NCH*CL-1:0] col_b1_q;
+      always @(posedge clk_i) begin
+        if (adv_b) col_b1_q <= col_b0;
+      end
+      assign col_b0 = bk_ftag[FTW-1:TAGW+3];
+      assign col_b1 = col_b1_q;
+    end else begin : g_no_col_b
+      assign col_b0 = {(NCH*CL){1'b0}};
+      assign col_b1 = {(NCH*CL){1'b0}};
+    end
+  endgenerate
   wire                  u_kill = unit_kill;
   // LOW_N: the shininess register holds n < 2^LNB (constant while a fragment is in flight)
   wire                  lo_mode = (HAS_LO != 0) && (mat_n_u[10:LNB] == {(11-LNB){1'b0}});
@@ -986,10 +1035,11 @@ module sc_light #(
       end
       sc_light_shade #(
           .FRAC(FRAC), .NLT(NLT), .NCH(NCH), .SPW(SPW), .SG(SGUARD), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
-          .SPECULAR(SPECULAR), .CAN_ATT(ANY_ATT), .CSER(CSER), .SEP(HAS_SEP), .TWO(HAS_TWO)
+          .SPECULAR(SPECULAR), .CAN_ATT(ANY_ATT), .CSER(CSER), .SEP(HAS_SEP), .TWO(HAS_TWO), .COL(HAS_CM)
       ) u_shade (
           .clk_i(clk_i), .en_i(adv_b), .spec_i(spec_s), .f_i(ut_x[OFF_F]), .sep_i(sep_mode),
           .back_i(bk_ftag[2]), .bamb_i(bamb_w), .bdif_i(bdif_w), .bspec_i(bspec_w), .diff_i(bk_diff),
+          .cm_i(cm_w[3:1]), .col0_i(col_b0), .col1_i(col_b1),
           .att_i(bk_att), .idx_i(ut_x[OFF_I +: 3]), .v_i(ut_x[OFF_V]), .ch_i(ser),
           .mamb_i(mamb_w), .mdif_i(mdif_w), .mspec_i(mspec_w), .lamb_i(lamb_all), .ldif_i(ldif_all),
           .lspec_i(lspec_all), .term_o(term_all[j*NCH*CL +: NCH*CL]),
@@ -1105,7 +1155,7 @@ module sc_light #(
   wire [TAGW:0] tl_out;
   wire item_last = bk_ftag[0] && (CSER == 0 || ser == 2'd2);
   sc_delay #(.W(TAGW+1), .DEPTH(NB)) u_dly_btag (
-      .clk_i(clk_i), .en_i(adv_b), .d_i({bk_ftag[FTW-1:3], item_last}), .q_o(tl_out));
+      .clk_i(clk_i), .en_i(adv_b), .d_i({bk_ftag[TAGW+2:3], item_last}), .q_o(tl_out));
   assign out_tag_o = tl_out[TAGW:1];
   assign out_last  = tl_out[0];
   wire first_acc;
@@ -1114,6 +1164,29 @@ module sc_light #(
   sc_delay #(.W(4), .DEPTH(NB-1)) u_dly_bfirst (
       .clk_i(clk_i), .en_i(adv_b), .d_i({ser, bk_ftag[2:1]}), .q_o({ch_acc, back_acc, first_acc}));
   wire acc_en = adv_b && vb_q[NB-2];
+
+  // COL_MAT: the fragment's scene term e + a·A, formed at B0 from its bank's registers with the fragment's colour
+  // in place of e (emission) or a (ambient, ambient and diffuse), and delayed to the accumulator beside
+  // first_acc; without colour material it is the register-only term of its bank, bit for bit
+  wire [NCH*CL-1:0] scene_acc;
+  generate
+    if (HAS_CM != 0 && AMBIENT != 0) begin : g_scene_cm
+      wire [NCH*CL-1:0] sc0;
+      wire [NCH*CL-1:0] em_bk0 = (HAS_TWO != 0 && bk_ftag[2]) ? bem_w : em_w;
+      wire [NCH*CL-1:0] am_bk0 = (HAS_TWO != 0 && bk_ftag[2]) ? bamb_w : mamb_w;
+      for (c = 0; c < NCH; c = c + 1) begin : g_sc
+        sc_light_scene #(.FRAC(FRAC)) u_scene (
+            .em_i(cm_w[0] ? col_b0[c*CL +: CL] : em_bk0[c*CL +: CL]),
+            .am_i(cm_w[1] ? col_b0[c*CL +: CL] : am_bk0[c*CL +: CL]),
+            .ga_i(ga_w[c*CL +: CL]), .scene_o(sc0[c*CL +: CL]));
+      end
+      sc_delay #(.W(NCH*CL), .DEPTH(NB-1)) u_dly_scene (
+          .clk_i(clk_i), .en_i(adv_b), .d_i(sc0), .q_o(scene_acc));
+    end else begin : g_no_scene_cm
+      assign scene_acc = {(NCH*CL){1'b0}};
+      wire unused_scene_cm = &{1'b0, em_w, bem_w, ga_w, cm_w[0]};
+    end
+  endgenerate
 
   wire [NCH*CL-1:0] out_w, outs_w;
   generate
@@ -1131,6 +1204,7 @@ module sc_light #(
         integer        k;
         wire [NLN*NCH*CL-1:0] terms = (gi == 0) ? term_all : sterm_all;
         wire [CL-1:0] start = (gi != 0) ? {CL{1'b0}} :
+                              (HAS_CM != 0) ? scene_acc[c*CL +: CL] :
                               ((HAS_TWO != 0 && back_acc) ? bscene_w[c*CL +: CL] : scene_w[c*CL +: CL]);
         always @* begin
           tot = {{(TOTW-CL){1'b0}}, first_acc ? start : acc_q};

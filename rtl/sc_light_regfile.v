@@ -29,7 +29,9 @@
 //             mspec_o; unit: mat_we_o, mat_n_o, mat_thr_o, mat_coef_o (the values after this edge's
 //             write, with mat_we_o at the write edge), unit_sel_o (one-hot over variant ids),
 //             unit_kill_o; modes: lv_o, phong_o, normalize_o, sep_o (light_model bit 4 with SEP), two_o (bit 3
-//             with TWO_SIDE); TWO_SIDE's back colour bank bamb_o, bscene_o, bdif_o, bspec_o (0 without it).
+//             with TWO_SIDE); TWO_SIDE's back colour bank bamb_o, bscene_o, bdif_o, bspec_o (0 without it);
+//             the scene term's operands em_o, bem_o (emission, front and back), ga_o (global ambient);
+//             COL_MAT's cm_o = {specular, diffuse, ambient, emission}: what the fragment colour replaces.
 // ============================================================================================
 `default_nettype none
 
@@ -49,6 +51,7 @@ module sc_light_regfile #(
     parameter integer NORMALIZE    = 1,
     parameter integer SEP          = 0,
     parameter integer TWO_SIDE     = 0,
+    parameter integer COL_MAT      = 0,
     parameter integer NLT          = 1,
     parameter integer NCH          = 3,
     parameter integer AW           = 9
@@ -75,6 +78,10 @@ module sc_light_regfile #(
     output wire [NCH*(FRAC+1)-1:0] bscene_o,
     output wire [NCH*(FRAC+1)-1:0] bdif_o,
     output wire [NCH*(FRAC+1)-1:0] bspec_o,
+    output wire [NCH*(FRAC+1)-1:0] em_o,
+    output wire [NCH*(FRAC+1)-1:0] bem_o,
+    output wire [NCH*(FRAC+1)-1:0] ga_o,
+    output wire [3:0]            cm_o,
     output wire                  mat_we_o,
     output wire [10:0]           mat_n_o,
     output wire [UFRAC:0]        mat_thr_o,
@@ -93,7 +100,6 @@ module sc_light_regfile #(
   localparam integer F  = FRAC;
   localparam integer PW = FRAC + 8;
   localparam integer CL = FRAC + 1;
-  localparam [CL-1:0] ONE = {1'b1, {FRAC{1'b0}}};
   localparam integer SPECULAR = (UNITS != 0) ? 1 : 0;
   localparam integer LV = (SPECULAR != 0 && LOCAL_VIEWER != 0) ? 1 : 0;
 
@@ -118,48 +124,40 @@ module sc_light_regfile #(
   genvar j, c, gi;
 
   // ---------------------------------------------------------------------------- global modes
+  // light_model: one register of the fields this core has (positions LM_* from config/configs.json
+  // light_model_bits); a field of an absent capability reads 0 (no flip-flop)
+  localparam [LIGHT_MODEL_BITS-1:0] LM_HAS =
+      (((SPECULAR != 0 || NORMALIZE != 0) ? 1 : 0) << LM_LOCAL_VIEWER) |
+      (((SPECULAR != 0 || NORMALIZE != 0) ? 1 : 0) << LM_PHONG) |
+      (((SPECULAR != 0 || NORMALIZE != 0) ? 1 : 0) << LM_NORMALIZE) |
+      (((TWO_SIDE != 0) ? 1 : 0) << LM_TWO_SIDE) |
+      (((SEP != 0) ? 1 : 0) << LM_SEPARATE_SPECULAR);
+  wire [LIGHT_MODEL_BITS-1:0] model_w;
   generate
-    if (SPECULAR != 0 || NORMALIZE != 0) begin : g_model
-      reg [2:0] model_q;
-      always @(posedge clk_i) begin
-        if (wr_i && addr_i == REG_LIGHT_MODEL) model_q <= data_i[2:0];
+    for (gi = 0; gi < LIGHT_MODEL_BITS; gi = gi + 1) begin : g_model
+      if (LM_HAS[gi]) begin : g_bit
+        reg b_q;
+        always @(posedge clk_i) begin
+          if (wr_i && addr_i == REG_LIGHT_MODEL) b_q <= data_i[gi];
+        end
+        assign model_w[gi] = b_q;
+      end else begin : g_none
+        assign model_w[gi] = 1'b0;
       end
-      assign lv_o        = (LV != 0) && model_q[0];
-      assign phong_o     = (SPECULAR != 0) && (PHONG != 0) && (BLINN == 0 || model_q[1]);
-      assign normalize_o = (NORMALIZE != 0) && model_q[2];
-    end else begin : g_no_model
-      assign lv_o = 1'b0;
-      assign phong_o = 1'b0;
-      assign normalize_o = 1'b0;
-    end
-    // GL_LIGHT_MODEL_TWO_SIDE (light_model bit 3)
-    if (TWO_SIDE != 0) begin : g_two
-      reg two_q;
-      always @(posedge clk_i) begin
-        if (wr_i && addr_i == REG_LIGHT_MODEL) two_q <= data_i[3];
-      end
-      assign two_o = two_q;
-    end else begin : g_no_two
-      assign two_o = 1'b0;
-    end
-    // GL_SEPARATE_SPECULAR_COLOR (light_model bit 4; SEP needs units, so g_model exists)
-    if (SEP != 0) begin : g_sep
-      reg sep_q;
-      always @(posedge clk_i) begin
-        if (wr_i && addr_i == REG_LIGHT_MODEL) sep_q <= data_i[4];
-      end
-      assign sep_o = sep_q;
-    end else begin : g_no_sep
-      assign sep_o = 1'b0;
     end
   endgenerate
+  assign lv_o        = (LV != 0) && model_w[LM_LOCAL_VIEWER];
+  assign phong_o     = (SPECULAR != 0) && (PHONG != 0) && (BLINN == 0 || model_w[LM_PHONG]);
+  assign normalize_o = (NORMALIZE != 0) && model_w[LM_NORMALIZE];
+  assign two_o       = model_w[LM_TWO_SIDE];       // GL_LIGHT_MODEL_TWO_SIDE
+  assign sep_o       = model_w[LM_SEPARATE_SPECULAR];  // GL_SEPARATE_SPECULAR_COLOR
 
   // ---------------------------------------------------------------------------- material colours, scene term
   // bank 0 the front material (mat_*), bank 1 with TWO_SIDE the back colour bank (back_mat_*: two-sided lighting)
   localparam integer NBK = (TWO_SIDE != 0) ? 2 : 1;
   wire [NCH*CL-1:0]   mamb_w;
   wire [NCH*CL-1:0]   ga_w;          // global ambient
-  wire [2*NCH*CL-1:0] amb_bk, dif_bk, spec_bk, scene_bk;
+  wire [2*NCH*CL-1:0] em_bk, amb_bk, dif_bk, spec_bk, scene_bk;
   generate
     for (c = 0; c < NCH; c = c + 1) begin : g_ga
       localparam integer A_GA = reg_at(REG_GLOBAL_AMBIENT, c);
@@ -186,15 +184,17 @@ module sc_light_regfile #(
             if (wr_i && addr_i == A_EM[AW-1:0]) em_q   <= data_i[CL-1:0];
             if (wr_i && addr_i == A_MA[AW-1:0]) mamb_q <= data_i[CL-1:0];
           end
-          wire [2*CL-1:0] ag = {{CL{1'b0}}, mamb_q} * {{CL{1'b0}}, ga_w[c*CL +: CL]};
-          wire [CL+1:0]   sc = {2'b00, em_q} + {1'b0, ag[2*CL-1:F]};
-          wire unused_ag = &{1'b0, ag[F-1:0]};
+          wire [CL-1:0] sc;
+          sc_light_scene #(.FRAC(FRAC)) u_scene (
+              .em_i(em_q), .am_i(mamb_q), .ga_i(ga_w[c*CL +: CL]), .scene_o(sc));
           always @(posedge clk_i) begin
-            scene_q <= (sc > {2'b00, ONE}) ? ONE : sc[CL-1:0];
+            scene_q <= sc;
           end
+          assign em_bk[O +: CL]    = em_q;
           assign amb_bk[O +: CL]   = mamb_q;
           assign scene_bk[O +: CL] = scene_q;
         end else begin : g_no_amb
+          assign em_bk[O +: CL]    = {CL{1'b0}};
           assign amb_bk[O +: CL]   = {CL{1'b0}};
           assign scene_bk[O +: CL] = {CL{1'b0}};
         end
@@ -232,6 +232,26 @@ module sc_light_regfile #(
   assign bscene_o = scene_bk[2*NCH*CL-1:NCH*CL];
   assign bdif_o   = dif_bk[2*NCH*CL-1:NCH*CL];
   assign bspec_o  = spec_bk[2*NCH*CL-1:NCH*CL];
+  // colour material (COL_MAT): the scene term's operands, for the core's per-fragment scene term
+  assign em_o     = em_bk[NCH*CL-1:0];
+  assign bem_o    = em_bk[2*NCH*CL-1:NCH*CL];
+  assign ga_o     = ga_w;
+
+  // ---------------------------------------------------------------------------- colour material
+  // GL_COLOR_MATERIAL (register colour_material: bit 0 enable, bits 3:1 the glColorMaterial mode): cm_o =
+  // {specular, diffuse, ambient, emission}, the material colours the fragment's colour replaces
+  generate
+    if (COL_MAT != 0) begin : g_cm
+      reg [3:0] cm_q;
+      always @(posedge clk_i) begin
+        if (wr_i && addr_i == REG_COLOUR_MATERIAL) cm_q <= data_i[3:0];
+      end
+      wire [2:0] md = cm_q[3:1];
+      assign cm_o = cm_q[0] ? {md == 3'd3, md == 3'd2 || md == 3'd4, md == 3'd1 || md == 3'd4, md == 3'd0} : 4'd0;
+    end else begin : g_no_cm
+      assign cm_o = 4'd0;
+    end
+  endgenerate
 
   // ---------------------------------------------------------------------------- unit material, unit select
   // The units' own copies are loaded at the same edge with the same values (mat_we_o with the next

@@ -21,7 +21,9 @@
 //   and sterm_o = 0.
 // Parameters: FRAC, NLT, NCH, SPW (unit output width), SG (the unit's extra fraction bits, SGUARD of
 //             rtl/sc_light.v), AMBIENT, DIFFUSE, SPECULAR, CAN_ATT, CSER, SEP, TWO (two-sided: back_i at B0
-//             chooses the back colour bank bamb_i / bdif_i / bspec_i for the item, each read at its stage).
+//             chooses the back colour bank bamb_i / bdif_i / bspec_i for the item, each read at its stage),
+//             COL (colour material: cm_i = {specular, diffuse, ambient} take the fragment's colour, col0_i at
+//             B0 for diffuse and specular, col1_i at B1 for ambient, instead of either bank's register).
 // Ports     : clk_i, en_i (the back-advancing condition); at B0 (the unit's output): spec_i, f_i,
 //             diff_i, att_i, idx_i, v_i (a light in this lane); material mamb_i, mdif_i, mspec_i; every slot's
 //             lamb_i, ldif_i, lspec_i (packed as sc_light_regfile.v); ch_i (CSER: the item's channel at
@@ -42,7 +44,8 @@ module sc_light_shade #(
     parameter integer CAN_ATT  = 0,
     parameter integer CSER     = 0,
     parameter integer SEP      = 0,
-    parameter integer TWO      = 0
+    parameter integer TWO      = 0,
+    parameter integer COL      = 0
 ) (
     input  wire                          clk_i,
     input  wire                          en_i,
@@ -53,6 +56,9 @@ module sc_light_shade #(
     input  wire [NCH*(FRAC+1)-1:0]       bamb_i,
     input  wire [NCH*(FRAC+1)-1:0]       bdif_i,
     input  wire [NCH*(FRAC+1)-1:0]       bspec_i,
+    input  wire [2:0]                    cm_i,
+    input  wire [NCH*(FRAC+1)-1:0]       col0_i,
+    input  wire [NCH*(FRAC+1)-1:0]       col1_i,
     input  wire [FRAC:0]                 diff_i,
     input  wire [FRAC+7:0]               att_i,
     input  wire [2:0]                    idx_i,
@@ -85,9 +91,13 @@ module sc_light_shade #(
   always @(posedge clk_i) begin
     if (en_i) b1_back_q <= back_i;
   end
-  wire [NCH*CL-1:0] mdif_s  = (TWO != 0 && back_i) ? bdif_i : mdif_i;
-  wire [NCH*CL-1:0] mspec_s = (TWO != 0 && back_i) ? bspec_i : mspec_i;
-  wire [NCH*CL-1:0] mamb_s  = (TWO != 0 && b1_back_q) ? bamb_i : mamb_i;
+  wire [NCH*CL-1:0] mdif_b  = (TWO != 0 && back_i) ? bdif_i : mdif_i;
+  wire [NCH*CL-1:0] mspec_b = (TWO != 0 && back_i) ? bspec_i : mspec_i;
+  wire [NCH*CL-1:0] mamb_b  = (TWO != 0 && b1_back_q) ? bamb_i : mamb_i;
+  // COL: the fragment's colour replaces the material colours cm_i names (either bank), at B0 and at B1
+  wire [NCH*CL-1:0] mdif_s  = (COL != 0 && cm_i[1]) ? col0_i : mdif_b;
+  wire [NCH*CL-1:0] mspec_s = (COL != 0 && cm_i[2]) ? col0_i : mspec_b;
+  wire [NCH*CL-1:0] mamb_s  = (COL != 0 && cm_i[0]) ? col1_i : mamb_b;
 
   reg  [2:0] b1_idx_q;
   reg  [1:0] b1_ch_q;
@@ -123,6 +133,9 @@ module sc_light_shade #(
     end
     if (AMBIENT == 0) begin : g_amb_unused
       wire unused_amb = &{1'b0, lamb_i, mamb_i, mamb_s};
+    end
+    if (COL == 0) begin : g_no_col
+      wire unused_col = &{1'b0, cm_i, col0_i, col1_i};
     end
     if (TWO == 0) begin : g_no_two
       wire unused_two = &{1'b0, back_i, b1_back_q, bamb_i, bdif_i, bspec_i};

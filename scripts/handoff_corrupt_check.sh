@@ -18,7 +18,7 @@ trap 'rm -rf "$work"' EXIT
 cp -r "$b" "$work/bundle" || exit 1
 awk 'BEGIN{d=0; i=-1} $0 !~ /^\/\// {i++}
      !d && $0 !~ /^\/\// && NF==5 && $5 !~ /^0+$/ {gsub(/./,"0",$5); d=1; print i > "/dev/stderr"}
-     !d && $0 !~ /^\/\// && NF==13 && $1 ~ /1$/ && $8 !~ /^0+$/ {gsub(/./,"0",$8); d=1; print i > "/dev/stderr"}
+     !d && $0 !~ /^\/\// && NF==16 && $1 ~ /1$/ && $8 !~ /^0+$/ {gsub(/./,"0",$8); d=1; print i > "/dev/stderr"}
      {print}' "$b/$vf" > "$work/bundle/$vf" 2> "$work/idx"
 idx=$(cat "$work/idx")
 [ -n "$idx" ] || { echo "corrupt_check: FAIL: no non-zero expected value in $vf"; exit 1; }

@@ -54,7 +54,8 @@ struct BarePins : LightPinOps<BarePins> {
   explicit BarePins(M& t)
       : rst_n(t.rst_ni), reg_we(t.reg_we_i), reg_addr(t.reg_addr_i), reg_data(t.reg_data_i), reg_ready{t.reg_ready_o},
         in_valid(t.in_valid_i), in_ready{t.in_ready_o}, in_nx(t.in_nx_i), in_ny(t.in_ny_i), in_nz(t.in_nz_i),
-        in_px(t.in_px_i), in_py(t.in_py_i), in_pz(t.in_pz_i), in_tag(t.in_tag_i), in_back(t.in_back_i), out_valid{t.out_valid_o},
+        in_px(t.in_px_i), in_py(t.in_py_i), in_pz(t.in_pz_i), in_tag(t.in_tag_i), in_back(t.in_back_i),
+        in_cr(t.in_cr_i), in_cg(t.in_cg_i), in_cb(t.in_cb_i), out_valid{t.out_valid_o},
         out_ready(t.out_ready_i), out_r{t.out_r_o}, out_g{t.out_g_o}, out_b{t.out_b_o},
         out_sr{t.out_sr_o}, out_sg{t.out_sg_o}, out_sb{t.out_sb_o}, out_tag{t.out_tag_o} {}
   BareIn<Field<decltype(M::rst_ni)>> rst_n;
@@ -68,6 +69,7 @@ struct BarePins : LightPinOps<BarePins> {
   BareIn<Field<decltype(M::in_px_i)>> in_px, in_py, in_pz;
   BareIn<Field<decltype(M::in_tag_i)>> in_tag;
   BareIn<Field<decltype(M::in_back_i)>> in_back;
+  BareIn<Field<decltype(M::in_cr_i)>> in_cr, in_cg, in_cb;
   BareOut<Field<decltype(M::out_valid_o)>> out_valid;
   BareIn<Field<decltype(M::out_ready_i)>> out_ready;
   BareOut<Field<decltype(M::out_r_o)>> out_r, out_g, out_b, out_sr, out_sg, out_sb;
@@ -78,6 +80,7 @@ struct BarePins : LightPinOps<BarePins> {
   void commit() {
     rst_n.commit(), reg_we.commit(), reg_addr.commit(), reg_data.commit(), in_valid.commit();
     in_nx.commit(), in_ny.commit(), in_nz.commit(), in_px.commit(), in_py.commit(), in_pz.commit(), in_back.commit();
+    in_cr.commit(), in_cg.commit(), in_cb.commit();
     in_tag.commit(), out_ready.commit();
   }
 };

@@ -77,6 +77,9 @@ struct LightPinOps {
     f.p[1] = sign_extend(d.in_py.read(), pb);
     f.p[2] = sign_extend(d.in_pz.read(), pb);
     f.back = d.in_back.read() != 0;
+    f.col[0] = d.in_cr.read();
+    f.col[1] = d.in_cg.read();
+    f.col[2] = d.in_cb.read();
     return f;
   }
   [[nodiscard]] Colour out_payload() const {
@@ -120,6 +123,10 @@ struct LightPinOps {
     d.in_py.write(static_cast<uint32_t>(f.p[1]) & pm);
     d.in_pz.write(static_cast<uint32_t>(f.p[2]) & pm);
     d.in_back.write(f.back);
+    const uint32_t cm = static_cast<uint32_t>(mask_bits(light_colour_bits(d.frac)));
+    d.in_cr.write(f.col[0] & cm);
+    d.in_cg.write(f.col[1] & cm);
+    d.in_cb.write(f.col[2] & cm);
     d.in_tag.write(tag);
   }
 

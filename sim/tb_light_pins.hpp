@@ -26,6 +26,7 @@ struct LightPins : LightPinOps<LightPins> {
   sc_core::sc_signal<uint32_t> in_px{"in_px", 0}, in_py{"in_py", 0}, in_pz{"in_pz", 0};
   sc_core::sc_signal<uint32_t> in_tag{"in_tag", 0};
   sc_core::sc_signal<bool> in_back{"in_back", false};
+  sc_core::sc_signal<uint32_t> in_cr{"in_cr", 0}, in_cg{"in_cg", 0}, in_cb{"in_cb", 0};
   sc_core::sc_signal<bool> out_valid{"out_valid", false};
   sc_core::sc_signal<bool> out_ready{"out_ready", false};
   sc_core::sc_signal<uint32_t> out_r{"out_r", 0}, out_g{"out_g", 0}, out_b{"out_b", 0};
@@ -53,6 +54,9 @@ struct LightPins : LightPinOps<LightPins> {
     dut.in_pz_i(in_pz);
     dut.in_tag_i(in_tag);
     dut.in_back_i(in_back);
+    dut.in_cr_i(in_cr);
+    dut.in_cg_i(in_cg);
+    dut.in_cb_i(in_cb);
     dut.out_valid_o(out_valid);
     dut.out_ready_i(out_ready);
     dut.out_r_o(out_r);

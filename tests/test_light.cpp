@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
@@ -146,6 +147,26 @@ struct Rig {
     for (const auto& w : ws) regs.write(core.widths(), w.addr, w.data);
   }
 };
+// The two-sided tests' program on a core with a directional light in slot 0 and a point_att light in slot 1 at
+// (1, 2, z): a front material and a back colour bank far apart (shininess 40 both); returns them.
+std::pair<MaterialParams, MaterialParams> two_lights_two_banks(Rig& r, double z) {
+  LightParams lp;
+  lp.position[0] = 0.2, lp.position[1] = 0.4, lp.position[2] = 1, lp.position[3] = 0;
+  r.apply(light_writes(r.core, 0, lp));
+  LightParams pp;
+  pp.position[0] = 1, pp.position[1] = 2, pp.position[2] = z, pp.position[3] = 1;
+  pp.kq = 0.05;
+  r.apply(light_writes(r.core, 1, pp));
+  MaterialParams front, back;
+  for (int c = 0; c < 3; ++c) {
+    front.emission[c] = 0.05, front.ambient[c] = 0.3, front.diffuse[c] = 0.7, front.specular[c] = 0.6;
+    back.emission[c] = 0.1 * c, back.ambient[c] = 0.5, back.diffuse[c] = 0.2 + 0.3 * c, back.specular[c] = 0.9;
+  }
+  front.shininess = back.shininess = 40;
+  r.apply(material_writes(r.core, front));
+  r.apply(back_material_writes(r.core, back));
+  return {front, back};
+}
 }  // namespace
 
 // N = 0: no diffuse, no specular (f = 0): only emission + a·A + Σ att·a·Ia remains.
@@ -376,21 +397,7 @@ TEST(LightHardCases, TwoSidedBackFaceIsTheFrontWithMinusNAndTheBackBank) {
   Rig r(feature_set_from_json(tj, "test"));
   const LightCore plain(feature_set_from_json(base, "test"));
   const int64_t one = int64_t{1} << r.F;
-  LightParams lp;
-  lp.position[0] = 0.2, lp.position[1] = 0.4, lp.position[2] = 1, lp.position[3] = 0;
-  r.apply(light_writes(r.core, 0, lp));
-  LightParams pp;
-  pp.position[0] = 1, pp.position[1] = 2, pp.position[2] = -3, pp.position[3] = 1;
-  pp.kq = 0.05;
-  r.apply(light_writes(r.core, 1, pp));
-  MaterialParams front, back;
-  for (int c = 0; c < 3; ++c) {
-    front.emission[c] = 0.05, front.ambient[c] = 0.3, front.diffuse[c] = 0.7, front.specular[c] = 0.6;
-    back.emission[c] = 0.1 * c, back.ambient[c] = 0.5, back.diffuse[c] = 0.2 + 0.3 * c, back.specular[c] = 0.9;
-  }
-  front.shininess = back.shininess = 40;
-  r.apply(material_writes(r.core, front));
-  r.apply(back_material_writes(r.core, front, back));
+  MaterialParams back = two_lights_two_banks(r, -3).second;
   // the same core with the back bank as its front material: the reference for a back fragment
   Rig swapped(feature_set_from_json(tj, "test"));
   swapped.regs = r.regs;
@@ -437,9 +444,77 @@ TEST(LightHardCases, TwoSidedBackFaceIsTheFrontWithMinusNAndTheBackBank) {
   LightRegs pr = r.regs;
   pr.light_model |= kModelTwoSide;
   EXPECT_EQ(plain.eval(pr, f1), plain.eval(pr, f2));
-  // the back face shares the unit material: a different back shininess is rejected
+  // the back colour bank holds only colours: the shininess is the unit material's (unit_material_writes), the same
+  // words as material_writes' first ones
   back.shininess = 41;
-  EXPECT_THROW(back_material_writes(r.core, front, back), std::invalid_argument);
+  for (const auto& w : back_material_writes(r.core, back))
+    EXPECT_TRUE(w.addr != kReg_mat_n && w.addr != kReg_mat_thr && w.addr != kReg_mat_coef && w.addr != kReg_mat_unit);
+  const auto uw = unit_material_writes(r.core, back), mw = material_writes(r.core, back);
+  ASSERT_LE(uw.size(), mw.size());
+  for (size_t i = 0; i < uw.size(); ++i) EXPECT_TRUE(uw[i].addr == mw[i].addr && uw[i].data == mw[i].data) << i;
+}
+
+// Colour material (feature colour_material, docs/lighting.md §3.8): with the register's bit 0 the fragment's
+// colour stands for the material colour(s) its mode names, of the bank the fragment is lit with — exactly as
+// the same registers holding that colour (eval and eval_double); mode fields 5..7, bit 0 clear and a core without
+// the capability ignore the colour.
+TEST(LightHardCases, ColourMaterialIsTheChosenRegistersHoldingTheColour) {
+  const nlohmann::json base = nlohmann::json::parse(R"({"lights": ["directional", "point_att"], "specular": "cs16"})");
+  nlohmann::json cj = base;
+  cj["colour_material"] = true;
+  cj["two_side"] = true;
+  Rig r(feature_set_from_json(cj, "test"));
+  const LightCore plain(feature_set_from_json(base, "test"));
+  const int64_t one = int64_t{1} << r.F;
+  two_lights_two_banks(r, 3);
+  double ga[3] = {0.3, 0.6, 1.2};
+  ModeParams md = default_modes(r.core.features());
+  md.two_side = true;
+  r.apply(global_writes(r.core, ga, md));
+  const uint32_t cmax = (2u << r.F) - 1;
+  const uint32_t cols[][3] = {{0, 0, 0}, {1u << r.F, 1u << r.F, 1u << r.F}, {cmax, 0, 12345}, {77777, cmax, 1}};
+  using CM = ColourMaterial;
+  int changed = 0;
+  for (CM m : {CM::Emission, CM::Ambient, CM::Diffuse, CM::Specular, CM::AmbientAndDiffuse}) {
+    LightRegs on = r.regs;
+    on.write(r.core.widths(), kReg_colour_material, colour_material_word(true, m));
+    for (const auto& col : cols)
+      for (int k = 0; k < 24; ++k) {
+        Fragment fr;
+        fr.n[0] = (k % 7 - 3) * one / 3, fr.n[1] = (k % 5 - 2) * one / 2, fr.n[2] = (k % 3 - 1) * one + one / 2;
+        fr.p[0] = k * one / 10, fr.p[2] = -(int64_t{5} << r.F);
+        fr.back = k % 2 == 1;
+        for (int c = 0; c < 3; ++c) fr.col[c] = col[c];
+        // the reference: colour material off, the colour in the registers of the fragment's bank
+        LightRegs ref = r.regs;
+        for (int c = 0; c < 3; ++c) {
+          const uint32_t bank = fr.back ? kReg_back_mat_emission : kReg_mat_emission;
+          const uint32_t off = bank - kReg_mat_emission;  // the back bank keeps the front's layout
+          auto put = [&](uint32_t a) { ref.write(r.core.widths(), a + off + static_cast<uint32_t>(c), col[c]); };
+          if (m == CM::Emission) put(kReg_mat_emission);
+          if (m == CM::Ambient || m == CM::AmbientAndDiffuse) put(kReg_mat_ambient);
+          if (m == CM::Diffuse || m == CM::AmbientAndDiffuse) put(kReg_mat_diffuse);
+          if (m == CM::Specular) put(kReg_mat_specular);
+        }
+        const Colour got = r.core.eval(on, fr);
+        EXPECT_EQ(got, r.core.eval(ref, fr)) << static_cast<int>(m) << " " << k;
+        EXPECT_EQ(r.core.eval_double(on, fr, LightCore::SpecRef::Exact), r.core.eval_double(ref, fr, LightCore::SpecRef::Exact));
+        if (got != r.core.eval(r.regs, fr)) ++changed;
+        // ignored: bit 0 clear, mode fields 5..7, a core without the capability
+        LightRegs off = on;
+        off.colour_material &= ~1u;
+        EXPECT_EQ(r.core.eval(off, fr), r.core.eval(r.regs, fr));
+        for (uint32_t w : {11u, 13u, 15u}) {
+          LightRegs none = r.regs;
+          none.write(r.core.widths(), kReg_colour_material, w);
+          EXPECT_EQ(r.core.eval(none, fr), r.core.eval(r.regs, fr)) << w;
+        }
+        Fragment front_only = fr;
+        front_only.back = false;
+        EXPECT_EQ(plain.eval(on, front_only), plain.eval(r.regs, front_only));
+      }
+  }
+  EXPECT_GT(changed, 5 * 4 * 24 / 2);
 }
 
 // N·L exactly 0 and one code either side, with L = (0, 0, 1) exactly.

@@ -4,6 +4,7 @@
 // core's image bit for bit (for every example scene and for scenes built to hit every substitution).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -502,6 +503,433 @@ TEST(RenderTwoSide, GouraudRimVerticesGetBothFragments) {
       for (uint32_t v : fr.tri_vertices[st.source]) ASSERT_TRUE(sides[v] & (st.back ? 2 : 1));
     }
   expect_full_identical(l, 160, 100);
+}
+
+// A back shininess of its own (tests/data/render/gl_two_side_shininess.json: tube front 32 / back 8, cards front 32 /
+// back 100): the core holds one unit material, so each material's back-facing fragments come in a batch of their own
+// after the back's unit material (mat_n written twice per material). Every fragment is lit with its face's
+// shininess, the double reference follows the same register state, and the image differs from the same scene with
+// back shininess = front in back-facing pixels only.
+TEST(RenderTwoSide, BackShininessGetsABatchOfItsOwn) {
+  Loaded l;
+  l.sc = scene::load_scene(std::string(SHADECORE_SOURCE_DIR) + "/tests/data/render/gl_two_side_shininess.json");
+  for (const auto& o : l.sc.objects) l.meshes.push_back(scene::build_mesh(o));
+  ASSERT_TRUE(l.sc.two_side);
+  ASSERT_EQ(l.sc.materials.size(), 2u);
+  std::set<int> back_n;
+  for (const auto& m : l.sc.materials) {
+    ASSERT_TRUE(m.back.has_value());
+    EXPECT_NE(m.back->shininess, m.shininess);
+    back_n.insert(m.back->shininess);
+  }
+  // the same scene, back shininess = front: one batch per material (the stream as before back shininess existed)
+  Loaded same = l;
+  for (auto& m : same.sc.materials) m.back->shininess = m.shininess;
+  const Frame fr = frame(l, false), fs = frame(same, false);
+  ASSERT_EQ(fr.groups.size(), 1u);
+  ASSERT_EQ(fs.groups.size(), 1u);
+  EXPECT_TRUE(fr.groups[0].fs.low_shininess);  // the back's 8: the chain, derived from the back material
+  EXPECT_FALSE(fs.groups[0].fs.low_shininess);
+  // mat_n writes, and the value each fragment is lit with, per facing
+  auto walk = [](const render::CoreGroup& g, std::set<uint32_t> (&seen)[2]) {
+    int writes = 0;
+    uint32_t n = ~0u;
+    bool was_back = false;
+    int switches = 0;
+    for (const auto& c : g.cmds) {
+      if (c.is_write) {
+        if (c.w.addr == kReg_mat_n) n = c.w.data, ++writes;
+        continue;
+      }
+      seen[c.f.back ? 1 : 0].insert(n);
+      switches += c.f.back != was_back;
+      was_back = c.f.back;
+    }
+    return std::pair<int, int>{writes, switches};
+  };
+  std::set<uint32_t> seen[2], seen_same[2];
+  const auto [writes, switches] = walk(fr.groups[0], seen);
+  const auto [writes_same, switches_same] = walk(fs.groups[0], seen_same);
+  EXPECT_EQ(writes, 4);       // two materials, each front then back
+  EXPECT_EQ(writes_same, 2);  // one per material
+  EXPECT_EQ(switches, 3);     // front, back, front, back: the facings never interleave within a material
+  EXPECT_GT(switches_same, switches);
+  EXPECT_EQ(seen[0], (std::set<uint32_t>{32}));
+  EXPECT_EQ(seen[1], (std::set<uint32_t>{8, 100}));
+  EXPECT_EQ(seen_same[1], (std::set<uint32_t>{32}));
+  // the same fragments (reordered): each destination once
+  EXPECT_EQ(fr.groups[0].dests.size(), fs.groups[0].dests.size());
+  const auto img = cmodel_image(fr), img_same = cmodel_image(fs);
+  EXPECT_EQ(img.covered, img_same.covered);
+  uint64_t back_px = 0, differ = 0;
+  for (int y = 0; y < fr.height; ++y)
+    for (int x = 0; x < fr.width; ++x) {
+      const int32_t id = fr.raster.at(x, y);
+      if (id < 0) continue;
+      const size_t p = static_cast<size_t>(y) * fr.width + x;
+      bool d = false;
+      for (int c = 0; c < 3; ++c) d = d || img.code[p * 3 + c] != img_same.code[p * 3 + c];
+      const bool back = fr.raster.tris()[id].back;
+      back_px += back;
+      differ += d;
+      if (!back) {
+        EXPECT_FALSE(d) << x << "," << y;  // front-facing pixels: the front's shininess either way
+      }
+    }
+  EXPECT_GT(back_px, 500u);
+  EXPECT_GT(differ, back_px / 2);
+  // the double reference sees the register state of each fragment: quantisation only
+  std::vector<std::vector<render::RefColour>> ref;
+  for (const auto& g : fr.groups) ref.push_back(render::run_reference(g, LightCore::SpecRef::Variant));
+  EXPECT_LT(render::error_vs(img, render::resolve_reference(fr, ref)).max_lsb, 16.0);
+  expect_full_identical(l);
+}
+
+// The back batch under colour material (tests/data/render/gl_colour_material_flat.json, two-sided, every object flat
+// under provoking_vertex, with back shininess 6 and 90 added): each fragment is lit with its object's colour material
+// mode and its facing's shininess — the back batch writes each mode's colour_material word again.
+TEST(RenderTwoSide, BackBatchKeepsEachObjectsColourMaterial) {
+  Loaded l;
+  l.sc = scene::load_scene(std::string(SHADECORE_SOURCE_DIR) + "/tests/data/render/gl_colour_material_flat.json");
+  for (const auto& o : l.sc.objects) l.meshes.push_back(scene::build_mesh(o));
+  ASSERT_TRUE(l.sc.two_side);
+  ASSERT_EQ(l.sc.materials.size(), 2u);
+  const int back_n[2] = {6, 90};
+  for (int m = 0; m < 2; ++m) {
+    scene::BackMaterial b = l.sc.materials[m].back_or_front();
+    b.shininess = back_n[m];
+    l.sc.materials[m].back = b;
+  }
+  const Frame fr = frame(l, false, 160, 110);
+  ASSERT_EQ(fr.groups.size(), 1u);
+  const auto& g = fr.groups[0];
+  ASSERT_TRUE(g.fs.colour_material);
+  uint32_t n = ~0u, cm = ~0u;
+  size_t checked[2] = {0, 0}, i = 0;
+  for (const auto& c : g.cmds) {
+    if (c.is_write) {
+      if (c.w.addr == kReg_mat_n) n = c.w.data;
+      if (c.w.addr == kReg_colour_material) cm = c.w.data;
+      continue;
+    }
+    const auto& d = g.dests[i++];
+    ASSERT_EQ(d.kind, render::DestKind::Vertex);
+    const auto& o = l.sc.objects[static_cast<size_t>(fr.vertex_object[d.index])];
+    const auto& M = l.sc.materials[static_cast<size_t>(o.material)];
+    EXPECT_EQ(cm, o.colour_material ? colour_material_word(true, *o.colour_material) : 0u) << i;
+    EXPECT_EQ(n, static_cast<uint32_t>(d.back ? M.back->shininess : M.shininess)) << i;
+    ++checked[d.back ? 1 : 0];
+  }
+  EXPECT_GT(checked[0], 100u);
+  EXPECT_GT(checked[1], 20u);
+}
+
+// ---- GL_COLOR_MATERIAL (issue 19) -----------------------------------------------------------------------
+
+std::string temp_obj(const std::string& name, const std::string& text) {
+  const std::string p = (std::filesystem::temp_directory_path() /
+                         ("shadecore_" + name + "_" + std::to_string(::getpid()) + ".obj")).string();
+  std::ofstream(p) << text;
+  return p;
+}
+
+// A unit quad facing the camera, one face (v0 v1 v2 v3: fan triangles (v0, v1, v2) and (v0, v2, v3)) with a colour
+// per vertex.
+const scene::Vec3 kQuadColour[4] = {{0.9, 0.1, 0.1}, {0.1, 0.8, 0.2}, {0.2, 0.3, 0.9}, {0.7, 0.7, 0.1}};
+std::string quad_obj() {
+  std::string t;
+  const char* xy[4] = {"-1 -1", "1 -1", "1 1", "-1 1"};
+  for (int v = 0; v < 4; ++v)
+    t += std::string("v ") + xy[v] + " 0 " + std::to_string(kQuadColour[v][0]) + " " + std::to_string(kQuadColour[v][1]) +
+         " " + std::to_string(kQuadColour[v][2]) + "\n";
+  return t + "vn 0 0 1\nf 1//1 2//1 3//1 4//1\n";
+}
+// The quad under colour material `emission` with a black material and no lights' colours: each fragment's colour is
+// its colour code exactly (the core adds zeros), so the image shows what colour reached each pixel.
+std::string emission_quad(const std::string& shading, const std::string& rule = "centroid") {
+  std::string s = make(R"({"position": [0, 0, 1, 0], "diffuse": [0, 0, 0], "specular": [0, 0, 0]})",
+                       R"("black": {"ambient": [0, 0, 0], "diffuse": [0, 0, 0]})",
+                       R"({"type": "mesh", "file": ")" + temp_obj("cm_quad", quad_obj()) +
+                           R"(", "material": "black", "color_material": "emission", "shading": ")" + shading + R"("})",
+                       R"({"ambient": [0, 0, 0]})");
+  return s.replace(s.find("\"image\""), 7, "\"flat_rule\": \"" + rule + "\", \"image\"");
+}
+uint32_t code16(double x) { return static_cast<uint32_t>(std::llround(std::ldexp(x, 16))); }
+
+TEST(RenderColourMaterial, ParsesTheKeysWithTheirDefaults) {
+  const std::string lights = R"({"position": [0, 1, 1, 0]})";
+  const auto d = parse(make(lights, R"("m": {})", objects("gouraud", "flat")));
+  for (const auto& o : d.sc.objects) {
+    EXPECT_FALSE(o.colour_material.has_value());                // none
+    EXPECT_EQ(o.colour, (scene::Vec3{1, 1, 1}));                // GL's initial current colour
+  }
+  const std::pair<const char*, ColourMaterial> modes[] = {
+      {"emission", ColourMaterial::Emission}, {"ambient", ColourMaterial::Ambient}, {"diffuse", ColourMaterial::Diffuse},
+      {"specular", ColourMaterial::Specular}, {"ambient_and_diffuse", ColourMaterial::AmbientAndDiffuse}};
+  for (const auto& [name, mode] : modes) {
+    const auto l = parse(make(lights, R"("m": {})", R"({"type": "sphere", "material": "m", "color_material": ")" +
+                                                      std::string(name) + R"(", "color": [0.25, 0.5, 1]})"));
+    ASSERT_TRUE(l.sc.objects[0].colour_material.has_value());
+    EXPECT_EQ(*l.sc.objects[0].colour_material, mode);
+    EXPECT_STREQ(scene::to_string(l.sc.objects[0].colour_material), name);
+    EXPECT_EQ(l.sc.objects[0].colour, (scene::Vec3{0.25, 0.5, 1}));
+  }
+  const auto n = parse(make(lights, R"("m": {})", R"({"type": "sphere", "material": "m", "color_material": "none"})"));
+  EXPECT_FALSE(n.sc.objects[0].colour_material.has_value());
+}
+
+// Each mode replaces exactly its material term(s): the sphere of material m under colour material with colour C
+// renders identically to the sphere of m with those terms set to C and colour material off, in every shading mode;
+// and differs from m's own sphere (C reaches the core). Both faces of the material (GL_FRONT_AND_BACK) under two_side.
+TEST(RenderColourMaterial, EachModeIsTheMaterialTermReplaced) {
+  const std::string lights = R"({"position": [0.5, 0.8, 1, 0], "ambient": [0.1, 0.1, 0.1], "diffuse": [0.8, 0.8, 0.8],
+                                 "specular": [1, 1, 1]},
+                                {"position": [-2, 1, 3, 1], "diffuse": [0.3, 0.3, 0.3], "specular": [0.5, 0.5, 0.5]})";
+  const std::string m = R"("emission": [0.05, 0.05, 0.05], "ambient": [0.3, 0.3, 0.3], "diffuse": [0.6, 0.6, 0.6],
+                           "specular": [0.4, 0.4, 0.4], "shininess": 24)";
+  const std::string C = "[0.7, 0.2, 0.45]";
+  struct Mode {
+    const char* name;
+    std::vector<const char*> terms;
+  };
+  const Mode modes[] = {{"emission", {"emission"}}, {"ambient", {"ambient"}}, {"diffuse", {"diffuse"}},
+                        {"specular", {"specular"}}, {"ambient_and_diffuse", {"ambient", "diffuse"}}};
+  for (const std::string sh : {"flat", "gouraud", "phong"})
+    for (const bool two_side : {false, true})
+      for (const auto& md : modes) {
+        SCOPED_TRACE(sh + " " + md.name + (two_side ? " two_side" : ""));
+        std::string replaced = m;
+        for (const char* t : md.terms) {
+          const std::string key = std::string("\"") + t + "\": ";
+          const size_t a = replaced.find(key) + key.size(), b = replaced.find(']', a) + 1;
+          replaced.replace(a, b - a, C);
+        }
+        const std::string lm = two_side ? R"({"ambient": [0.2, 0.2, 0.2], "two_side": true})" : "";
+        auto sphere = [&](const std::string& mat, const std::string& extra) {
+          return R"({"type": "sphere", "slices": 14, "stacks": 8, "material": ")" + mat + R"(", "shading": ")" + sh +
+                 R"(", "transform": {"rotate": [70, 1, 0.3, 0]})" + extra + "}";
+        };
+        const auto cm = parse(make(lights, "\"m\": {" + m + "}",
+                                   sphere("m", std::string(R"(, "color_material": ")") + md.name + R"(", "color": )" + C), lm));
+        const auto set = parse(make(lights, "\"c\": {" + replaced + "}", sphere("c", ""), lm));
+        const auto own = parse(make(lights, "\"m\": {" + m + "}", sphere("m", R"(, "color": )" + C), lm));
+        const Frame fc = frame(cm, false), fs = frame(set, false), fo = frame(own, false);
+        ASSERT_EQ(fc.groups.size(), 1u);
+        EXPECT_TRUE(fc.groups[0].fs.colour_material);
+        EXPECT_FALSE(fs.groups[0].fs.colour_material);
+        EXPECT_FALSE(fo.groups[0].fs.colour_material);  // `color` alone does nothing
+        const auto ic = cmodel_image(fc), is = cmodel_image(fs), io = cmodel_image(fo);
+        EXPECT_GT(covered(ic), 300u);
+        EXPECT_EQ(ic.covered, is.covered);
+        EXPECT_EQ(render::mismatching_pixels(ic, is), 0u);
+        EXPECT_GT(render::mismatching_pixels(ic, io), covered(ic) / 4);
+        // the exact reference uses the same fragment colours
+        std::vector<std::vector<render::RefColour>> rc, rs;
+        for (const auto& g : fc.groups) rc.push_back(render::run_reference(g, LightCore::SpecRef::Exact));
+        for (const auto& g : fs.groups) rs.push_back(render::run_reference(g, LightCore::SpecRef::Exact));
+        EXPECT_EQ(render::resolve_reference(fc, rc).value, render::resolve_reference(fs, rs).value);
+        if (!two_side && sh == "gouraud") expect_full_identical(cm);
+      }
+}
+
+// Per-vertex colours (OBJ `v x y z r g b`): Gouraud lights each vertex with its colour and interpolates the
+// results; Phong interpolates the colour per pixel (as N and P) and lights it. With emission only, both show the
+// interpolated colour codes: the same image, the vertex colours at the corners and their mean at the centre.
+TEST(RenderColourMaterial, VertexColoursInterpolatedGouraudAndPhong) {
+  const auto g = parse(emission_quad("gouraud")), p = parse(emission_quad("phong"));
+  ASSERT_EQ(g.meshes[0].col.size(), 4u);
+  const Frame fg = frame(g, false), fp = frame(p, false);
+  ASSERT_EQ(fg.vertex_frag.size(), 4u);
+  for (size_t v = 0; v < 4; ++v)  // vertices keep the OBJ order (one normal): each carries its colour
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(fg.vertex_frag[v].col[c], code16(kQuadColour[v][c]));
+  EXPECT_EQ(fg.groups[0].vertices, 4u);
+  EXPECT_GT(fp.groups[0].pixels, 500u);
+  const auto ig = cmodel_image(fg), ip = cmodel_image(fp);
+  EXPECT_EQ(ig.covered, ip.covered);
+  EXPECT_EQ(render::mismatching_pixels(ig, ip), 0u);
+  std::set<std::array<uint32_t, 3>> distinct;
+  for (size_t px = 0; px < ig.covered.size(); ++px)
+    if (ig.covered[px]) distinct.insert({ig.code[px * 3], ig.code[px * 3 + 1], ig.code[px * 3 + 2]});
+  EXPECT_GT(distinct.size(), 200u);
+  // every pixel: the perspective-correct interpolation of its triangle's vertex colours, computed here in double
+  // from the rasteriser's weights (within 2^-14: the codes' rounding)
+  uint64_t checked = 0;
+  for (int y = 0; y < fg.height; ++y)
+    for (int x = 0; x < fg.width; ++x) {
+      const int32_t t = fg.raster.at(x, y);
+      if (t < 0) continue;
+      const auto& st = fg.raster.tris()[t];
+      const auto& tv = fg.tri_vertices[st.source];
+      const raster::Weights w = fg.raster.weights(t, x, y);
+      for (int ch = 0; ch < 3; ++ch) {
+        double want = 0;
+        for (int k = 0; k < 3; ++k)
+          for (int q = 0; q < 3; ++q)
+            want += static_cast<double>(w.w[k]) / static_cast<double>(w.sum) * st.v[k].b[q] * kQuadColour[tv[q]][ch];
+        ASSERT_NEAR(std::ldexp(ig.code[(static_cast<size_t>(y) * fg.width + x) * 3 + ch], -16), want, 1.0 / (1 << 14))
+            << "pixel (" << x << ", " << y << ") channel " << ch;
+      }
+      ++checked;
+    }
+  EXPECT_EQ(checked, covered(ig));
+}
+
+// Flat: flat_rule centroid lights the face with the mean of its vertices' colours; provoking_vertex each fan
+// triangle with its last vertex's colour (v2 for (v0, v1, v2), v3 for (v0, v2, v3)).
+TEST(RenderColourMaterial, FlatRulesPickTheColour) {
+  const auto cen = parse(emission_quad("flat")), pv = parse(emission_quad("flat", "provoking_vertex"));
+  const Frame fc = frame(cen, false), fp = frame(pv, false);
+  const auto ic = cmodel_image(fc), ip = cmodel_image(fp);
+  EXPECT_GT(covered(ic), 500u);
+  std::array<uint32_t, 3> mean{};
+  for (int ch = 0; ch < 3; ++ch)
+    mean[ch] = code16((kQuadColour[0][ch] + kQuadColour[1][ch] + kQuadColour[2][ch] + kQuadColour[3][ch]) / 4);
+  std::map<std::array<uint32_t, 3>, uint64_t> cc, cp;
+  for (size_t px = 0; px < ic.covered.size(); ++px) {
+    if (ic.covered[px]) ++cc[{ic.code[px * 3], ic.code[px * 3 + 1], ic.code[px * 3 + 2]}];
+    if (ip.covered[px]) ++cp[{ip.code[px * 3], ip.code[px * 3 + 1], ip.code[px * 3 + 2]}];
+  }
+  ASSERT_EQ(cc.size(), 1u);
+  EXPECT_EQ(cc.begin()->first, mean);
+  auto code_of = [](int v) {
+    return std::array<uint32_t, 3>{code16(kQuadColour[v][0]), code16(kQuadColour[v][1]), code16(kQuadColour[v][2])};
+  };
+  ASSERT_EQ(cp.size(), 2u);
+  EXPECT_GT(cp[code_of(2)], 200u);
+  EXPECT_GT(cp[code_of(3)], 200u);
+  EXPECT_EQ(fc.groups[0].faces, 1u);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(fc.face_frag[0].col[ch], mean[ch]);
+}
+
+// The derivation turns colour_material on only for a core that has an object with a colour material, and the
+// object's colours count instead of the replaced material terms; streams without colour material neither write
+// the register nor carry a colour; with it the register is written before each mode's fragments.
+TEST(RenderColourMaterial, DerivationAndStream) {
+  const std::string lights = R"({"position": [0, 1, 1, 0], "specular": [1, 1, 1]})";
+  const std::string grey = R"("m": {"diffuse": [0.5, 0.5, 0.5], "specular": [0.3, 0.3, 0.3]},
+                              "s": {"diffuse": [0.5, 0.5, 0.5], "specular": [0.3, 0.3, 0.3], "specular_unit": "schlick_nr"},
+                              "d": {"diffuse": [0.5, 0.5, 0.5]})";
+  auto sph = [](const std::string& mat, const std::string& keys, double x) {
+    return R"({"type": "sphere", "slices": 12, "stacks": 8, "material": ")" + mat + R"(", "shading": "gouraud", )" + keys +
+           R"("transform": {"translate": [)" + std::to_string(x) + R"(, 0, 0], "scale": 0.8}})";
+  };
+  // none: no capability, no register write, no colour
+  {
+    const auto l = parse(make(lights, grey, sph("m", R"("color": [1, 0, 0], )", -1) + "," + sph("s", "", 1)));
+    const Frame fr = frame(l, false);
+    ASSERT_EQ(fr.groups.size(), 2u);
+    for (const auto& g : fr.groups) {
+      EXPECT_FALSE(g.fs.colour_material);
+      EXPECT_EQ(g.fs.channels, 1);
+      for (const auto& c : g.cmds) {
+        if (c.is_write) EXPECT_NE(c.w.addr, kReg_colour_material);
+        else EXPECT_EQ(c.f.col[0] | c.f.col[1] | c.f.col[2], 0u);
+      }
+    }
+  }
+  // a coloured diffuse on the schlick core only: that core alone gets colour_material and RGB
+  {
+    const auto l = parse(make(lights, grey, sph("m", "", -1) + "," +
+                                                sph("s", R"("color_material": "diffuse", "color": [0.2, 0.9, 0.4], )", 1)));
+    const Frame fr = frame(l, false);
+    ASSERT_EQ(fr.groups.size(), 2u);
+    EXPECT_FALSE(fr.groups[0].fs.colour_material);
+    EXPECT_EQ(fr.groups[0].fs.channels, 1);
+    EXPECT_TRUE(fr.groups[1].fs.colour_material);
+    EXPECT_EQ(fr.groups[1].fs.channels, 3);
+  }
+  // grey colours keep the core mono; specular through colour material builds the unit for a material without one
+  {
+    const auto l = parse(make(lights, grey, sph("d", R"("color_material": "specular", "color": [0.4, 0.4, 0.4], )", 0)));
+    const Frame fr = frame(l, false);
+    ASSERT_EQ(fr.groups.size(), 1u);
+    EXPECT_TRUE(fr.groups[0].fs.colour_material);
+    EXPECT_TRUE(fr.groups[0].fs.specular);
+    EXPECT_EQ(fr.groups[0].fs.channels, 1);
+    // a black colour replacing the only specular colour: no unit
+    const auto k = parse(make(lights, grey, sph("s", R"("color_material": "specular", "color": [0, 0, 0], )", 0)));
+    EXPECT_FALSE(frame(k, false).groups[0].fs.specular);
+  }
+  // one material, three objects: diffuse, none, emission; the register is written before each mode's fragments and
+  // every fragment is lit with the mode of its object
+  {
+    const auto l = parse(make(lights, grey,
+                              sph("m", R"("color_material": "diffuse", "color": [0.9, 0.2, 0.1], )", -1.8) + "," +
+                                  sph("m", R"("color": [0.1, 0.9, 0.1], )", 0) + "," +
+                                  sph("m", R"("color_material": "emission", "color": [0.1, 0.1, 0.6], )", 1.8)));
+    const Frame fr = frame(l, false);
+    ASSERT_EQ(fr.groups.size(), 1u);
+    const auto& g = fr.groups[0];
+    EXPECT_TRUE(g.fs.colour_material);
+    uint32_t reg = ~0u;
+    std::vector<uint32_t> words;
+    size_t k = 0;
+    for (const auto& c : g.cmds) {
+      if (c.is_write) {
+        if (c.w.addr == kReg_colour_material) reg = c.w.data, words.push_back(c.w.data);
+        continue;
+      }
+      const int oi = fr.vertex_object.at(g.dests.at(k++).index);
+      const auto& cmo = l.sc.objects[oi].colour_material;
+      ASSERT_EQ(reg, cmo ? colour_material_word(true, *cmo) : 0u) << "object " << oi;
+      const uint32_t want = cmo ? code16(l.sc.objects[oi].colour[0]) : 0u;
+      EXPECT_EQ(c.f.col[0], want);
+    }
+    EXPECT_EQ(words, (std::vector<uint32_t>{0u, colour_material_word(true, ColourMaterial::Emission),
+                                            colour_material_word(true, ColourMaterial::Diffuse)}));
+    expect_full_identical(l);
+  }
+}
+
+// Example scenes without colour material: every derived stream neither writes the colour_material register nor
+// sends a colour (stream kinds 1 and 2 only: the same bytes as before the feature). gl_features.json: only the core of
+// the colour-material wave (cs16) has it; the schlick_nr core's stream is as before.
+TEST(RenderColourMaterial, ExampleScenesWithoutItUnchanged) {
+  {
+    const auto l = load("gl_features.json");
+    const Frame fr = frame(l, false, 64, 48);
+    ASSERT_EQ(fr.groups.size(), 2u);
+    EXPECT_TRUE(fr.groups[0].fs.colour_material);
+    EXPECT_FALSE(fr.groups[1].fs.colour_material);
+    for (const auto& c : fr.groups[1].cmds) {
+      if (c.is_write) EXPECT_NE(c.w.addr, kReg_colour_material);
+      else EXPECT_EQ(c.f.col[0] | c.f.col[1] | c.f.col[2], 0u);
+    }
+  }
+  for (const std::string name : {"diffuse.json", "spheres.json", "shading_modes.json", "mesh.json", "gl_two_side.json",
+                                 "gl_shininess.json"}) {
+    SCOPED_TRACE(name);
+    const auto l = load(name);
+    const Frame fr = frame(l, false, 64, 48);
+    for (const auto& g : fr.groups) {
+      EXPECT_FALSE(g.fs.colour_material);
+      for (const auto& c : g.cmds) {
+        if (c.is_write) EXPECT_NE(c.w.addr, kReg_colour_material);
+        else EXPECT_EQ(c.f.col[0] | c.f.col[1] | c.f.col[2], 0u);
+      }
+    }
+  }
+}
+
+// scenes/gl_colour_material.json: the full core renders it identically; OBJ vertex colours are read, and a file
+// without them (or with `v x y z w`) has none.
+TEST(RenderColourMaterial, ExampleSceneAndObjColours) {
+  const auto l = load("gl_colour_material.json");
+  const Frame fr = frame(l, false, 96, 64);
+  ASSERT_EQ(fr.groups.size(), 1u);
+  EXPECT_TRUE(fr.groups[0].fs.colour_material);
+  EXPECT_EQ(l.meshes[0].col.size(), l.meshes[0].pos.size());
+  EXPECT_TRUE(l.meshes[1].col.empty());  // a sphere: the object's `color`
+  expect_full_identical(l);
+  scene::Object o;
+  o.type = scene::ObjectType::Mesh;
+  o.file_path = temp_obj("cm_plain", "v 0 0 0\nv 1 0 0\nv 0 1 0 2\nf 1 2 3\n");
+  EXPECT_TRUE(scene::build_mesh(o).col.empty());
+  o.file_path = temp_obj("cm_col", "v 0 0 0 0.5 0.25 1\nv 1 0 0 0 0 0\nv 0 1 0 1 1 1\nf 1 2 3\n");
+  const auto m = scene::build_mesh(o);
+  ASSERT_EQ(m.col.size(), 3u);
+  EXPECT_EQ(m.col[0], (scene::Vec3{0.5, 0.25, 1}));
+  EXPECT_EQ(m.col[2], (scene::Vec3{1, 1, 1}));
 }
 
 TEST(RenderImage, DeterministicAndReferenceClose) {

@@ -68,6 +68,8 @@ struct FeatureSet {
                                         // §3.7)
   bool separate_specular = false;       // GL_SEPARATE_SPECULAR_COLOR: the specular sum as a second output colour,
                                         // chosen by light_model bit 4 (docs/lighting.md §3.6); needs a unit
+  bool colour_material = false;         // GL_COLOR_MATERIAL: a per-fragment colour (in_cr_i..) replaces the material
+                                        // colour(s) the colour_material register names (docs/lighting.md §3.8)
   int channels = 3;                     // 1 (mono, channel 0 only) or 3 (RGB)
   int lanes = 1;                        // per-light datapaths; enabled lights take ⌈k/lanes⌉ passes
   int share = 1;                        // clocks per pass (1..kShareMax): the vector normalisations of a
@@ -254,6 +256,7 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
     else if (k == "low_shininess") fs.low_shininess = detail::fs_bool(v, "low_shininess", where);
     else if (k == "separate_specular") fs.separate_specular = detail::fs_bool(v, "separate_specular", where);
     else if (k == "two_side") fs.two_side = detail::fs_bool(v, "two_side", where);
+    else if (k == "colour_material") fs.colour_material = detail::fs_bool(v, "colour_material", where);
     else if (k == "channels") {
       if (!v.is_number_integer() || (v.get<int>() != 1 && v.get<int>() != 3))
         fs_fail(where, "'channels' must be 1 or 3");
@@ -367,6 +370,7 @@ inline nlohmann::ordered_json FeatureSet::canonical() const {
   j["low_shininess"] = low_shininess;
   j["separate_specular"] = separate_specular;
   j["two_side"] = two_side;
+  j["colour_material"] = colour_material;
   j["channels"] = channels;
   j["lanes"] = lanes;
   j["share"] = share;
@@ -416,6 +420,7 @@ inline std::vector<std::string> FeatureSet::verilog_params(int tagw) const {
       "LOW_N=" + std::to_string(low_shininess ? 1 : 0),
       "SEP_SPEC=" + std::to_string(separate_specular ? 1 : 0),
       "TWO_SIDE=" + std::to_string(two_side ? 1 : 0),
+      "COL_MAT=" + std::to_string(colour_material ? 1 : 0),
       "CHANNELS=" + std::to_string(channels),
       "TAGW=" + std::to_string(tagw),
   };
@@ -449,6 +454,7 @@ inline std::string FeatureSet::summary() const {
   }
   s += normalize ? ", normalize" : ", unit normals";
   if (two_side) s += ", two-sided";
+  if (colour_material) s += ", colour material";
   s += channels == 3 ? ", RGB" : ", mono";
   s += ", " + config + " (F=" + std::to_string(format().frac) + ")";
   return s;

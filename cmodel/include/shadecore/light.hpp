@@ -80,13 +80,23 @@ static_assert((1 << kLowNBits) == kNMin, "low_shininess_bits must cover exactly 
 // Mode registers (docs/lighting.md §4): light_model (bit 0 local viewer, bit 1 Phong reflection, bit 2
 // normalize), mat_unit (a variant id), per light mode (bit 0 enable, bits 3:1 kind). Registers are not
 // reset, in the RTL as here: a program writes every register it relies on.
-inline constexpr uint32_t kLightModelBits = 5;  // stored bits of light_model
 inline constexpr uint32_t kMatUnitBits = 4;
 inline constexpr uint32_t kLightModeBits = 4;
-inline constexpr uint32_t kModelLocalViewer = 1u, kModelPhong = 2u, kModelNormalize = 4u;
-inline constexpr uint32_t kModelTwoSide = 8u;            // GL_LIGHT_MODEL_TWO_SIDE (feature two_side)
-inline constexpr uint32_t kModelSeparateSpecular = 16u;  // GL_SEPARATE_SPECULAR_COLOR (feature separate_specular)
+// light_model's fields: kLightModelBits and the bit positions kLmBit_* from config/configs.json (light_regs.hpp;
+// the RTL's LM_* of sc_light_regs.vh)
+inline constexpr uint32_t kModelLocalViewer = 1u << kLmBit_local_viewer, kModelPhong = 1u << kLmBit_phong,
+                          kModelNormalize = 1u << kLmBit_normalize;
+inline constexpr uint32_t kModelTwoSide = 1u << kLmBit_two_side;  // GL_LIGHT_MODEL_TWO_SIDE (feature two_side)
+inline constexpr uint32_t kModelSeparateSpecular = 1u << kLmBit_separate_specular;  // GL_SEPARATE_SPECULAR_COLOR
 inline constexpr uint32_t kModeEnable = 1u;
+// colour_material (feature colour_material, docs/lighting.md §3.8): bit 0 GL_COLOR_MATERIAL, bits 3:1 the
+// glColorMaterial mode; the fragment's colour replaces that material colour of the side it is lit as (both
+// faces: GL_FRONT_AND_BACK, GL's default face). Modes 5..7 replace nothing.
+inline constexpr uint32_t kColourMaterialBits = 4;
+enum class ColourMaterial : uint32_t { Emission = 0, Ambient = 1, Diffuse = 2, Specular = 3, AmbientAndDiffuse = 4 };
+inline constexpr uint32_t colour_material_word(bool enable, ColourMaterial m) {
+  return enable ? 1u | (static_cast<uint32_t>(m) << 1) : 0u;
+}
 inline constexpr uint32_t light_mode_word(bool enable, LightKind k) {
   return (enable ? kModeEnable : 0u) | (static_cast<uint32_t>(k) << 1);
 }
@@ -100,6 +110,7 @@ struct LightWidths {
 struct LightRegs {
   uint32_t global_ambient[3] = {};
   uint32_t light_model = 0, mat_unit = 0;
+  uint32_t colour_material = 0;  // feature colour_material: bit 0 enable, bits 3:1 the mode (ColourMaterial)
   uint32_t mat_n = kNMin, mat_thr = 0, mat_coef = 0;
   uint32_t emission[3] = {}, ambient[3] = {}, diffuse[3] = {}, specular[3] = {};
   // the back colour bank (two_side): a back-facing fragment's material colours in the two-sided mode
@@ -135,6 +146,7 @@ struct LightRegs {
     }
     if (addr == kReg_light_model) return light_model = data & mask_bits(kLightModelBits), true;
     if (addr == kReg_mat_unit) return mat_unit = data & mask_bits(kMatUnitBits), true;
+    if (addr == kReg_colour_material) return colour_material = data & mask_bits(kColourMaterialBits), true;
     if (addr == kReg_mat_n) return mat_n = data & 0x7FF, true;
     if (addr == kReg_mat_thr) return mat_thr = static_cast<uint32_t>(data & mask_bits(w.UF + 1)), true;
     if (addr == kReg_mat_coef) return mat_coef = static_cast<uint32_t>(data & mask_bits(light_coef_bits(w.UF))), true;
@@ -169,6 +181,8 @@ struct Fragment {
   int64_t n[3] = {0, 0, 0};  // signed F+2-bit codes
   int64_t p[3] = {0, 0, 0};  // signed F+8-bit codes
   bool back = false;         // in_back_i: the fragment's polygon faces away (window-space winding; two_side)
+  uint32_t col[3] = {0, 0, 0};  // in_cr_i, in_cg_i, in_cb_i: the fragment's colour, material colour codes (F+1
+                                // bits, [0, 2)); used only by colour_material's mode (docs/lighting.md §3.8)
 };
 
 // The core's output: the primary colour c and, with separate_specular in the separate mode, the secondary
@@ -222,6 +236,8 @@ struct LightModes {
   bool low_n = false;  // mat_n < 2^kLowNBits with the low_shininess chain: spec = x^n from the chain, not the unit
   bool separate = false;  // light_model bit 4 with separate_specular: the specular sum is the secondary output
   bool two_side = false;  // light_model bit 3 with two_side: a back fragment is lit with −N and the back colours
+  // colour_material with its register's bit 0: the material colours the fragment's colour replaces
+  bool cm_emission = false, cm_ambient = false, cm_diffuse = false, cm_specular = false;
   int unit = -1;  // index into FeatureSet::units(), −1: absent (specular 0)
   uint32_t on = 0;  // bit j: light j contributes
   int enabled = 0;  // lights on
@@ -254,6 +270,13 @@ class LightCore {
     m.low_n = fs_.low_shininess && r.mat_n < (1u << kLowNBits);
     m.separate = fs_.separate_specular && (r.light_model & kModelSeparateSpecular);
     m.two_side = fs_.two_side && (r.light_model & kModelTwoSide);
+    if (fs_.colour_material && (r.colour_material & 1u)) {
+      const auto cm = static_cast<ColourMaterial>(r.colour_material >> 1);
+      m.cm_emission = cm == ColourMaterial::Emission;
+      m.cm_ambient = cm == ColourMaterial::Ambient || cm == ColourMaterial::AmbientAndDiffuse;
+      m.cm_diffuse = cm == ColourMaterial::Diffuse || cm == ColourMaterial::AmbientAndDiffuse;
+      m.cm_specular = cm == ColourMaterial::Specular;
+    }
     const std::vector<VariantId> us = fs_.units();
     for (size_t i = 0; i < us.size(); ++i)
       if (static_cast<uint32_t>(us[i]) == r.mat_unit) m.unit = static_cast<int>(i);
@@ -431,7 +454,8 @@ class LightCore {
  private:
   // The side a fragment is lit as (docs/lighting.md §3.7): in the two-sided mode a back fragment has −N (each
   // component saturated to the signed F+2 bits: −(−2) is 2 − 2^−F, rtl/sc_light.v's g_nneg) and the back colour
-  // bank; otherwise N as given and the front colours. One place for eval() and eval_double().
+  // bank; otherwise N as given and the front colours. Colour material (§3.8) then replaces the chosen colour(s)
+  // of either bank by the fragment's colour. One place for eval() and eval_double().
   struct Side {
     int64_t n[3];
     const uint32_t *em, *am, *di, *sp;
@@ -445,6 +469,10 @@ class LightCore {
     sd.am = bk ? r.back_ambient : r.ambient;
     sd.di = bk ? r.back_diffuse : r.diffuse;
     sd.sp = bk ? r.back_specular : r.specular;
+    if (md.cm_emission) sd.em = fr.col;
+    if (md.cm_ambient) sd.am = fr.col;
+    if (md.cm_diffuse) sd.di = fr.col;
+    if (md.cm_specular) sd.sp = fr.col;
     return sd;
   }
 
@@ -699,9 +727,10 @@ inline void push_unit_direction(std::vector<RegWrite>& w, uint32_t addr, int F, 
 }
 }  // namespace detail
 
-// Material registers (n, thr, coef and the four colours).
-inline std::vector<RegWrite> material_writes(const LightCore& core, const MaterialParams& m) {
-  const int F = core.format().frac;
+// The unit material: the specular unit's registers mat_unit, mat_n, mat_thr and mat_coef for m's unit, shininess
+// and normalisation. The core holds one; a host that needs another (a back face's own shininess, docs/scenes.md)
+// writes these words again between batches of fragments.
+inline std::vector<RegWrite> unit_material_writes(const LightCore& core, const MaterialParams& m) {
   const FeatureSet& fs = core.features();
   std::vector<RegWrite> w;
   // n < 16 goes to the chain (low_shininess); a core without units has no n register (the words are ignored)
@@ -731,6 +760,13 @@ inline std::vector<RegWrite> material_writes(const LightCore& core, const Materi
     // with the norm hardware and no normalisation: coef = 1.0 (sc_energy then passes the unit's value)
     w.push_back({kReg_mat_coef, norm ? um.coef : (fs.norm ? (uint32_t{1} << core.unit_format().frac) : um.coef)});
   }
+  return w;
+}
+
+// Material registers: the unit material (n, thr, coef) and the four colours.
+inline std::vector<RegWrite> material_writes(const LightCore& core, const MaterialParams& m) {
+  const int F = core.format().frac;
+  std::vector<RegWrite> w = unit_material_writes(core, m);
   for (uint32_t c = 0; c < 3; ++c) {
     w.push_back({kReg_mat_emission + c, detail::colour_code(F, m.emission[c], "material emission")});
     w.push_back({kReg_mat_ambient + c, detail::colour_code(F, m.ambient[c], "material ambient")});
@@ -741,13 +777,9 @@ inline std::vector<RegWrite> material_writes(const LightCore& core, const Materi
 }
 
 // The back colour bank (two_side, docs/lighting.md §3.7): a back-facing fragment's emission, ambient, diffuse and
-// specular in the two-sided mode. The back face shares the front's specular unit, shininess, thr and coef (the
-// units hold one material); the host checks that the two shininess values agree.
-inline std::vector<RegWrite> back_material_writes(const LightCore& core, const MaterialParams& front,
-                                                  const MaterialParams& back) {
-  if (back.shininess != front.shininess)
-    throw std::invalid_argument("back shininess " + std::to_string(back.shininess) + " differs from the front's " +
-                                std::to_string(front.shininess) + " (the core has one specular material)");
+// specular in the two-sided mode. Only the colours: the back face uses the unit material the core holds (one), so
+// a back face with its own shininess is lit by a batch of its own after unit_material_writes(core, back).
+inline std::vector<RegWrite> back_material_writes(const LightCore& core, const MaterialParams& back) {
   const int F = core.format().frac;
   std::vector<RegWrite> w;
   for (uint32_t c = 0; c < 3; ++c) {
@@ -859,6 +891,15 @@ inline std::vector<RegWrite> global_writes(const LightCore& core, const double a
 }
 inline std::vector<RegWrite> global_writes(const LightCore& core, const double ambient[3]) {
   return global_writes(core, ambient, default_modes(core.features()));
+}
+
+// The colour_material register's write (feature colour_material; `none`: off).
+inline std::vector<RegWrite> colour_material_writes(std::optional<ColourMaterial> m) {
+  return {{kReg_colour_material, m ? colour_material_word(true, *m) : 0u}};
+}
+// A fragment's colour (in_cr_i..) from doubles in [0, 2), rounded as a material colour register.
+inline void set_fragment_colour(int F, Fragment& fr, const double c[3]) {
+  for (int i = 0; i < 3; ++i) fr.col[i] = detail::colour_code(F, c[i], "fragment colour");
 }
 
 // Fragment codes from eye-space doubles (normal any length; position in [−128, 128)).

@@ -129,23 +129,46 @@ void check_gl(const char* where) {
 //           that its provoking vertex (GL_TRIANGLES: the last) is v0 for every triangle of the face: one colour per
 //           face, lit at v0.
 //   ids:    no normals (lighting off, the colour is set by the caller).
+// `colour` (GL_COLOR_MATERIAL on): glColor per vertex, the mesh's vertex colours or else *colour (the object's
+// `color`); flat: the mean of the face's vertex colours at every vertex, as render::prepare's face fragment.
 enum class Draw { Smooth, Flat, Ids };
-void draw_mesh(const scene::Mesh& m, Draw how) {
+void draw_mesh(const scene::Mesh& m, Draw how, const Vec3* colour = nullptr) {
+  auto vcol = [&](int v) -> const Vec3& { return m.col.empty() ? *colour : m.col[static_cast<size_t>(v)]; };
   glBegin(GL_TRIANGLES);
   for (const auto& face : m.faces) {
-    Vec3 fn{0, 0, 0};
+    Vec3 fn{0, 0, 0}, fc = colour ? *colour : Vec3{0, 0, 0};
     if (how == Draw::Flat) fn = scene::polygon_normal(m.pos, face);
+    if (how == Draw::Flat && colour && !m.col.empty()) {  // the mean of the face's vertex colours (render::prepare's)
+      fc = {0, 0, 0};
+      for (int v : face)
+        for (int i = 0; i < 3; ++i) fc[i] += vcol(v)[i] / static_cast<double>(face.size());
+    }
     for (size_t k = 1; k + 1 < face.size(); ++k) {
       const int tv[3] = {face[0], face[k], face[k + 1]};
       for (int q = 0; q < 3; ++q) {
         const int v = how == Draw::Flat ? tv[(q + 1) % 3] : tv[q];
         if (how == Draw::Smooth) glNormal3d(m.nrm[v][0], m.nrm[v][1], m.nrm[v][2]);
         if (how == Draw::Flat) glNormal3d(fn[0], fn[1], fn[2]);
+        if (colour && how != Draw::Ids) {
+          const Vec3& c = how == Draw::Flat ? fc : vcol(v);
+          glColor3d(c[0], c[1], c[2]);
+        }
         glVertex3d(m.pos[v][0], m.pos[v][1], m.pos[v][2]);
       }
     }
   }
   glEnd();
+}
+
+GLenum gl_colour_material(ColourMaterial m) {
+  switch (m) {
+    case ColourMaterial::Emission: return GL_EMISSION;
+    case ColourMaterial::Ambient: return GL_AMBIENT;
+    case ColourMaterial::Diffuse: return GL_DIFFUSE;
+    case ColourMaterial::Specular: return GL_SPECULAR;
+    case ColourMaterial::AmbientAndDiffuse: return GL_AMBIENT_AND_DIFFUSE;
+  }
+  return GL_AMBIENT_AND_DIFFUSE;
 }
 
 void object_transform(const scene::Transform& t) {
@@ -222,13 +245,21 @@ GlImage render_gl(const Scene& sc, render::MeshSource& meshes, const GlSettings&
   for (size_t oi = 0; oi < sc.objects.size(); ++oi) {
     const auto& o = sc.objects[oi];
     const Shading sh = s.mode ? *s.mode : o.shading;
+    // GL_COLOR_MATERIAL writes the current colour into the material for good: off while the object's materials
+    // are set (every object sets all of them), then on with its mode (GL_FRONT_AND_BACK, as the core's register)
+    glDisable(GL_COLOR_MATERIAL);
     set_gl_material(sc.materials[static_cast<size_t>(o.material)]);
+    if (o.colour_material) {
+      glColorMaterial(GL_FRONT_AND_BACK, gl_colour_material(*o.colour_material));
+      glEnable(GL_COLOR_MATERIAL);
+    }
     glShadeModel(sh == Shading::Flat ? GL_FLAT : GL_SMOOTH);
     glPushMatrix();
     object_transform(o.transform);
     out.object_mvp.push_back(current_mvp());
     const bool by_face = sh == Shading::Flat && sc.flat_rule == scene::FlatRule::Centroid;
-    draw_mesh(*meshes.get(static_cast<int>(oi)), by_face ? Draw::Flat : Draw::Smooth);
+    draw_mesh(*meshes.get(static_cast<int>(oi)), by_face ? Draw::Flat : Draw::Smooth,
+              o.colour_material ? &o.colour : nullptr);
     glPopMatrix();
   }
   glFinish();
@@ -241,6 +272,7 @@ GlImage render_gl(const Scene& sc, render::MeshSource& meshes, const GlSettings&
         out.rgb[(static_cast<size_t>(y) * W + x) * 3 + ch] = buf[(static_cast<size_t>(H - 1 - y) * W + x) * 4 + ch];
 
   // Pass 2: object ids (index + 1 as 24-bit colour), the same vertices through the same transforms and test.
+  glDisable(GL_COLOR_MATERIAL);
   glDisable(GL_LIGHTING);
   glShadeModel(GL_FLAT);
   glClearColor(0, 0, 0, 0);
@@ -281,13 +313,21 @@ std::vector<ObjectCheck> check_objects(const Scene& sc, const std::vector<Shadin
     if (sh == Shading::Phong) no("phong shading (per-fragment lighting) has no fixed-function equivalent (GL draws it Gouraud)");
     // under two_side the back colours are drawn too (GL_BACK): a back-only specular colour counts
     const bool back_spec = sc.two_side && M.back && nonzero(M.back->specular);
-    const bool spec = (M.has_specular() || back_spec) && any_light_spec;
+    // colour material `specular`: the object's colours are the specular colour (counted as non-zero)
+    const bool cm_spec = o.colour_material == ColourMaterial::Specular;
+    const bool spec = (M.has_specular() || back_spec || cm_spec) && any_light_spec;
+    if (o.colour_material)
+      c.notes.push_back(std::string("GL_COLOR_MATERIAL: glColorMaterial(GL_FRONT_AND_BACK, ") +
+                        scene::to_string(o.colour_material) + "), glColor per vertex");
     if (spec) {
       if (!sc.blinn) no("reflection 'phong' (R·V): fixed-function GL has only Blinn's N·H");
-      if (M.shininess > kGlMaxShininess)
-        no("shininess " + std::to_string(M.shininess) + " > 128, GL's cap (GL draws it at 128)");
+      // under two_side the back's shininess too (glMaterialf(GL_BACK, GL_SHININESS, ...))
+      const int bn = sc.two_side ? M.back_or_front().shininess : M.shininess;
+      for (const int n : bn == M.shininess ? std::vector<int>{M.shininess} : std::vector<int>{M.shininess, bn})
+        if (n > kGlMaxShininess) no("shininess " + std::to_string(n) + " > 128, GL's cap (GL draws it at 128)");
       if (M.normalization) no("energy normalisation of the specular term has no GL equivalent");
-      c.notes.push_back("GL_SHININESS " + std::to_string(std::min(M.shininess, kGlMaxShininess)));
+      c.notes.push_back("GL_SHININESS " + std::to_string(std::min(M.shininess, kGlMaxShininess)) +
+                        (bn == M.shininess ? std::string() : ", GL_BACK " + std::to_string(std::min(bn, kGlMaxShininess))));
     }
     if (sh == Shading::Flat && sc.flat_rule == scene::FlatRule::ProvokingVertex) {
       // both: GL_FLAT's rule, the last vertex of each fan triangle with its vertex normal and position

@@ -110,13 +110,17 @@ Mesh torus(const Object& o) {
 // overflowing indices): every number of a `v` / `vn` line finite and parsable, every index of an `f` line a
 // non-zero integer that fits and refers to an element that exists (positive: 1..count in the file;
 // negative, relative: at most as many back as there are before the line), at most kMaxFaceVertices per face.
-void prescan_obj(const Object& o, const std::string& text) {
+// Vertex colours (the `v x y z r g b` extension, as tinyobjloader reads it: a `v` line with 6 or more numbers has
+// the colour r g b in its 4th..6th): each in [0, 1], and on every `v` line or on none (tinyobjloader would fill in
+// white for the others). Returns whether the file has vertex colours.
+bool prescan_obj(const Object& o, const std::string& text) {
   struct FaceRef {
     size_t line;
     long long idx[3];  // v, vt, vn; 0 = absent
   };
   std::vector<FaceRef> refs;
   long long count[3] = {0, 0, 0};  // v, vt, vn so far
+  size_t coloured = 0, first_plain = 0, first_coloured = 0;  // v lines with a colour; the first line without / with
   size_t line = 0;
   size_t pos = 0;
   auto is_space = [](char c) { return c == ' ' || c == '\t'; };
@@ -162,6 +166,14 @@ void prescan_obj(const Object& o, const std::string& text) {
           obj_fail_line(o, line, "'" + printable(tok, 60) + "' is not a finite number (NaN, infinity or out of range)");
         if (!(std::fabs(x) <= kMaxCoord))
           obj_fail_line(o, line, "'" + printable(tok, 60) + "' out of range [-1e6, 1e6]");
+        const size_t i = static_cast<size_t>(&tok - t.data());
+        if (v && t.size() >= 6 && i >= 3 && i < 6 && !(x >= 0 && x <= 1))
+          obj_fail_line(o, line, "vertex colour '" + printable(tok, 60) + "' out of range [0, 1]");
+      }
+      if (v && t.size() >= 6) {
+        if (!coloured++) first_coloured = line;
+      } else if (v && !first_plain) {
+        first_plain = line;
       }
       ++count[v ? 0 : 2];
     } else if (vt) {
@@ -206,6 +218,10 @@ void prescan_obj(const Object& o, const std::string& text) {
       if (r.idx[c] > count[c])
         obj_fail_line(o, r.line, std::string(kind_name[c]) + " index " + std::to_string(r.idx[c]) + " out of range (" +
                                      std::to_string(count[c]) + " in the file)");
+  if (coloured && first_plain)
+    obj_fail_line(o, first_plain, "a vertex without a colour, but line " + std::to_string(first_coloured) +
+                                      " has one (vertex colours 'v x y z r g b' on every v line or on none)");
+  return coloured > 0;
 }
 
 // Degenerate faces: zero area relative to the face's size (also catches repeated vertices).
@@ -231,10 +247,10 @@ Mesh obj_mesh(const Object& o) {
   // memory: tinyobjloader never opens anything itself (not even an mtllib: OBJ materials are not used).
   std::string text, why;
   if (!read_regular_file(o.file_path, kMaxObjBytes, text, why)) obj_fail(o, why == "no such file" ? "no such OBJ file" : why);
-  prescan_obj(o, text);
+  const bool colours = prescan_obj(o, text);
   tinyobj::ObjReaderConfig cfg;
   cfg.triangulate = false;
-  cfg.vertex_color = false;
+  cfg.vertex_color = false;  // no white fill-in (tinyobjloader 2.0.0rc10: colours only when every v line has one)
   tinyobj::ObjReader rd;
   if (!rd.ParseFromString(text, std::string(), cfg)) {
     std::string e = rd.Error();
@@ -252,6 +268,9 @@ Mesh obj_mesh(const Object& o) {
     for (const auto& ix : sh.mesh.indices) all_normals = all_normals && ix.normal_index >= 0;
   }
   if (nfaces == 0) obj_fail(o, "malformed OBJ: no faces");
+  if (colours && at.colors.size() != at.vertices.size())
+    obj_fail(o, "tinyobjloader returned " + std::to_string(at.colors.size() / 3) + " vertex colours for " +
+                    std::to_string(nv) + " vertices");
   Mesh m;
   std::map<std::pair<int, int>, int> ids;  // (v, vn) -> vertex
   size_t face_no = 0;
@@ -288,6 +307,9 @@ Mesh obj_mesh(const Object& o) {
             n = unit(n);
           }
           m.nrm.push_back(n);
+          if (colours)
+            m.col.push_back({at.colors[3 * ix.vertex_index], at.colors[3 * ix.vertex_index + 1],
+                             at.colors[3 * ix.vertex_index + 2]});
           it = ids.emplace(key, id).first;
         }
         f.push_back(it->second);

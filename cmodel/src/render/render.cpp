@@ -137,6 +137,15 @@ bool pos_in_range(const Vec3& p) {
 
 std::array<double, 16> view_matrix(const Camera& c) { return look_at(c); }
 
+// The material `M` with the term(s) colour material mode `cm` names replaced by `c` (LightCore::side's choice).
+static scene::Material with_colour_material(scene::Material M, ColourMaterial cm, const Vec3& c) {
+  if (cm == ColourMaterial::Emission) M.emission = c;
+  if (cm == ColourMaterial::Ambient || cm == ColourMaterial::AmbientAndDiffuse) M.ambient = c;
+  if (cm == ColourMaterial::Diffuse || cm == ColourMaterial::AmbientAndDiffuse) M.diffuse = c;
+  if (cm == ColourMaterial::Specular) M.specular = c;
+  return M;
+}
+
 // ---- feature sets ---------------------------------------------------------------------------------
 
 FeatureSet full_core_for(const FeatureSet& spec, std::vector<std::string>& subs) {
@@ -158,6 +167,7 @@ FeatureSet full_core_for(const FeatureSet& spec, std::vector<std::string>& subs)
   }
   need(!spec.normalize || f.normalize, "the normal normaliser (normalize)");
   need(!spec.two_side || f.two_side, "two-sided lighting (two_side)");
+  need(!spec.colour_material || f.colour_material, "colour material (colour_material)");
   if (spec.specular) {
     // the two cs16 cut-offs give bit-identical outputs (docs/results.md): the cut-off needs no mode
     need(f.has_unit(spec.variant), std::string("the unit ") + std::string(variant_name(spec.variant)));
@@ -183,7 +193,8 @@ static LightKind slot_kind_for(const FeatureSet& fs, int j, LightKind k) {
 
 Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used,
                            const std::vector<bool>& needs_normalize, bool full_core,
-                           std::optional<VariantId> unit_override, int lanes, int share) {
+                           std::optional<VariantId> unit_override, int lanes, int share,
+                           const std::vector<ObjectColours>& object_colours) {
   const int F = config_named(sc.config).format.frac;
   const size_t nm = sc.materials.size();
   std::vector<bool> used(nm, false);
@@ -195,12 +206,31 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
       if (nz(l.specular, ch)) return true;
     return false;
   };
+  auto is_grey = [F](const Vec3& c) {
+    return colour_code(F, c[0]) == colour_code(F, c[1]) && colour_code(F, c[1]) == colour_code(F, c[2]);
+  };
   // The colour sets that reach the core per material: the front's and, with GL_LIGHT_MODEL_TWO_SIDE, the back's
-  // (the back face shares the front's unit, cut-off, normalisation and shininess).
+  // (the back face shares the front's unit, cut-off and normalisation; its shininess may differ). Under an object's
+  // colour material (GL_FRONT_AND_BACK) its colours replace the chosen term(s) of both: there the set counts the
+  // largest of its colours per channel (what can be non-zero) and `colours_grey` whether they are all grey.
   std::vector<std::vector<scene::Material>> sides(nm);
-  for (size_t m = 0; m < nm; ++m) {
-    sides[m].push_back(sc.materials[m]);
-    if (sc.two_side) sides[m].push_back(sc.materials[m].back_face());
+  std::vector<bool> colour_material(nm, false), colours_grey(nm, true), plain(nm, false);
+  for (int o : objects_used) {
+    const scene::Object& O = sc.objects[o];
+    const auto m = static_cast<size_t>(O.material);
+    if (!O.colour_material && plain[m]) continue;
+    std::vector<scene::Material> ms{sc.materials[m]};
+    if (sc.two_side) ms.push_back(sc.materials[m].back_face());
+    if (O.colour_material) {
+      const ObjectColours oc = object_colours.empty() ? ObjectColours{O.colour, is_grey(O.colour)}
+                                                      : object_colours[static_cast<size_t>(o)];
+      for (auto& M : ms) M = with_colour_material(M, *O.colour_material, oc.max);
+      colour_material[m] = true;
+      colours_grey[m] = colours_grey[m] && oc.grey;
+    } else {
+      plain[m] = true;
+    }
+    sides[m].insert(sides[m].end(), ms.begin(), ms.end());
   }
   // Effective specular term and unit of each material.
   std::vector<bool> spec(nm, false);
@@ -306,22 +336,27 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
     fs.separate_specular = fs.specular && sc.separate_specular;  // GL_SEPARATE_SPECULAR_COLOR
     // a shininess below the units' range (GL's 0..15): the exact chain beside the unit
     fs.low_shininess = false;
+    // (with two_side the back's too: its own unit material, written between the facing batches)
     if (fs.specular)
-      for (int m : g.materials) fs.low_shininess = fs.low_shininess || sc.materials[m].shininess < kNMin;
+      for (int m : g.materials)
+        for (const auto& S : sides[m]) fs.low_shininess = fs.low_shininess || S.shininess < kNMin;
     fs.normalize = false;
     for (int m : g.materials) fs.normalize = fs.normalize || needs_normalize[m];
     // GL_LIGHT_MODEL_TWO_SIDE: back-facing fragments lit with −N and the back colour bank. Any object of the scene
     // may show a back face (open meshes, planes, a camera inside), so the scene's flag alone decides.
     fs.two_side = sc.two_side;
+    // GL_COLOR_MATERIAL: some object of this core's materials has a colour material (fragment colours and the
+    // colour_material register).
+    fs.colour_material = false;
+    for (int m : g.materials) fs.colour_material = fs.colour_material || colour_material[m];
     // Mono when every colour that reaches the core is grey.
     bool grey = true;
-    auto is_grey = [F](const Vec3& c) {
-      return colour_code(F, c[0]) == colour_code(F, c[1]) && colour_code(F, c[1]) == colour_code(F, c[2]);
-    };
     if (fs.ambient) grey = grey && is_grey(sc.global_ambient);
-    for (int m : g.materials)
+    for (int m : g.materials) {
+      grey = grey && colours_grey[m];
       for (const auto& M : sides[m])
         grey = grey && is_grey(M.emission) && is_grey(M.ambient) && is_grey(M.diffuse) && is_grey(M.specular);
+    }
     for (int j : g.light_slot)
       if (j >= 0) grey = grey && is_grey(sc.lights[j].ambient) && is_grey(sc.lights[j].diffuse) && is_grey(sc.lights[j].specular);
     fs.channels = grey ? 1 : 3;
@@ -349,7 +384,8 @@ MeshSource::MeshSource(const Scene& sc, size_t keep_bytes) : sc_(&sc), keep_byte
 MeshSource::MeshSource(const std::vector<scene::Mesh>& given) : given_(&given) {}
 
 size_t MeshSource::bytes(const scene::Mesh& m) {
-  size_t b = sizeof(m) + (m.pos.capacity() + m.nrm.capacity()) * sizeof(Vec3) + m.faces.capacity() * sizeof(m.faces[0]);
+  size_t b = sizeof(m) + (m.pos.capacity() + m.nrm.capacity() + m.col.capacity()) * sizeof(Vec3) +
+             m.faces.capacity() * sizeof(m.faces[0]);
   for (const auto& f : m.faces) b += f.capacity() * sizeof(int) + 16;  // + the allocator's header
   return b;
 }
@@ -408,6 +444,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
   // they used (the survivors keep their drawing order, so the command streams are those of drawing
   // everything first). Peak memory: the image, the survivors (at most a few per pixel) and one object.
   std::vector<bool> needs_normalize(sc.materials.size(), false);
+  std::vector<ObjectColours> object_colours(no);
   fr.raster = raster::Rasterizer(fr.width, fr.height, cam.near);
   const size_t compact_at = std::max<size_t>(size_t{1} << 16, 4 * static_cast<size_t>(fr.width) * fr.height);
   const double build0 = meshes.build_seconds();
@@ -426,24 +463,45 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
     bool fixed = true;
     std::vector<Vec3> eye(mesh.pos.size());
     std::vector<raster::ClipVertex> clip(mesh.pos.size());
+    // GL_COLOR_MATERIAL: each vertex's colour (the OBJ's, else the object's `color`) goes to the core with its
+    // fragment; a face's fragment (flat_rule centroid) takes the mean of its vertices' colours. Without colour
+    // material the fragment colour stays 0 (streams as before).
+    const bool cm = o.colour_material.has_value();
+    auto vertex_colour = [&](size_t v) -> const Vec3& { return mesh.col.empty() ? o.colour : mesh.col[v]; };
+    {
+      ObjectColours& oc = object_colours[static_cast<size_t>(oi)];
+      oc = {o.colour, true};
+      if (!mesh.col.empty()) oc.max = {0, 0, 0};
+      for (size_t v = 0; v < (mesh.col.empty() ? size_t{1} : mesh.col.size()); ++v) {
+        const Vec3& c = vertex_colour(v);
+        for (int i = 0; i < 3; ++i) oc.max[i] = std::max(oc.max[i], c[i]);
+        oc.grey = oc.grey && colour_code(F, c[0]) == colour_code(F, c[1]) && colour_code(F, c[1]) == colour_code(F, c[2]);
+      }
+    }
     auto vertex_fragment = [&](size_t v) {
       const Vec3 ne = unit(apply3(nmat, mesh.nrm[v]));
       Fragment f;
       const auto nc = normal_code(F, ne, &fixed);
       const Fragment pf = make_fragment(F, ne.data(), eye[v].data());
       for (int i = 0; i < 3; ++i) f.n[i] = nc[i], f.p[i] = pf.p[i];
+      if (cm) set_fragment_colour(F, f, vertex_colour(v).data());
       return f;
     };
     auto face_fragment = [&](size_t fi) {
       const auto& face = mesh.faces[fi];
       const Vec3 fn = unit(apply3(nmat, scene::polygon_normal(mesh.pos, face)));
-      Vec3 cen{0, 0, 0};
+      Vec3 cen{0, 0, 0}, col = o.colour;  // one colour for the whole mesh: exactly it
+      if (!mesh.col.empty()) col = {0, 0, 0};
       for (int v : face)
-        for (int i = 0; i < 3; ++i) cen[i] += eye[v][i] / static_cast<double>(face.size());
+        for (int i = 0; i < 3; ++i) {
+          cen[i] += eye[v][i] / static_cast<double>(face.size());
+          if (!mesh.col.empty()) col[i] += mesh.col[static_cast<size_t>(v)][i] / static_cast<double>(face.size());
+        }
       Fragment f;
       const auto nc = normal_code(F, fn, &fixed);
       const Fragment pf = make_fragment(F, fn.data(), cen.data());
       for (int i = 0; i < 3; ++i) f.n[i] = nc[i], f.p[i] = pf.p[i];
+      if (cm) set_fragment_colour(F, f, col.data());
       return f;
     };
     for (size_t v = 0; v < mesh.pos.size(); ++v) {
@@ -566,7 +624,8 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
     }
   }
 
-  const Derivation d = derive_features(sc, drawn, needs_normalize, s.full_core, s.unit, s.lanes, s.share);
+  const Derivation d =
+      derive_features(sc, drawn, needs_normalize, s.full_core, s.unit, s.lanes, s.share, object_colours);
   fr.groups = d.groups;
   for (int oi : drawn) fr.object_group[oi] = d.group_of_material[sc.objects[oi].material];
 
@@ -578,9 +637,17 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
     uint32_t index;
     bool back;
   };
+  // Fragments go to the core per material and, within it, per colour material mode (`none` first, then the
+  // ColourMaterial order): the bucket of object oi. A core with the colour_material register gets it written
+  // before each bucket's fragments; a scene without colour material has only the `none` buckets.
+  constexpr size_t kCmBuckets = 6;
   const size_t nmat = sc.materials.size();
-  std::vector<std::vector<Item>> mat_faces(nmat), mat_verts(nmat);
-  std::vector<std::vector<uint32_t>> mat_pixels(nmat);
+  auto bucket = [&](int oi) {
+    const auto& cmo = sc.objects[oi].colour_material;
+    return static_cast<size_t>(sc.objects[oi].material) * kCmBuckets + (cmo ? 1 + static_cast<size_t>(*cmo) : 0);
+  };
+  std::vector<std::vector<Item>> mat_faces(nmat * kCmBuckets), mat_verts(nmat * kCmBuckets);
+  std::vector<std::vector<uint32_t>> mat_pixels(nmat * kCmBuckets);
   std::vector<uint8_t> face_vis(fr.face_frag.size(), 0), vert_need(fr.vertex_frag.size(), 0);
   for (int y = 0; y < fr.height; ++y)
     for (int x = 0; x < fr.width; ++x) {
@@ -601,18 +668,18 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
           for (uint32_t v : fr.tri_vertices[src]) vert_need[v] |= side;
           break;
         case Shading::Phong:
-          mat_pixels[sc.objects[oi].material].push_back(static_cast<uint32_t>(y * fr.width + x));
+          mat_pixels[bucket(oi)].push_back(static_cast<uint32_t>(y * fr.width + x));
           break;
       }
     }
   for (size_t f = 0; f < face_vis.size(); ++f)
     for (uint8_t b = 0; b < 2; ++b)
       if (face_vis[f] & (1u << b))
-        mat_faces[sc.objects[fr.face_object[f]].material].push_back({static_cast<uint32_t>(f), b != 0});
+        mat_faces[bucket(fr.face_object[f])].push_back({static_cast<uint32_t>(f), b != 0});
   for (size_t v = 0; v < vert_need.size(); ++v)
     for (uint8_t b = 0; b < 2; ++b)
       if (vert_need[v] & (1u << b))
-        mat_verts[sc.objects[fr.vertex_object[v]].material].push_back({static_cast<uint32_t>(v), b != 0});
+        mat_verts[bucket(fr.vertex_object[v])].push_back({static_cast<uint32_t>(v), b != 0});
 
   // Command streams.
   for (auto& g : fr.groups) {
@@ -671,16 +738,24 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
       add_writes(light_writes(core, j, lp));
     }
     for (int m : g.materials) {
-      if (mat_faces[m].empty() && mat_verts[m].empty() && mat_pixels[m].empty()) continue;
+      const size_t b0 = static_cast<size_t>(m) * kCmBuckets;
+      bool any = false;
+      for (size_t b = b0; b < b0 + kCmBuckets; ++b)
+        any = any || !mat_faces[b].empty() || !mat_verts[b].empty() || !mat_pixels[b].empty();
+      if (!any) continue;
       const auto& M = sc.materials[m];
+      // a scene material's (or its back's) colours and shininess into the host's MaterialParams
+      auto take = [](MaterialParams& p, const auto& src) {
+        for (int c = 0; c < 3; ++c) {
+          p.emission[c] = src.emission[c];
+          p.ambient[c] = src.ambient[c];
+          p.diffuse[c] = src.diffuse[c];
+          p.specular[c] = src.specular[c];
+        }
+        p.shininess = src.shininess;
+      };
       MaterialParams mp;
-      for (int c = 0; c < 3; ++c) {
-        mp.emission[c] = M.emission[c];
-        mp.ambient[c] = M.ambient[c];
-        mp.diffuse[c] = M.diffuse[c];
-        mp.specular[c] = M.specular[c];
-      }
-      mp.shininess = M.shininess;
+      take(mp, M);
       if (M.normalization && sp.specular) {
         mp.norm_model = static_cast<int>(M.normalization->model);
         mp.norm_kind = M.normalization->kind;
@@ -688,20 +763,19 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
         mp.norm_model = -1;  // with the norm hardware: coefficient 1.0, sc_energy passes spec unchanged
       }
       if (sp.specular) mp.unit = sp.variant;
-      auto ws = material_writes(core, mp);
-      add_writes(ws);
-      if (sp.two_side) {  // glMaterial(GL_BACK, ...): the back colour bank (the front's when the scene gives none)
-        const scene::BackMaterial B = M.back_or_front();
-        MaterialParams bp = mp;
-        for (int c = 0; c < 3; ++c) {
-          bp.emission[c] = B.emission[c];
-          bp.ambient[c] = B.ambient[c];
-          bp.diffuse[c] = B.diffuse[c];
-          bp.specular[c] = B.specular[c];
-        }
-        bp.shininess = B.shininess;  // equal to the front's (the scene parser refuses another)
-        add_writes(back_material_writes(core, mp, bp));
-      }
+      add_writes(material_writes(core, mp));
+      // glMaterial(GL_BACK, ...): the back colour bank (the front's when the scene gives none)
+      const scene::BackMaterial B = M.back_or_front();
+      MaterialParams bp = mp;
+      take(bp, B);
+      if (sp.two_side) add_writes(back_material_writes(core, bp));
+      // The core holds one unit material (mat_unit, mat_n, mat_thr, mat_coef). A back face with a shininess of its
+      // own: the front-facing fragments first, then the back's unit material and the back-facing ones (the next
+      // material's writes replace it). Otherwise one batch, in the order below.
+      const bool split = sp.two_side && sp.specular && bp.shininess != mp.shininess;
+      auto pixel_back = [&fr](uint32_t p) {
+        return fr.two_side && fr.raster.tris()[fr.raster.at(static_cast<int>(p % fr.width), static_cast<int>(p / fr.width))].back;
+      };
       auto frag = [&g](const Fragment& f, DestKind k, uint32_t idx, bool back) {
         CoreCmd c;
         c.f = f;
@@ -709,31 +783,50 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
         g.cmds.push_back(c);
         g.dests.push_back({k, idx, back});
       };
-      for (const Item& f : mat_faces[m]) frag(fr.face_frag[f.index], DestKind::Face, f.index, f.back), ++g.faces;
-      for (const Item& v : mat_verts[m]) frag(fr.vertex_frag[v.index], DestKind::Vertex, v.index, v.back), ++g.vertices;
-      for (uint32_t p : mat_pixels[m]) {
-        const int x = static_cast<int>(p % fr.width), y = static_cast<int>(p / fr.width);
-        const int32_t id = fr.raster.at(x, y);
-        const auto& st = fr.raster.tris()[id];
-        const auto& tv = fr.tri_vertices[st.source];
-        const raster::Weights w = fr.raster.weights(id, x, y);
-        Fragment f;
-        for (int i = 0; i < 3; ++i) {
-          std::array<int64_t, 3> n{}, pp{};
-          for (int k = 0; k < 3; ++k) {
-            double sn = 0, sp = 0;
-            for (int q = 0; q < 3; ++q) {
-              sn += st.v[k].b[q] * static_cast<double>(fr.vertex_frag[tv[q]].n[i]);
-              sp += st.v[k].b[q] * static_cast<double>(fr.vertex_frag[tv[q]].p[i]);
+      for (int batch = 0; batch < (split ? 2 : 1); ++batch) {
+        auto in_batch = [&](bool back) { return !split || back == (batch == 1); };
+        if (batch == 1) add_writes(unit_material_writes(core, bp));
+        for (size_t b = b0; b < b0 + kCmBuckets; ++b) {
+          bool any_here = false;
+          for (const Item& f : mat_faces[b]) any_here = any_here || in_batch(f.back);
+          for (const Item& v : mat_verts[b]) any_here = any_here || in_batch(v.back);
+          for (uint32_t p : mat_pixels[b]) any_here = any_here || in_batch(pixel_back(p));
+          if (!any_here) continue;
+          if (g.fs.colour_material)  // glColorMaterial(GL_FRONT_AND_BACK, mode) / glDisable(GL_COLOR_MATERIAL)
+            add_writes(colour_material_writes(b == b0 ? std::nullopt
+                                                      : std::optional<ColourMaterial>(static_cast<ColourMaterial>(b - b0 - 1))));
+          for (const Item& f : mat_faces[b])
+            if (in_batch(f.back)) frag(fr.face_frag[f.index], DestKind::Face, f.index, f.back), ++g.faces;
+          for (const Item& v : mat_verts[b])
+            if (in_batch(v.back)) frag(fr.vertex_frag[v.index], DestKind::Vertex, v.index, v.back), ++g.vertices;
+          for (uint32_t p : mat_pixels[b]) {
+            if (!in_batch(pixel_back(p))) continue;
+            const int x = static_cast<int>(p % fr.width), y = static_cast<int>(p / fr.width);
+            const int32_t id = fr.raster.at(x, y);
+            const auto& st = fr.raster.tris()[id];
+            const auto& tv = fr.tri_vertices[st.source];
+            const raster::Weights w = fr.raster.weights(id, x, y);
+            // the normal, the position and the colour (0 without colour material) interpolated alike: each
+            // screen vertex's value from its weights over the triangle's vertices, then perspective-correct
+            auto interp = [&](auto attr) {
+              std::array<int64_t, 3> a{};
+              for (int k = 0; k < 3; ++k) {
+                double sa = 0;
+                for (int q = 0; q < 3; ++q) sa += st.v[k].b[q] * static_cast<double>(attr(fr.vertex_frag[tv[q]]));
+                a[k] = std::llround(sa);
+              }
+              return raster::interpolate(w, a);
+            };
+            Fragment f;
+            for (int i = 0; i < 3; ++i) {
+              f.n[i] = interp([i](const Fragment& v) { return v.n[i]; });
+              f.p[i] = interp([i](const Fragment& v) { return v.p[i]; });
+              f.col[i] = static_cast<uint32_t>(interp([i](const Fragment& v) { return v.col[i]; }));
             }
-            n[k] = std::llround(sn);
-            pp[k] = std::llround(sp);
+            frag(f, DestKind::Pixel, p, fr.two_side && st.back);
+            ++g.pixels;
           }
-          f.n[i] = raster::interpolate(w, n);
-          f.p[i] = raster::interpolate(w, pp);
         }
-        frag(f, DestKind::Pixel, p, fr.two_side && st.back);
-        ++g.pixels;
       }
     }
   }

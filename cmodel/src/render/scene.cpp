@@ -40,6 +40,27 @@ Shading parse_shading(const std::string& s) {
   throw std::invalid_argument("unknown shading mode '" + s + "' (known: flat, gouraud, phong)");
 }
 
+const char* to_string(std::optional<ColourMaterial> m) {
+  if (!m) return "none";
+  switch (*m) {
+    case ColourMaterial::Emission: return "emission";
+    case ColourMaterial::Ambient: return "ambient";
+    case ColourMaterial::Diffuse: return "diffuse";
+    case ColourMaterial::Specular: return "specular";
+    case ColourMaterial::AmbientAndDiffuse: return "ambient_and_diffuse";
+  }
+  return "?";
+}
+
+std::optional<ColourMaterial> parse_colour_material(const std::string& s) {
+  if (s == "none") return std::nullopt;
+  for (const auto m : {ColourMaterial::Emission, ColourMaterial::Ambient, ColourMaterial::Diffuse,
+                       ColourMaterial::Specular, ColourMaterial::AmbientAndDiffuse})
+    if (s == to_string(m)) return m;
+  throw std::invalid_argument("unknown color_material mode '" + s +
+                              "' (known: none, emission, ambient, diffuse, specular, ambient_and_diffuse)");
+}
+
 const char* to_string(FlatRule r) {
   switch (r) {
     case FlatRule::Centroid: return "centroid";
@@ -303,11 +324,13 @@ class Parser {
     for (size_t i = 0; i < N; ++i) a[i] = number(v[i], index(path, i));
     return a;
   }
-  Vec3 colour(const json& v, const std::string& path) const {
+  // A colour: [0, 2) (the core's colour format) or, `unit`, [0, 1] (GL's current colour: glColor3f clamps).
+  Vec3 colour(const json& v, const std::string& path, bool unit = false) const {
     if (!v.is_array() || v.size() != 3) fail(path, "must be a colour [r, g, b]");
     Vec3 c{};
     for (size_t i = 0; i < 3; ++i)
-      c[i] = number_in(v[i], index(path, i), 0.0, true, 2.0, false, "[0, 2) (the core's colour format)");
+      c[i] = unit ? number_in(v[i], index(path, i), 0.0, true, 1.0, true, "[0, 1]")
+                  : number_in(v[i], index(path, i), 0.0, true, 2.0, false, "[0, 2) (the core's colour format)");
     return c;
   }
 
@@ -501,11 +524,12 @@ Material parse_material(const Parser& P, const json& j, const std::string& path,
     const std::string bp = path + ".back";
     const json& b = j["back"];
     if (!b.is_object()) P.fail(bp, "must be a JSON object (the back material's colours)");
-    // the units hold one material: the back face uses the front's unit, cut-off and normalisation
+    // the back face uses the front's unit, cut-off and normalisation: the renderer writes the back's shininess
+    // into the core's one unit material between the facing batches (a back unit would need a core with two units)
     for (const char* k : {"specular_unit", "cutoff", "normalization"})
       if (b.contains(k))
         P.fail(Parser::join(bp, k), "applies to the front material only: the back face shares its specular unit, "
-                                    "cut-off and normalisation (the core has one specular material)");
+                                    "cut-off and normalisation (only the back shininess may differ)");
     P.keys(b, bp, {"emission", "ambient", "diffuse", "specular", "shininess"});
     BackMaterial bm = m.back_or_front();  // a key not given: the front's
     if (b.contains("emission")) bm.emission = P.colour(b["emission"], bp + ".emission");
@@ -514,9 +538,11 @@ Material parse_material(const Parser& P, const json& j, const std::string& path,
     if (b.contains("specular")) bm.specular = P.colour(b["specular"], bp + ".specular");
     if (b.contains("shininess")) {
       bm.shininess = P.integer(b["shininess"], bp + ".shininess", 0, kNMax);
-      if (bm.shininess != m.shininess)
-        P.fail(bp + ".shininess", "back shininess " + std::to_string(bm.shininess) + " differs from the front's " +
-                                      std::to_string(m.shininess) + " (the core has one specular material: both faces use one shininess)");
+      // the front's normalisation applies to the back's unit material too: the same range
+      if (m.normalization && bm.shininess < kNMin)
+        P.fail(bp + ".shininess", "needs " + std::to_string(kNMin) + ".." + std::to_string(kNMax) + " with the front's "
+                                  "normalization (got " + std::to_string(bm.shininess) + "; below " +
+                                  std::to_string(kNMin) + " the power is not normalised)");
     }
     m.back = bm;
   }
@@ -579,13 +605,13 @@ Object parse_object(const Parser& P, const json& j, const std::string& path, con
   o.scene_file = printable(P.file(), 0);
   if (type == "sphere") {
     o.type = ObjectType::Sphere;
-    P.keys(j, path, {"type", "name", "material", "shading", "transform", "radius", "slices", "stacks"});
+    P.keys(j, path, {"type", "name", "material", "shading", "color_material", "color", "transform", "radius", "slices", "stacks"});
     if (j.contains("radius")) o.radius = P.length(j["radius"], path + ".radius");
     if (j.contains("slices")) o.slices = P.integer(j["slices"], path + ".slices", 3, 1024);
     if (j.contains("stacks")) o.stacks = P.integer(j["stacks"], path + ".stacks", 2, 1024);
   } else if (type == "plane" || type == "quad") {  // "quad": the same object (one quad unless subdivided)
     o.type = ObjectType::Plane;
-    P.keys(j, path, {"type", "name", "material", "shading", "transform", "size", "subdivisions"});
+    P.keys(j, path, {"type", "name", "material", "shading", "color_material", "color", "transform", "size", "subdivisions"});
     if (j.contains("size")) {
       const json& sj = j["size"];
       if (!sj.is_array() || sj.size() != 2) P.fail(path + ".size", "must be a list of 2 numbers [width, height]");
@@ -595,8 +621,8 @@ Object parse_object(const Parser& P, const json& j, const std::string& path, con
     if (j.contains("subdivisions")) o.subdivisions = P.integer(j["subdivisions"], path + ".subdivisions", 1, 1024);
   } else if (type == "torus") {
     o.type = ObjectType::Torus;
-    P.keys(j, path, {"type", "name", "material", "shading", "transform", "inner_radius", "outer_radius", "sides",
-                     "rings"});
+    P.keys(j, path, {"type", "name", "material", "shading", "color_material", "color", "transform", "inner_radius",
+                     "outer_radius", "sides", "rings"});
     if (j.contains("inner_radius"))
       o.inner_radius = P.length(j["inner_radius"], path + ".inner_radius");
     if (j.contains("outer_radius"))
@@ -606,7 +632,7 @@ Object parse_object(const Parser& P, const json& j, const std::string& path, con
     if (j.contains("rings")) o.rings = P.integer(j["rings"], path + ".rings", 3, 1024);
   } else if (type == "mesh") {
     o.type = ObjectType::Mesh;
-    P.keys(j, path, {"type", "name", "material", "shading", "transform", "file"});
+    P.keys(j, path, {"type", "name", "material", "shading", "color_material", "color", "transform", "file"});
     if (!j.contains("file")) P.fail(path, "missing 'file' (an OBJ file, relative to the scene file)");
     o.file = P.string(j["file"], path + ".file");
     if (o.file.empty()) P.fail(path + ".file", "empty file name");
@@ -630,6 +656,15 @@ Object parse_object(const Parser& P, const json& j, const std::string& path, con
       P.fail(path + ".shading", Parser::quoted(e.what(), sh));
     }
   }
+  if (j.contains("color_material")) {
+    const std::string cm = P.string(j["color_material"], path + ".color_material");
+    try {
+      o.colour_material = parse_colour_material(cm);
+    } catch (const std::invalid_argument& e) {
+      P.fail(path + ".color_material", Parser::quoted(e.what(), cm));
+    }
+  }
+  if (j.contains("color")) o.colour = P.colour(j["color"], path + ".color", true);
   if (j.contains("transform")) o.transform = parse_transform(P, j["transform"], path + ".transform");
   return o;
 }

@@ -13,10 +13,13 @@ struct Mesh {
   std::vector<Vec3> pos;                 // object-space positions
   std::vector<Vec3> nrm;                 // unit vertex normals (analytic, from the OBJ, or area-weighted)
   std::vector<std::vector<int>> faces;   // polygons, counter-clockwise seen from outside (front faces)
+  std::vector<Vec3> col;                 // per-vertex colours in [0, 1] (OBJ `v x y z r g b`); empty: none (the
+                                         // object's `color` everywhere)
 };
 
 // Builds the geometry of `o`. Throws SceneError (one line) for a missing or malformed OBJ file,
-// a face index out of range, a degenerate (zero-area) face or a zero normal.
+// a face index out of range, a degenerate (zero-area) face, a zero normal, a vertex colour outside [0, 1] or
+// vertex colours on some `v` lines but not on all.
 Mesh build_mesh(const Object& o);
 
 // Newell's polygon normal (not normalised; length = 2 × area for a planar polygon).

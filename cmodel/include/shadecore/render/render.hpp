@@ -74,6 +74,14 @@ struct Settings {
   std::vector<int> objects;                   // only these objects (empty: all)
 };
 
+// The colours an object sends to the core under colour material (objects[i].color_material): per channel the
+// largest, and whether every one is grey at the core's width (all r = g = b codes). Of its mesh's vertex colours,
+// or its `color` (one colour) for a mesh without them.
+struct ObjectColours {
+  scene::Vec3 max{1, 1, 1};
+  bool grey = true;
+};
+
 // The derived feature sets of a scene, one per specular unit in use (materials without a specular term
 // join the first group). Exposed for tests and `render --json`.
 struct Derivation {
@@ -82,7 +90,8 @@ struct Derivation {
 };
 Derivation derive_features(const scene::Scene& sc, const std::vector<int>& objects_used,
                            const std::vector<bool>& phong_used_by_material, bool full_core,
-                           std::optional<VariantId> unit_override, int lanes = 1, int share = 1);
+                           std::optional<VariantId> unit_override, int lanes = 1, int share = 1,
+                           const std::vector<ObjectColours>& object_colours = {});  // per scene object; empty: `color`
 
 // The full core for a specialised set: config/configs.json 'full', programmed by register writes alone
 // (its capabilities include every mode of `spec`); only a width other than full's is substituted (a
@@ -115,8 +124,10 @@ struct Frame {
   std::vector<CoreGroup> groups;
   // Geometry that some pixel shows (triangles no pixel shows are dropped object by object, with the
   // vertices and faces only they used); numbering in drawing order (objects, then their vertices / faces).
-  std::vector<Fragment> vertex_frag;          // per vertex: N̂ and P codes (Gouraud; flat by provoking vertex)
-  std::vector<Fragment> face_frag;            // per face: face normal and centroid codes
+  std::vector<Fragment> vertex_frag;          // per vertex: N̂ and P codes (Gouraud; flat by provoking vertex), and
+                                              // under the object's colour material its colour (else 0)
+  std::vector<Fragment> face_frag;            // per face: face normal and centroid codes (colour: the mean of its
+                                              // vertices' colours under colour material)
   std::vector<int> vertex_object, face_object;  // per vertex / face: its scene object
   std::vector<int> tri_object, tri_face;      // per triangle (the rasteriser's source id)
   std::vector<std::array<uint32_t, 3>> tri_vertices;  // (v0, vk, vk+1) of the face's fan: [2] provokes

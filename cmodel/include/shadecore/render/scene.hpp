@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "shadecore/light.hpp"
 #include "shadecore/units/coef.hpp"
 #include "shadecore/units/cs16.hpp"
 #include "shadecore/unit.hpp"
@@ -46,6 +47,11 @@ enum class FlatRule { Centroid, ProvokingVertex };
 const char* to_string(FlatRule r);
 FlatRule parse_flat_rule(const std::string& s);  // throws std::invalid_argument
 
+// glColorMaterial(GL_FRONT_AND_BACK, mode) with GL_COLOR_MATERIAL enabled, per object (the scene's
+// objects[i].color_material); nullopt: `none`, GL_COLOR_MATERIAL disabled.
+const char* to_string(std::optional<ColourMaterial> m);
+std::optional<ColourMaterial> parse_colour_material(const std::string& s);  // throws std::invalid_argument
+
 struct Camera {            // gluLookAt(eye, center, up) + gluPerspective(fovy, aspect = width/height, near, far)
   Vec3 eye{0, 0, 5}, center{0, 0, 0}, up{0, 1, 0};
   double fovy = 45.0;      // degrees, (0, 180)
@@ -68,8 +74,9 @@ struct Normalization {     // optional energy normalisation of the specular term
 };
 
 // A material's "back" object: glMaterialfv(GL_BACK, ...), used for back-facing polygons under
-// GL_LIGHT_MODEL_TWO_SIDE (light_model.two_side). The back face shares the front's specular unit, cut-off,
-// normalisation and shininess (the core holds one specular material: a different shininess is refused).
+// GL_LIGHT_MODEL_TWO_SIDE (light_model.two_side). The back face shares the front's specular unit, cut-off and
+// normalisation; its shininess may differ (the core holds one unit material: the renderer writes the back's between
+// the front-facing and the back-facing fragments, docs/scenes.md).
 struct BackMaterial {
   Vec3 emission{0, 0, 0}, ambient{0.2, 0.2, 0.2}, diffuse{0.8, 0.8, 0.8}, specular{0, 0, 0};
   int shininess = 16;
@@ -88,7 +95,8 @@ struct Material {          // glMaterialfv(GL_FRONT, ...) (GL_FRONT_AND_BACK wit
   [[nodiscard]] BackMaterial back_or_front() const {
     return back ? *back : BackMaterial{emission, ambient, diffuse, specular, shininess};
   }
-  // This material with the back face's colours in place of the front's (unit, cut-off, normalisation kept).
+  // This material with the back face's colours and shininess in place of the front's (unit, cut-off, normalisation
+  // kept).
   [[nodiscard]] Material back_face() const {
     Material m = *this;
     const BackMaterial b = back_or_front();
@@ -129,6 +137,10 @@ struct Object {
   Transform transform;
   int material = 0;        // index into Scene::materials
   Shading shading = Shading::Phong;
+  // GL_COLOR_MATERIAL: the material colour(s) the object's colours replace (nullopt: none), and GL's current colour
+  // (glColor3f) where the mesh has no per-vertex colours (built-in primitives, OBJ files without `v x y z r g b`)
+  std::optional<ColourMaterial> colour_material;
+  Vec3 colour{1, 1, 1};
   std::string where;       // "objects[i]" for messages
   std::string scene_file;  // the scene file it comes from (messages)
 };

@@ -26,6 +26,7 @@
 // Directed and stream modes are one sequence (not sharded).
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <deque>
@@ -111,6 +112,7 @@ class LightStimulus {
     c.is_write = false;
     c.f = random_fragment();
     if (core_.features().two_side) c.f.back = (rng_.next() & 1) != 0;  // the facing bit (drawn only where it exists)
+    if (core_.features().colour_material) random_colour(c.f);             // the colour (likewise)
     digest_ += fragment_digest(index, c.f);
     ++frags_;
     return true;
@@ -151,6 +153,15 @@ class LightStimulus {
   }
 
   double u01() { return static_cast<double>(rng_.next() >> 11) * 0x1.0p-53; }
+  // A fragment colour (colour_material): an eighth of the channels at an extreme (0, 1.0, the largest code),
+  // the rest anywhere in the register's range [0, 2)
+  void random_colour(Fragment& f) {
+    const uint32_t one = 1u << F_, cmax = (2u << F_) - 1;
+    for (uint32_t& x : f.col) {
+      const uint64_t r = rng_.next();
+      x = r % 8 == 0 ? std::array<uint32_t, 3>{0u, one, cmax}[(r >> 3) % 3] : static_cast<uint32_t>((r >> 8) & cmax);
+    }
+  }
   double u(double lo, double hi) { return lo + (hi - lo) * u01(); }
 
   // Queue register writes into q (the random stream's pending_ or the directed list), tracking them in shadow_.
@@ -185,9 +196,12 @@ class LightStimulus {
     if (core_.features().two_side) {  // the back colour bank too (registers are not reset: a program writes them)
       MaterialParams b = m;
       for (int c = 0; c < 3; ++c) b.emission[c] = u(0, 0.5), b.ambient[c] = u(0, 1), b.diffuse[c] = u(0, 1), b.specular[c] = u(0, 1.5);
-      const auto bw = back_material_writes(core_, m, b);
+      const auto bw = back_material_writes(core_, b);
       w.insert(w.end(), bw.begin(), bw.end());
     }
+    if (core_.features().colour_material)  // GL_COLOR_MATERIAL on in 3/4 of the programs, every mode field 0..7
+      w.push_back({kReg_colour_material, static_cast<uint32_t>(rng_.next() & mask_bits(kColourMaterialBits)) |
+                                             (rng_.next() % 4 != 0 ? 1u : 0u)});
     return w;
   }
   // A kind slot j can take: the r-th of its kinds (mod their count).
@@ -399,7 +413,8 @@ class LightStimulus {
     m.specular[0] = m.specular[1] = m.specular[2] = 0.8;
     m.shininess = 128;
     add_writes(material_writes(core_, m));
-    if (core_.features().two_side) add_writes(back_material_writes(core_, m, m));  // every register a program relies on
+    if (core_.features().two_side) add_writes(back_material_writes(core_, m));  // every register a program relies on
+    if (core_.features().colour_material) add_writes(colour_material_writes(std::nullopt));
     for (int j = 0; j < nl; ++j) {
       LightParams lp;
       lp.kind = slot_kind(j, static_cast<uint64_t>(j));
@@ -529,6 +544,67 @@ class LightStimulus {
     build_directed_spot();
     build_directed_low_n();
     build_directed_two_side();
+    build_directed_colour_material();
+  }
+  // 11. colour material (colour_material, docs/lighting.md §3.8): every mode field 0..7 enabled and disabled, the
+  //     hard fragments with extreme colours (0, 1.0, the largest code 2 − 2^−F, one channel each), both facings in
+  //     the two-sided mode, the separate mode; a material whose registers are far from the colours, every
+  //     slot on with a non-zero ambient
+  void build_directed_colour_material() {
+    if (!core_.features().colour_material) return;
+    const int64_t one = int64_t{1} << F_;
+    const uint32_t cmax = (2u << F_) - 1, o = static_cast<uint32_t>(one);
+    std::vector<RegWrite> ws;
+    for (uint32_t c = 0; c < 3; ++c)
+      for (uint32_t a : {kReg_mat_emission, kReg_mat_ambient, kReg_mat_diffuse, kReg_mat_specular})
+        ws.push_back({a + c, o / 8 + c});
+    // every slot on (section 1 left them off), with a non-zero ambient (GL's default is 0: the ambient product
+    // a·Ia then shows the colour)
+    for (int j = 0; j < core_.features().num_lights(); ++j) {
+      LightParams lp;
+      lp.kind = slot_kind(j, static_cast<uint64_t>(j));
+      lp.position[0] = 1.0 - j, lp.position[1] = 2;
+      lp.position[2] = *lp.kind == LightKind::Directional ? 1 : 8;
+      lp.position[3] = *lp.kind == LightKind::Directional ? 0 : 1;
+      lp.spot_cutoff = *lp.kind == LightKind::Spot ? 90 : 180;
+      for (int c = 0; c < 3; ++c) lp.ambient[c] = 0.4 + 0.1 * c;
+      const auto lw = light_writes(core_, j, lp);
+      ws.insert(ws.end(), lw.begin(), lw.end());
+    }
+    double ga[3] = {0.5, 1.5, 1.0};
+    ModeParams md = default_modes(core_.features());
+    md.two_side = md.separate_specular = false;
+    auto g = global_writes(core_, ga, md);
+    ws.insert(ws.end(), g.begin(), g.end());
+    add_writes(ws);
+    static constexpr uint32_t kCols[][3] = {{0, 0, 0}, {1u << 30, 1u << 30, 1u << 30}, {~0u, 0, 1}, {0, ~0u, 0}};
+    for (uint32_t word = 0; word < 16; ++word) {
+      add_writes({{kReg_colour_material, word}});
+      for (uint64_t k = 0; k < 10; ++k) {
+        Fragment f = hard_fragment(k);
+        for (const auto& cs : kCols) {
+          for (int i = 0; i < 3; ++i)  // 1 << 30 stands for 1.0, ~0 for the largest code
+            f.col[i] = cs[i] == (1u << 30) ? o : cs[i] == ~0u ? cmax : cs[i];
+          if (core_.features().two_side) f.back = (k + static_cast<uint64_t>(cs[0] & 3)) % 2 == 1;
+          add_frag(f);
+        }
+      }
+    }
+    // two-sided and separate with colour material on (ambient and diffuse): facing flips with the colour held
+    if (core_.features().two_side || core_.features().separate_specular) {
+      md.two_side = core_.features().two_side;
+      md.separate_specular = core_.features().separate_specular;
+      add_writes({{kReg_light_model, light_model_word(md)},
+                  {kReg_colour_material, colour_material_word(true, ColourMaterial::AmbientAndDiffuse)}});
+      for (uint64_t k = 0; k < 10; ++k) {
+        Fragment f = hard_fragment(k);
+        f.col[0] = cmax, f.col[1] = o, f.col[2] = 0;
+        for (bool b : {false, true}) {
+          f.back = b;
+          add_frag(f);
+        }
+      }
+    }
   }
   // 10. two-sided lighting (two_side, docs/lighting.md §3.7): front and back colour banks far apart (the back bank at
   //     its extremes), each hard fragment with the facing bit flipped, in and out of the two-sided mode; N with the

@@ -5,7 +5,9 @@
 //
 //   commands file: "SCLCMD01", then records: u8 kind; kind 0 (write): u32 addr, u32 data;
 //                  kind 1 (fragment) / kind 2 (back-facing fragment, in_back_i = 1): i64 n[3], i64 p[3]
-//                  (the fragment's tag is its index, 0, 1, ...)
+//                  kind 3 / kind 4: a front / back fragment with a colour (colour_material, in_cr_i..):
+//                  i64 n[3], i64 p[3], u32 col[3] (written only for a non-zero colour, so streams without
+//                  colours are unchanged); the fragment's tag is its index, 0, 1, ...
 //   results file:  "SCLOUT02", then per fragment in tag order: u32 tag, u32 c[3], u32 s[3] (the secondary colour)
 #pragma once
 
@@ -33,7 +35,8 @@ inline void write_commands(const std::string& path, const std::vector<CoreComman
   if (!fp) throw std::runtime_error("cannot write " + path);
   std::fwrite(kCmdMagic, 1, 8, fp);
   for (const auto& c : cmds) {
-    const uint8_t k = c.is_write ? 0 : (c.f.back ? 2 : 1);
+    const bool col = (c.f.col[0] | c.f.col[1] | c.f.col[2]) != 0;
+    const uint8_t k = c.is_write ? 0 : static_cast<uint8_t>((c.f.back ? 2 : 1) + (col ? 2 : 0));
     std::fwrite(&k, 1, 1, fp);
     if (c.is_write) {
       std::fwrite(&c.w.addr, 4, 1, fp);
@@ -41,6 +44,7 @@ inline void write_commands(const std::string& path, const std::vector<CoreComman
     } else {
       std::fwrite(c.f.n, 8, 3, fp);
       std::fwrite(c.f.p, 8, 3, fp);
+      if (col) std::fwrite(c.f.col, 4, 3, fp);
     }
   }
   if (std::fclose(fp) != 0) throw std::runtime_error("cannot write " + path);
@@ -62,9 +66,10 @@ inline std::vector<CoreCommand> read_commands(const std::string& path) {
     if (k == 0) {
       c.is_write = true;
       ok = std::fread(&c.w.addr, 4, 1, fp) == 1 && std::fread(&c.w.data, 4, 1, fp) == 1;
-    } else if (k == 1 || k == 2) {
-      c.f.back = k == 2;
-      ok = std::fread(c.f.n, 8, 3, fp) == 3 && std::fread(c.f.p, 8, 3, fp) == 3;
+    } else if (k >= 1 && k <= 4) {
+      c.f.back = k == 2 || k == 4;
+      ok = std::fread(c.f.n, 8, 3, fp) == 3 && std::fread(c.f.p, 8, 3, fp) == 3 &&
+           (k <= 2 || std::fread(c.f.col, 4, 3, fp) == 3);
     } else {
       ok = false;
     }
