@@ -56,8 +56,9 @@ TEST(TableSetup, Contents) {
           const uint32_t v = table_word_value(f.frac, m.words[i]);
           const double exact = std::ldexp(std::pow(double(i) / (E - 1), n), f.frac);
           EXPECT_LE(std::fabs(v - exact), 0.5) << "F=" << f.frac << " E=" << E << " n=" << n << " i=" << i;
-          if (i + 1 < E)
+          if (i + 1 < E) {
             ASSERT_EQ(table_word_delta(f.frac, m.words[i]), table_word_value(f.frac, m.words[i + 1]) - v) << i;
+          }
         }
       }
   EXPECT_THROW(table_setup(kDefault, 256, 15), std::invalid_argument);
@@ -88,7 +89,9 @@ TEST(TableEval, ClampsAndEnds) {
         // just below 1: an interval below the last entry (E − 2 when 2^F ≥ E), never the last entry itself
         table_eval(f, m, f.one() - 1, &tr);
         EXPECT_EQ(tr.index, static_cast<uint32_t>((uint64_t(E - 1) * uint64_t(f.one() - 1)) >> f.frac));
-        if (f.one() >= E) EXPECT_EQ(tr.index, static_cast<uint32_t>(E - 2));
+        if (f.one() >= E) {
+          EXPECT_EQ(tr.index, static_cast<uint32_t>(E - 2));
+        }
         EXPECT_LT(tr.index, static_cast<uint32_t>(E - 1));
         EXPECT_LE(tr.out, one);
       }
@@ -110,7 +113,9 @@ TEST(TableEval, EveryEntryBoundaryF8) {
       const uint32_t hi = tr.index + 1 < uint32_t(E) ? table_word_value(f.frac, m.words[tr.index + 1]) : lo;
       ASSERT_GE(tr.out, lo) << "E=" << E << " code=" << code;
       ASSERT_LE(tr.out, hi) << "E=" << E << " code=" << code;
-      if (tr.frac == 0) ASSERT_EQ(tr.out, lo) << code;
+      if (tr.frac == 0) {
+        ASSERT_EQ(tr.out, lo) << code;
+      }
     }
     int boundaries = 0;
     for (int i = 1; i < E; ++i) {
@@ -174,7 +179,7 @@ TEST(TableUnit, Hooks) {
     EXPECT_EQ(*m.tab, t.words);
     for (int64_t code : {int64_t{-3}, int64_t{0}, int64_t{12345}, int64_t{60000}, kDefault.one(), kDefault.in_max()})
       EXPECT_EQ(u.eval(m, code), table_eval(kDefault, t, code)) << code;
-    EXPECT_THROW(u.eval(UnitMaterial{300, 0}, 100), std::invalid_argument);  // no table loaded
+    EXPECT_THROW(static_cast<void>(u.eval(UnitMaterial{300, 0}, 100)), std::invalid_argument);  // no table loaded
     Unit un = u;
     un.set_energy(true);
     EXPECT_EQ(un.latency(), kTableLatency + 2);

@@ -657,8 +657,8 @@ class LightStimulus {
     }
   }
   // 9. shininess below the units' range (low_shininess, docs/lighting.md §3.5): every n 0..15 with both
-  //    reflections, on the hard fragments and on x exactly 0 and below (n = 0: x^0 = 1, also at x = 0); the
-  //    materials with shininess 16, 17, 31, 1024 after them (the unit's value again)
+  //    reflections, on the hard fragments, near the highlight and on x exactly 0 and below (n = 0: x^0 = 1, also
+  //    at x = 0); the materials with shininess 16, 17, 31, 32, 1024 after them, the same probes (the unit's value)
   void build_directed_low_n() {
     if (!core_.features().low_shininess) return;
     const int nl = core_.features().num_lights();
@@ -675,28 +675,28 @@ class LightStimulus {
     MaterialParams m;
     m.specular[0] = m.specular[1] = m.specular[2] = 1.0;
     const uint32_t models[2] = {kModelNormalize, kModelNormalize | kModelPhong};
-    for (int n = 0; n < kNMin; ++n) {
+    // each material: both reflections on the hard fragments, then with L̂ = (0, 0, 1) and P = 0 the normal
+    // (t/16, 0, 1): t = 1..8 near the highlight (x just below 1, where x^n of neighbouring n differ most), t = 16
+    // at 45° (R = (1, 0, 0), R·V̂ = 0: x = 0 exactly), t = 24 past it (x < 0 with N·L > 0)
+    auto probe = [&](int n) {
       m.shininess = n;
       add_writes(material_writes(core_, m));
       for (uint32_t model : models) {
         add_writes({{kReg_light_model, model}});
         for (uint64_t k = 0; k < 10; ++k) add_frag(hard_fragment(k));
-        // L̂ = (0, 0, 1): N at 45° gives R = (1, 0, 0), R·V̂ = 0; N tilted further, x < 0 with N·L > 0
-        for (int64_t t : {1, 2, 3}) {
+        for (int64_t t : {1, 2, 4, 8, 16, 24}) {
           Fragment f;
-          f.n[0] = t * one / 2;
-          f.n[2] = one / 2;
+          f.n[0] = t * one / 16;
+          f.n[2] = one;
           add_frag(f);
         }
       }
-    }
+    };
+    for (int n = 0; n < kNMin; ++n) probe(n);
     // the boundary: n = 16 (and up) goes to the unit, with its own thr and coef (a unit with the chain material's
-    // thr = 0 is outside the unit's contract, as random_writes() notes)
-    for (int n : {16, 17, 31, 1024}) {
-      m.shininess = n;
-      add_writes(material_writes(core_, m));
-      for (uint64_t k = 0; k < 4; ++k) add_frag(hard_fragment(k));
-    }
+    // thr = 0 is outside the unit's contract, as random_writes() notes); 16..31 share the chain's low bits, so a
+    // decode of "below the units' range" one bit too wide shows at 16, 17 and 31
+    for (int n : {16, 17, 31, 32, 1024}) probe(n);
   }
   // 8. spot lights (docs/lighting.md §3.4), on every slot that can be spot, the others off: −L̂·ŝ exactly at the
   //    spot cos register and one code either side (the register written raw from the model's own sdl);
