@@ -35,11 +35,16 @@ struct Loaded {
   scene::Scene sc;
   std::vector<scene::Mesh> meshes;
 };
-Loaded load(const std::string& name) {
+// a scene file by its path, or by its name under scenes/
+Loaded load_file(const std::string& path) {
   Loaded l;
-  l.sc = scene::load_scene(scene_path(name));
+  l.sc = scene::load_scene(path);
   for (const auto& o : l.sc.objects) l.meshes.push_back(scene::build_mesh(o));
   return l;
+}
+Loaded load(const std::string& name) { return load_file(scene_path(name)); }
+std::string test_data(const std::string& name) {
+  return std::string(SHADECORE_SOURCE_DIR) + "/tests/data/render/" + name;
 }
 Loaded parse(const std::string& text) {
   Loaded l;
@@ -511,9 +516,7 @@ TEST(RenderTwoSide, GouraudRimVerticesGetBothFragments) {
 // shininess, the double reference follows the same register state, and the image differs from the same scene with
 // back shininess = front in back-facing pixels only.
 TEST(RenderTwoSide, BackShininessGetsABatchOfItsOwn) {
-  Loaded l;
-  l.sc = scene::load_scene(std::string(SHADECORE_SOURCE_DIR) + "/tests/data/render/gl_two_side_shininess.json");
-  for (const auto& o : l.sc.objects) l.meshes.push_back(scene::build_mesh(o));
+  Loaded l = load_file(test_data("gl_two_side_shininess.json"));
   ASSERT_TRUE(l.sc.two_side);
   ASSERT_EQ(l.sc.materials.size(), 2u);
   std::set<int> back_n;
@@ -589,9 +592,7 @@ TEST(RenderTwoSide, BackShininessGetsABatchOfItsOwn) {
 // under provoking_vertex, with back shininess 6 and 90 added): each fragment is lit with its object's colour material
 // mode and its facing's shininess — the back batch writes each mode's colour_material word again.
 TEST(RenderTwoSide, BackBatchKeepsEachObjectsColourMaterial) {
-  Loaded l;
-  l.sc = scene::load_scene(std::string(SHADECORE_SOURCE_DIR) + "/tests/data/render/gl_colour_material_flat.json");
-  for (const auto& o : l.sc.objects) l.meshes.push_back(scene::build_mesh(o));
+  Loaded l = load_file(test_data("gl_colour_material_flat.json"));
   ASSERT_TRUE(l.sc.two_side);
   ASSERT_EQ(l.sc.materials.size(), 2u);
   const int back_n[2] = {6, 90};

@@ -241,6 +241,18 @@ class Parser {
     return msg;
   }
 
+  // A name (a JSON string) through `parse`, which throws std::invalid_argument for an unknown one: that error, with
+  // the user's text quoted, at `path`.
+  template <class Parse>
+  auto named(const json& v, const std::string& path, Parse parse) const -> decltype(parse(std::string())) {
+    const std::string s = string(v, path);
+    try {
+      return parse(s);
+    } catch (const std::invalid_argument& e) {
+      fail(path, quoted(e.what(), s));
+    }
+  }
+
   // An object whose keys are all in `allowed` ("_comment" is allowed everywhere).
   void keys(const json& j, const std::string& path, std::initializer_list<const char*> allowed) const {
     if (!j.is_object()) fail(path, "must be a JSON object");
@@ -490,11 +502,7 @@ Material parse_material(const Parser& P, const json& j, const std::string& path,
   if (j.contains("specular_unit")) m.unit = core_unit(P, j["specular_unit"], path + ".specular_unit");
   if (j.contains("cutoff")) {
     if (m.unit != VariantId::cs16) P.fail(path + ".cutoff", "applies to the cs16 unit only");
-    try {
-      m.cutoff = parse_cutoff_name(P.string(j["cutoff"], path + ".cutoff"));
-    } catch (const std::invalid_argument& e) {
-      P.fail(path + ".cutoff", Parser::quoted(e.what(), j["cutoff"].get<std::string>()));
-    }
+    m.cutoff = P.named(j["cutoff"], path + ".cutoff", parse_cutoff_name);
   }
   if (j.contains("normalization")) {
     const std::string np = path + ".normalization";
@@ -502,17 +510,9 @@ Material parse_material(const Parser& P, const json& j, const std::string& path,
     P.keys(n, np, {"model", "coefficient"});
     Normalization nz;
     if (!n.contains("model")) P.fail(np, "missing 'model'");
-    try {
-      nz.model = parse_model(P.string(n["model"], np + ".model"));
-    } catch (const std::invalid_argument& e) {
-      P.fail(np + ".model", Parser::quoted(e.what(), n["model"].get<std::string>()));
-    }
+    nz.model = P.named(n["model"], np + ".model", parse_model);
     if (n.contains("coefficient")) {
-      try {
-        nz.kind = parse_coef_kind(P.string(n["coefficient"], np + ".coefficient"));
-      } catch (const std::invalid_argument& e) {
-        P.fail(np + ".coefficient", Parser::quoted(e.what(), n["coefficient"].get<std::string>()));
-      }
+      nz.kind = P.named(n["coefficient"], np + ".coefficient", parse_coef_kind);
     }
     m.normalization = nz;
     // the fitted coefficients cover the units' range; the chain below it (GL's 0..15) is not normalised
@@ -648,22 +648,9 @@ Object parse_object(const Parser& P, const json& j, const std::string& path, con
   for (size_t i = 0; i < sc.materials.size(); ++i)
     if (sc.materials[i].name == mat) o.material = static_cast<int>(i), found = true;
   if (!found) P.fail(path + ".material", "unknown material '" + Parser::q(mat) + "'");
-  if (j.contains("shading")) {
-    const std::string sh = P.string(j["shading"], path + ".shading");
-    try {
-      o.shading = parse_shading(sh);
-    } catch (const std::invalid_argument& e) {
-      P.fail(path + ".shading", Parser::quoted(e.what(), sh));
-    }
-  }
-  if (j.contains("color_material")) {
-    const std::string cm = P.string(j["color_material"], path + ".color_material");
-    try {
-      o.colour_material = parse_colour_material(cm);
-    } catch (const std::invalid_argument& e) {
-      P.fail(path + ".color_material", Parser::quoted(e.what(), cm));
-    }
-  }
+  if (j.contains("shading")) o.shading = P.named(j["shading"], path + ".shading", parse_shading);
+  if (j.contains("color_material"))
+    o.colour_material = P.named(j["color_material"], path + ".color_material", parse_colour_material);
   if (j.contains("color")) o.colour = P.colour(j["color"], path + ".color", true);
   if (j.contains("transform")) o.transform = parse_transform(P, j["transform"], path + ".transform");
   return o;
@@ -866,12 +853,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::s
     }
   }
   if (root.contains("flat_rule")) {
-    const std::string r = P.string(root["flat_rule"], "flat_rule");
-    try {
-      sc.flat_rule = parse_flat_rule(r);
-    } catch (const std::invalid_argument& e) {
-      P.fail("flat_rule", Parser::quoted(e.what(), r));
-    }
+    sc.flat_rule = P.named(root["flat_rule"], "flat_rule", parse_flat_rule);
   }
   if (root.contains("light_model")) {
     const json& lm = root["light_model"];
