@@ -185,8 +185,14 @@ class LightStimulus {
       m.specular[c] = u(0, 1.5);
     }
     m.shininess = static_cast<int>(rng_.uniform(kNMin, kNMax));
-    // a core with the low-shininess chain: a quarter of the materials below the units' range (GL's 0..15)
-    if (core_.features().low_shininess && rng_.next() % 4 == 0) m.shininess = static_cast<int>(rng_.next() % kNMin);
+    // a core with the low-shininess chain: a quarter of the materials below the units' range (GL's 0..15), an
+    // eighth just above its start (16..33, where the chain's decode ends: no draw of its own, so every other value
+    // of the stream is as before)
+    if (core_.features().low_shininess) {
+      const uint64_t r = rng_.next() % 8;
+      if (r % 4 == 0) m.shininess = static_cast<int>(rng_.next() % kNMin);
+      else if (r == 1) m.shininess = kNMin + m.shininess % 18;
+    }
     m.norm_model = static_cast<int>(rng_.uniform(0, kNumModels - 1));
     if (rng_.next() % 4 == 0) m.norm_model = -1;  // no normalisation (coef = 1 with the norm hardware)
     m.norm_kind = rng_.next() & 1 ? CoefKind::Classical : CoefKind::Fitted;
