@@ -488,6 +488,13 @@ VariantId core_unit(const Parser& P, const json& v, const std::string& path) {
   return id;
 }
 
+// A normalised material's shininess below the units' range: "16..1024<where> (got n; below 16 the power is not
+// normalised)", the one text for the front's and the back's.
+std::string unnormalised_range(int n, const std::string& where = "") {
+  return std::to_string(kNMin) + ".." + std::to_string(kNMax) + where + " (got " + std::to_string(n) + "; below " +
+         std::to_string(kNMin) + " the power is not normalised)";
+}
+
 Material parse_material(const Parser& P, const json& j, const std::string& path, const std::string& name) {
   P.keys(j, path, {"emission", "ambient", "diffuse", "specular", "shininess", "specular_unit", "cutoff",
                    "normalization", "back"});
@@ -516,9 +523,7 @@ Material parse_material(const Parser& P, const json& j, const std::string& path,
     }
     m.normalization = nz;
     // the fitted coefficients cover the units' range; the chain below it (GL's 0..15) is not normalised
-    if (m.shininess < kNMin)
-      P.fail(np, "needs shininess " + std::to_string(kNMin) + ".." + std::to_string(kNMax) + " (got " +
-                     std::to_string(m.shininess) + "; below " + std::to_string(kNMin) + " the power is not normalised)");
+    if (m.shininess < kNMin) P.fail(np, "needs shininess " + unnormalised_range(m.shininess));
   }
   if (j.contains("back")) {  // glMaterial(GL_BACK, ...): the back face's colours (light_model.two_side)
     const std::string bp = path + ".back";
@@ -540,9 +545,7 @@ Material parse_material(const Parser& P, const json& j, const std::string& path,
       bm.shininess = P.integer(b["shininess"], bp + ".shininess", 0, kNMax);
       // the front's normalisation applies to the back's unit material too: the same range
       if (m.normalization && bm.shininess < kNMin)
-        P.fail(bp + ".shininess", "needs " + std::to_string(kNMin) + ".." + std::to_string(kNMax) + " with the front's "
-                                  "normalization (got " + std::to_string(bm.shininess) + "; below " +
-                                  std::to_string(kNMin) + " the power is not normalised)");
+        P.fail(bp + ".shininess", "needs " + unnormalised_range(bm.shininess, " with the front's normalization"));
     }
     m.back = bm;
   }
