@@ -128,7 +128,7 @@ def synth(a, sdir):
     with open(os.path.join(sdir, "abc.constr"), "w") as f:
         f.write(f"set_driving_cell {DRIVE_CELL}\nset_load {load:.5f}\n")
     prep = (f"read_verilog -defer {inc} {src}\n"
-            f"hierarchy -check -top {a.top}\n"
+            f"hierarchy -check -top {a.top}" + "".join(f" -chparam {k} {v}" for k, v in a.chparam) + "\n"
             "proc; flatten; opt_expr; opt_clean; check; opt -nodffe -nosdff; fsm; opt; wreduce; peepopt; opt_clean\n")
     with open(os.path.join(sdir, "prep.ys"), "w") as f:
         f.write(prep + "write_rtlil prep.il\nwrite_json prep.json\n")
@@ -495,10 +495,18 @@ def main():
     ap.add_argument("--steps", default="synth,sta,gatesim,power",
                     help="comma list of synth, sta, gatesim, power (default all; later steps need earlier results)")
     ap.add_argument("--timeout", type=int, default=7200, help="seconds per tool run (default 7200)")
+    ap.add_argument("--chparam", action="append", default=[], metavar="NAME=VALUE",
+                    help="set a parameter of the top before elaboration (repeatable)")
     ap.add_argument("--retime", action="store_true",
                     help="only re-time the bundle's signoff/netlist.v with its own constraints.sdc and print the slack")
     a = ap.parse_args()
     a.bundle = os.path.abspath(a.bundle)
+    try:
+        a.chparam = [tuple(x.split("=", 1)) for x in a.chparam]
+        for k, v in a.chparam:
+            int(v)
+    except ValueError:
+        die("--chparam takes NAME=INTEGER")
     if not os.path.isfile(os.path.join(a.bundle, "filelist.f")):
         die(f"{a.bundle} is not a handoff bundle (no filelist.f)")
     sdir = os.path.join(a.bundle, "signoff")
