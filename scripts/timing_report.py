@@ -16,6 +16,7 @@ Long (hours from an empty cache on 2 cores; a lighting set with 8 lights takes t
 """
 import argparse
 import datetime
+import fcntl
 import hashlib
 import json
 import os
@@ -87,8 +88,8 @@ def bundle(a, r, d):
             f.write("".join(os.path.join(ROOT, "rtl", x) + "\n" for x in dict.fromkeys(files)))
         return {"top": "sc_specular", "chparam": {"VARIANT": r["variant"]["id"], "FRAC": r["config"]["frac"],
                                                   "GUARD": r["config"]["guard"]}}
-    cmd = [a.shadecore, "handoff", "--out", d, "--no-ice40", "--synth", "skip", "--seed", "1",
-           "--count", str(a.count)]
+    cmd = [a.shadecore, "handoff", "--out", d, "--no-ice40", "--synth", "skip", "--signoff", "off", "--seed", "1",
+           "--count", str(count_of(a, r))]
     if r["kind"] == "unit":
         cmd += ["--variant", r["name"], "--config", r["config"]["name"]]
     else:
@@ -97,6 +98,10 @@ def bundle(a, r, d):
     if p.returncode:
         raise Failure(f"{' '.join(cmd)} failed: {(p.stderr or p.stdout).strip().splitlines()[-1:]}")
     return {}
+
+
+def count_of(a, r):
+    return a.count if r["kind"] == "unit" else a.light_count
 
 
 def measure(a, r):
@@ -227,6 +232,22 @@ def plot(path, rows, footer):
     figures.save(fig, path, footer)
 
 
+def store(path, rid, entry):
+    """Adds one row to the cache file under a lock (other runs may be adding theirs), atomically."""
+    d = os.path.dirname(os.path.abspath(path))
+    os.makedirs(d, exist_ok=True)
+    with open(os.path.join(d, "." + os.path.basename(path) + ".lock"), "w") as lk:
+        fcntl.flock(lk, fcntl.LOCK_EX)
+        data = json.load(open(path)) if os.path.exists(path) else {"entries": {}}
+        data["entries"][rid] = entry
+        fd, tmp = tempfile.mkstemp(prefix=".timing.cache.", dir=d)
+        with os.fdopen(fd, "w") as f:
+            json.dump(data, f, indent=1, sort_keys=True)
+            f.write("\n")
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default=os.path.join(ROOT, "build"), help="build directory (default build/)")
@@ -234,7 +255,9 @@ def main():
     ap.add_argument("--only", default="", help="comma list of rows (unit or feature-set names)")
     ap.add_argument("--configs", default="default", help="comma list of widths for the units (default: default)")
     ap.add_argument("--target", type=float, default=4.0, help="target clock period, ns (default 4.0)")
-    ap.add_argument("--count", type=int, default=300, help="random vectors per bundle (default 300)")
+    ap.add_argument("--count", type=int, default=2000,
+                    help="random vectors per unit bundle (default 2000: the pipeline's fill is ~0.4 %% of the power run)")
+    ap.add_argument("--light-count", type=int, default=200, help="random fragments per lighting bundle (default 200)")
     ap.add_argument("--timeout", type=int, default=10800, help="seconds per tool run (default 10800)")
     ap.add_argument("--cache", default=None, help="cache file (default OUT/timing.cache.json)")
     ap.add_argument("--dry-run", action="store_true", help="list the rows and whether each is cached")
@@ -250,7 +273,7 @@ def main():
     binh = hashlib.sha256(open(a.shadecore, "rb").read()).hexdigest()
     out_rows, meta = [], None
     for i, r in enumerate(rows):
-        key = hashlib.sha256(f"{row_id(r)}|{common}|{binh}|{a.target}|{a.count}".encode()).hexdigest()[:24]
+        key = hashlib.sha256(f"{row_id(r)}|{common}|{binh}|{a.target}|{count_of(a, r)}".encode()).hexdigest()[:24]
         hit = cache["entries"].get(row_id(r))
         cached = hit is not None and hit["key"] == key
         if a.dry_run:
@@ -261,11 +284,7 @@ def main():
             s = measure(a, r)
             hit = {"key": key, "signoff": s}
             cache["entries"][row_id(r)] = hit
-            tmp = cache_path + ".tmp"
-            os.makedirs(os.path.dirname(os.path.abspath(cache_path)), exist_ok=True)
-            with open(tmp, "w") as f:
-                json.dump(cache, f, indent=1, sort_keys=True)
-            os.replace(tmp, cache_path)
+            store(cache_path, row_id(r), hit)
         s = hit["signoff"]
         row = to_row(r, s)
         out_rows.append(row)
