@@ -11,7 +11,8 @@ Per row (a unit of config/configs.json "variants" at a width, or a lighting feat
 The table units have no handoff bundle (the plain-Verilog bench cannot load the table RAM): their rows are
 synthesised and timed from the RTL (sc_specular with VARIANT set) without a gate-level run, and say so.
 Rows are cached in OUT/timing.cache.json by the SHA-256 of what decides them (rtl/, config/configs.json,
-signoff/, handoff/, the shadecore binary, the target, the vector count): a rerun computes only what changed.
+signoff/signoff.py and fastmul.py, handoff/, the shadecore binary, the target, the vector count): a rerun
+computes only what changed.
 Long (hours from an empty cache on 2 cores; a lighting set with 8 lights takes the longest); run by hand.
 """
 import argparse
@@ -35,6 +36,10 @@ SIGNOFF = os.path.join(ROOT, "signoff", "signoff.py")
 FIELDS = ["name", "kind", "width", "contract", "latency_cycles", "period_ns", "wns_ns", "fmax_mhz",
           "fo4_per_cycle", "area_um2", "cells", "energy_pj_per_result", "gate_sim_vectors",
           "gate_sim_mismatches", "critical_path"]
+
+
+# What decides a row's numbers (with the shadecore binary, the target and the vector count): the cache key.
+DECIDING = ["rtl", "config/configs.json", "signoff/signoff.py", "signoff/fastmul.py", "handoff"]
 
 
 class Failure(Exception):
@@ -273,11 +278,13 @@ def main():
     rows = rows_of(cfg, [o for o in a.only.split(",") if o], a.configs.split(","))
     cache_path = a.cache or os.path.join(a.out, "timing.cache.json")
     cache = json.load(open(cache_path)) if os.path.exists(cache_path) else {"entries": {}}
-    common = sha_tree(["rtl", "config/configs.json", "signoff", "handoff"])
+    common = sha_tree(DECIDING)
     binh = hashlib.sha256(open(a.shadecore, "rb").read()).hexdigest()
     out_rows, meta = [], None
     for i, r in enumerate(rows):
         key = hashlib.sha256(f"{row_id(r)}|{common}|{binh}|{a.target}|{count_of(a, r)}".encode()).hexdigest()[:24]
+        if os.path.exists(cache_path):  # another run may have added rows since this one started
+            cache = json.load(open(cache_path))
         hit = cache["entries"].get(row_id(r))
         cached = hit is not None and hit["key"] == key
         if a.dry_run:
