@@ -29,9 +29,10 @@ from post-layout, and does the SDC's `set_timing_derate -late 1.15` cover the wi
            (c) post-layout: the SPEF, no derate. Each at the SDC's period and at 4.0 ns: WNS and
            the worst path (start, end, arrival, the input delay in that arrival); Fmax by
            bisection (every constraint scales with the period, as in signoff.py). Then the derate
-           that pre-layout needs to be as pessimistic as post-layout: the smallest d (step 0.005)
-           with WNS_pre(d) <= WNS_post, and the smallest d with slack_pre(d) <= slack_post at every
-           endpoint. The same for (c2): the SPEF with every wire capacitance multiplied by
+           that pre-layout needs to be as pessimistic as post-layout, at the SDC's period: the
+           smallest d (scanned in steps of 0.005) with WNS_pre(d) <= WNS_post; with
+           slack_pre(d) <= slack_post at every near-critical endpoint (post-layout slack within 10 %
+           of the period of WNS); and at every endpoint. The same for (c2): the SPEF with every wire capacitance multiplied by
            --cap-scale (default 2): qrouter counts one edge's fringe capacitance per wire, the LEF's
            perimeter model two (x1.88-1.94 by layer), and neither has coupling to neighbours.
 
@@ -62,6 +63,7 @@ CLOCK = "clk_i"
 REPORT_PERIOD = 4.0
 DERATE_STEP = 0.005
 DERATE_MAX = 2.0
+NEAR_FRACTION = 0.1      # near-critical endpoints: post-layout slack within this fraction of the period of WNS
 
 LOG = []
 
@@ -396,7 +398,7 @@ def sta_run(work, name, netlist, top, sdc, body, spef, timeout):
     return out
 
 
-def parse_path(out, orig_names):
+def parse_path(out, orig_names, regs):
     wns = float(re.search(r"^wns (\S+)", out, re.M).group(1))
     tns = float(re.search(r"^tns (\S+)", out, re.M).group(1))
     sp = re.search(r"Startpoint:\s*(\S+)", out).group(1)
@@ -405,7 +407,8 @@ def parse_path(out, orig_names):
     ind = re.search(r"([-0-9.]+)\s+[-0-9.]+\s+[\^v]\s+input external delay", out)
     cells = len([p for p in re.findall(r"[\^v] (\S+)/\S+ \(", out.split("data arrival time")[0]) if p != ep])
     return {"wns_ns": round(wns, 4), "tns_ns": round(tns, 4), "start": orig_names.get(sp, sp),
-            "end": orig_names.get(ep, ep), "start_layout": sp, "end_layout": ep, "arrival_ns": arr,
+            "end": orig_names.get(ep, ep), "start_reg": regs.get(sp, sp), "end_reg": regs.get(ep, ep),
+            "start_layout": sp, "end_layout": ep, "arrival_ns": arr,
             "input_delay_ns": float(ind.group(1)) if ind else 0.0, "cells_on_path": cells}
 
 
@@ -429,15 +432,20 @@ def endpoint_slacks(out):
     return m[1.0][1]
 
 
-def needed_derate(scan, post_wns, post_eps, tol=5e-4):
-    d_wns = d_all = None
+def needed_derate(scan, post_wns, post_eps, near, tol=5e-4):
+    """Smallest scanned derate d with: WNS_pre(d) <= WNS_post; slack_pre(d) <= slack_post at every
+    endpoint; the same at every near-critical endpoint (post-layout slack <= WNS_post + near)."""
+    crit = {e: s for e, s in post_eps.items() if s <= post_wns + near}
+    d_wns = d_all = d_near = None
     for d in sorted(scan):
         wns, eps = scan[d]
         if d_wns is None and wns <= post_wns + tol:
             d_wns = d
-        if d_all is None and all(eps.get(e, -1e9) <= s + tol for e, s in post_eps.items()):
+        if d_all is None and all(eps[e] <= s + tol for e, s in post_eps.items()):
             d_all = d
-    return d_wns, d_all
+        if d_near is None and all(eps[e] <= s + tol for e, s in crit.items()):
+            d_near = d
+    return d_wns, d_all, d_near, len(crit)
 
 
 # ----------------------------------------------------------------------------------------- main
@@ -476,6 +484,12 @@ def flow(a, log_path):
             raise Fail(f"cell {cell} ({orig}) is not in {LEF}")
     orig_names = {name: orig for cell, name, orig, pins in rows}
     orig_names.update({f"{name}/{p}": f"{orig}/{p}" for cell, name, orig, pins in rows for p, n in pins})
+    # the RTL register behind a flip-flop: its Q net in signoff/netlist.v
+    regs = {}
+    for (cell, inst, pins), (c2, name, orig, new_pins) in zip(insts, rows):
+        q = dict(pins).get("Q")
+        if q:
+            regs[name] = regs[f"{name}/D"] = q.lstrip("\\")
     net_v = os.path.join(sta_dir, f"{top}.v")
     write_verilog(net_v, top, ports, rows, netmap)
     write_verilog(os.path.join(proj, "source", f"{top}.v"), top, ports, rows, netmap)
@@ -539,15 +553,17 @@ def flow(a, log_path):
     n_dnet = fix_spef(raw_spef, spef)
     spef2 = os.path.join(sta_dir, f"{top}.cap{a.cap_scale:g}.spef")
     fix_spef(raw_spef, spef2, a.cap_scale)
-    wire_c = 0.0
+    wire_c = pin_c = 0.0
     for line in open(spef):
         if line.startswith("*D_NET"):
             wire_c += float(line.split()[2])
+        elif line.startswith("*I ") and " *L " in line:
+            pin_c += float(line.split()[-1])
     routed = [n for n in deff["nets"] if n not in ("vdd", "gnd") and n != CLOCK]
     if n_dnet < len(routed):
         raise Fail(f"SPEF has {n_dnet} nets, the layout {len(routed)} signal nets")
     log(f"extraction: rc2dly -> SPEF, {n_dnet} nets, total wire capacitance {wire_c:.3f} pF "
-        f"(repaired: C unit pF, bus [], internal nodes NET:K)")
+        f"and {pin_c:.3f} pF of input pins on the nets (repaired: C unit pF, bus [], internal nodes NET:K)")
 
     # ---- STA
     sdcs = {}
@@ -566,7 +582,7 @@ def flow(a, log_path):
         r = {"what": desc, "at": {}}
         for p in periods:
             out = sta_run(sta_dir, f"{key}_{p:.3f}", net_v, top, sdcs[(tag, p)], PATH_BODY, sp, a.timeout)
-            r["at"][f"{p:.3f}"] = parse_path(out, orig_names)
+            r["at"][f"{p:.3f}"] = parse_path(out, orig_names, regs)
         out = sta_run(sta_dir, f"{key}_fmax", net_v, top, sdcs[(tag, sdc_period)],
                       FMAX_BODY.format(clock=CLOCK, start=sdc_period), sp, a.timeout)
         fm = re.search(r"fmax_period (\S+)", out)
@@ -577,7 +593,7 @@ def flow(a, log_path):
         results[key] = r
         w = r["at"][f"{sdc_period:.3f}"]
         log(f"sta {key:12s}: WNS {w['wns_ns']:+.3f} ns at {sdc_period} ns, worst arrival {w['arrival_ns']:.3f} ns "
-            f"({w['start']} -> {w['end']}), Fmax period {r['fmax_period_ns']:.3f} ns")
+            f"({w['start_reg']} -> {w['end_reg']}), Fmax period {r['fmax_period_ns']:.3f} ns")
     # sign-off consistency: the derated pre-layout run must reproduce signoff.json's slack at the SDC period
     so_wns = signoff.get("sta", {}).get("critical_path", {}).get("sdc_wns_ns")
     mine = results["pre_derated"]["at"][f"{sdc_period:.3f}"]["wns_ns"]
@@ -596,11 +612,24 @@ def flow(a, log_path):
     if len(scan) < 10 or any(len(v[1]) != len(ends["post"][1]) for v in scan.values()):
         raise Fail(f"derate scan: endpoint lists differ between runs: {sta_dir}/pre_derate_scan.rpt")
     need = {}
+    near = NEAR_FRACTION * sdc_period
+    at_sdc = scan[min(scan, key=lambda d: abs(d - derate))][1]
     for key in ("post", "post_cap_x"):
-        d_wns, d_all = needed_derate(scan, *ends[key])
+        d_wns, d_all, d_near, n_near = needed_derate(scan, *ends[key], near)
+        post_eps = ends[key][1]
+        uncovered = sorted(([orig_names.get(e, e), regs.get(e, e), round(s, 4), round(at_sdc[e], 4)]
+                            for e, s in post_eps.items() if at_sdc[e] > s + 5e-4), key=lambda x: x[2])
         need[key] = {"derate_for_wns": d_wns, "derate_for_every_endpoint": d_all,
-                     "endpoints": len(ends[key][1])}
-        log(f"derate {key:12s}: WNS_pre(d) <= WNS_post from d = {d_wns}; every endpoint from d = {d_all} "
+                     "derate_for_near_critical_endpoints": d_near,
+                     "near_critical_endpoints": n_near, "near_critical_window_ns": round(near, 4),
+                     "endpoints": len(post_eps),
+                     "endpoints_not_covered_by_sdc_derate": uncovered[:20],
+                     "endpoints_not_covered_fields": ["endpoint", "register", "post-layout slack ns",
+                                                      f"pre-layout slack with derate {derate} ns"],
+                     "endpoints_not_covered_count": len(uncovered)}
+        log(f"derate {key:12s}: WNS_pre(d) <= WNS_post from d = {d_wns}; every near-critical endpoint "
+            f"({n_near}, post slack <= WNS + {near:.3f} ns) from d = {d_near}; every endpoint "
+            f"({len(post_eps)}) from d = {d_all}; {len(uncovered)} endpoints not covered by {derate} "
             f"(scan 1.0..{DERATE_MAX} step {DERATE_STEP}; None = beyond)")
 
     # ---- summary
@@ -621,16 +650,18 @@ def flow(a, log_path):
         "bundle": bundle, "top": top, "library": signoff.get("library"),
         "sdc_period_ns": sdc_period, "report_period_ns": REPORT_PERIOD, "derate_late": derate,
         "tools": {"qflow": tool_version([QFLOW, "-v"], r"Qflow version \S+ revision \S+"),
-                  "graywolf": "graywolf (qflow " + QFLOW_BIN + "/graywolf, no version flag)",
+                  "graywolf": "graywolf " + tool_version(["dpkg-query", "-W", "-f", "${Version}", "graywolf"]),
                   "qrouter": tool_version([os.path.join(QFLOW_BIN, "qrouter"), "-v", "0", "-h"], r"\d+\.\d+\.\d+\S*"),
                   "rc2dly": QFLOW_BIN + "/rc2dly (qflow)",
-                  "opensta": tool_version(["sta", "-version"])},
+                  "opensta": tool_version(["sta", "-version"]),
+                  "debian_packages": {p: tool_version(["dpkg-query", "-W", "-f", "${Version}", p])
+                                      for p in ("qflow", "qflow-tech-osu018", "graywolf", "qrouter", "opensta")}},
         "layout": {"cells": len(rows), "cell_area_um2": round(cell_area, 1), "fill_cells": n_fill,
                    "die_um": [round(die_w, 2), round(die_h, 2)], "die_area_um2": round(die_w * die_h, 1),
                    "utilisation": round(cell_area / (die_w * die_h), 4),
                    "initial_density": a.density, "nets": nnets,
                    "wirelength_um": wl, "wirelength_total_um": round(wl_total, 1), "vias": deff["vias"],
-                   "wire_cap_pf": round(wire_c, 4), "place_route_s": round(t_pr, 1),
+                   "wire_cap_pf": round(wire_c, 4), "pin_cap_pf": round(pin_c, 4), "place_route_s": round(t_pr, 1),
                    "qrouter_stages": [[int(s), int(n)] for s, n in stages]},
         "cap_scale": a.cap_scale,
         "sta": results, "compare": per, "derate_needed": need,
