@@ -478,7 +478,9 @@ void run(const SweepArgs& a) {
 void add_sweep(CLI::App& app) {
   auto args = std::make_shared<SweepArgs>();
   auto* sub = app.add_subcommand("sweep", "Exhaustive error sweep: every n × every input code");
-  sub->add_option("--variant", args->variant, "Specular variant (cs16, schlick_div, schlick_nr, schlick_iter, table256, table1024)")->check(cliargs::NonEmpty("unit name"));
+  std::string variants;  // every variant the sweep engine takes (sweep_variants(): the forms and table units too)
+  for (const auto& v : sweep_variants()) variants += (variants.empty() ? "" : ", ") + v;
+  sub->add_option("--variant", args->variant, "Specular variant (" + variants + ")")->check(cliargs::NonEmpty("unit name"));
   auto* cutoff_opt = sub->add_option("--cutoff", args->cutoff, "cs16 cut-off form: theta_cr | sign_clamp")->check(cliargs::NonEmpty("cut-off"));
   sub->add_option("--config", args->config, "Named width configuration from config/configs.json")
       ->check(cliargs::NonEmpty("config name"));
