@@ -36,9 +36,19 @@ class Cli:
         """`shadecore vectors ... --out FILE` as arrays n, thr, coef, code (signed), expected."""
         out = tmp_path / "v.hex"
         self.run("vectors", *args, "--out", out)
-        rows = [line.split() for line in out.read_text().splitlines() if line and not line.startswith("//")]
-        a = np.array([[int(w, 16) for w in r] for r in rows], dtype=np.int64)
-        return a[:, 0], a[:, 1], a[:, 2], a[:, 3], a[:, 4]
+        lines = [line for line in out.read_text().splitlines() if line and not line.startswith("//")]
+        widths = [len(w) for w in lines[0].split()]
+        assert len(widths) == 5 and all(len(line) == len(lines[0]) for line in lines), "fixed-width hex columns"
+        chars = np.frombuffer("".join(lines).encode(), dtype=np.uint8).reshape(len(lines), -1).astype(np.int64)
+        digits = np.where(chars >= ord("a"), chars - ord("a") + 10, chars - ord("0"))
+        cols, start = [], 0
+        for w in widths:  # vectorised hex parsing (the files have ~10^5..10^6 words)
+            value = np.zeros(len(lines), dtype=np.int64)
+            for k in range(w):
+                value = value * 16 + digits[:, start + k]
+            cols.append(value)
+            start += w + 1
+        return tuple(cols)
 
 
 @pytest.fixture(scope="session")
