@@ -27,7 +27,7 @@ __all__ = [
     "__version__", "eval_unit", "setup", "cs16", "cs16_faithful", "cs16_compact", "schlick_div", "schlick_nr",
     "schlick_iter", "table256", "table1024", "cos_to_code", "code_to_cos", "format", "variants", "configs",
     "models", "sweep", "sweep_variants", "golden", "coef_value", "coef_code", "energy_eval", "normalize3",
-    "normalize3_bound_ulp", "recip",
+    "normalize3_bound_ulp", "recip", "feature_sets", "LightCore",
 ]
 
 
@@ -235,3 +235,81 @@ def sweep(variant="cs16", n="16..1024", *, config=None, frac=None, guard=None, c
     elif isinstance(n, (int, _np.integer)):
         n = str(int(n))
     return _core.sweep(str(variant), str(n), _config(config), frac, guard, cutoff, int(threads))
+
+
+# ---------------------------------------------------------------------------- the lighting core
+def feature_sets():
+    """The named feature sets of config/configs.json."""
+    return _core.feature_sets()
+
+
+def _rows3(x, what):
+    a = _int_array(x, what)
+    if a.ndim == 1 and a.size == 3:
+        a = a.reshape(1, 3)
+    return _np.ascontiguousarray(a)
+
+
+class LightCore:
+    """The lighting core's bit-accurate model (LightCore, cmodel/include/shadecore/light.hpp) for a feature set — a
+    name of config/configs.json, a JSON file, or a dict with the keys of a feature-set file — and the register state it
+    holds. Program it with register writes (:meth:`write`, as the RTL and the handoff vectors) or from a GL-like state
+    dict (:meth:`program`, through the renderer's host-side helpers light_writes/material_writes/...), then shade
+    arrays of fragments with :meth:`eval` (fixed point) or :meth:`eval_double` (the double reference)."""
+
+    def __init__(self, features="full"):
+        import json
+        if isinstance(features, dict):
+            self._c = _core.LightCore(json.dumps(features), True)
+        else:
+            self._c = _core.LightCore(str(features), False)
+
+    name = property(lambda self: self._c.name, doc="the feature set's name ('custom' for an unnamed dict or file)")
+    summary = property(lambda self: self._c.summary, doc="one line: slots, kinds, terms, unit, widths")
+    key = property(lambda self: self._c.key, doc="the build-cache key of the Verilated core for this set")
+    frac = property(lambda self: self._c.frac, doc="F: colour, normal and position fraction bits")
+    unit_frac = property(lambda self: self._c.unit_frac, doc="F + spec_guard: the specular path's fraction bits")
+    num_lights = property(lambda self: self._c.num_lights, doc="light slots")
+
+    def write(self, addr, data):
+        """Register writes in order (reg_addr_i, reg_data_i); returns how many hit a register."""
+        a = _np.ascontiguousarray(_int_array(addr, "addr").reshape(-1))
+        d = _np.ascontiguousarray(_int_array(data, "data").reshape(-1))
+        return self._c.write(a, d)
+
+    def program(self, state):
+        """Program the registers from a GL-like state dict and return the writes as (addr, data) arrays. Keys (all
+        optional): global_ambient [r, g, b]; modes {local_viewer, phong, normalize, separate_specular, two_side};
+        material {emission, ambient, diffuse, specular, shininess, unit, norm, coef}; back_material {...};
+        colour_material 'none'|'emission'|'ambient'|'diffuse'|'specular'|'ambient_and_diffuse'; lights [{position
+        [x, y, z, w], ambient, diffuse, specular, kc, kl, kq, spot_direction, spot_cutoff, spot_exponent, enabled,
+        kind}] (slots beyond the list are switched off). Defaults are GL's."""
+        import json
+        w = self._c.program(json.dumps(state))
+        a = _np.array([x[0] for x in w], dtype=_np.int64)
+        d = _np.array([x[1] for x in w], dtype=_np.int64)
+        return a, d
+
+    def _frag(self, n, p, colour, back):
+        n = _rows3(n, "n")
+        p = _rows3(p, "p")
+        colour = None if colour is None else _rows3(colour, "colour")
+        if back is not None:
+            back = _np.ascontiguousarray(_int_array(back, "back").reshape(-1))
+        return n, p, colour, back
+
+    def eval(self, n, p, colour=None, back=None):
+        """Shade fragments: n, p (k, 3) signed codes (normal 1.0 = 2^F; position with F fraction bits in [-128, 128)),
+        colour (k, 3) fragment colour codes (colour_material), back (k,) facing bits. Returns {'colour': (k, 3),
+        'secondary': (k, 3)} output codes (out_r/g/b_o, out_sr/sg/sb_o)."""
+        return self._c.eval(*self._frag(n, p, colour, back))
+
+    def eval_double(self, n, p, colour=None, back=None, reference="exact"):
+        """The double-precision reference of the same fragments (reference 'exact': cos^n; 'variant': the unit's
+        function in double); colours in [0, 1]."""
+        return self._c.eval_double(*self._frag(n, p, colour, back), str(reference))
+
+    def fragment_codes(self, n, p):
+        """Eye-space doubles (k, 3) → (normal codes, position codes) as the renderer rounds them."""
+        return self._c.fragment_codes(_np.ascontiguousarray(_float_array(n, "n").reshape(-1, 3)),
+                                      _np.ascontiguousarray(_float_array(p, "p").reshape(-1, 3)))

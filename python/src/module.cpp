@@ -22,6 +22,8 @@
 #include "shadecore/analysis/sweep.hpp"
 #include "shadecore/common/args.hpp"
 #include "shadecore/configs.hpp"
+#include "shadecore/features.hpp"
+#include "shadecore/light.hpp"
 #include "shadecore/unit.hpp"
 #include "shadecore/units/coef.hpp"
 #include "shadecore/units/cs16_forms.hpp"
@@ -388,6 +390,267 @@ py::dict sweep(const std::string& variant, const std::string& n_range, const std
   return d;
 }
 
+
+// ---------------------------------------------------------------------------- the lighting core
+// LightCore of a feature set and the register state it holds: programmed by register writes (as the RTL and the
+// handoff vectors) or from a GL-like state (JSON text from the Python layer) through the host-side helpers the
+// renderer uses (light_writes, material_writes, global_writes, ...); eval / eval_double on arrays of fragments.
+class PyLightCore {
+ public:
+  explicit PyLightCore(const std::string& features_json_or_name, bool is_json)
+      : core_(make(features_json_or_name, is_json)) {}
+
+  const LightCore& core() const { return core_; }
+  std::string name() const { return core_.features().name; }
+  std::string summary() const { return core_.features().summary(); }
+  std::string key() const { return core_.features().key(); }
+
+  // Register writes in order; returns how many hit a register (others are ignored, as by the RTL).
+  int write(const I64& addr, const I64& data) {
+    if (addr.size() != data.size())
+      throw std::invalid_argument("write: " + std::to_string(addr.size()) + " addresses for " +
+                                  std::to_string(data.size()) + " data words");
+    int hits = 0;
+    const LightWidths w = core_.widths();
+    for (py::ssize_t i = 0; i < addr.size(); ++i) {
+      check_in_range("register address", addr.data()[i], 0, 511);
+      check_in_range("register data", data.data()[i], 0, 0xFFFFFFFFll);
+      hits += regs_.write(w, static_cast<uint32_t>(addr.data()[i]), static_cast<uint32_t>(data.data()[i]));
+    }
+    return hits;
+  }
+
+  // The GL-like state → register writes (applied; also returned as (addr, data) pairs).
+  std::vector<std::pair<uint32_t, uint32_t>> program(const std::string& state_json) {
+    const nlohmann::json st = nlohmann::json::parse(state_json);
+    auto keys = [](const nlohmann::json& j, const std::string& where, std::initializer_list<const char*> known) {
+      if (!j.is_object()) throw std::invalid_argument(where + " must be a dict");
+      for (auto it = j.begin(); it != j.end(); ++it) {
+        bool ok = false;
+        std::string list;
+        for (const char* k : known) {
+          ok |= it.key() == k;
+          list += (list.empty() ? "" : ", ") + std::string(k);
+        }
+        if (!ok) throw std::invalid_argument("unknown key '" + it.key() + "' in " + where + " (known: " + list + ")");
+      }
+    };
+    auto vec = [](const nlohmann::json& j, const std::string& what, double* out, int count) {
+      if (!j.is_array() || static_cast<int>(j.size()) != count)
+        throw std::invalid_argument(what + " must be a list of " + std::to_string(count) + " numbers");
+      for (int i = 0; i < count; ++i) {
+        if (!j[static_cast<size_t>(i)].is_number()) throw std::invalid_argument(what + " must be a list of numbers");
+        out[i] = j[static_cast<size_t>(i)].get<double>();
+      }
+    };
+    auto material = [&](const nlohmann::json& j, const std::string& where) {
+      keys(j, where, {"emission", "ambient", "diffuse", "specular", "shininess", "unit", "norm", "coef"});
+      MaterialParams m;
+      if (j.contains("emission")) vec(j["emission"], where + ".emission", m.emission, 3);
+      if (j.contains("ambient")) vec(j["ambient"], where + ".ambient", m.ambient, 3);
+      if (j.contains("diffuse")) vec(j["diffuse"], where + ".diffuse", m.diffuse, 3);
+      if (j.contains("specular")) vec(j["specular"], where + ".specular", m.specular, 3);
+      if (j.contains("shininess")) m.shininess = j["shininess"].get<int>();
+      if (j.contains("unit")) m.unit = parse_variant(j["unit"].get<std::string>());
+      m.norm_model = -1;
+      if (j.contains("norm") && !j["norm"].is_null()) m.norm_model = static_cast<int>(parse_model(j["norm"].get<std::string>()));
+      if (j.contains("coef")) m.norm_kind = parse_coef_kind(j["coef"].get<std::string>());
+      return m;
+    };
+    keys(st, "state", {"global_ambient", "modes", "material", "back_material", "colour_material", "lights"});
+    const FeatureSet& fs = core_.features();
+    std::vector<RegWrite> w;
+    auto add = [&w](const std::vector<RegWrite>& v) { w.insert(w.end(), v.begin(), v.end()); };
+    double ga[3] = {0.2, 0.2, 0.2};  // GL's default global ambient
+    if (st.contains("global_ambient")) vec(st["global_ambient"], "global_ambient", ga, 3);
+    ModeParams md = default_modes(fs);
+    if (st.contains("modes")) {
+      const auto& m = st["modes"];
+      keys(m, "modes", {"local_viewer", "phong", "normalize", "separate_specular", "two_side"});
+      if (m.contains("local_viewer")) md.local_viewer = m["local_viewer"].get<bool>();
+      if (m.contains("phong")) md.phong = m["phong"].get<bool>();
+      if (m.contains("normalize")) md.normalize = m["normalize"].get<bool>();
+      if (m.contains("separate_specular")) md.separate_specular = m["separate_specular"].get<bool>();
+      if (m.contains("two_side")) md.two_side = m["two_side"].get<bool>();
+    }
+    add(global_writes(core_, ga, md));
+    add(material_writes(core_, st.contains("material") ? material(st["material"], "material") : MaterialParams{}));
+    if (st.contains("back_material")) add(back_material_writes(core_, material(st["back_material"], "back_material")));
+    if (st.contains("colour_material")) {
+      if (!fs.colour_material) throw std::invalid_argument("colour_material: this core has no colour_material feature");
+      const std::string cm = st["colour_material"].is_null() ? "none" : st["colour_material"].get<std::string>();
+      std::optional<ColourMaterial> mode;
+      const std::pair<const char*, ColourMaterial> names[] = {
+          {"emission", ColourMaterial::Emission}, {"ambient", ColourMaterial::Ambient}, {"diffuse", ColourMaterial::Diffuse},
+          {"specular", ColourMaterial::Specular}, {"ambient_and_diffuse", ColourMaterial::AmbientAndDiffuse}};
+      bool known = cm == "none";
+      for (const auto& [nm, v] : names)
+        if (cm == nm) mode = v, known = true;
+      if (!known)
+        throw std::invalid_argument("unknown colour_material mode '" + cm +
+                                    "' (known: none, emission, ambient, diffuse, specular, ambient_and_diffuse)");
+      add(colour_material_writes(mode));
+    }
+    const nlohmann::json lights = st.contains("lights") ? st["lights"] : nlohmann::json::array();
+    if (!lights.is_array()) throw std::invalid_argument("lights must be a list of dicts");
+    if (static_cast<int>(lights.size()) > fs.num_lights())
+      throw std::invalid_argument(std::to_string(lights.size()) + " lights for a core with " +
+                                  std::to_string(fs.num_lights()) + " light slots");
+    for (int j = 0; j < fs.num_lights(); ++j) {
+      if (j >= static_cast<int>(lights.size())) {
+        add(light_off_writes(j));
+        continue;
+      }
+      const auto& L = lights[static_cast<size_t>(j)];
+      const std::string where = "lights[" + std::to_string(j) + "]";
+      keys(L, where, {"position", "ambient", "diffuse", "specular", "kc", "kl", "kq", "spot_direction", "spot_cutoff",
+                      "spot_exponent", "enabled", "kind"});
+      LightParams lp;
+      if (L.contains("position")) vec(L["position"], where + ".position", lp.position, 4);
+      if (L.contains("ambient")) vec(L["ambient"], where + ".ambient", lp.ambient, 3);
+      if (L.contains("diffuse")) vec(L["diffuse"], where + ".diffuse", lp.diffuse, 3);
+      if (L.contains("specular")) vec(L["specular"], where + ".specular", lp.specular, 3);
+      if (L.contains("spot_direction")) vec(L["spot_direction"], where + ".spot_direction", lp.spot_direction, 3);
+      if (L.contains("kc")) lp.kc = L["kc"].get<double>();
+      if (L.contains("kl")) lp.kl = L["kl"].get<double>();
+      if (L.contains("kq")) lp.kq = L["kq"].get<double>();
+      if (L.contains("spot_cutoff")) lp.spot_cutoff = L["spot_cutoff"].get<double>();
+      if (L.contains("spot_exponent")) lp.spot_exponent = L["spot_exponent"].get<int>();
+      if (L.contains("enabled")) lp.enabled = L["enabled"].get<bool>();
+      if (L.contains("kind")) {
+        const std::string k = L["kind"].get<std::string>();
+        std::string known;
+        for (int i = 0; i < kNumLightKinds; ++i) {
+          known += (known.empty() ? "" : ", ") + std::string(to_string(static_cast<LightKind>(i)));
+          if (k == to_string(static_cast<LightKind>(i))) lp.kind = static_cast<LightKind>(i);
+        }
+        if (!lp.kind) throw std::invalid_argument("unknown light kind '" + k + "' in " + where + " (known: " + known + ")");
+      }
+      add(light_writes(core_, j, lp));
+    }
+    std::vector<std::pair<uint32_t, uint32_t>> out;
+    const LightWidths wd = core_.widths();
+    for (const RegWrite& x : w) {
+      regs_.write(wd, x.addr, x.data);
+      out.emplace_back(x.addr, x.data);
+    }
+    return out;
+  }
+
+  // Fragments from arrays: n (k,3) and p (k,3) signed codes, colour (k,3) codes or none, back (k,) bools or none.
+  std::vector<Fragment> fragments(const I64& n, const I64& p, const std::optional<I64>& colour,
+                                  const std::optional<I64>& back) const {
+    auto shape3 = [](const I64& a, const char* what) {
+      if (a.ndim() != 2 || a.shape(1) != 3) throw std::invalid_argument(std::string(what) + " must have shape (k, 3)");
+      return a.shape(0);
+    };
+    const py::ssize_t k = shape3(n, "n");
+    if (shape3(p, "p") != k) throw std::invalid_argument("n and p have different numbers of fragments");
+    if (colour && shape3(*colour, "colour") != k) throw std::invalid_argument("colour has another number of fragments");
+    if (back && back->size() != k) throw std::invalid_argument("back has another number of fragments");
+    const int F = core_.format().frac;
+    const int64_t nlim = int64_t{1} << (F + 1), plim = int64_t{1} << (F + kPosIntBits), clim = (int64_t{1} << (F + 1)) - 1;
+    std::vector<Fragment> fr(static_cast<size_t>(k));
+    for (py::ssize_t i = 0; i < k; ++i) {
+      Fragment& f = fr[static_cast<size_t>(i)];
+      for (int c = 0; c < 3; ++c) {
+        f.n[c] = n.data()[3 * i + c];
+        f.p[c] = p.data()[3 * i + c];
+        check_in_range("normal code", f.n[c], -nlim, nlim - 1);
+        check_in_range("position code", f.p[c], -plim, plim - 1);
+        if (colour) {
+          const int64_t v = colour->data()[3 * i + c];
+          check_in_range("colour code", v, 0, clim);
+          f.col[c] = static_cast<uint32_t>(v);
+        }
+      }
+      if (back) f.back = back->data()[i] != 0;
+    }
+    return fr;
+  }
+
+  py::dict eval(const I64& n, const I64& p, const std::optional<I64>& colour, const std::optional<I64>& back) const {
+    const std::vector<Fragment> fr = fragments(n, p, colour, back);
+    const auto k = static_cast<py::ssize_t>(fr.size());
+    py::array_t<int64_t> c({k, py::ssize_t{3}}), s({k, py::ssize_t{3}});
+    int64_t *cp = c.mutable_data(), *sp = s.mutable_data();
+    {
+      py::gil_scoped_release nogil;
+      for (py::ssize_t i = 0; i < k; ++i) {
+        const Colour col = core_.eval(regs_, fr[static_cast<size_t>(i)]);
+        for (int ch = 0; ch < 3; ++ch) {
+          cp[3 * i + ch] = col.c[ch];
+          sp[3 * i + ch] = col.s[ch];
+        }
+      }
+    }
+    py::dict d;
+    d["colour"] = c;
+    d["secondary"] = s;
+    return d;
+  }
+
+  py::dict eval_double(const I64& n, const I64& p, const std::optional<I64>& colour, const std::optional<I64>& back,
+                       const std::string& reference) const {
+    LightCore::SpecRef ref;
+    if (reference == "exact") ref = LightCore::SpecRef::Exact;
+    else if (reference == "variant") ref = LightCore::SpecRef::Variant;
+    else throw std::invalid_argument("unknown reference '" + reference + "' (known: exact, variant)");
+    const std::vector<Fragment> fr = fragments(n, p, colour, back);
+    const auto k = static_cast<py::ssize_t>(fr.size());
+    py::array_t<double> c({k, py::ssize_t{3}}), s({k, py::ssize_t{3}});
+    double *cp = c.mutable_data(), *sp = s.mutable_data();
+    {
+      py::gil_scoped_release nogil;
+      for (py::ssize_t i = 0; i < k; ++i) {
+        std::array<double, 3> sec{};
+        const std::array<double, 3> col = core_.eval_double(regs_, fr[static_cast<size_t>(i)], ref, nullptr, &sec);
+        for (int ch = 0; ch < 3; ++ch) {
+          cp[3 * i + ch] = col[static_cast<size_t>(ch)];
+          sp[3 * i + ch] = sec[static_cast<size_t>(ch)];
+        }
+      }
+    }
+    py::dict d;
+    d["colour"] = c;
+    d["secondary"] = s;
+    return d;
+  }
+
+  // Eye-space doubles → fragment codes (make_fragment: normal rounded and saturated, position range-checked).
+  py::tuple fragment_codes(const F64& n, const F64& p) const {
+    if (n.ndim() != 2 || n.shape(1) != 3 || p.ndim() != 2 || p.shape(1) != 3 || n.shape(0) != p.shape(0))
+      throw std::invalid_argument("fragment_codes: n and p must have the same shape (k, 3)");
+    const py::ssize_t k = n.shape(0);
+    py::array_t<int64_t> nc({k, py::ssize_t{3}}), pc({k, py::ssize_t{3}});
+    const int F = core_.format().frac;
+    for (py::ssize_t i = 0; i < k; ++i) {
+      const Fragment f = make_fragment(F, n.data() + 3 * i, p.data() + 3 * i);
+      for (int c = 0; c < 3; ++c) {
+        nc.mutable_data()[3 * i + c] = f.n[c];
+        pc.mutable_data()[3 * i + c] = f.p[c];
+      }
+    }
+    return py::make_tuple(nc, pc);
+  }
+
+ private:
+  static LightCore make(const std::string& arg, bool is_json) {
+    if (!is_json) return LightCore(feature_set_named_or_file(arg));
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(arg);
+    } catch (const nlohmann::json::parse_error& e) {
+      throw std::invalid_argument(std::string("feature set: malformed JSON: ") + e.what());
+    }
+    FeatureSet fs = feature_set_from_json(j, "feature set");
+    if (!j.contains("name")) fs.name = "custom";
+    return LightCore(fs);
+  }
+  LightCore core_;
+  LightRegs regs_;
+};
+
 }  // namespace
 }  // namespace shadecore::python
 
@@ -468,4 +731,25 @@ PYBIND11_MODULE(_core, m) {
   m.def("normalize3", &normalize3_array, py::arg("v"), py::arg("frac") = 16);
   m.def("normalize3_bound_ulp", &normalize3_bound_ulp, py::arg("frac"));
   m.def("recip", &recip_array, py::arg("q"), py::arg("frac") = 16);
+
+  m.def("feature_sets", [] {
+    std::vector<std::string> v;
+    for (const auto& fs : named_feature_sets()) v.push_back(fs.name);
+    return v;
+  });
+  py::class_<PyLightCore>(m, "LightCore")
+      .def(py::init<const std::string&, bool>(), py::arg("features"), py::arg("is_json") = false)
+      .def_property_readonly("name", &PyLightCore::name)
+      .def_property_readonly("summary", &PyLightCore::summary)
+      .def_property_readonly("key", &PyLightCore::key)
+      .def_property_readonly("frac", [](const PyLightCore& c) { return c.core().format().frac; })
+      .def_property_readonly("unit_frac", [](const PyLightCore& c) { return c.core().unit_format().frac; })
+      .def_property_readonly("num_lights", [](const PyLightCore& c) { return c.core().features().num_lights(); })
+      .def("write", &PyLightCore::write, py::arg("addr"), py::arg("data"))
+      .def("program", &PyLightCore::program, py::arg("state_json"))
+      .def("eval", &PyLightCore::eval, py::arg("n"), py::arg("p"), py::arg("colour") = py::none(),
+           py::arg("back") = py::none())
+      .def("eval_double", &PyLightCore::eval_double, py::arg("n"), py::arg("p"), py::arg("colour") = py::none(),
+           py::arg("back") = py::none(), py::arg("reference") = "exact")
+      .def("fragment_codes", &PyLightCore::fragment_codes, py::arg("n"), py::arg("p"));
 }
