@@ -27,7 +27,7 @@ __all__ = [
     "__version__", "eval_unit", "setup", "cs16", "cs16_faithful", "cs16_compact", "schlick_div", "schlick_nr",
     "schlick_iter", "table256", "table1024", "cos_to_code", "code_to_cos", "format", "variants", "configs",
     "models", "sweep", "sweep_variants", "golden", "coef_value", "coef_code", "energy_eval", "normalize3",
-    "normalize3_bound_ulp", "recip", "feature_sets", "LightCore",
+    "normalize3_bound_ulp", "recip", "feature_sets", "LightCore", "render",
 ]
 
 
@@ -313,3 +313,21 @@ class LightCore:
         """Eye-space doubles (k, 3) → (normal codes, position codes) as the renderer rounds them."""
         return self._c.fragment_codes(_np.ascontiguousarray(_float_array(n, "n").reshape(-1, 3)),
                                       _np.ascontiguousarray(_float_array(p, "p").reshape(-1, 3)))
+
+
+# ---------------------------------------------------------------------------- render
+def render(scene, size=None, *, full_core=False, lanes=1, share=1):
+    """A scene file (docs/scenes.md) through the host rasteriser and the lighting core's C model, as ``shadecore
+    render`` computes it (C model and references only; no RTL). size: (width, height) or 'WxH' (default: the scene's).
+    Returns a dict of arrays, rows from the top: image (h, w, 3) colour codes (1.0 = 2^F, GL's colour sum),
+    covered (h, w), exact and unit_double (h, w, 3) the double references in [0, 1] (cos^n; the unit's function),
+    rgb8 and exact_rgb8 (the 8-bit pixels of cmodel.png and exact.png), frac, cores (the feature set of each core)."""
+    import os
+    if isinstance(size, str):
+        w, sep, h = size.partition("x")
+        if not sep or not w.isdigit() or not h.isdigit():
+            raise ValueError(f"size: malformed '{size}' (expected WxH, e.g. 64x64)")
+        size = (int(w), int(h))
+    elif size is not None:
+        size = (int(size[0]), int(size[1]))
+    return _core.render(os.fspath(scene), size, bool(full_core), int(lanes), int(share))

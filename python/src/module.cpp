@@ -24,6 +24,8 @@
 #include "shadecore/configs.hpp"
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
+#include "shadecore/render/render.hpp"
+#include "shadecore/render/scene.hpp"
 #include "shadecore/unit.hpp"
 #include "shadecore/units/coef.hpp"
 #include "shadecore/units/cs16_forms.hpp"
@@ -651,6 +653,74 @@ class PyLightCore {
   LightRegs regs_;
 };
 
+// ---------------------------------------------------------------------------- render (C model, exact)
+// A scene file through the host rasteriser and the lighting core's C model, as `shadecore render` computes it
+// (render::prepare, run_cmodel, run_reference for both references, resolve, to_rgb8): images as arrays.
+py::dict render_scene(const std::string& path, std::optional<std::pair<int, int>> size, bool full_core, int lanes,
+                      int share) {
+  render::Settings st;
+  st.full_core = full_core;
+  check_in_range("lanes", lanes, 1, kMaxLights);
+  check_in_range("share", share, 1, kShareMax);
+  st.lanes = lanes;
+  st.share = share;
+  if (size) {
+    check_in_range("width", size->first, 1, 4096);
+    check_in_range("height", size->second, 1, 4096);
+    st.width = size->first;
+    st.height = size->second;
+  }
+  render::Image image;
+  render::RefImage exact, unit_double;
+  std::vector<std::string> groups;
+  {
+    py::gil_scoped_release nogil;
+    scene::Scene sc;
+    try {  // a bad scene file is bad input: ValueError with the CLI's message
+      sc = scene::load_scene(path);
+    } catch (const std::runtime_error& e) {
+      throw std::invalid_argument(e.what());
+    }
+    render::MeshSource meshes(sc);
+    const render::Frame fr = render::prepare(sc, meshes, st);
+    std::vector<std::vector<Colour>> cols;
+    std::vector<std::vector<render::RefColour>> ex, ud;
+    for (const auto& g : fr.groups) {
+      cols.push_back(render::run_cmodel(g));
+      ex.push_back(render::run_reference(g, LightCore::SpecRef::Exact));
+      ud.push_back(render::run_reference(g, LightCore::SpecRef::Variant));
+      groups.push_back(g.fs.summary());
+    }
+    image = render::resolve(fr, cols);
+    exact = render::resolve_reference(fr, ex);
+    unit_double = render::resolve_reference(fr, ud);
+  }
+  const py::ssize_t h = image.height, w = image.width;
+  py::array_t<int64_t> codes({h, w, py::ssize_t{3}});
+  py::array_t<bool> covered({h, w});
+  py::array_t<double> ex3({h, w, py::ssize_t{3}}), ud3({h, w, py::ssize_t{3}});
+  py::array_t<uint8_t> rgb8({h, w, py::ssize_t{3}}), exact8({h, w, py::ssize_t{3}});
+  const std::vector<uint8_t> c8 = render::to_rgb8(image), e8 = render::to_rgb8(exact);
+  for (size_t i = 0; i < image.code.size(); ++i) {
+    codes.mutable_data()[i] = image.code[i];
+    ex3.mutable_data()[i] = exact.value[i];
+    ud3.mutable_data()[i] = unit_double.value[i];
+    rgb8.mutable_data()[i] = c8[i];
+    exact8.mutable_data()[i] = e8[i];
+  }
+  for (size_t i = 0; i < image.covered.size(); ++i) covered.mutable_data()[i] = image.covered[i] != 0;
+  py::dict d;
+  d["image"] = codes;
+  d["covered"] = covered;
+  d["exact"] = ex3;
+  d["unit_double"] = ud3;
+  d["rgb8"] = rgb8;
+  d["exact_rgb8"] = exact8;
+  d["frac"] = image.F;
+  d["cores"] = groups;
+  return d;
+}
+
 }  // namespace
 }  // namespace shadecore::python
 
@@ -732,6 +802,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("normalize3_bound_ulp", &normalize3_bound_ulp, py::arg("frac"));
   m.def("recip", &recip_array, py::arg("q"), py::arg("frac") = 16);
 
+  m.def("render", &render_scene, py::arg("scene"), py::arg("size") = py::none(), py::arg("full_core") = false,
+        py::arg("lanes") = 1, py::arg("share") = 1);
   m.def("feature_sets", [] {
     std::vector<std::string> v;
     for (const auto& fs : named_feature_sets()) v.push_back(fs.name);
