@@ -406,7 +406,8 @@ void add_cosim(CLI::App& app) {
       for (const char* unit_only : {"--variant", "--config", "--cutoff", "--n", "--norm", "--coef-model", "--coef",
                                     "--shards", "--trace", "--mat-rate"})
         if (sub->count(unit_only) > 0)
-          throw std::invalid_argument(std::string(unit_only) + " does not apply to --core lighting (the feature set says it)");
+          throw std::invalid_argument(std::string(unit_only) + " does not apply to --core lighting: the feature set fixes the unit and the widths "
+                                      "(choose one with --features NAME|FILE; docs/lighting.md)");
       LightCosimArgs la;
       la.features = features->empty() ? "full" : *features;
       la.mode = args->mode == "directed" && !sub->count("--mode") ? "random" : args->mode;

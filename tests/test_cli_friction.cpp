@@ -35,3 +35,28 @@ TEST(CliFriction, UnknownFeatureSetNameSuggestsTheNearest) {
 
 }  // namespace
 }  // namespace shadecore::testing
+
+namespace shadecore::testing {
+namespace {
+
+// light-sweep --specular all: units whose rows print the same figures get a note saying each was run.
+TEST(CliFriction, LightSweepNotesIdenticalRows) {
+  const CliRun r = run_cli("light-sweep --features gl_default --specular all --seed 1 --programs 5 --per-program 100");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("note: schlick_div, schlick_nr, schlick_iter print identical rows. Each unit was run in turn"),
+            std::string::npos)
+      << r.out;
+  const CliRun one = run_cli("light-sweep --features gl_default --seed 1 --programs 5 --per-program 100");
+  ASSERT_EQ(one.status, 0) << one.err;
+  EXPECT_EQ(one.out.find("identical rows"), std::string::npos) << one.out;
+}
+
+// A refusal says what the user can do instead.
+TEST(CliFriction, CosimLightingRefusalSaysWhatToDo) {
+  expect_one_line_error("cosim --core lighting --variant cs16", "(choose one with --features NAME|FILE");
+  const CliRun r = run_cli("cosim --core lighting --n 64");
+  EXPECT_EQ(r.err.find("says it"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace shadecore::testing
