@@ -60,3 +60,20 @@ TEST(CliFriction, CosimLightingRefusalSaysWhatToDo) {
 
 }  // namespace
 }  // namespace shadecore::testing
+
+namespace shadecore::testing {
+namespace {
+
+// An option typo: the unknown option named, with the subcommand's nearest option.
+TEST(CliFriction, UnknownOptionSuggestsTheNearest) {
+  expect_one_line_error("eval --varient cs16 --n 16 --code 0",
+                        "unknown option '--varient' (did you mean '--variant'?) (see shadecore eval --help)");
+  expect_one_line_error("sweep --thread 2", "unknown option '--thread' (did you mean '--threads'?)");
+  expect_one_line_error("light-sweep --program=3", "unknown option '--program' (did you mean '--programs'?)");
+  const CliRun r = run_cli("eval --zzzzzzzz --n 16 --code 0");
+  EXPECT_NE(r.err.find("unknown option '--zzzzzzzz' (see shadecore eval --help)"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("did you mean"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace shadecore::testing

@@ -144,10 +144,7 @@ inline std::string kinds_name(uint8_t mask) {
   return s;
 }
 
-namespace detail {
-inline nlohmann::json configs_json() { return nlohmann::json::parse(kConfigsJson); }
-
-// Levenshtein distance (the "did you mean" of an unknown feature-set name).
+// Levenshtein distance: the "did you mean" of an unknown feature-set name (and of the CLI's unknown options).
 inline size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<size_t> row(b.size() + 1);
   for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
@@ -162,6 +159,20 @@ inline size_t edit_distance(const std::string& a, const std::string& b) {
   }
   return row[b.size()];
 }
+
+// The name of `names` closest to `key` within a third of its length (at least one edit), or "".
+inline std::string nearest_name(const std::string& key, const std::vector<std::string>& names) {
+  std::string near;
+  size_t best = std::string::npos;
+  for (const auto& n : names) {
+    const size_t d = edit_distance(n, key);
+    if (d <= std::max<size_t>(1, n.size() / 3) && d < best) best = d, near = n;
+  }
+  return near;
+}
+
+namespace detail {
+inline nlohmann::json configs_json() { return nlohmann::json::parse(kConfigsJson); }
 
 inline void fs_fail(const std::string& where, const std::string& what) {
   throw std::invalid_argument(where + ": " + what);
@@ -347,12 +358,9 @@ inline FeatureSet feature_set_named_or_file(const std::string& arg) {
                            (arg.size() > 5 && arg.compare(arg.size() - 5, 5, ".json") == 0);
     if (path_like)
       throw std::invalid_argument("feature set file '" + arg + "': " + std::strerror(errno) + " (named sets: " + known + ")");
-    std::string near;  // the closest name within a third of its length (at least one edit)
-    size_t best = std::string::npos;
-    for (const auto& fs : named_feature_sets()) {
-      const size_t d = detail::edit_distance(fs.name, arg);
-      if (d <= std::max<size_t>(1, fs.name.size() / 3) && d < best) best = d, near = fs.name;
-    }
+    std::vector<std::string> names;
+    for (const auto& fs : named_feature_sets()) names.push_back(fs.name);
+    const std::string near = nearest_name(arg, names);
     throw std::invalid_argument("unknown feature set '" + arg + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
                                 " (named: " + known + "; or a JSON file)");
   }
