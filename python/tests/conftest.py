@@ -36,18 +36,26 @@ class Cli:
         """`shadecore vectors ... --out FILE` as arrays n, thr, coef, code (signed), expected."""
         out = tmp_path / "v.hex"
         self.run("vectors", *args, "--out", out)
-        lines = [line for line in out.read_text().splitlines() if line and not line.startswith("//")]
-        widths = [len(w) for w in lines[0].split()]
-        assert len(widths) == 5 and all(len(line) == len(lines[0]) for line in lines), "fixed-width hex columns"
-        chars = np.frombuffer("".join(lines).encode(), dtype=np.uint8).reshape(len(lines), -1).astype(np.int64)
+        data = out.read_bytes()
+        start = 0
+        while data.startswith(b"//", start):  # the // header, then fixed-width records
+            start = data.index(b"\n", start) + 1
+        first = data[start:data.index(b"\n", start)].decode()
+        widths = [len(w) for w in first.split()]
+        width = len(first) + 1
+        body = data[start:]
+        assert len(widths) == 5 and len(body) % width == 0, "fixed-width hex columns"
+        rows = np.frombuffer(body, dtype=np.uint8).reshape(-1, width)
+        assert np.all(rows[:, -1] == ord("\n")), "fixed-width hex columns"
+        chars = rows.astype(np.int64)
         digits = np.where(chars >= ord("a"), chars - ord("a") + 10, chars - ord("0"))
-        cols, start = [], 0
+        cols, pos = [], 0
         for w in widths:  # vectorised hex parsing (the files have ~10^5..10^6 words)
-            value = np.zeros(len(lines), dtype=np.int64)
+            value = np.zeros(len(rows), dtype=np.int64)
             for k in range(w):
-                value = value * 16 + digits[:, start + k]
+                value = value * 16 + digits[:, pos + k]
             cols.append(value)
-            start += w + 1
+            pos += w + 1
         return tuple(cols)
 
 
