@@ -89,6 +89,13 @@ void add_handoff(CLI::App& app) {
   sub->add_option("--synth", l.synth,
                   "Yosys generic synthesis: flat | hier (hierarchical, no flatten) | skip | auto (default: flat for "
                   "the specular unit; for the lighting core by size, docs/handoff.md)")->check(cliargs::NonEmpty("synthesis mode"));
+  sub->add_option("--signoff", l.signoff,
+                  "OSU 0.18 um sign-off of the bundle (signoff/signoff.py: cell mapping, OpenSTA timing, gate-level "
+                  "simulation, energy per result; docs/signoff.md): auto (default: run when yosys, sta, iverilog and "
+                  "qflow-tech-osu018 are installed) | on (required) | off")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
+  sub->add_option("--clock-target", l.clock_target, "Target clock period of the sign-off in ns (default 4.0)")
+      ->check(CLI::Range(0.5, 1000.0));
   sub->add_option("--core", a->core, "Which core: specular (default) or lighting")->check(cliargs::NonEmpty("core"));
   sub->add_option("--features", l.features, "Lighting core feature set: a name of config/configs.json \"feature_sets\" "
                                             "or a JSON file (with --core lighting)")->check(cliargs::NonEmpty("feature set"));

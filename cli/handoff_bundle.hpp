@@ -100,6 +100,10 @@ struct BundleBase {
       verilator_line;
   double fmax_mhz = 0.0;
   std::string fmax_source;
+  // OSU 0.18 um sign-off (signoff/signoff.py, docs/signoff.md): mode auto | on | off, the target period (ns)
+  std::string signoff_mode = "auto";
+  double signoff_target = 4.0;
+  std::string signoff_status = "not run";
 };
 
 // The command's options shared by both cores (cli/cmd_handoff.cpp registers them).
@@ -113,6 +117,8 @@ struct Options {
   std::string top = "shadecore_top";
   bool no_ice40 = false;
   std::string synth = "auto";
+  std::string signoff = "auto";  // OSU 0.18 um timing, gate-level simulation and power: auto | on | off
+  double clock_target = 4.0;     // its target period, ns
   bool top_given = false, count_given = false;
 };
 // The specular unit's bundle for the resolved unit options (cli/handoff_specular.cpp).

@@ -117,6 +117,7 @@ std::string summary_md(const BundleBase& b) {
                         {"ice40", b.ice40_status},
                         {"icarus", b.icarus_line},
                         {"verilator", b.verilator_line},
+                        {"signoff", b.signoff_status},
                         {"fmax", b.fmax_source.empty() ? "no measured Fmax (20 ns placeholder)" : b.fmax_source}});
 }
 

@@ -610,6 +610,8 @@ void run_lighting(const Options& o) {
     b.top = top;
     b.seed = seed;
     b.synth = synth;
+    b.signoff_mode = o.signoff;
+    b.signoff_target = o.clock_target;
     b.synth_why = o.synth != "auto" ? "--synth " + o.synth
                   : synth == SynthMode::Skipped
                       ? fmt::format("{} lights: a flat synthesis takes too long for the handoff (use --synth hier or "

@@ -8,6 +8,7 @@
 #include <regex>
 
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
 #include "handoff_bundle.hpp"
 #include "output.hpp"
@@ -204,11 +205,74 @@ void check_and_report(BundleBase& b, const fs::path& dir, bool no_ice40, const s
   step("iCE40: " + b.ice40_status);
 }
 
+// The OSU 0.18 um sign-off of the staged bundle (docs/signoff.md): signoff/signoff.py, copied into the bundle,
+// maps it to cells, times it with OpenSTA, rewrites constraints.sdc with the measured clock, runs the bundle's
+// bench on the netlist and reports the energy per result. A failed gate-level run fails the handoff.
+void report_signoff(BundleBase& b, const fs::path& dir, const std::function<void(const std::string&)>& step) {
+  if (b.signoff_mode == "off") {
+    b.signoff_status = "not run (--signoff off)";
+    return;
+  }
+  const fs::path lib = "/usr/share/qflow/tech/osu018/osu018_stdcells.lib";
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  std::string missing;
+  for (const char* tool : {"yosys", "sta", "iverilog", "vvp"})
+    if (!on_path(tool)) missing += std::string(missing.empty() ? "" : ", ") + tool;
+  if (!on_path(python)) missing += std::string(missing.empty() ? "" : ", ") + "python3";
+  if (!fs::exists(lib)) missing += std::string(missing.empty() ? "" : ", ") + lib.string();
+  if (!missing.empty()) {
+    if (b.signoff_mode == "on")
+      throw std::runtime_error("--signoff on needs " + missing + " (scripts/setup.sh installs opensta and qflow-tech-osu018)");
+    b.signoff_status = "not run: " + missing + " not installed (scripts/setup.sh installs them)";
+    return;
+  }
+  const fs::path root = root_dir();
+  fs::create_directories(dir / "signoff");
+  for (const char* f : {"signoff.py", "fastmul.py"}) fs::copy_file(root / "signoff" / f, dir / "signoff" / f);
+  const std::vector<std::string> cmd = {python, "signoff/signoff.py", ".", "--target", fmt::format("{}", b.signoff_target)};
+  step("OSU 0.18 um sign-off: " + shell_join(cmd) + " (cell mapping, OpenSTA, gate-level simulation, power)");
+  ProcOptions po;
+  po.on_line = [&step](const std::string& line) {
+    if (line.rfind("signoff: ", 0) == 0) step(line.substr(0, line.size() - (line.back() == '\n' ? 1 : 0)));
+  };
+  const Proc r = run_proc(cmd, dir, po);
+  write_text(dir / "reports" / "signoff.log",
+             report_header("OSU 0.18 um sign-off (signoff/signoff.py)", shell_join(cmd), tool_version({"sta", "-version"})) +
+                 r.out + fmt::format("# exit status {}\n", r.status));
+  if (r.status == 2)
+    throw std::runtime_error("the gate-level simulation of the mapped netlist failed (signoff/gatesim_icarus.log): " +
+                             last_line_with(r.out, "gatesim"));
+  if (r.status != 0) throw std::runtime_error("the sign-off failed: " + last_line_with(r.out, "signoff: error"));
+  const nlohmann::json j = nlohmann::json::parse(read_text(dir / "signoff" / "signoff.json"));
+  const auto& st = j.at("sta");
+  const double period = st.at("period_ns").get<double>(), wns = st.at("wns_ns").get<double>();
+  const bool met = st.at("met").get<bool>();
+  b.fmax_mhz = st.at("fmax_mhz").get<double>();
+  b.fmax_source = fmt::format(
+      "{:.3f} ns, measured in OSU 0.18 um (typical, pre-layout, cell delays x1.15): the {} ns target is {} (WNS {:+.3f} ns), "
+      "Fmax {:.1f} MHz (signoff/timing.rpt, signoff/signoff.json)",
+      period, b.signoff_target, met ? "met" : "missed and the period is Fmax rounded up", wns, b.fmax_mhz);
+  const auto& sy = j.at("synth");
+  const auto& gs = j.at("gatesim");
+  std::string energy = "no power run";
+  if (j.contains("power"))
+    energy = fmt::format("{:.2f} pJ per result ({:.3f} mW)", j.at("power").at("energy_pj_per_result").get<double>(),
+                         j.at("power").at("power_mw").get<double>());
+  b.signoff_status = fmt::format("{} ns ({}, WNS {:+.3f} ns at {} ns), {:.0f} um2, {} cells; gate-level Icarus {} {} vectors, "
+                                 "{} mismatches; {}",
+                                 period, met ? "target met" : "target missed", wns, b.signoff_target,
+                                 sy.at("area_um2").get<double>(), sy.at("cells").get<long>(),
+                                 gs.at("passed").get<bool>() ? "PASS" : "FAIL", gs.at("vectors").get<long>(),
+                                 gs.at("mismatches").get<long>(), energy);
+  step("sign-off: " + b.signoff_status);
+}
+
 void simulate_and_summarise(BundleBase& b, const fs::path& dir, const std::function<void(const std::string&)>& step) {
   b.icarus_line = run_sim(dir, "run_icarus.sh", "sim_icarus.log");
   step(b.icarus_line);
   b.verilator_line = run_sim(dir, "run_verilator.sh", "sim_verilator.log");
   step(b.verilator_line);
+  report_signoff(b, dir, step);
   write_text(dir / "reports" / "summary.md", summary_md(b));
   write_text(dir / "README.md", bundle_readme(b));
 }

@@ -361,6 +361,8 @@ void run_specular(const Options& a, const UnitSpec& spec) {
     b.top = top;
     b.seed = seed;
     b.synth = synth;
+    b.signoff_mode = a.signoff;
+    b.signoff_target = a.clock_target;
     b.synth_why = synth == SynthMode::Skipped ? "--synth skip" : synth == SynthMode::Hierarchical ? "--synth hier" : "";
     b.ports = concrete_ports(load_ports(), spec, a.tagw);
     const Unit unit = spec.unit();

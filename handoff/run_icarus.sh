@@ -9,6 +9,9 @@
 #   SEED=7 ./run_icarus.sh             other random input gaps and output backpressure
 #   IN_GAP=0 OUT_STALL=0 ./run_icarus.sh   no gaps, no backpressure (then latency must be exact)
 #   RESET_AT=-1 ./run_icarus.sh        no reset in the middle of the stream
+#   FILELIST=signoff/gates.f ./run_icarus.sh   another design file list: the mapped netlist and the
+#                                      cell library's models (gate-level simulation, signoff/signoff.py)
+#   VECTORS=vectors/random.hex VCD=/tmp/a.vcd ./run_icarus.sh   one vector file; a VCD of the design's nets
 # Needs iverilog and vvp (Icarus Verilog 11 or newer). Works in a temporary directory; the bundle is
 # not modified.
 set -u
@@ -26,9 +29,12 @@ plus=""
 [ -n "${IN_GAP:-}" ] && plus="$plus +in_gap=$IN_GAP"
 [ -n "${OUT_STALL:-}" ] && plus="$plus +out_stall=$OUT_STALL"
 [ -n "${RESET_AT:-}" ] && plus="$plus +reset_at=$RESET_AT"
+[ -n "${VCD:-}" ] && plus="$plus +vcd=$VCD"
+filelist=${FILELIST:-filelist.f}
+[ -f "$filelist" ] || { echo "run_icarus.sh: FAIL: no such file list: $filelist"; exit 1; }
 
-echo "run_icarus.sh: iverilog -g2005 -Wall -I tb -f filelist.f -s $tb tb/$tb.v"
-if ! iverilog -g2005 -Wall -I tb -f filelist.f -s "$tb" -o "$work/tb.vvp" "tb/$tb.v" \
+echo "run_icarus.sh: iverilog -g2005 -Wall -I tb -f $filelist -s $tb tb/$tb.v"
+if ! iverilog -g2005 -Wall -I tb -f "$filelist" -s "$tb" -o "$work/tb.vvp" "tb/$tb.v" \
      >"$work/compile.log" 2>&1; then
   cat "$work/compile.log"
   echo "run_icarus.sh: FAIL: compilation failed"
@@ -37,7 +43,7 @@ fi
 [ -s "$work/compile.log" ] && cat "$work/compile.log"
 
 status=0 ; total=0 ; summary=""
-for f in vectors/*.hex; do
+for f in ${VECTORS:-vectors/*.hex}; do
   [ -f "$f" ] || continue
   n=$(grep -c '^[0-9a-fA-F]' "$f")
   echo "run_icarus.sh: vvp -n tb.vvp +vectors=$f +nvec=$n$plus"

@@ -35,7 +35,7 @@ rm -rf "$work" && mkdir -p "$work" || fail "cannot create $work"
 b="$work/bundle"
 
 # 1. the handoff itself (it runs both simulators before reporting success)
-out=$("$exe" handoff "$@" --no-ice40 --out "$b" 2>&1); rc=$?
+out=$("$exe" handoff "$@" --no-ice40 --signoff off --out "$b" 2>&1); rc=$?
 echo "$out"
 [ $rc -eq 0 ] || fail "handoff exited $rc"
 echo "$out" | grep -q "run_icarus.sh: PASS" || fail "handoff did not report the Icarus PASS"
@@ -63,7 +63,7 @@ echo "$out" | tail -n 1
 [ $rc -eq 0 ] && echo "$out" | tail -n 1 | grep -q "^run_icarus.sh: PASS" || fail "run_icarus.sh did not pass on the bundle"
 
 # 4. non-empty directory without --force
-out=$("$exe" handoff "$@" --no-ice40 --out "$b" 2>&1); rc=$?
+out=$("$exe" handoff "$@" --no-ice40 --signoff off --out "$b" 2>&1); rc=$?
 [ $rc -ne 0 ] || fail "handoff into a non-empty directory without --force succeeded"
 [ "$(printf '%s\n' "$out" | wc -l)" -eq 1 ] || fail "refusal is not one line: $out"
 echo "$out" | grep -q "not empty" || fail "refusal does not say why: $out"
@@ -94,7 +94,7 @@ if [ $failed_run -eq 1 ]; then
   mkdir -p "$fr/docs"
   cp -r "$root/rtl" "$root/handoff" "$root/config" "$root/LICENSE" "$fr/"
   echo "this is not Verilog" >> "$fr/handoff/tb/tb_shadecore.v"
-  out=$(SHADECORE_ROOT="$fr" "$exe" handoff "$@" --no-ice40 --out "$work/sub/failed" 2>&1); rc=$?
+  out=$(SHADECORE_ROOT="$fr" "$exe" handoff "$@" --no-ice40 --signoff off --out "$work/sub/failed" 2>&1); rc=$?
   [ $rc -ne 0 ] || fail "handoff with a broken testbench template succeeded"
   echo "$out" | tail -n 1
   echo "$out" | tail -n 1 | grep -q "run_icarus.sh did not pass" || fail "the failure is not the Icarus run: $(echo "$out" | tail -n 1)"

@@ -660,6 +660,31 @@ def lighting_rows():
             lighting_cost.report_markdown(doc), ""]
 
 
+def standard_cell_rows(rows):
+    """What accuracy costs in nanoseconds and picojoules: the OSU 0.18 um sign-off of each unit (docs/timing.json,
+    measured by scripts/timing_report.py) beside this report's error of the same unit and width."""
+    path = os.path.join(ROOT, "docs", "timing.json")
+    if not os.path.exists(path):
+        return []
+    doc = json.load(open(path))
+    err = {(r["variant"], r["config"]): r.get("total_abs_max") for r in rows}
+    L = ["## In a standard-cell library: clock, latency, energy (OSU 0.18 µm)", "",
+         f"From docs/timing.json (`{doc['command']}`, {doc['machine']}, {doc['date']}; method and meaning: "
+         f"docs/signoff.md): typical corner, pre-layout, cell delays ×{doc['derate_late']}, target {doc['target_ns']} ns.",
+         "",
+         "| unit | width | contract | worst error | period (ns) | meets target | latency (ns) | results/s | area (µm²) "
+         "| energy (pJ/result) |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for t in doc["rows"]:
+        if t["kind"] != "unit":
+            continue
+        cfg = t["width"].split(" ")[0]
+        e = err.get((t["name"], cfg))
+        L.append(f"| {t['name']} | {cfg} | {t['contract']} | {'—' if e is None else f'{e:.3g}'} | {t['period_ns']} | "
+                 f"{'yes' if t['met'] else 'no'} | {t.get('latency_ns', '—')} | {t['results_per_s']:,} | "
+                 f"{t['area_um2']:,} | {'—' if t.get('energy_pj_per_result') is None else t['energy_pj_per_result']} |")
+    return L + ["", "![error against energy and period × area](timing.png)", ""]
+
+
 def write_report(rows, cmd, out, baseline="schlick_div", run_seconds=None, loads=()):
     """OUT/tradeoffs.md, .json and .png from the rows: all three or none (OUT and missing parents are created
     and removed again when anything fails)."""
@@ -768,6 +793,7 @@ def _write_report(rows, cmd, out, baseline, run_seconds, loads):
               + "; ".join(f"{m}: {', '.join(v) if len(v) < len(rows) else 'every row'}" for m, v in missing.items())
               + ".", ""]
     L += guidance(rows, baseline)
+    L += standard_cell_rows(rows)
     L += lighting_rows()
     L += ["## Pareto plot", "",
           "![error against area](tradeoffs.png)", "",

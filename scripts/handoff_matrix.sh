@@ -30,7 +30,7 @@ run() {  # name, handoff options...
   local b="$out/$name" s e
   rm -rf "$b" "$b.tar.gz"
   s=$(date +%s)
-  if "$exe" handoff "$@" $ice --seed 1 --out "$b" > "$out/$name.log" 2>&1; then
+  if "$exe" handoff "$@" $ice --signoff off --seed 1 --out "$b" > "$out/$name.log" 2>&1; then
     # one corrupted expected value must make both delivered simulator runs fail, naming it
     if ! scripts/handoff_corrupt_check.sh "$b" > "$out/$name.corrupt.log" 2>&1; then
       e="FAIL ($(grep -m 1 'corrupt_check: FAIL' "$out/$name.corrupt.log"))"; fail=$((fail + 1))

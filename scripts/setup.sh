@@ -6,7 +6,8 @@
 # iCE40 place-and-route tools this way, so the default setup stays lean). z3 (the SMT solver of
 # yosys-smtbmc), sollya and gappa are the proof tools of the formal suite (docs/formal.md, docs/bounds.md).
 # libosmesa6-dev (Mesa's off-screen GL, llvmpipe) with the GL headers (libgl-dev: GL/gl.h, mesa-common-dev) is
-# the outside reference of `shadecore gl-compare` (docs/gl_compare.md).
+# the outside reference of `shadecore gl-compare` (docs/gl_compare.md). qflow-tech-osu018 (the OSU 0.18 um cell
+# library) and opensta (OpenSTA) are the timing and energy sign-off (signoff/, docs/signoff.md).
 set -euo pipefail
 
 PACKAGES=(
@@ -18,6 +19,7 @@ PACKAGES=(
   python3 python3-numpy python3-matplotlib zlib1g-dev
   python3-dev python3-pybind11 python3-pytest
   slurm-wlm munge
+  qflow-tech-osu018 opensta
   "$@"
 )
 

@@ -34,7 +34,7 @@ if [ -n "${XPROP_REUSE:-}" ] && [ -f "$b/filelist.f" ]; then
   rm -rf "$work/run" "$work/mut"; echo "xprop: reusing $b (XPROP_REUSE)"
 else
   rm -rf "$work" && mkdir -p "$work" || fail "cannot create $work"
-  out=$("$exe" handoff "$@" --no-ice40 --out "$b" 2>&1); rc=$?
+  out=$("$exe" handoff "$@" --no-ice40 --signoff off --out "$b" 2>&1); rc=$?
   echo "$out" | tail -n 3
   [ $rc -eq 0 ] || fail "handoff exited $rc"
 fi

@@ -393,7 +393,7 @@ TEST(HandoffLighting, DiffuseBundlePassesAndACorruptedCopyFails) {
   const fs::path d = temp_dir("hld");
   const fs::path b = d / "hl", vobj = d / "vobj";
   const CliRun r = run_shell("VERILATOR_OBJ_DIR=" + vobj.string() + " " + SHADECORE_CLI +
-                             " handoff --core lighting --features diffuse --count 60 --seed 9 --synth skip --no-ice40 --out " +
+                             " handoff --core lighting --features diffuse --count 60 --seed 9 --synth skip --no-ice40 --signoff off --out " +
                              b.string());
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("run_icarus.sh: PASS"), std::string::npos) << r.out;

@@ -23,3 +23,14 @@
 `endif
     end
   endtask
+
+  // +vcd=FILE: a VCD of the design under test's own nets, one level deep (every net of a mapped,
+  // flattened netlist; the cells' insides are not dumped). signoff/signoff.py counts their toggles for
+  // the power report.
+  reg [8*512-1:0] vcd_file;
+  initial begin
+    if ($value$plusargs("vcd=%s", vcd_file)) begin
+      $dumpfile(vcd_file);
+      $dumpvars(1, dut);
+    end
+  end

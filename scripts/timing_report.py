@@ -1,0 +1,327 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
+"""Timing and energy sign-off report: every unit and lighting set in OSU 0.18 um (docs/timing.md, .json, .png).
+
+Per row (a unit of config/configs.json "variants" at a width, or a lighting feature set of "feature_sets"):
+  1. `shadecore handoff --signoff on` writes the row's bundle (RTL, vectors from the C model, the self-checking
+     bench; --synth skip --no-ice40) and signs it off:
+  2. signoff/signoff.py (run by the handoff, inside the bundle) maps it to the OSU 0.18 um cells (Dadda/Kogge-Stone multipliers), times it with
+     OpenSTA (WNS/TNS at the target, Fmax by bisection, critical path), runs the bench on the netlist
+     (gate-level, Icarus) and takes the energy per result from the netlist's own activity.
+The table units have no handoff bundle (the plain-Verilog bench cannot load the table RAM): their rows are
+synthesised and timed from the RTL (sc_specular with VARIANT set) without a gate-level run, and say so.
+Rows are cached in OUT/timing.cache.json by the SHA-256 of what decides them (rtl/, config/configs.json,
+signoff/signoff.py and fastmul.py, handoff/, the shadecore binary, the target, the vector count): a rerun
+computes only what changed.
+Long (hours from an empty cache on 2 cores; a lighting set with 8 lights takes the longest); run by hand.
+"""
+import argparse
+import datetime
+import fcntl
+import hashlib
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import figures  # noqa: E402  scripts/figures.py: machine line, footer
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SIGNOFF = os.path.join(ROOT, "signoff", "signoff.py")
+FIELDS = ["name", "kind", "width", "contract", "latency_cycles", "period_ns", "wns_ns", "fmax_mhz",
+          "fo4_per_cycle", "area_um2", "cells", "energy_pj_per_result", "gate_sim_vectors",
+          "gate_sim_mismatches", "critical_path"]
+
+
+# What decides a row's numbers (with the shadecore binary, the target and the vector count): the cache key.
+DECIDING = ["rtl", "config/configs.json", "signoff/signoff.py", "signoff/fastmul.py", "handoff"]
+
+
+class Failure(Exception):
+    pass
+
+
+def sha_tree(paths):
+    h = hashlib.sha256()
+    for base in paths:
+        full = os.path.join(ROOT, base)
+        files = [full] if os.path.isfile(full) else sorted(
+            os.path.join(d, f) for d, _, fs in os.walk(full) for f in fs if not f.endswith(".pyc"))
+        for p in files:
+            h.update(os.path.relpath(p, ROOT).encode())
+            h.update(hashlib.sha256(open(p, "rb").read()).digest())
+    return h.hexdigest()
+
+
+def rows_of(cfg, only, configs):
+    rows = []
+    for v in cfg["variants"]:
+        for c in cfg["configs"]:
+            if c["name"] in configs:
+                rows.append({"name": v["name"], "kind": "unit", "config": c, "contract": v["contract"],
+                             "variant": v, "table": "entries" in v})
+    for s in cfg["feature_sets"]:
+        rows.append({"name": s["name"], "kind": "lighting", "config": {"name": s.get("config", "default")},
+                     "contract": "lighting", "set": s, "table": False})
+    if only:
+        known = {r["name"] for r in rows}
+        bad = [o for o in only if o not in known]
+        if bad:
+            raise Failure(f"unknown row(s) {', '.join(bad)} (units: variants of config/configs.json, or feature sets)")
+        rows = sorted((r for r in rows if r["name"] in only), key=lambda r: only.index(r["name"]))  # in --only's order
+    return rows
+
+
+def row_id(r):
+    return f"{r['kind']}:{r['name']}:{r['config']['name']}"
+
+
+def bundle(a, r, d):
+    """Write the handoff bundle of a row into d (or, for a table unit, a synthesis-only directory)."""
+    if r["table"]:
+        os.makedirs(d)
+        gen = os.path.join(a.build, "generated", "rtl")
+        files = json.load(open(os.path.join(ROOT, "config", "configs.json")))["rtl"]["sc_specular"]["files"]
+        files = files + r["variant"]["rtl"]
+        with open(os.path.join(d, "filelist.f"), "w") as f:
+            f.write(f"+incdir+{os.path.join(ROOT, 'rtl')}\n+incdir+{gen}\n")
+            f.write("".join(os.path.join(ROOT, "rtl", x) + "\n" for x in dict.fromkeys(files)))
+        return {"top": "sc_specular", "chparam": {"VARIANT": r["variant"]["id"], "FRAC": r["config"]["frac"],
+                                                  "GUARD": r["config"]["guard"]}}
+    # The handoff signs its own bundle off (--signoff on: the same signoff/signoff.py), so the report's numbers are
+    # the bundle's: its constraints.sdc, reports and signoff.json.
+    cmd = [a.shadecore, "handoff", "--out", d, "--no-ice40", "--synth", "skip", "--signoff", "on",
+           "--clock-target", str(a.target), "--seed", "1", "--count", str(count_of(a, r))]
+    if r["kind"] == "unit":
+        cmd += ["--variant", r["name"], "--config", r["config"]["name"]]
+    else:
+        cmd += ["--core", "lighting", "--features", r["name"]]
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=a.timeout)
+    if p.returncode:
+        raise Failure(f"{' '.join(cmd)} failed: {(p.stderr or p.stdout).strip().splitlines()[-1:]}")
+    return {}
+
+
+def count_of(a, r):
+    return a.count if r["kind"] == "unit" else a.light_count
+
+
+def measure(a, r):
+    with tempfile.TemporaryDirectory(prefix="shadecore_timing.") as tmp:
+        d = os.path.join(tmp, "b")
+        t_start = time.time()
+        extra = bundle(a, r, d)
+        log = ""
+        if extra:
+            cmd = ["/usr/bin/python3", SIGNOFF, d, "--target", str(a.target), "--timeout", str(a.timeout),
+                   "--top", extra["top"], "--steps", "synth,sta"]
+            cmd += [x for k, v in extra["chparam"].items() for x in ("--chparam", f"{k}={v}")]
+            p = subprocess.run(cmd, capture_output=True, text=True)
+            if p.returncode:
+                raise Failure(f"signoff of {row_id(r)} failed: {(p.stderr or p.stdout).strip().splitlines()[-1:]}")
+            log = p.stdout
+        s = json.load(open(os.path.join(d, "signoff", "signoff.json")))
+        s["seconds"] = round(time.time() - t_start, 1)
+        s["log"] = log
+        lat = None
+        tbc = os.path.join(d, "tb", "tb_config.vh")
+        if os.path.exists(tbc):
+            m = re.search(r"localparam integer LATENCY\s*=\s*(\d+)", open(tbc).read())
+            lat = int(m.group(1)) if m else None
+        elif r["table"]:
+            lat = None
+        s["latency_cycles"] = lat
+        return s
+
+
+def to_row(r, s):
+    st, sy = s["sta"], s["synth"]
+    gs, pw = s.get("gatesim"), s.get("power")
+    cp = st["critical_path"]
+    c = r["config"]
+    width = f"{c['name']} (F={c['frac']}, G={c['guard']})" if "frac" in c else c["name"]
+    out = {"name": r["name"], "kind": r["kind"], "width": width, "contract": r["contract"],
+           "latency_cycles": s.get("latency_cycles"), "period_ns": st["period_ns"], "wns_ns": st["wns_ns"],
+           "tns_ns": st["tns_ns"], "met": st["met"], "fmax_mhz": st["fmax_mhz"],
+           "fo4_per_cycle": st.get("fo4_per_cycle"), "area_um2": round(sy["area_um2"]), "cells": sy["cells"],
+           "flops": sy["flops"],
+           "energy_pj_per_result": pw["energy_pj_per_result"] if pw else None,
+           "power_mw": pw["power_mw"] if pw else None,
+           "results_per_clock": round(pw["results"] / pw["cycles"], 4) if pw else None,
+           "gate_sim_vectors": gs["vectors"] if gs else None,
+           "gate_sim_mismatches": gs["mismatches"] if gs else None,
+           "critical_path": f"{cp['start_reg']} -> {cp['end_reg']} ({cp['levels']} cells, "
+                            f"{cp['arrival_ns']} ns derated)",
+           "seconds": s["seconds"]}
+    if out["latency_cycles"] is not None:
+        out["latency_ns"] = round(out["latency_cycles"] * out["period_ns"], 2)
+    rpc = out["results_per_clock"] if out["results_per_clock"] else 1.0
+    out["results_per_s"] = round(rpc * 1e9 / out["period_ns"])
+    out["ns_um2"] = round(out["period_ns"] * out["area_um2"])
+    if not out["met"]:
+        out["reason"] = (f"misses {s['target_ns']} ns by {-out['wns_ns']:.3f} ns: the worst stage is "
+                         f"{cp['start_reg']} -> {cp['end_reg']}; closing it takes a register inside that stage "
+                         f"(about {max(1, round(-out['wns_ns'] / s['target_ns'] * 2 + 0.5))} more per such stage)")
+    if gs is None:
+        out["reason_gate_sim"] = ("no gate-level run: the handoff bench cannot load a table RAM"
+                                  if r["table"] else "not run")
+    return out
+
+
+def write_md(path, rows, meta):
+    L = ["<!-- generated by scripts/timing_report.py, do not edit -->", "# Timing and energy sign-off (OSU 0.18 µm)", ""]
+    L += [f"Generated by `{meta['command']}` on {meta['machine']}, {meta['date']}. Library: {meta['library']}; "
+          f"{meta['tools']['yosys']}, {meta['tools']['opensta']}, {meta['tools']['iverilog']}.", "",
+          f"Target: **{meta['target_ns']} ns** (250 MHz at 4.0 ns; the library's FO4 is {meta['fo4_ns']} ns, so the target is "
+          f"{meta['target_ns'] / meta['fo4_ns']:.0f} FO4), typical corner, pre-layout, cell delays derated "
+          f"×{meta['derate_late']} for wires; inputs arrive and outputs leave {meta['io_fraction']:.0%} of the period "
+          f"from the edge, driven by {meta['drive_cell']} and loading four of its inputs. "
+          "What these numbers mean and how they were made: docs/signoff.md.", "",
+          "| row | width | contract | latency (cycles / ns) | closes at (ns) | WNS at target (ns) | Fmax (MHz) | FO4/cycle "
+          "| area (µm²) | cells | flip-flops | energy (pJ/result) | results/s | gate-level sim | critical path |",
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lat = f"{r['latency_cycles']} / {r['latency_ns']}" if r.get("latency_cycles") is not None else "—"
+        gs = (f"{r['gate_sim_vectors']} vectors, {r['gate_sim_mismatches']} mismatches"
+              if r.get("gate_sim_vectors") is not None else r.get("reason_gate_sim", "—"))
+        e = f"{r['energy_pj_per_result']:.1f}" if r.get("energy_pj_per_result") is not None else "—"
+        wns = f"{r['wns_ns']:+.3f}" + ("" if r["met"] else " ✗")
+        L.append(f"| {r['name']} ({r['kind']}) | {r['width']} | {r['contract']} | {lat} | {r['period_ns']} | {wns} | "
+                 f"{r['fmax_mhz']} | {r['fo4_per_cycle']} | {r['area_um2']:,} | {r['cells']:,} | {r['flops']:,} | {e} | "
+                 f"{r['results_per_s']:,} | {gs} | `{r['critical_path']}` |")
+    miss = [r for r in rows if not r["met"]]
+    L += ["", f"{len(rows) - len(miss)} of {len(rows)} rows meet {meta['target_ns']} ns."]
+    if miss:
+        L += ["", "Rows that miss the target, and what it would take:", ""]
+        L += [f"- **{r['name']}**: {r['reason']}." for r in miss]
+    L += ["", "![error against energy and against period × area](timing.png)", ""]
+    with open(path, "w") as f:
+        f.write("\n".join(L) + "\n")
+
+
+def plot(path, rows, footer):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    trade = {}
+    tj = os.path.join(ROOT, "docs", "tradeoffs.json")
+    if os.path.exists(tj):
+        for t in json.load(open(tj)):
+            trade[(t["variant"], t["config"])] = t
+    pts = []
+    for r in rows:
+        if r["kind"] != "unit":
+            continue
+        cfg = r["width"].split(" ")[0]
+        t = trade.get((r["name"], cfg))
+        if t is None or t.get("total_abs_max") is None:
+            continue
+        pts.append((r, t["total_abs_max"]))
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
+    for ax, key, label in ((axes[0], "energy_pj_per_result", "energy per result (pJ, gate-level activity)"),
+                           (axes[1], "ns_um2", "period × area (ns·µm²)")):
+        for r, err in pts:
+            x = r.get(key)
+            if x is None:
+                continue
+            ax.scatter([x], [err], s=36, marker="o" if r["met"] else "x")
+            ax.annotate(r["name"], (x, err), textcoords="offset points", xytext=(5, 4), fontsize=8)
+        ax.set_xlabel(label)
+        ax.set_ylabel("max |cos^n − unit| over n = 16..1024 (sweep)")
+        ax.set_yscale("log")
+        ax.grid(True, alpha=0.3)
+    axes[0].set_title("error against energy (o meets 4.0 ns, x misses)", fontsize=10)
+    axes[1].set_title("error against period × area", fontsize=10)
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
+    figures.save(fig, path, footer)
+
+
+def store(path, rid, entry):
+    """Adds one row to the cache file under a lock (other runs may be adding theirs), atomically."""
+    d = os.path.dirname(os.path.abspath(path))
+    os.makedirs(d, exist_ok=True)
+    with open(os.path.join(d, "." + os.path.basename(path) + ".lock"), "w") as lk:
+        fcntl.flock(lk, fcntl.LOCK_EX)
+        data = json.load(open(path)) if os.path.exists(path) else {"entries": {}}
+        data["entries"][rid] = entry
+        fd, tmp = tempfile.mkstemp(prefix=".timing.cache.", dir=d)
+        with os.fdopen(fd, "w") as f:
+            json.dump(data, f, indent=1, sort_keys=True)
+            f.write("\n")
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"), help="build directory (default build/)")
+    ap.add_argument("--out", default=os.path.join(ROOT, "docs"), help="output directory (default docs/)")
+    ap.add_argument("--only", default="", help="comma list of rows (unit or feature-set names)")
+    ap.add_argument("--configs", default="default", help="comma list of widths for the units (default: default)")
+    ap.add_argument("--target", type=float, default=4.0, help="target clock period, ns (default 4.0)")
+    ap.add_argument("--count", type=int, default=2000,
+                    help="random vectors per unit bundle (default 2000: the pipeline's fill is ~0.4 %% of the power run)")
+    ap.add_argument("--light-count", type=int, default=200, help="random fragments per lighting bundle (default 200)")
+    ap.add_argument("--timeout", type=int, default=10800, help="seconds per tool run (default 10800)")
+    ap.add_argument("--cache", default=None, help="cache file (default OUT/timing.cache.json)")
+    ap.add_argument("--dry-run", action="store_true", help="list the rows and whether each is cached")
+    a = ap.parse_args()
+    cfg = json.load(open(os.path.join(ROOT, "config", "configs.json")))
+    a.shadecore = os.path.join(a.build, "cli", "shadecore")
+    if not os.access(a.shadecore, os.X_OK):
+        raise Failure(f"no shadecore binary at {a.shadecore}: build first (scripts/build.sh)")
+    rows = rows_of(cfg, [o for o in a.only.split(",") if o], a.configs.split(","))
+    cache_path = a.cache or os.path.join(a.out, "timing.cache.json")
+    cache = json.load(open(cache_path)) if os.path.exists(cache_path) else {"entries": {}}
+    common = sha_tree(DECIDING)
+    binh = hashlib.sha256(open(a.shadecore, "rb").read()).hexdigest()
+    out_rows, meta = [], None
+    for i, r in enumerate(rows):
+        key = hashlib.sha256(f"{row_id(r)}|{common}|{binh}|{a.target}|{count_of(a, r)}".encode()).hexdigest()[:24]
+        if os.path.exists(cache_path):  # another run may have added rows since this one started
+            cache = json.load(open(cache_path))
+        hit = cache["entries"].get(row_id(r))
+        cached = hit is not None and hit["key"] == key
+        if a.dry_run:
+            print(f"{row_id(r)}: {'cached' if cached else 'to run'}")
+            continue
+        if not cached:
+            print(f"timing_report: [{i + 1}/{len(rows)}] {row_id(r)} ...", flush=True)
+            s = measure(a, r)
+            hit = {"key": key, "signoff": s}
+            cache["entries"][row_id(r)] = hit
+            store(cache_path, row_id(r), hit)
+        s = hit["signoff"]
+        row = to_row(r, s)
+        out_rows.append(row)
+        meta = meta or s
+        print(f"timing_report: {row_id(r)}: {row['period_ns']} ns (WNS {row['wns_ns']:+.3f} at {a.target}), "
+              f"{row['area_um2']:,} um2, {row.get('energy_pj_per_result')} pJ/result, "
+              f"gate sim {row.get('gate_sim_mismatches')} mismatches{' (cached)' if cached else ''}", flush=True)
+    if a.dry_run:
+        return
+    cmdline = "scripts/timing_report.py" + "".join(f" {x}" for x in sys.argv[1:])
+    info = {"command": cmdline, "machine": figures.machine(), "date": datetime.date.today().isoformat(),
+            "library": meta["library"], "tools": meta["tools"], "target_ns": a.target, "fo4_ns": meta["fo4_ns"],
+            "derate_late": meta["derate_late"], "io_fraction": meta["io_fraction"], "drive_cell": meta["drive_cell"]}
+    doc = dict(info, rows=out_rows)
+    jp = os.path.join(a.out, "timing.json")
+    with open(jp + ".tmp", "w") as f:
+        json.dump(doc, f, indent=1)
+    os.replace(jp + ".tmp", jp)
+    write_md(os.path.join(a.out, "timing.md"), out_rows, info)
+    plot(os.path.join(a.out, "timing.png"), out_rows, figures.footer(cmdline))
+    print(f"timing_report: wrote {jp}, timing.md, timing.png")
+
+
+if __name__ == "__main__":
+    try:
+        main()
+    except Failure as e:
+        print(f"timing_report: error: {e}", file=sys.stderr)
+        sys.exit(1)

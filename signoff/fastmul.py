@@ -1,0 +1,244 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Fast multipliers for the standard-cell flow: a Yosys techmap of `$mul` into Dadda trees.
+
+Yosys 0.23 maps `$mul` to an array of ripple adders (`\\$__arraymul`): on OSU 0.18 um a 22x22 product is a
+chain of ~14 XOR cells followed by a ripple carry, 5.8 ns. This module writes, for each distinct `$mul`
+shape found in a design (A/B/Y widths, signedness, and whether A and B are the same bits, i.e. a square),
+a techmap module that replaces the cell by
+
+  * a bit heap of partial products: AND terms for unsigned operands; for signed operands the sign rows
+    are negated bit by bit and the constant they owe is added once (Baugh-Wooley), so no row is
+    sign-extended; a square keeps only x_i x_j for i < j, one column up (x_i x_j + x_j x_i = 2 x_i x_j),
+    and x_i alone in column 2i (x_i x_i = x_i): about half the bits of a general product;
+  * a Dadda reduction of the heap to two rows (full and half adders, column heights 2, 3, 4, 6, 9, ...);
+  * a Kogge-Stone prefix adder for the final two rows (log2 depth).
+
+Only the columns below Y_WIDTH are built (the product is taken modulo 2^Y_WIDTH, as `$mul` defines it).
+Each generated module names its shape in `_TECHMAP_FAIL_`, so a cell of any other shape falls through
+to Yosys's own map. The RTL stays behavioural (`*`): FPGA flows still infer DSP blocks. The netlist's
+equality with the RTL is shown by simulation of the mapped netlist (signoff.py gatesim) and, per shape,
+by `fastmul.py --selftest` (Yosys `equiv_make`/`equiv_simple`/`equiv_induct` against `$mul`).
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+DADDA = [2, 3, 4, 6, 9, 13, 19, 28, 42, 63, 94, 141, 211, 316]
+
+
+class Net:
+    """A generator of fresh wire names and the assignments that define them."""
+
+    def __init__(self):
+        self.n = 0
+        self.lines = []
+
+    def wire(self, expr):
+        self.n += 1
+        name = f"w{self.n}"
+        self.lines.append(f"  wire {name} = {expr};")
+        return name
+
+
+def heap_of(m, n, y, signed, square):
+    """Partial-product bit heap: list of columns 0..y-1, each a list of expressions; plus a constant."""
+    cols = [[] for _ in range(y)]
+    const = 0
+
+    def add(col, expr, neg=False):
+        nonlocal const
+        if col >= y:
+            return
+        if neg:  # -t*2^k = (~t)*2^k - 2^k
+            cols[col].append(f"~({expr})")
+            const -= 1 << col
+        else:
+            cols[col].append(expr)
+
+    def sign(i, w):  # the weight of bit i of a w-bit operand is negative iff signed and i is the MSB
+        return signed and i == w - 1
+
+    if square:
+        for i in range(m):
+            add(2 * i, f"A[{i}]")  # x_i * x_i, the sign bit's square is positive too
+            for j in range(i + 1, m):
+                add(i + j + 1, f"A[{i}] & A[{j}]", sign(i, m) != sign(j, m))
+    else:
+        for i in range(m):
+            for j in range(n):
+                add(i + j, f"A[{i}] & B[{j}]", sign(i, m) != sign(j, n))
+    const %= 1 << y
+    for k in range(y):
+        if const >> k & 1:
+            cols[k].append("1'b1")
+    return cols
+
+
+def dadda(net, cols):
+    """Reduce the heap to at most two bits per column (Dadda's schedule)."""
+    y = len(cols)
+    h = max((len(c) for c in cols), default=0)
+    targets = [d for d in DADDA if d < h]
+    for d in reversed(targets):
+        nxt = [[] for _ in range(y)]
+        for k in range(y):
+            col = cols[k]
+            height = len(col) + len(nxt[k])
+            i = 0
+            while height > d:
+                if height - d >= 2 and len(col) - i >= 3:
+                    a, b, c = col[i:i + 3]
+                    i += 3
+                    s = net.wire(f"{a} ^ {b} ^ {c}")
+                    nxt[k].append(s)
+                    if k + 1 < y:
+                        nxt[k + 1].append(net.wire(f"({a} & {b}) | ({a} & {c}) | ({b} & {c})"))
+                    height -= 2
+                elif len(col) - i >= 2:
+                    a, b = col[i:i + 2]
+                    i += 2
+                    nxt[k].append(net.wire(f"{a} ^ {b}"))
+                    if k + 1 < y:
+                        nxt[k + 1].append(net.wire(f"{a} & {b}"))
+                    height -= 1
+                else:
+                    break
+            nxt[k].extend(col[i:])
+        cols = nxt
+    return cols
+
+
+def kogge_stone(net, cols):
+    """Add the two remaining rows with a Kogge-Stone prefix adder; returns the sum bits."""
+    y = len(cols)
+    a = [c[0] if len(c) > 0 else "1'b0" for c in cols]
+    b = [c[1] if len(c) > 1 else "1'b0" for c in cols]
+    assert all(len(c) <= 2 for c in cols)
+    p = [net.wire(f"{a[k]} ^ {b[k]}") for k in range(y)]
+    g = [net.wire(f"{a[k]} & {b[k]}") for k in range(y)]
+    pp, gg = list(p), list(g)
+    dist = 1
+    while dist < y:
+        ng, np_ = list(gg), list(pp)
+        for k in range(dist, y):
+            ng[k] = net.wire(f"{gg[k]} | ({pp[k]} & {gg[k - dist]})")
+            np_[k] = net.wire(f"{pp[k]} & {pp[k - dist]}")
+        gg, pp = ng, np_
+        dist *= 2
+    return [p[0]] + [net.wire(f"{p[k]} ^ {gg[k - 1]}") for k in range(1, y)]
+
+
+def module_for(aw, bw, yw, signed, square, index):
+    """Verilog text of one techmap module for the shape (aw, bw, yw, signed, square)."""
+    m, n = min(aw, yw), min(bw, yw)
+    net = Net()
+    cols = heap_of(m, n, yw, signed, square)
+    if all(len(c) == 0 for c in cols):
+        bits = ["1'b0"] * yw
+    else:
+        bits = kogge_stone(net, dadda(net, cols))
+    cond = [f"A_WIDTH == {aw}", f"B_WIDTH == {bw}", f"Y_WIDTH == {yw}", f"A_SIGNED == {int(signed)}",
+            f"B_SIGNED == {int(signed)}"]
+    if square:
+        cond.append("_TECHMAP_CONNMAP_A_ == _TECHMAP_CONNMAP_B_")
+    body = "\n".join(net.lines)
+    out = "\n".join(f"  assign Y[{k}] = {bits[k]};" for k in range(yw))
+    kind = "square" if square else "product"
+    return f"""// {kind} {aw}x{bw} -> {yw}, {'signed' if signed else 'unsigned'}: Dadda tree + Kogge-Stone adder
+(* techmap_celltype = "$mul" *)
+module _sc_fastmul_{index} (A, B, Y);
+  parameter A_SIGNED = 0;
+  parameter B_SIGNED = 0;
+  parameter A_WIDTH = 1;
+  parameter B_WIDTH = 1;
+  parameter Y_WIDTH = 1;
+  parameter _TECHMAP_CONNMAP_A_ = 0;
+  parameter _TECHMAP_CONNMAP_B_ = 0;
+  (* force_downto *) input [A_WIDTH-1:0] A;
+  (* force_downto *) input [B_WIDTH-1:0] B;
+  (* force_downto *) output [Y_WIDTH-1:0] Y;
+  wire _TECHMAP_FAIL_ = !({' && '.join(cond)});
+{body}
+{out}
+endmodule
+"""
+
+
+def shapes_of(design_json):
+    """The distinct $mul shapes of a Yosys write_json file: (aw, bw, yw, signed, square)."""
+    with open(design_json) as f:
+        d = json.load(f)
+    shapes = set()
+    for mod in d["modules"].values():
+        for cell in mod.get("cells", {}).values():
+            if cell["type"] != "$mul":
+                continue
+            p = {k: int(v, 2) if isinstance(v, str) else int(v) for k, v in cell["parameters"].items()}
+            con = cell["connections"]
+            square = con["A"] == con["B"]
+            shapes.add((p["A_WIDTH"], p["B_WIDTH"], p["Y_WIDTH"], bool(p["A_SIGNED"]), square))
+    return sorted(shapes)
+
+
+def write_map(shapes, path):
+    """Write the techmap file for these shapes (squares first, so a square never takes a product's map)."""
+    mods = []
+    for i, s in enumerate(sorted(shapes, key=lambda s: not s[4])):
+        mods.append(module_for(*s, i))
+    with open(path, "w") as f:
+        f.write("// generated by signoff/fastmul.py, do not edit\n")
+        f.write("\n".join(mods))
+
+
+def selftest(shapes):
+    """Prove each generated map equal to Yosys's $mul (SAT on the combinational cone)."""
+    ok = True
+    for s in shapes:
+        aw, bw, yw, signed, square = s
+        with tempfile.TemporaryDirectory() as tmp:
+            sg = "signed " if signed else ""
+            rhs = "a * a" if square else "a * b"
+            src = f"""module gold(input {sg}[{aw-1}:0] a, input {sg}[{bw-1}:0] b, output [{yw-1}:0] y);
+  assign y = {rhs};
+endmodule
+"""
+            open(os.path.join(tmp, "g.v"), "w").write(src)
+            write_map([s], os.path.join(tmp, "map.v"))
+            script = (f"read_verilog {tmp}/g.v; proc; opt_clean; copy gold gate; "
+                      f"techmap -map {tmp}/map.v gate; opt_clean; "
+                      f"miter -equiv -flatten -make_assert gold gate miter; "
+                      f"sat -verify -prove-asserts -show-inputs miter")
+            r = subprocess.run(["yosys", "-q", "-p", script], capture_output=True, text=True)
+            mapped = subprocess.run(["yosys", "-q", "-p", f"read_verilog {tmp}/g.v; proc; techmap -map {tmp}/map.v; "
+                                     "select -assert-none t:$mul"], capture_output=True, text=True)
+            good = r.returncode == 0 and mapped.returncode == 0
+            ok &= good
+            print(f"fastmul selftest {s}: {'PASS' if good else 'FAIL'}"
+                  + ("" if mapped.returncode == 0 else " (the map did not apply)"))
+            if r.returncode != 0:
+                print(r.stdout[-2000:] + r.stderr[-2000:])
+    return ok
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--design", help="Yosys write_json of the prepared design: map its $mul shapes")
+    ap.add_argument("--out", help="the techmap file to write")
+    ap.add_argument("--selftest", action="store_true",
+                    help="prove a set of shapes (small, signed, square, truncated) equal to $mul with Yosys sat")
+    a = ap.parse_args()
+    if a.selftest:
+        shapes = [(4, 4, 8, False, False), (5, 3, 8, True, False), (6, 6, 12, False, True),
+                  (6, 6, 12, True, True), (7, 5, 7, False, False), (5, 5, 14, True, False),
+                  (3, 6, 9, True, False), (8, 8, 9, False, True)]
+        sys.exit(0 if selftest(shapes) else 1)
+    if not a.design or not a.out:
+        ap.error("--design and --out are required (or --selftest)")
+    write_map(shapes_of(a.design), a.out)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,586 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Timing and energy sign-off of a shadecore handoff bundle in a real standard-cell library.
+
+Runs on a bundle written by `shadecore handoff` (filelist.f, tb/, vectors/, run_icarus.sh) and writes
+its results into BUNDLE/signoff/ (and BUNDLE/constraints.sdc with the measured clock):
+
+  synth    Yosys 0.23: prepare (proc, flatten, opt, wreduce), map every `$mul` to a Dadda tree with a
+           Kogge-Stone adder (signoff/fastmul.py; `$add`/`$sub`/compares already become Yosys's
+           Brent-Kung `$lcu`), synth, dfflibmap, then ABC with the library, the target delay and load
+           and drive constraints (the same driving cell and load as the SDC): ABC's `buffer` pass
+           builds the buffer trees of high-fanout nets (the pipeline enable, valid, stall). The mapped
+           netlist is signoff/netlist.v (bus ports kept, internal nets split to bits).
+  sta      OpenSTA under the SDC: the clock on clk_i, input and output delays as a fraction of the
+           period (IO_FRACTION, 0.3), the driving cell on every input and a load of four INVX1 inputs
+           on every output, and `set_timing_derate -late DERATE` (1.15) on cell delays as the
+           allowance for wires (no wire-load model in the library; placed and routed numbers in
+           docs/timing.md). WNS/TNS at the target; Fmax by bisection on the period (every
+           constraint scales with it) to 1 ps; the critical path named by its start and end registers.
+  gatesim  the bundle's own self-checking testbench on the mapped netlist and the library's cell
+           models (Icarus, zero-delay), every vector file: 0 mismatches and no X after reset.
+  power    a second gate-level run without input gaps or output stalls dumps a VCD of the
+           netlist's nets; per net toggles per clock and time-high fraction go to OpenSTA
+           (`set_power_activity -pins` on each net's driver, `-input_ports` on the inputs) and
+           `report_power` at the closing period. energy per result = power x period x cycles /
+           results. Typical corner, no wires, zero-delay simulation: glitches are not counted.
+
+Exit status 0 when every step ran (the timing target may be missed: that is a result, recorded in
+signoff.json); 1 on a tool error; 2 when the gate-level simulation failed.
+"""
+import argparse
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import fastmul  # noqa: E402
+
+LIB_DIR = "/usr/share/qflow/tech/osu018"
+LIBERTY = "osu018_stdcells.lib"
+CELLS = "osu018_stdcells.v"
+DRIVE_CELL = "INVX1"
+IO_FRACTION = 0.3
+DERATE = 1.15
+CLOCK = "clk_i"
+
+
+def die(msg, code=1):
+    print(f"signoff: error: {msg}", file=sys.stderr)
+    sys.exit(code)
+
+
+def log(msg):
+    print(f"signoff: {msg}", flush=True)
+
+
+def run(cmd, cwd, logfile, timeout=None):
+    """Run a tool, its output into logfile; returns (rc, text)."""
+    t0 = time.time()
+    try:
+        p = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout)
+        out, rc = p.stdout + p.stderr, p.returncode
+    except subprocess.TimeoutExpired as e:
+        out = (e.stdout or b"").decode(errors="replace") if isinstance(e.stdout, bytes) else (e.stdout or "")
+        out += f"\n(timed out after {timeout} s)\n"
+        rc = 124
+    with open(logfile, "w") as f:
+        f.write(f"# {' '.join(cmd)}\n# cwd {cwd}, {time.time() - t0:.1f} s, exit {rc}\n")
+        f.write(out)
+    return rc, out
+
+
+def tool_version(cmd):
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=30)
+        return (p.stdout + p.stderr).strip().splitlines()[0]
+    except (OSError, IndexError, subprocess.TimeoutExpired):
+        return "unknown"
+
+
+def read_filelist(bundle):
+    incs, files = [], []
+    with open(os.path.join(bundle, "filelist.f")) as f:
+        for line in f:
+            line = line.strip()
+            if not line or line.startswith("//") or line.startswith("#"):
+                continue
+            if line.startswith("+incdir+"):
+                incs.append(line[len("+incdir+"):])
+            else:
+                files.append(line)
+    return incs, files
+
+
+def lib_input_cap(liberty, cell, pin="A"):
+    """The capacitance of one input pin of a library cell (pF)."""
+    text = open(liberty).read()
+    m = re.search(r"cell\s*\(\s*%s\s*\)" % cell, text)
+    pm = re.search(r"pin\s*\(\s*%s\s*\)[^}]*?capacitance\s*:\s*([0-9.eE+-]+)" % pin, text[m.end():])
+    return float(pm.group(1))
+
+
+def lib_output_pins(liberty):
+    """{cell: [output pin names]} of the library."""
+    out, cell = {}, None
+    text = open(liberty).read()
+    for m in re.finditer(r"cell\s*\(\s*(\w+)\s*\)|pin\s*\(\s*(\w+)\s*\)\s*\{\s*direction\s*:\s*output", text):
+        if m.group(1):
+            cell = m.group(1)
+            out[cell] = []
+        elif cell:
+            out[cell].append(m.group(2))
+    return out
+
+
+# ------------------------------------------------------------------------------------------- synth
+def synth(a, sdir):
+    incs, files = read_filelist(a.bundle)
+    lib = a.liberty
+    inc = " ".join(f"-I{os.path.join(a.bundle, i)}" for i in incs)
+    src = " ".join(os.path.join(a.bundle, f) for f in files)
+    load = 4 * lib_input_cap(lib, DRIVE_CELL)
+    with open(os.path.join(sdir, "abc.constr"), "w") as f:
+        f.write(f"set_driving_cell {DRIVE_CELL}\nset_load {load:.5f}\n")
+    prep = (f"read_verilog -defer {inc} {src}\n"
+            f"hierarchy -check -top {a.top}" + "".join(f" -chparam {k} {v}" for k, v in a.chparam) + "\n"
+            "proc; flatten; opt_expr; opt_clean; check; opt -nodffe -nosdff; fsm; opt; wreduce; peepopt; opt_clean\n")
+    with open(os.path.join(sdir, "prep.ys"), "w") as f:
+        f.write(prep + "write_rtlil prep.il\nwrite_json prep.json\n")
+    rc, _ = run(["yosys", "-q", "-s", "prep.ys"], sdir, os.path.join(sdir, "yosys_prep.log"), a.timeout)
+    if rc:
+        die(f"Yosys preparation failed (exit {rc}): {sdir}/yosys_prep.log")
+    shapes = fastmul.shapes_of(os.path.join(sdir, "prep.json")) if a.arith == "fast" else []
+    fastmul.write_map(shapes, os.path.join(sdir, "fastmul_map.v"))
+    os.remove(os.path.join(sdir, "prep.json"))
+    period_ps = int(round(a.target * 1000))
+    mapcmd = "techmap -map fastmul_map.v; opt_clean\n" if a.arith == "fast" else ""
+    script = (f"read_liberty -lib {lib}\nread_rtlil prep.il\n" + mapcmd +
+              f"synth -top {a.top} -run coarse:\n"
+              f"dfflibmap -liberty {lib}\n"
+              f"abc -liberty {lib} -D {period_ps} -constr abc.constr\n"
+              "opt_clean -purge\nsetundef -zero\nsplitnets\nopt_clean -purge\n"
+              "insbuf -buf BUFX2 A Y\n"
+              "check -assert\n"
+              f"tee -o area.rpt stat -liberty {lib}\n"
+              "write_verilog -noattr -noexpr -nohex -nodec netlist.v\n")
+    with open(os.path.join(sdir, "synth.ys"), "w") as f:
+        f.write("# generated by signoff/signoff.py: the cell mapping (after prep.ys)\n" + script)
+    t0 = time.time()
+    rc, _ = run(["yosys", "-q", "-s", "synth.ys"], sdir, os.path.join(sdir, "yosys_synth.log"), a.timeout)
+    if rc:
+        die(f"Yosys cell mapping failed (exit {rc}): {sdir}/yosys_synth.log")
+    os.remove(os.path.join(sdir, "prep.il"))
+    area = open(os.path.join(sdir, "area.rpt")).read()
+    cells = int(re.search(r"Number of cells:\s+(\d+)", area).group(1))
+    um2 = float(re.search(r"Chip area for module .*?:\s*([0-9.]+)", area).group(1))
+    flops = sum(int(m.group(1)) for m in re.finditer(r"\s(\d+)\s*$", "\n".join(
+        l for l in area.splitlines() if re.search(r"\bDFF\w+\b", l)), re.M))
+    log(f"synth: {cells} cells, {um2:.0f} um2, {flops} flip-flops, {len(shapes)} multiplier shape(s) "
+        f"mapped fast ({time.time() - t0:.0f} s)")
+    return {"cells": cells, "area_um2": um2, "flops": flops, "mul_shapes": len(shapes), "load_pf": load}
+
+
+# ------------------------------------------------------------------------------------------- ports
+def netlist_ports(netlist, top):
+    """[(name, direction, width)] of the netlist's top module, in order."""
+    text = open(netlist).read()
+    m = re.search(r"\bmodule\s+%s\s*\(" % re.escape(top), text)
+    if not m:
+        die(f"module {top} not in {netlist}")
+    end = text.index("endmodule", m.end())
+    body = text[m.end():end]
+    ports = []
+    for d in re.finditer(r"^\s*(input|output)\s+(\[(\d+):(\d+)\]\s+)?([\\\w.$\[\]]+)\s*;", body, re.M):
+        w = abs(int(d.group(3)) - int(d.group(4))) + 1 if d.group(2) else 1
+        ports.append((d.group(5), d.group(1), w))
+    return ports
+
+
+def write_sdc(path, top, ports, period, load, note):
+    ins = [p for p, d, w in ports if d == "input" and p != CLOCK]
+    outs = [p for p, d, w in ports if d == "output"]
+
+    def plist(names):
+        return " ".join(f"{n}[*]" if w > 1 else n for n, d, w in ports if n in names)
+    text = f"""# constraints.sdc — {top}: measured by signoff/signoff.py (OSU 0.18 um typical, pre-layout)
+# {note}
+set CLK_PERIOD {period:.3f}
+create_clock -name clk -period $CLK_PERIOD [get_ports {CLOCK}]
+
+# Assumed environment: every input is launched by a flip-flop on the same clock outside the core and
+# arrives IO_FRACTION of the period after the edge, driven by an {DRIVE_CELL}; every output must be valid
+# IO_FRACTION of the period before the next edge and drives {load:.4f} pF (four {DRIVE_CELL} inputs).
+# rst_ni is synchronous: it is timed like any input. No multicycle or false paths.
+set IO_FRACTION {IO_FRACTION}
+set_input_delay  -clock clk [expr {{$IO_FRACTION * $CLK_PERIOD}}] [get_ports {{{plist(ins)}}}]
+set_output_delay -clock clk [expr {{$IO_FRACTION * $CLK_PERIOD}}] [get_ports {{{plist(outs)}}}]
+set_driving_cell -lib_cell {DRIVE_CELL} [get_ports {{{plist(ins)}}}]
+set_load {load:.5f} [get_ports {{{plist(outs)}}}]
+
+# Wires: the library has no wire-load model; cell delays are derated by {DERATE} as the allowance for
+# them (checked against a placed and routed unit: docs/timing.md).
+set_timing_derate -late {DERATE}
+"""
+    with open(path, "w") as f:
+        f.write(text)
+
+
+# ------------------------------------------------------------------------------------------- sta
+STA_HEAD = """read_liberty {lib}
+read_verilog {net}
+link_design {top}
+"""
+
+
+def sta_script(a, sdir, sdc, body):
+    return STA_HEAD.format(lib=a.liberty, net=os.path.join(sdir, "netlist.v"), top=a.top) + \
+        f"read_sdc {sdc}\n" + body
+
+
+def sta(a, sdir, ports, load):
+    """WNS/TNS at the target, Fmax by bisection, reports at the closing period."""
+    target_sdc = os.path.join(sdir, "target.sdc")
+    write_sdc(target_sdc, a.top, ports, a.target, load, f"the target period {a.target} ns")
+    # Bisection on the period in one OpenSTA session: each constraint is a fraction of the period.
+    body = f"""
+proc set_period {{p}} {{
+  global IO_FRACTION
+  create_clock -name clk -period $p [get_ports {CLOCK}]
+  set ins [list]
+  set outs [list]
+  foreach port [get_ports *] {{
+    set n [get_full_name $port]
+    if {{$n == "{CLOCK}"}} {{ continue }}
+    if {{[get_property $port direction] == "input"}} {{ lappend ins $port }} else {{ lappend outs $port }}
+  }}
+  set_input_delay -clock clk [expr {{$IO_FRACTION * $p}}] $ins
+  set_output_delay -clock clk [expr {{$IO_FRACTION * $p}}] $outs
+}}
+puts "target_wns [sta::worst_slack -max]"
+puts "target_tns [sta::total_negative_slack -max]"
+set lo 0.05
+set hi {a.target}
+while {{[sta::worst_slack -max] < 0}} {{ set lo $hi; set hi [expr {{$hi * 2}}]; set_period $hi
+  if {{$hi > 10000}} {{ puts "fmax_failed"; exit 1 }} }}
+while {{$hi - $lo > 0.001}} {{
+  set mid [expr {{($lo + $hi) / 2.0}}]
+  set_period $mid
+  if {{[sta::worst_slack -max] >= 0}} {{ set hi $mid }} else {{ set lo $mid }}
+}}
+puts "fmax_period $hi"
+"""
+    with open(os.path.join(sdir, "fmax.tcl"), "w") as f:
+        f.write(sta_script(a, sdir, target_sdc, body))
+    rc, out = run(["sta", "-no_splash", "-exit", "fmax.tcl"], sdir, os.path.join(sdir, "sta_fmax.log"), a.timeout)
+    if rc or "fmax_period" not in out:
+        die(f"OpenSTA failed (exit {rc}): {sdir}/sta_fmax.log")
+    wns = float(re.search(r"target_wns (\S+)", out).group(1))
+    tns = float(re.search(r"target_tns (\S+)", out).group(1))
+    fmax_p = float(re.search(r"fmax_period (\S+)", out).group(1))
+    met = wns >= 0
+    closing = a.target if met else math.ceil(fmax_p * 20 - 1e-9) / 20.0   # next 0.05 ns above Fmax
+    return {"target_ns": a.target, "wns_ns": round(wns, 4), "tns_ns": round(tns, 4), "met": met,
+            "fmax_period_ns": round(fmax_p, 3), "fmax_mhz": round(1000.0 / fmax_p, 1), "period_ns": closing}
+
+
+def reports(a, sdir, sdc):
+    """Timing report (worst paths, groups) at the SDC's period; returns the worst path's description."""
+    body = """
+report_checks -path_delay max -group_count 5 -fields {fanout cap slew} -digits 3
+report_checks -path_delay min -digits 3
+report_check_types -max_slew -max_capacitance -max_fanout -violators
+puts "sdc_wns [sta::worst_slack -max]"
+puts "sdc_tns [sta::total_negative_slack -max]"
+"""
+    with open(os.path.join(sdir, "timing.tcl"), "w") as f:
+        f.write(sta_script(a, sdir, sdc, body))
+    rc, out = run(["sta", "-no_splash", "-exit", "timing.tcl"], sdir, os.path.join(sdir, "timing.rpt"), a.timeout)
+    if rc:
+        die(f"OpenSTA timing report failed (exit {rc}): {sdir}/timing.rpt")
+    first = out.split("Startpoint:")[1] if "Startpoint:" in out else ""
+    sp = re.search(r"^\s*(\S+)", first)
+    ep = re.search(r"Endpoint:\s*(\S+)", out)
+    arrival = re.search(r"([0-9.]+)\s+data arrival time", out)
+    cells_on_path = len(re.findall(r"^\s*[0-9.-]+\s+[0-9.-]+\s+[0-9.-]+\s+[0-9.-]+\s+[0-9.-]+\s+[\^v]", first.split("data arrival")[0], re.M))
+    if cells_on_path == 0:
+        cells_on_path = len(re.findall(r"[\^v] \S+/\S+ \(", first.split("data arrival")[0]))
+    return {"start": sp.group(1) if sp else "?", "end": ep.group(1) if ep else "?",
+            "arrival_ns": float(arrival.group(1)) if arrival else None, "levels": cells_on_path,
+            "sdc_wns_ns": float(re.search(r"sdc_wns (\S+)", out).group(1))}
+
+
+def name_path(netlist, inst):
+    """The RTL register behind a flip-flop instance (its Q net), or the port name."""
+    text = open(netlist).read()
+    m = re.search(r"\bDFF\w+\s+%s\s*\((.*?)\);" % re.escape(inst), text, re.S)
+    if not m:
+        return inst
+    q = re.search(r"\.Q\(([^)]*)\)", m.group(1))
+    return q.group(1).strip().lstrip("\\").strip() if q else inst
+
+
+def fo4(a, sdir):
+    """FO4 delay of the library: INVX1 driving four INVX1 (an inverter chain, the middle stage)."""
+    net = os.path.join(sdir, "fo4.v")
+    with open(net, "w") as f:
+        f.write("module fo4 (a, y);\n input a;\n output y;\n wire n1, n2;\n"
+                " INVX1 u1 (.A(a), .Y(n1));\n INVX1 u2 (.A(n1), .Y(n2));\n"
+                + "".join(f" INVX1 l{i} (.A(n2), .Y());\n" for i in range(3)) +
+                " INVX1 u3 (.A(n2), .Y(y));\n" +
+                "".join(f" INVX1 m{i} (.A(y), .Y());\n" for i in range(4)) + "endmodule\n")
+    tcl = (f"read_liberty {a.liberty}\nread_verilog {net}\nlink_design fo4\n"
+           "create_clock -name c -period 10\nset_input_delay 0 -clock c [get_ports a]\n"
+           "set_output_delay 0 -clock c [get_ports y]\nset_input_transition 0.1 [get_ports a]\n"
+           "report_checks -rise_through [get_pins u2/Y] -digits 4\n"
+           "report_checks -fall_through [get_pins u2/Y] -digits 4\n")
+    with open(os.path.join(sdir, "fo4.tcl"), "w") as f:
+        f.write(tcl)
+    rc, out = run(["sta", "-no_splash", "-exit", "fo4.tcl"], sdir, os.path.join(sdir, "fo4.log"))
+    # the middle inverter u2 (driven by an INVX1, driving four): the mean of its rising and falling delay
+    m = [float(x) for x in re.findall(r"^\s*([0-9.]+)\s+[0-9.]+\s+[v^]\s+u2/Y", out, re.M)]
+    os.remove(net)
+    return round(sum(m) / len(m), 4) if len(m) == 2 else None
+
+
+# ------------------------------------------------------------------------------------------- gate sim
+def gate_filelist(a, sdir):
+    path = os.path.join(sdir, "gates.f")
+    with open(path, "w") as f:
+        f.write(f"signoff/netlist.v\nsignoff/lib/{CELLS}\n")
+    return path
+
+
+def gatesim(a, sdir):
+    env = dict(os.environ, FILELIST="signoff/gates.f")
+    t0 = time.time()
+    p = subprocess.run(["./run_icarus.sh"], cwd=a.bundle, env=env, capture_output=True, text=True,
+                       timeout=a.timeout)
+    text = p.stdout + p.stderr
+    with open(os.path.join(sdir, "gatesim_icarus.log"), "w") as f:
+        f.write(f"# FILELIST=signoff/gates.f ./run_icarus.sh (the bundle's bench on the mapped netlist)\n"
+                f"# {time.time() - t0:.1f} s, exit {p.returncode}\n{text}")
+    vectors = sum(int(n) for n in re.findall(r"^PASS (\d+) vectors", text, re.M))
+    fails = len(re.findall(r"^FAIL", text, re.M))
+    passed = p.returncode == 0 and "run_icarus.sh: PASS" in text
+    mism = len(re.findall(r"^FAIL vector \d+:", text, re.M))
+    log(f"gatesim: {'PASS' if passed else 'FAIL'} {vectors} vectors, {mism} mismatching ({time.time() - t0:.0f} s)")
+    return {"passed": passed, "vectors": vectors, "mismatches": mism if passed or mism else max(fails, 1)}
+
+
+# ------------------------------------------------------------------------------------------- power
+def parse_vcd(path):
+    """Per VCD variable (scope-free name, bit) toggles and time high; plus clock cycles seen."""
+    ids = {}           # id -> (name, width)
+    val, last_t, high, tog = {}, {}, {}, {}
+    t = 0
+    t_end = 0
+    with open(path) as f:
+        in_defs = True
+        for line in f:
+            if in_defs:
+                if line.startswith("$var"):
+                    parts = line.split()
+                    w, ident = int(parts[2]), parts[3]
+                    name = " ".join(parts[4:-1])
+                    ids.setdefault(ident, []).append((name, w))
+                elif line.startswith("$enddefinitions"):
+                    in_defs = False
+                continue
+            c = line[0] if line else ""
+            if c == "#":
+                t = int(line[1:])
+                t_end = t
+                continue
+            if c in "01xzXZ":
+                ident, v = line[1:].strip(), c
+                bits = [v]
+            elif c == "b":
+                v, ident = line[1:].split()
+                bits = None
+            else:
+                continue
+            if ident not in ids:
+                continue
+            w = ids[ident][0][1]
+            if bits is None:
+                v = v.rjust(w, "0" if v[0] in "01" else v[0])
+                bits = list(v[-w:])
+            for i, b in enumerate(bits):
+                key = (ident, w - 1 - i)
+                old = val.get(key)
+                if old == "1":
+                    high[key] = high.get(key, 0) + t - last_t.get(key, 0)
+                if old is not None and old != b and old in "01" and b in "01":
+                    tog[key] = tog.get(key, 0) + 1
+                val[key] = b
+                last_t[key] = t
+    for key, b in val.items():
+        if b == "1":
+            high[key] = high.get(key, 0) + t_end - last_t.get(key, 0)
+    return ids, tog, high, t_end
+
+
+def power(a, sdir, period):
+    """Gate-level activity -> OpenSTA report_power; energy per result."""
+    vcd = os.path.join(sdir, "activity.vcd")
+    env = dict(os.environ, FILELIST="signoff/gates.f", IN_GAP="0", OUT_STALL="0", RESET_AT="-1",
+               VCD=os.path.abspath(vcd), VECTORS="vectors/random.hex")
+    t0 = time.time()
+    p = subprocess.run(["./run_icarus.sh"], cwd=a.bundle, env=env, capture_output=True, text=True,
+                       timeout=a.timeout)
+    text = p.stdout + p.stderr
+    with open(os.path.join(sdir, "power_sim.log"), "w") as f:
+        f.write(f"# VCD=... IN_GAP=0 OUT_STALL=0 RESET_AT=-1 FILELIST=signoff/gates.f ./run_icarus.sh\n{text}")
+    # PASS <records> vectors (... [<k> fragments checked, ...] <c> cycles, ...): a result is a fragment (lighting
+    # core, whose records include register writes) or a vector (a unit)
+    m = re.search(r"^PASS (\d+) vectors \((.*)\)$", text, re.M)
+    if p.returncode or not m or not os.path.exists(vcd):
+        die(f"the activity simulation failed: {sdir}/power_sim.log", 2)
+    frag = re.search(r"(\d+) fragments checked", m.group(2))
+    results = int(frag.group(1)) if frag else int(m.group(1))
+    cycles = int(re.search(r"(\d+) cycles", m.group(2)).group(1))
+    ids, tog, high, t_end = parse_vcd(vcd)
+    os.remove(vcd)
+    # the netlist's nets: VCD names inside the dut scope are the netlist's net names (escaped names lose '\')
+    outpins = lib_output_pins(a.liberty)
+    text = open(os.path.join(sdir, "netlist.v")).read()
+    driver = {}   # net expression -> "inst/pin"
+    for cm in re.finditer(r"^\s*(\w+)\s+(\\?\S+)\s*\((.*?)\);", text, re.M | re.S):
+        cell, inst, conns = cm.group(1), cm.group(2), cm.group(3)
+        if cell not in outpins:
+            continue
+        for pm in re.finditer(r"\.(\w+)\(([^()]*)\)", conns):
+            if pm.group(1) in outpins[cell]:
+                driver[norm_net(pm.group(2))] = (inst, pm.group(1))
+    ports = {p for p, d, w in netlist_ports(os.path.join(sdir, "netlist.v"), a.top) if d == "input"}
+    lines, annotated = [], 0
+    for ident, vars_ in ids.items():
+        name, w = vars_[0]
+        base = name.split(" ")[0].lstrip("\\")
+        for bit in range(w):
+            key = (ident, bit)
+            act = tog.get(key, 0) / cycles
+            duty = high.get(key, 0) / t_end if t_end else 0.0
+            net = base if w == 1 and "[" not in name else f"{base}[{bit}]"
+            if w == 1 and re.search(r"\[(\d+)\]$", name.replace(" ", "")):
+                net = name.replace(" ", "").lstrip("\\")
+            root = re.sub(r"\[\d+\]$", "", net)
+            if root in ports:
+                if root == CLOCK:
+                    continue
+                lines.append(f"set_power_activity -input_ports [get_ports {{{net}}}] -activity {act:.6g} -duty {duty:.6g}")
+                annotated += 1
+            elif norm_net(net) in driver:
+                inst, pin = driver[norm_net(net)]
+                inst = inst.lstrip("\\")
+                lines.append(f"set_power_activity -pins [get_pins {{{inst}/{pin}}}] -activity {act:.6g} -duty {duty:.6g}")
+                annotated += 1
+    sdc = os.path.join(a.bundle, "constraints.sdc")
+    body = ("\n".join(lines) + "\nreport_power -digits 4\n"
+            "puts \"total_power [lindex [sta::design_power [sta::cmd_corner]] 3]\"\n")
+    with open(os.path.join(sdir, "power.tcl"), "w") as f:
+        f.write(sta_script(a, sdir, sdc, body))
+    rc, out = run(["sta", "-no_splash", "-exit", "power.tcl"], sdir, os.path.join(sdir, "power.rpt"), a.timeout)
+    tm = re.search(r"^Total\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)", out, re.M)
+    if rc or not tm:
+        die(f"OpenSTA report_power failed (exit {rc}): {sdir}/power.rpt")
+    watts = float(tm.group(4))
+    e_pj = watts * period * 1e-9 * cycles / results * 1e12
+    log(f"power: {watts * 1e3:.3f} mW at {period} ns, {results} results in {cycles} cycles, "
+        f"{annotated} nets annotated, {e_pj:.2f} pJ per result ({time.time() - t0:.0f} s)")
+    return {"power_mw": round(watts * 1e3, 4), "internal_mw": round(float(tm.group(1)) * 1e3, 4),
+            "switching_mw": round(float(tm.group(2)) * 1e3, 4), "leakage_mw": round(float(tm.group(3)) * 1e3, 6),
+            "results": results, "cycles": cycles, "nets_annotated": annotated,
+            "energy_pj_per_result": round(e_pj, 3)}
+
+
+def norm_net(expr):
+    """A net expression of the netlist (`\\a.b [3]`, `_012_`) in one spelling: `a.b[3]`."""
+    e = expr.strip()
+    if e.startswith("\\"):
+        e = e[1:]
+    return re.sub(r"\s+", "", e)
+
+
+# ------------------------------------------------------------------------------------------- main
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("bundle", help="a bundle directory written by `shadecore handoff`")
+    ap.add_argument("--top", help="top module (default: the module instantiated in tb/tb_dut.vh)")
+    ap.add_argument("--target", type=float, default=4.0, help="target clock period in ns (default 4.0)")
+    ap.add_argument("--arith", choices=["fast", "yosys"], default="fast",
+                    help="multipliers: fast = Dadda + Kogge-Stone (signoff/fastmul.py), yosys = Yosys's own")
+    ap.add_argument("--liberty", default=None, help=f"Liberty file (default {LIB_DIR}/{LIBERTY})")
+    ap.add_argument("--cells", default=None, help=f"the library's Verilog cell models (default {LIB_DIR}/{CELLS})")
+    ap.add_argument("--steps", default="synth,sta,gatesim,power",
+                    help="comma list of synth, sta, gatesim, power (default all; later steps need earlier results)")
+    ap.add_argument("--timeout", type=int, default=7200, help="seconds per tool run (default 7200)")
+    ap.add_argument("--chparam", action="append", default=[], metavar="NAME=VALUE",
+                    help="set a parameter of the top before elaboration (repeatable)")
+    ap.add_argument("--retime", action="store_true",
+                    help="only re-time the bundle's signoff/netlist.v with its own constraints.sdc and print the slack")
+    a = ap.parse_args()
+    a.bundle = os.path.abspath(a.bundle)
+    try:
+        a.chparam = [tuple(x.split("=", 1)) for x in a.chparam]
+        for k, v in a.chparam:
+            int(v)
+    except ValueError:
+        die("--chparam takes NAME=INTEGER")
+    if not os.path.isfile(os.path.join(a.bundle, "filelist.f")):
+        die(f"{a.bundle} is not a handoff bundle (no filelist.f)")
+    sdir = os.path.join(a.bundle, "signoff")
+    os.makedirs(os.path.join(sdir, "lib"), exist_ok=True)
+    own_lib = os.path.join(sdir, "lib", LIBERTY)
+    a.liberty = a.liberty or (own_lib if os.path.exists(own_lib) else os.path.join(LIB_DIR, LIBERTY))
+    a.cells = a.cells or (os.path.join(sdir, "lib", CELLS) if os.path.exists(os.path.join(sdir, "lib", CELLS))
+                          else os.path.join(LIB_DIR, CELLS))
+    for p in (a.liberty, a.cells):
+        if not os.path.isfile(p):
+            die(f"no such file: {p} (Debian package qflow-tech-osu018)")
+    if not a.top:
+        m = re.search(r"^\s*(\w+)\s+dut\s*\(", open(os.path.join(a.bundle, "tb", "tb_dut.vh")).read(), re.M)
+        if not m:
+            die("cannot find the top in tb/tb_dut.vh: give --top")
+        a.top = m.group(1)
+    steps = set(a.steps.split(","))
+    if steps - {"synth", "sta", "gatesim", "power"}:
+        die(f"unknown step(s) {sorted(steps - {'synth', 'sta', 'gatesim', 'power'})}")
+    for t in ["yosys", "sta", "iverilog", "vvp"]:
+        if not shutil.which(t):
+            die(f"{t} not found (scripts/setup.sh installs yosys, opensta, iverilog)")
+    if a.retime:
+        rep = reports(a, sdir, os.path.join(a.bundle, "constraints.sdc"))
+        print(f"wns {rep['sdc_wns_ns']:.3f} ns at the bundle's constraints.sdc")
+        return
+    for src, dst in ((a.liberty, own_lib), (a.cells, os.path.join(sdir, "lib", CELLS))):
+        if os.path.abspath(src) != os.path.abspath(dst):
+            shutil.copyfile(src, dst)
+    a.liberty = own_lib
+    jpath = os.path.join(sdir, "signoff.json")
+    res = json.load(open(jpath)) if os.path.exists(jpath) else {}
+    res.update({"top": a.top, "library": "OSU 0.18 um (qflow-tech-osu018 osu018_stdcells.lib), typical 1.8 V 25 C",
+                "target_ns": a.target, "derate_late": DERATE, "io_fraction": IO_FRACTION, "drive_cell": DRIVE_CELL,
+                "arith": a.arith,
+                "tools": {"yosys": tool_version(["yosys", "-V"]), "opensta": tool_version(["sta", "-version"]),
+                          "iverilog": tool_version(["iverilog", "-V"])}})
+    if "synth" in steps:
+        res["synth"] = synth(a, sdir)
+        res["fo4_ns"] = fo4(a, sdir)
+    if "sta" in steps:
+        ports = netlist_ports(os.path.join(sdir, "netlist.v"), a.top)
+        st = sta(a, sdir, ports, res["synth"]["load_pf"])
+        note = (f"the target {a.target} ns is met (WNS {st['wns_ns']:+.3f} ns)" if st["met"] else
+                f"the target {a.target} ns is missed (WNS {st['wns_ns']:+.3f} ns): the period is Fmax "
+                f"({st['fmax_period_ns']} ns) rounded up to 0.05 ns")
+        write_sdc(os.path.join(a.bundle, "constraints.sdc"), a.top, ports, st["period_ns"], res["synth"]["load_pf"], note)
+        rep = reports(a, sdir, os.path.join(a.bundle, "constraints.sdc"))
+        rep["start_reg"] = name_path(os.path.join(sdir, "netlist.v"), rep["start"])
+        rep["end_reg"] = name_path(os.path.join(sdir, "netlist.v"), rep["end"])
+        st["critical_path"] = rep
+        if res.get("fo4_ns"):
+            st["fo4_per_cycle"] = round(st["period_ns"] / res["fo4_ns"], 1)
+        res["sta"] = st
+        log(f"sta: WNS {st['wns_ns']:+.3f} ns at {a.target} ns ({'met' if st['met'] else 'MISSED'}), Fmax "
+            f"{st['fmax_mhz']} MHz ({st['fmax_period_ns']} ns), closes at {st['period_ns']} ns; worst path "
+            f"{rep['start_reg']} -> {rep['end_reg']} ({rep['levels']} cells)")
+    if "gatesim" in steps:
+        gate_filelist(a, sdir)
+        res["gatesim"] = gatesim(a, sdir)
+    if "power" in steps and res.get("gatesim", {}).get("passed"):
+        res["power"] = power(a, sdir, res["sta"]["period_ns"])
+    with open(jpath + ".tmp", "w") as f:
+        json.dump(res, f, indent=1)
+    os.replace(jpath + ".tmp", jpath)
+    if "gatesim" in steps and not res["gatesim"]["passed"]:
+        sys.exit(2)
+
+
+if __name__ == "__main__":
+    main()
