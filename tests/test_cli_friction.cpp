@@ -77,3 +77,20 @@ TEST(CliFriction, UnknownOptionSuggestsTheNearest) {
 
 }  // namespace
 }  // namespace shadecore::testing
+
+namespace shadecore::testing {
+namespace {
+
+// One name for one thing: `cosim --core specular|lighting` as `vectors` and `handoff`; `unit` kept as an alias.
+TEST(CliFriction, CosimCoreIsSpecularOrLightingWithUnitAsAlias) {
+  const CliRun h = run_cli("cosim --help");
+  ASSERT_EQ(h.status, 0);
+  EXPECT_NE(h.out.find("specular (default"), std::string::npos) << h.out;
+  EXPECT_NE(h.out.find("'unit' is a deprecated alias"), std::string::npos) << h.out;
+  for (const char* core : {"specular", "unit"})
+    expect_one_line_error(std::string("cosim --core ") + core + " --variant nosuch", "unknown variant 'nosuch'");
+  expect_one_line_error("cosim --core spec", "--core");
+}
+
+}  // namespace
+}  // namespace shadecore::testing
