@@ -3,6 +3,9 @@
 // called a missing file, a "did you mean" for a mistyped feature-set name.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "cli_run.hpp"
 #include "shadecore/analysis/sweep.hpp"
 
@@ -94,3 +97,28 @@ TEST(CliFriction, CosimCoreIsSpecularOrLightingWithUnitAsAlias) {
 
 }  // namespace
 }  // namespace shadecore::testing
+
+#ifdef SHADECORE_COSIM_SIM  // with the RTL: the lighting core's build
+namespace shadecore::testing {
+namespace {
+
+// The first RTL use of a feature set says that it builds the core, where it is cached and how long the last core
+// build took. The build is started in a scratch cache and stopped (its whole process group) once the line is out.
+TEST(CliFriction, FirstRtlUseSaysItBuildsWhereAndHowLong) {
+  const TempDir d;
+  std::filesystem::create_directories(d / "cache");
+  std::ofstream(d / "cache/.last_build_seconds") << "71";
+  const std::string cmd = "SHADECORE_CORE_CACHE=" + (d / "cache") + " setsid " + SHADECORE_CLI +
+                          " cosim --core lighting --features diffuse --mode random --count 10 --seed 1 >" + (d / "out") +
+                          " 2>" + (d / "err") + " & pid=$!; i=0; while [ $i -lt 150 ] && ! grep -q 'building its core' " +
+                          (d / "err") + "; do sleep 0.2; i=$((i+1)); done; kill -TERM -$pid; wait $pid; cat " + (d / "err");
+  const CliRun r = run_shell(cmd);
+  EXPECT_NE(r.out.find("shadecore: first use of this feature set: building its core into " + (d / "cache") + "/"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("(cached there for later runs); the last core build here took 71 s"), std::string::npos) << r.out;
+}
+
+}  // namespace
+}  // namespace shadecore::testing
+#endif
