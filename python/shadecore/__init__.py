@@ -60,6 +60,14 @@ def _broadcast(data, n):
     return _np.ascontiguousarray(data), _np.ascontiguousarray(n), data.shape
 
 
+def _outer(data, n):
+    """(row, column) when data is one row ((m,) or (1, m)) and n one column ((k, 1), k > 1): the (n × data) grid,
+    computed in C++ without materialising the broadcast inputs; else None."""
+    if n.ndim == 2 and n.shape[1] == 1 and n.shape[0] > 1 and (data.ndim == 1 or (data.ndim == 2 and data.shape[0] == 1)):
+        return _np.ascontiguousarray(data.reshape(-1)), _np.ascontiguousarray(n.reshape(-1))
+    return None
+
+
 def _config(config):
     return "" if config is None else str(config)
 
@@ -112,7 +120,11 @@ def eval_unit(variant, codes=None, n=None, *, cos=None, config=None, frac=None, 
         raise TypeError("give exactly one of codes and cos=")
     if cos is not None:
         codes = cos_to_code(cos, config, frac)
-    data, nn, shape = _broadcast(_int_array(codes, "codes"), _int_array(n, "n"))
+    data, nn = _int_array(codes, "codes"), _int_array(n, "n")
+    grid = _outer(data, nn)
+    if grid:
+        return _core.unit_eval_outer(str(variant), *grid, _config(config), frac, guard, cutoff, norm, coef)
+    data, nn, shape = _broadcast(data, nn)
     out = _core.unit_eval(str(variant), data, nn, _config(config), frac, guard, cutoff, norm, coef)
     return out.reshape(shape)
 
@@ -149,8 +161,12 @@ class _Golden:
 
     @staticmethod
     def _map(fn, c, n, *extra):
-        data, nn, shape = _broadcast(_float_array(c, "c"), _int_array(n, "n"))
-        return fn(data, nn, *extra).reshape(shape)
+        data, nn = _float_array(c, "c"), _int_array(n, "n")
+        grid = _outer(data, nn)
+        if grid:
+            return fn(*grid, *extra, True)
+        data, nn, shape = _broadcast(data, nn)
+        return fn(data, nn, *extra, False).reshape(shape)
 
     def cos_pow(self, c, n):
         """Phong's cos^n θ (any n >= 0)."""
@@ -167,8 +183,8 @@ class _Golden:
     def variant(self, variant, c, n, cutoff="theta_cr"):
         """The double twin of a variant, the function ``shadecore sweep`` measures the quantisation against
         (cs16 and its forms: cs16; Schlick units: schlick; table units: the double table lerp)."""
-        data, nn, shape = _broadcast(_float_array(c, "c"), _int_array(n, "n"))
-        return _core.golden_variant(str(variant), data, nn, str(cutoff)).reshape(shape)
+        return self._map(lambda c_, n_, cut, outer: _core.golden_variant(str(variant), c_, n_, cut, outer), c, n,
+                         str(cutoff))
 
     def theta_cr(self, n):
         """θcr(n) = 6/√n in radians."""

@@ -156,6 +156,39 @@ py::array_t<int64_t> unit_eval(const std::string& variant, const I64& codes, con
   return out;
 }
 
+// The (n × code) grid out[r][j] = Unit::eval(setup(n[r]), codes[j]) without materialising the broadcast inputs:
+// one material per row, the cs16 block form on consecutive codes.
+py::array_t<int64_t> unit_eval_outer(const std::string& variant, const I64& codes, const I64& n, const std::string& config,
+                                     std::optional<int> frac, std::optional<int> guard, std::optional<std::string> cutoff,
+                                     std::optional<std::string> norm, std::optional<std::string> coef) {
+  const Spec spec = resolve(variant, config, frac, guard, cutoff, norm, coef);
+  const py::ssize_t m = codes.size(), k = n.size();
+  py::array_t<int64_t> out({k, m});
+  const int64_t* c = codes.data();
+  const int64_t* nv = n.data();
+  int64_t* o = out.mutable_data();
+  {
+    py::gil_scoped_release nogil;
+    for (py::ssize_t r = 0; r < k; ++r) validate_n(nv[r]);
+    for (py::ssize_t j = 0; j < m; ++j) check_code(spec.format, c[j]);
+    const Unit unit = spec.unit();
+    bool consecutive = spec.variant == VariantId::cs16 && !spec.norm && m > 1;
+    for (py::ssize_t j = 1; consecutive && j < m; ++j) consecutive = c[j] == c[0] + j;
+    std::vector<uint32_t> tmp(consecutive ? static_cast<size_t>(m) : 0);
+    for (py::ssize_t r = 0; r < k; ++r) {
+      const UnitMaterial mat = unit.setup(nv[r]);
+      int64_t* row = o + r * m;
+      if (consecutive) {
+        cs16_eval_block(spec.format, spec.cutoff, Cs16Material{mat.n, mat.thr}, c[0], m, tmp.data());
+        for (py::ssize_t j = 0; j < m; ++j) row[j] = tmp[static_cast<size_t>(j)];
+      } else {
+        for (py::ssize_t j = 0; j < m; ++j) row[j] = unit.eval(mat, c[j]);
+      }
+    }
+  }
+  return out;
+}
+
 // Material words per n: mat_thr_i (0 where the unit has none) and mat_coef_i (0 without norm).
 py::dict unit_setup(const std::string& variant, const I64& n, const std::string& config, std::optional<int> frac,
                     std::optional<int> guard, std::optional<std::string> cutoff, std::optional<std::string> norm,
@@ -221,6 +254,27 @@ py::array_t<double> golden_map(const F64& c, const I64& n, bool check_n, Fn fn) 
         throw std::invalid_argument("exponent n = " + std::to_string(nv[i]) + " out of range [0, 2^30]");
     }
     for (py::ssize_t i = 0; i < size; ++i) o[i] = fn(x[i], static_cast<int>(scalar_n ? nv[0] : nv[i]));
+  }
+  return out;
+}
+
+// The (n × c) grid of a golden function: out[r][j] = fn(c[j], n[r]).
+template <class Fn>
+py::array_t<double> golden_outer(const F64& c, const I64& n, bool check_n, Fn fn) {
+  const py::ssize_t m = c.size(), k = n.size();
+  py::array_t<double> out({k, m});
+  const double* x = c.data();
+  const int64_t* nv = n.data();
+  double* o = out.mutable_data();
+  {
+    py::gil_scoped_release nogil;
+    for (py::ssize_t r = 0; r < k; ++r) {
+      if (check_n) validate_n(nv[r]);
+      else if (nv[r] < 0 || nv[r] > (int64_t{1} << 30))
+        throw std::invalid_argument("exponent n = " + std::to_string(nv[r]) + " out of range [0, 2^30]");
+    }
+    for (py::ssize_t r = 0; r < k; ++r)
+      for (py::ssize_t j = 0; j < m; ++j) o[r * m + j] = fn(x[j], static_cast<int>(nv[r]));
   }
   return out;
 }
@@ -734,6 +788,9 @@ PYBIND11_MODULE(_core, m) {
   m.def("unit_eval", &unit_eval, py::arg("variant"), py::arg("codes"), py::arg("n"), py::arg("config") = "",
         py::arg("frac") = py::none(), py::arg("guard") = py::none(), py::arg("cutoff") = py::none(),
         py::arg("norm") = py::none(), py::arg("coef") = py::none());
+  m.def("unit_eval_outer", &unit_eval_outer, py::arg("variant"), py::arg("codes"), py::arg("n"), py::arg("config") = "",
+        py::arg("frac") = py::none(), py::arg("guard") = py::none(), py::arg("cutoff") = py::none(),
+        py::arg("norm") = py::none(), py::arg("coef") = py::none());
   m.def("unit_setup", &unit_setup, py::arg("variant"), py::arg("n"), py::arg("config") = "",
         py::arg("frac") = py::none(), py::arg("guard") = py::none(), py::arg("cutoff") = py::none(),
         py::arg("norm") = py::none(), py::arg("coef") = py::none());
@@ -767,23 +824,28 @@ PYBIND11_MODULE(_core, m) {
   m.def("sweep", &sweep, py::arg("variant"), py::arg("n"), py::arg("config") = "", py::arg("frac") = py::none(),
         py::arg("guard") = py::none(), py::arg("cutoff") = py::none(), py::arg("threads") = 0);
 
-  m.def("golden_cos_pow", [](const F64& c, const I64& n) {
-    return golden_map(c, n, false, [](double x, int k) { return g::cos_pow(x, k); });
-  });
-  m.def("golden_cs16", [](const F64& c, const I64& n, const std::string& cutoff) {
+  // outer = true: c (m) and n (k) give the (k, m) grid (golden_outer), else element by element (golden_map).
+  auto gmap = [](const F64& c, const I64& n, bool check_n, bool outer, auto fn) {
+    return outer ? golden_outer(c, n, check_n, fn) : golden_map(c, n, check_n, fn);
+  };
+  m.def("golden_cos_pow", [gmap](const F64& c, const I64& n, bool outer) {
+    return gmap(c, n, false, outer, [](double x, int k) { return g::cos_pow(x, k); });
+  }, py::arg("c"), py::arg("n"), py::arg("outer") = false);
+  m.def("golden_cs16", [gmap](const F64& c, const I64& n, const std::string& cutoff, bool outer) {
     const Cutoff cut = parse_cutoff_name(cutoff);
-    return golden_map(c, n, true, [cut](double x, int k) {
+    return gmap(c, n, true, outer, [cut](double x, int k) {
       return cut == Cutoff::ThetaCr ? g::cs16_theta_cr(x, k) : g::cs16_sign_clamp(x, k);
     });
-  });
-  m.def("golden_schlick", [](const F64& c, const I64& n) {
-    return golden_map(c, n, true, [](double x, int k) { return g::schlick(x, k); });
-  });
-  m.def("golden_variant", [](const std::string& variant, const F64& c, const I64& n, const std::string& cutoff) {
+  }, py::arg("c"), py::arg("n"), py::arg("cutoff"), py::arg("outer") = false);
+  m.def("golden_schlick", [gmap](const F64& c, const I64& n, bool outer) {
+    return gmap(c, n, true, outer, [](double x, int k) { return g::schlick(x, k); });
+  }, py::arg("c"), py::arg("n"), py::arg("outer") = false);
+  m.def("golden_variant", [gmap](const std::string& variant, const F64& c, const I64& n, const std::string& cutoff,
+                                 bool outer) {
     const Cutoff cut = parse_cutoff_name(cutoff);
     parse_variant(variant);  // unknown names: the model's message
-    return golden_map(c, n, true, [&variant, cut](double x, int k) { return variant_golden(variant, cut, k, x); });
-  });
+    return gmap(c, n, true, outer, [&variant, cut](double x, int k) { return variant_golden(variant, cut, k, x); });
+  }, py::arg("variant"), py::arg("c"), py::arg("n"), py::arg("cutoff"), py::arg("outer") = false);
   m.def("theta_cr", [](const I64& n) {
     py::array_t<double> out = empty_like_shape<double>(n);
     for (py::ssize_t i = 0; i < n.size(); ++i) {

@@ -125,3 +125,26 @@ def test_broadcasting_n_and_shapes():
     assert shadecore.cs16(codes.reshape(1, -1), 128).shape == (1, codes.size)
     # non-contiguous and other integer dtypes give the same result
     assert np.array_equal(shadecore.cs16(codes[::2].astype(np.int32), 128), shadecore.cs16(codes[::2], 128))
+
+
+@pytest.mark.parametrize("variant", VARIANTS)
+def test_grid_equals_row_by_row(variant):
+    """The (n × code) grid path (one row of codes, one column of n: no broadcast copies) equals row-by-row calls and
+    the general broadcast path, for the units and the golden functions."""
+    f = shadecore.format("narrow")
+    codes = np.arange(f["in_min"], f["in_max"] + 1)  # consecutive: cs16's block form per row
+    ns = np.array([16, 17, 300, 1024])
+    grid = shadecore.eval_unit(variant, codes, ns[:, None], config="narrow")
+    assert grid.shape == (4, codes.size)
+    for i, k in enumerate(ns):
+        assert np.array_equal(grid[i], shadecore.eval_unit(variant, codes, int(k), config="narrow"))
+    general = shadecore.eval_unit(variant, np.broadcast_to(codes, (4, codes.size)), np.repeat(ns[:, None], codes.size, 1),
+                                  config="narrow")
+    assert np.array_equal(grid, general)
+    odd = codes[::-3]  # not consecutive
+    assert np.array_equal(shadecore.eval_unit(variant, odd, ns[:, None], config="narrow")[2],
+                          shadecore.eval_unit(variant, odd, 300, config="narrow"))
+    c = shadecore.code_to_cos(codes, "narrow")
+    g = shadecore.golden.variant(variant, c, ns[:, None])
+    assert np.array_equal(g[3], shadecore.golden.variant(variant, c, 1024))
+    assert np.array_equal(shadecore.golden.cos_pow(c, ns[:, None])[1], shadecore.golden.cos_pow(c, 17))
