@@ -385,10 +385,13 @@ void add_cosim(CLI::App& app) {
   args->progress.add(sub);
   // The lighting core (docs/lighting.md): --core lighting --features NAME|FILE, built on demand per
   // feature set (cli/light_rtl.cpp); random or directed mode, stalls, seed, --json.
-  auto core = std::make_shared<std::string>("unit");
+  auto core = std::make_shared<std::string>("specular");
   auto features = std::make_shared<std::string>();
-  sub->add_option("--core", *core, "unit (default: rtl/sc_specular.v) | lighting (rtl/sc_light.v)")
-      ->check(CLI::IsMember({"unit", "lighting"}));
+  // One name for one thing (issue 38): specular|lighting as in `vectors` and `handoff`; `unit`, the earlier name,
+  // stays an alias for a release (deprecated; README, docs/cli.md).
+  sub->add_option("--core", *core,
+                  "specular (default: rtl/sc_specular.v) | lighting (rtl/sc_light.v); 'unit' is a deprecated alias of specular")
+      ->check(CLI::IsMember({"specular", "lighting", "unit"}));
   auto* feat_opt = sub->add_option("--features", *features, "--core lighting: a named feature set of config/configs.json or a JSON file")->check(NonEmpty("feature set"));
   auto harness = std::make_shared<std::string>("systemc");
   auto* harness_opt = sub->add_option("--harness", *harness,
@@ -406,7 +409,8 @@ void add_cosim(CLI::App& app) {
       for (const char* unit_only : {"--variant", "--config", "--cutoff", "--n", "--norm", "--coef-model", "--coef",
                                     "--shards", "--trace", "--mat-rate"})
         if (sub->count(unit_only) > 0)
-          throw std::invalid_argument(std::string(unit_only) + " does not apply to --core lighting (the feature set says it)");
+          throw std::invalid_argument(std::string(unit_only) + " does not apply to --core lighting: the feature set fixes the unit and the widths "
+                                      "(choose one with --features NAME|FILE; docs/lighting.md)");
       LightCosimArgs la;
       la.features = features->empty() ? "full" : *features;
       la.mode = args->mode == "directed" && !sub->count("--mode") ? "random" : args->mode;

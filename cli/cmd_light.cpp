@@ -6,6 +6,7 @@
 // Inputs: random but realistic register programs (a material with random n, every light of the
 // feature set with random colours/positions/attenuation) and fragments (unit normals facing the
 // viewer, positions in front of it), deterministic from --seed.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -248,6 +249,7 @@ void add_light_sweep(CLI::App& app) {
     fmt::print("  {:<13} {:>12} {:>14} {:>12} {:>12} {:>12} {:>9}\n", "specular", "total max", "approx max",
                "quant min", "quant max", "mean |err|", "PSNR dB");
     nlohmann::json units = nlohmann::json::array();
+    std::vector<std::pair<std::string, std::string>> rows;  // (figures as printed, unit): identical rows get a note
     for (const auto& s : sets) {
       const Stats st = sweep_one(s, a->programs, a->per_program, seed);
       const double rms = std::sqrt(st.sq_sum / st.samples) * std::ldexp(1.0, -F);
@@ -256,8 +258,10 @@ void add_light_sweep(CLI::App& app) {
       // Every column in output LSBs (2^-F) but PSNR: the approximation error too (approx_max is a value in
       // [0, 1], the unit's double formula against exact cos^n).
       const double approx_lsb = std::ldexp(st.approx_max, F);
-      fmt::print("  {:<13} {:>12.2f} {:>14.2f} {:>12.2f} {:>12.2f} {:>12.3f} {:>9.1f}\n", name, st.total_max,
-                 approx_lsb, st.quant_min, st.quant_max, st.abs_sum / st.samples, psnr);
+      const std::string figures = fmt::format("{:>12.2f} {:>14.2f} {:>12.2f} {:>12.2f} {:>12.3f} {:>9.1f}", st.total_max,
+                                              approx_lsb, st.quant_min, st.quant_max, st.abs_sum / st.samples, psnr);
+      fmt::print("  {:<13} {}\n", name, figures);
+      rows.emplace_back(figures, name);
       if (st.low.samples)
         fmt::print("  {:<13} shininess 0..15 (low_shininess chain, every 4th program): quant {:.2f}..{:.2f} LSB over {} samples\n",
                    "", st.low.min, st.low.max, st.low.samples);
@@ -296,6 +300,21 @@ void add_light_sweep(CLI::App& app) {
                        {"two_side_back_quant_max_lsb", st.back.hi()},
                        {"spot_factor_samples", st.spot_samples},
                        {"spot_factor_max_abs_lsb", st.spot_factor_max_abs}});
+    }
+    // Units whose rows print the same figures (issue 38: a reader suspects the unit was not swapped).
+    std::vector<std::string> noted;
+    for (size_t i = 0; i < rows.size(); ++i) {
+      std::string same;
+      for (size_t k = i + 1; k < rows.size(); ++k)
+        if (rows[k].first == rows[i].first && std::find(noted.begin(), noted.end(), rows[k].second) == noted.end()) {
+          same += ", " + rows[k].second;
+          noted.push_back(rows[k].second);
+        }
+      if (!same.empty() && std::find(noted.begin(), noted.end(), rows[i].second) == noted.end())
+        fmt::print("  note: {}{} print identical rows. Each unit was run in turn; their outputs differ by about one ulp of "
+                   "the unit's {} fraction bits at most, which the lane's products and the rounding to {} bits rarely let "
+                   "through to these figures (docs/lighting.md §7)\n",
+                   rows[i].second, same, base.unit_format().frac, F);
     }
     if (!a->json.empty()) {
       nlohmann::json j = {{"features", base.name},

@@ -394,15 +394,12 @@ void run(const SweepArgs& a) {
     }
   }
 
-  // cs16 forms (docs/spec.md §3.4): the variant's contract on the quantisation error.
-  nlohmann::json contract;
-  if (const SquarerForm* form = squarer_form(parse_variant(a.variant))) {
-    const Cs16Contract c = cs16_contract(form->contract, f);
-    const bool met = (c.lo_strict ? r.quant.min.value > c.lo : r.quant.min.value >= c.lo) && r.quant.max.value <= c.hi;
-    fmt::print("\nContract '{}': {:.5f} {} quant <= {:.5f} ulp; measured [{:.5f}, {:.5f}] → {}\n", form->contract, c.lo,
-               c.lo_strict ? "<" : "<=", c.hi, r.quant.min.value, r.quant.max.value, met ? "MET" : "VIOLATED");
-    contract = {{"name", form->contract}, {"lo", c.lo}, {"lo_strict", c.lo_strict}, {"hi", c.hi}, {"met", met}};
-  }
+  // The variant's contract on the quantisation error (quant_contract: also the bounds quant_ulp.png draws).
+  const QuantContract qc = quant_contract(a.variant, f);
+  const bool met = qc.met(r.quant.min.value, r.quant.max.value);
+  fmt::print("\nContract '{}': {:.5f} {} quant <= {:.5f} ulp; measured [{:.5f}, {:.5f}] → {}\n", qc.name, qc.lo,
+             qc.lo_strict ? "<" : "<=", qc.hi, r.quant.min.value, r.quant.max.value, met ? "MET" : "VIOLATED");
+  const nlohmann::json contract = {{"name", qc.name}, {"lo", qc.lo}, {"lo_strict", qc.lo_strict}, {"hi", qc.hi}, {"met", met}};
 
   nlohmann::json energy;
   if (a.energy) energy = print_energy(a, opt);
@@ -448,7 +445,7 @@ void run(const SweepArgs& a) {
                        {"total_min", row.total.min.value}});
     j["per_n"] = per_n;
     j["verdicts"] = verdicts;
-    if (!contract.is_null()) j["contract"] = contract;
+    j["contract"] = contract;
     if (!cutcmp.is_null()) j["cutoff_comparison"] = cutcmp;
     if (!energy.is_null()) j["energy"] = energy;
     outs.set(json_out, j.dump(2) + "\n");
@@ -462,7 +459,9 @@ void run(const SweepArgs& a) {
                {"--dir", stage, "--title", label, "--variant", a.variant, "--frac", std::to_string(f.frac), "--guard",
                 std::to_string(f.guard), "--fig3-n", std::to_string(fig3_n(lo, hi)), "--n-range",
                 fmt::format("{}..{}", lo, hi), fmt::format("--approx-max={:.6e}", r.approx.max.value),
-                fmt::format("--approx-min={:.6e}", r.approx.min.value), "--command", command_line()});
+                fmt::format("--approx-min={:.6e}", r.approx.min.value), "--contract-name", qc.name,
+                fmt::format("--contract-lo={:.17g}", qc.lo), fmt::format("--contract-hi={:.17g}", qc.hi),
+                qc.lo_strict ? "--contract-lo-strict" : "--contract-lo-inclusive", "--command", command_line()});
   }
   outs.commit();
   if (plots_out >= 0) {
@@ -478,7 +477,9 @@ void run(const SweepArgs& a) {
 void add_sweep(CLI::App& app) {
   auto args = std::make_shared<SweepArgs>();
   auto* sub = app.add_subcommand("sweep", "Exhaustive error sweep: every n × every input code");
-  sub->add_option("--variant", args->variant, "Specular variant (cs16, schlick_div, schlick_nr, schlick_iter, table256, table1024)")->check(cliargs::NonEmpty("unit name"));
+  std::string variants;  // every variant the sweep engine takes (sweep_variants(): the forms and table units too)
+  for (const auto& v : sweep_variants()) variants += (variants.empty() ? "" : ", ") + v;
+  sub->add_option("--variant", args->variant, "Specular variant (" + variants + ")")->check(cliargs::NonEmpty("unit name"));
   auto* cutoff_opt = sub->add_option("--cutoff", args->cutoff, "cs16 cut-off form: theta_cr | sign_clamp")->check(cliargs::NonEmpty("cut-off"));
   sub->add_option("--config", args->config, "Named width configuration from config/configs.json")
       ->check(cliargs::NonEmpty("config name"));

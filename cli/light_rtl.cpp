@@ -166,6 +166,17 @@ CoreBuild ensure_core(const FeatureSet& feat, bool quiet, Harness harness) {
     fs::remove(dir / "CMakeCache.txt", ec);
     fs::remove_all(dir / "CMakeFiles", ec);
   }
+  // Say why a build starts, where it goes and how long the last one took (issue 38: a new scene's first RTL
+  // pixel waits for it; the time comes from <cache>/.last_build_seconds, written by every successful build).
+  const fs::path last_file = cache / ".last_build_seconds";
+  if (!quiet) {
+    std::string last = read_all(last_file);
+    if (last.empty() || last.size() > 8 || last.find_first_not_of("0123456789") != std::string::npos) last.clear();
+    const std::string why = fs::exists(b.exe) ? "its RTL or testbench sources changed since it was built"
+                                              : "first use of this feature set";
+    fmt::print(stderr, "shadecore: {}: building its core into {} (cached there for later runs){}\n", why, dir.string(),
+               last.empty() ? "" : "; the last core build here took " + last + " s");
+  }
   const auto t0 = std::chrono::steady_clock::now();
   int rc;
   std::string out;
@@ -189,6 +200,7 @@ CoreBuild ensure_core(const FeatureSet& feat, bool quiet, Harness harness) {
   if (rc != 0 || !fs::exists(b.exe))
     throw std::runtime_error("building the lighting core failed (log: " + log.string() + ")");
   std::ofstream(stamp_file) << stamp;
+  std::ofstream(last_file, std::ios::trunc) << fmt::format("{:.0f}", b.build_seconds);
   b.built_now = true;
   if (!quiet) fmt::print(stderr, "shadecore: built in {:.1f} s: {}\n", b.build_seconds, b.exe);
   return b;

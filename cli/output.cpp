@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "output.hpp"
+#include "shadecore/features.hpp"
 #include "shadecore/render/scene.hpp"
 
 #include <fcntl.h>
@@ -7,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -81,6 +83,26 @@ int run_app(CLI::App& app, int argc, char** argv) {
       fmt::print(stderr, "shadecore: error: a subcommand is required ({}; see shadecore --help)\n", names);
     else
       fmt::print(stderr, "shadecore: error: {} (see {})\n", one_line(what), help);
+    return kExitError;
+  } catch (const CLI::ExtrasError& e) {
+    // An option the subcommand does not have: name it, with the nearest option it does have (issue 38).
+    if (known) {
+      const CLI::App* sub = app.get_subcommand(argv[1]);
+      std::vector<std::string> opts;
+      for (const CLI::Option* o : sub->get_options())
+        for (const std::string& l : o->get_lnames()) opts.push_back("--" + l);
+      for (int i = 2; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a.rfind("--", 0) != 0 || a == "--") continue;
+        const std::string name = a.substr(0, a.find('='));
+        if (std::find(opts.begin(), opts.end(), name) != opts.end()) continue;
+        const std::string near = nearest_name(name, opts);
+        fmt::print(stderr, "shadecore: error: unknown option '{}'{} (see {})\n", one_line(name),
+                   near.empty() ? "" : " (did you mean '" + near + "'?)", help);
+        return kExitError;
+      }
+    }
+    fmt::print(stderr, "shadecore: error: {} (see {})\n", one_line(e.what()), help);
     return kExitError;
   } catch (const CLI::ParseError& e) {
     // One line, like every other error, and status 1 for every usage error (CLI11's own exit() prints

@@ -139,9 +139,31 @@ int run_and_wait(std::vector<std::string> args) {
 
 }  // namespace
 
+// What --help prints (and the usage line of a call without arguments).
+constexpr const char* kUsage = "usage: sc_light_params SET|--random N [--seed S] [--tagw N] [--rtl-dir DIR] [-- TOOL ARG...]";
+constexpr const char* kHelp =
+    "sc_light_params — the Verilog parameters of rtl/sc_light.v for a lighting feature set\n"
+    "\n"
+    "  sc_light_params SET [--tagw N]                  print -GNAME=VALUE ... (one line)\n"
+    "  sc_light_params SET [--tagw N] [--rtl-dir DIR] -- TOOL ARG...\n"
+    "                                                  run TOOL; in its arguments @G@ becomes -GNAME=VALUE ...\n"
+    "                                                  (Verilator), @P@ -P NAME=VALUE ... (Yosys), @I@\n"
+    "                                                  -Psc_light.NAME=VALUE ... (Icarus), @F@ the set's RTL files in DIR\n"
+    "  sc_light_params --random N [--seed S] [--tagw N] --rtl-dir DIR -- TOOL ARG...\n"
+    "                                                  draw N random feature sets (seeded) and run TOOL for each;\n"
+    "                                                  exit 0 when TOOL succeeded for every set, else 1\n"
+    "\n"
+    "SET is a feature set named in config/configs.json \"feature_sets\" or a JSON file with one set\n"
+    "(docs/lighting.md). Errors: one line on stderr, exit status 2; with -- the exit status is TOOL's.\n";
+
 int main(int argc, char** argv) {
   try {
-    if (argc < 2) throw std::invalid_argument("usage: sc_light_params SET|--random N [--seed S] [--tagw N] [--rtl-dir DIR] [-- TOOL ARG...]");
+    for (int k = 1; k < argc && std::string(argv[k]) != "--"; ++k)
+      if (std::string(argv[k]) == "--help" || std::string(argv[k]) == "-h") {
+        std::printf("%s\n%s", kUsage, kHelp);
+        return 0;
+      }
+    if (argc < 2) throw std::invalid_argument(std::string(kUsage) + " (--help: what each form does)");
     int tagw = 8;
     int random = 0;
     uint64_t seed = 1;
@@ -155,7 +177,7 @@ int main(int argc, char** argv) {
       else if (a == "--seed" && i + 1 < argc) seed = std::strtoull(argv[++i], nullptr, 10);
       else if (a == "--rtl-dir" && i + 1 < argc) rtl_dir = argv[++i];
       else if (set.empty() && a.rfind("--", 0) != 0) set = a;
-      else throw std::invalid_argument("unknown argument '" + a + "'");
+      else throw std::invalid_argument("unknown argument '" + a + "' (see sc_light_params --help)");
     }
     std::vector<std::string> tool(argv + std::min(i + 1, argc), argv + argc);
     if (random > 0) {

@@ -27,17 +27,13 @@ def load(path):
     return np.genfromtxt(path, delimiter=",", names=True)
 
 
-def quant_bounds(variant, frac, guard):
-    """The contract's bounds on f_fixed − f_double in output ulps (docs/spec.md §3 and §6.4)."""
-    if variant == "cs16":
-        lo = -(0.5 + 15 * 2.0 ** -guard)
-        return lo, 0.5, f"−(½ + 15·2⁻ᴳ) = {lo:.4f} (G = {guard})", "+½"
-    if variant == "schlick_nr":
-        r = frac + 6
-        e1 = 0.0080872 ** 2 + 2 * 2.0 ** -r
-        b = 0.5 + 2.0 ** frac * (e1 ** 2 + 3 * 2.0 ** -r)
-        return -b, b, f"−{b:.4f}", f"+{b:.4f}"
-    return -0.5, 0.5, "−½", "+½"
+def quant_bounds(a):
+    """The variant's contract on f_fixed − f_double in output ulps as the sweep passed it (--contract-*: from
+    quant_contract(), the source of its verdict), or None when the script runs without them."""
+    if a.contract_lo is None or a.contract_hi is None:
+        return None
+    lo_rel = "<" if a.contract_lo_strict else "≤"
+    return a.contract_lo, a.contract_hi, f"{a.contract_lo:+.4f} ({lo_rel} quant)", f"{a.contract_hi:+.4f}"
 
 
 def fig3_name(n):
@@ -102,17 +98,23 @@ def fig4(d, unit, approx_max=None, approx_min=None):
     return fig
 
 
-def quant(d, unit, variant, frac, guard):
+def quant(d, unit, a):
     r = load(os.path.join(d, "per_n.csv"))
     fig, ax = plt.subplots(figsize=(7, 4))
     ax.plot(r["n"], r["quant_max_ulp"], label="max over codes (fixed − double)")
     ax.plot(r["n"], r["quant_min_ulp"], label="min over codes (fixed − double)")
-    lo, hi, lo_text, hi_text = quant_bounds(variant, frac, guard)
-    ax.axhline(hi, color="C3", ls=":", lw=1, label=f"contract upper bound {hi_text}")
-    ax.axhline(lo, color="C4", ls=":", lw=1, label=f"contract lower bound {lo_text}")
+    bounds = quant_bounds(a)
+    title = f"Quantisation error per n — {unit}"
+    if bounds:  # the sweep's own contract (the one its verdict on stdout checks)
+        lo, hi, lo_text, hi_text = bounds
+        name = f"'{a.contract_name}' " if a.contract_name else ""
+        ax.axhline(hi, color="C3", ls=":", lw=1, label=f"contract {name}upper bound {hi_text}")
+        ax.axhline(lo, color="C4", ls=":", lw=1, label=f"contract {name}lower bound {lo_text}")
+    else:
+        title += "\n(no contract lines: drawn without the sweep's --contract-lo/--contract-hi)"
     ax.set_xlabel("n")
     ax.set_ylabel("output ulps")
-    ax.set_title(f"Quantisation error per n — {unit}")
+    ax.set_title(title)
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
     return fig
@@ -156,7 +158,7 @@ def build(a):
     return {
         fig3_name(a.fig3_n) + ".png": fig3(a.dir, unit, a.frac, a.fig3_n, a.n_range),
         "fig4_delta.png": fig4(a.dir, a.title, a.approx_max, a.approx_min),
-        "quant_ulp.png": quant(a.dir, a.title, a.variant, a.frac, a.guard),
+        "quant_ulp.png": quant(a.dir, a.title, a),
         "approx_over_n.png": approx(a.dir, a.title, a.variant),
     }
 
@@ -173,6 +175,12 @@ def parser():
     ap.add_argument("--n-range", default=None, help="the swept range LO..HI (Fig. 3's title when n != 128)")
     ap.add_argument("--approx-max", type=float, default=None, help="max Δ over every input code (sweep)")
     ap.add_argument("--approx-min", type=float, default=None, help="min Δ over every input code (sweep)")
+    ap.add_argument("--contract-name", default=None, help="the variant's quantisation contract (the sweep's verdict)")
+    ap.add_argument("--contract-lo", type=float, default=None, help="its lower bound in output ulps")
+    ap.add_argument("--contract-hi", type=float, default=None, help="its upper bound in output ulps")
+    ap.add_argument("--contract-lo-strict", dest="contract_lo_strict", action="store_true", default=True,
+                    help="lo < quant (default)")
+    ap.add_argument("--contract-lo-inclusive", dest="contract_lo_strict", action="store_false", help="lo <= quant")
     ap.add_argument("--command", default="shadecore sweep --plots DIR", help="command for the footer")
     return ap
 

@@ -17,6 +17,7 @@ PACKAGES=(
   z3 sollya gappa
   libosmesa6-dev libgl-dev mesa-common-dev
   python3 python3-numpy python3-matplotlib zlib1g-dev
+  python3-dev python3-pybind11 python3-pytest
   slurm-wlm munge
   qflow-tech-osu018 opensta
   "$@"

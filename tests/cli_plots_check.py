@@ -19,7 +19,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--scripts", required=True)
     ap.add_argument("--sweep", action="append", required=True, metavar="DIR:VARIANT:F:G",
-                    help="a `shadecore sweep --plots DIR` output and its parameters (repeatable)")
+                    help="a `shadecore sweep --plots DIR --json DIR.json` output and its parameters (repeatable)")
     ap.add_argument("--fit-dir", required=True)
     a = ap.parse_args()
     sys.path.insert(0, a.scripts)
@@ -38,10 +38,17 @@ def check_sweep(sweep_dir, variant, frac, guard):
     import numpy as np
     import plot_sweep
 
+    import json
+
     a = argparse.Namespace(sweep_dir=sweep_dir, variant=variant, frac=frac, guard=guard)
+    # the contract the sweep's verdict checked (its --json), passed to the plot as the CLI passes it
+    with open(sweep_dir + ".json") as f:
+        contract = json.load(f)["contract"]
     args = plot_sweep.parser().parse_args(
         ["--dir", a.sweep_dir, "--variant", a.variant, "--title", f"{a.variant} F={a.frac}", "--frac", str(a.frac),
-         "--guard", str(a.guard), "--approx-max=0.0169", "--approx-min=-1e-15"])
+         "--guard", str(a.guard), "--approx-max=0.0169", "--approx-min=-1e-15", "--contract-name", contract["name"],
+         f"--contract-lo={contract['lo']!r}", f"--contract-hi={contract['hi']!r}",
+         "--contract-lo-strict" if contract["lo_strict"] else "--contract-lo-inclusive"])
     figs = plot_sweep.build(args)
 
     # fig3: the unit's name in the legend (not "variant"), and the fixed-point error in its own panel (at
@@ -58,7 +65,7 @@ def check_sweep(sweep_dir, variant, frac, guard):
         check("ulp" in f3.axes[1].get_ylabel(), "fig3 error panel is not in ulps")
         err = np.concatenate([ln.get_ydata() for ln in f3.axes[1].get_lines() if len(ln.get_ydata()) > 2])
         check(np.nanmax(np.abs(err)) > 0, "fig3 error panel is empty")
-        lo, hi, _, _ = plot_sweep.quant_bounds(variant, frac, guard)
+        lo, hi, _, _ = plot_sweep.quant_bounds(args)
         check(np.nanmin(err) >= lo - 1e-9 and np.nanmax(err) <= hi + 1e-9,
               f"fig3 error panel [{np.nanmin(err)}, {np.nanmax(err)}] outside the contract [{lo}, {hi}]")
 
@@ -82,17 +89,24 @@ def check_sweep(sweep_dir, variant, frac, guard):
         check(math.isclose(mesh.norm.vmin, zmin) and math.isclose(mesh.norm.vmax, zmax),
               f"fig4 colour scale [{mesh.norm.vmin}, {mesh.norm.vmax}] for data [{zmin}, {zmax}]")
 
-    # quant_ulp: the contract's bounds, labelled.
+    # quant_ulp: the variant's own contract (issue 38: the one the sweep's verdict checks, for every variant), labelled;
+    # a unit that MET it has every per-n extreme between the lines.
     q = figs["quant_ulp.png"].axes[0]
-    want_lo = -(0.5 + 15 * 2.0 ** -a.guard) if a.variant == "cs16" else -0.5
+    want_lo = -(0.5 + 15 * 2.0 ** -a.guard) if a.variant == "cs16" else {"cs16_compact": -1.0, "table256": -1.0,
+                                                                          "schlick_div": -0.5}.get(a.variant)
+    check(want_lo is None or math.isclose(contract["lo"], want_lo), f"{a.variant}: contract {contract}")
     hl = {ln.get_label(): ln.get_ydata()[0] for ln in q.get_lines() if len(set(ln.get_ydata())) == 1}
-    lows = [v for k, v in hl.items() if "contract lower bound" in k]
-    highs = [v for k, v in hl.items() if "contract upper bound" in k]
-    check(len(lows) == 1 and math.isclose(lows[0], want_lo), f"quant_ulp lower bound lines {hl}, want {want_lo}")
-    check(len(highs) == 1 and math.isclose(highs[0], 0.5), f"quant_ulp upper bound lines {hl}")
-    check(not any(math.isclose(v, -1.0) for v in hl.values()), "quant_ulp still draws −1.0")
+    lows = [v for k, v in hl.items() if "contract" in k and "lower bound" in k]
+    highs = [v for k, v in hl.items() if "contract" in k and "upper bound" in k]
+    check(len(lows) == 1 and math.isclose(lows[0], contract["lo"]), f"quant_ulp lower bound lines {hl}, want {contract}")
+    check(len(highs) == 1 and math.isclose(highs[0], contract["hi"]), f"quant_ulp upper bound lines {hl}")
+    check(all(f"'{contract['name']}'" in k for k in hl), f"quant_ulp bound labels {list(hl)} do not name the contract")
     data = [ln for ln in q.get_lines() if len(set(ln.get_ydata())) > 1]
     check(all(not ln.get_label().startswith("_") for ln in data), "quant_ulp has unlabelled lines")
+    if contract["met"] and lows and highs:
+        ys = np.concatenate([ln.get_ydata() for ln in data])
+        check(ys.min() >= lows[0] and ys.max() <= highs[0],
+              f"{a.variant}: the sweep says MET but quant_ulp draws data [{ys.min()}, {ys.max()}] outside its lines")
 
 
 

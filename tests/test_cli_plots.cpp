@@ -23,21 +23,29 @@ const std::string kPython = "/usr/bin/python3";
 
 TEST(CliPlots, FiguresShowWhatTheySay) {
   const TempDir d;
-  const CliRun s = run_cli("sweep --n 16..200 --frac 10 --guard 5 --no-progress --plots sweep", d.str());
+  const CliRun s = run_cli("sweep --n 16..200 --frac 10 --guard 5 --no-progress --plots sweep --json sweep.json", d.str());
   ASSERT_EQ(s.status, 0) << s.err;
   std::set<std::string> files;
   for (const auto& e : fs::directory_iterator(d / "sweep")) files.insert(e.path().filename().string());
   EXPECT_EQ(files, (std::set<std::string>{"approx_over_n.png", "fig3_n128.csv", "fig3_n128.png", "fig4_delta.png",
                                           "fig4_grid.csv", "per_n.csv", "quant_ulp.png"}));
-  const CliRun sd = run_cli("sweep --variant schlick_div --n 16..40 --frac 8 --no-progress --plots schlick", d.str());
+  const CliRun sd = run_cli("sweep --variant schlick_div --n 16..40 --frac 8 --no-progress --plots schlick --json schlick.json", d.str());
   ASSERT_EQ(sd.status, 0) << sd.err;
+  // issue 38: a form and a table unit, whose contracts are not ±½ (compact and table: ±1)
+  for (const char* v : {"cs16_compact", "table256"}) {
+    const CliRun r = run_cli(std::string("sweep --variant ") + v + " --n 16..100 --frac 10 --no-progress --plots " + v +
+                             " --json " + v + ".json", d.str());
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("→ MET"), std::string::npos) << r.out;
+  }
   // cos_pow: the least-squares fit is exact to rounding, so its res(n) lies far below the old 1e-9 floor.
   const CliRun f = run_cli("fit --lobe cos_pow --model phong --plots fit", d.str());
   ASSERT_EQ(f.status, 0) << f.err;
   EXPECT_TRUE(fs::exists(d / "fit/fig5_res.png"));
   const CliRun c = run_shell(kPython + " " + SHADECORE_TESTS_DIR + "/cli_plots_check.py --scripts " +
                              SHADECORE_SCRIPTS_DIR + " --sweep " + (d / "sweep") + ":cs16:10:5 --sweep " +
-                             (d / "schlick") + ":schlick_div:8:5 --fit-dir " + (d / "fit"));
+                             (d / "schlick") + ":schlick_div:8:5 --sweep " + (d / "cs16_compact") +
+                             ":cs16_compact:10:5 --sweep " + (d / "table256") + ":table256:10:5 --fit-dir " + (d / "fit"));
   EXPECT_EQ(c.status, 0) << c.out << c.err;
 }
 

@@ -10,6 +10,9 @@
 // Parsing is strict: unknown keys, wrong types and out-of-range values are one-line errors.
 #pragma once
 
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <array>
 #include <cstdint>
 #include <fstream>
@@ -139,6 +142,33 @@ inline std::string kinds_name(uint8_t mask) {
   for (int k = 0; k < kNumLightKinds; ++k)
     if (mask & (1u << k)) s += (s.empty() ? "" : "|") + std::string(to_string(static_cast<LightKind>(k)));
   return s;
+}
+
+// Levenshtein distance: the "did you mean" of an unknown feature-set name (and of the CLI's unknown options).
+inline size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// The name of `names` closest to `key` within a third of its length (at least one edit), or "".
+inline std::string nearest_name(const std::string& key, const std::vector<std::string>& names) {
+  std::string near;
+  size_t best = std::string::npos;
+  for (const auto& n : names) {
+    const size_t d = edit_distance(n, key);
+    if (d <= std::max<size_t>(1, n.size() / 3) && d < best) best = d, near = n;
+  }
+  return near;
 }
 
 namespace detail {
@@ -322,8 +352,18 @@ inline FeatureSet feature_set_named_or_file(const std::string& arg) {
     known += (known.empty() ? "" : ", ") + fs.name;
   }
   std::ifstream in(arg);
-  if (!in)
-    throw std::invalid_argument("unknown feature set '" + arg + "' (named: " + known + "; or a JSON file)");
+  if (!in) {
+    // A path (a '/' or a .json name) that cannot be opened is a missing file, not an unknown name (issue 38).
+    const bool path_like = arg.find('/') != std::string::npos ||
+                           (arg.size() > 5 && arg.compare(arg.size() - 5, 5, ".json") == 0);
+    if (path_like)
+      throw std::invalid_argument("feature set file '" + arg + "': " + std::strerror(errno) + " (named sets: " + known + ")");
+    std::vector<std::string> names;
+    for (const auto& fs : named_feature_sets()) names.push_back(fs.name);
+    const std::string near = nearest_name(arg, names);
+    throw std::invalid_argument("unknown feature set '" + arg + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+                                " (named: " + known + "; or a JSON file)");
+  }
   std::stringstream ss;
   ss << in.rdbuf();
   nlohmann::json j;

@@ -196,6 +196,24 @@ SweepResult run_sweep(const SweepOptions& opt) {
   throw std::invalid_argument("unknown variant '" + opt.variant + "'");
 }
 
+QuantContract quant_contract(const std::string& variant, const Format& f) {
+  if (variant == "cs16") {  // the reference datapath's faithful bound: −(½ + 15·2^−G) < q <= ½
+    const Cs16Contract c = cs16_contract("faithful", f);
+    return {"faithful", c.lo, c.hi, c.lo_strict};
+  }
+  if (const SquarerForm* form = form_named(variant)) {
+    const Cs16Contract c = cs16_contract(form->contract, f);
+    return {std::string(form->contract), c.lo, c.hi, c.lo_strict};
+  }
+  if (variant == "schlick_div" || variant == "schlick_iter") return {"exact", -0.5, 0.5, false};  // |q| <= ½
+  if (variant == "schlick_nr") {
+    const double b = schlick_nr_bound_ulp(f.frac);
+    return {"faithful", -b, b, false};
+  }
+  if (table_variant_entries(variant)) return {"table", kTableQuantMin, kTableQuantMax, true};  // −1 < q <= 1
+  throw std::invalid_argument("unknown variant '" + variant + "'");
+}
+
 double variant_golden(const std::string& variant, Cutoff cutoff, int n, double c) {
   if (variant == "cs16" || form_named(variant))
     return cutoff == Cutoff::ThetaCr ? golden::cs16_theta_cr(c, n) : golden::cs16_sign_clamp(c, n);

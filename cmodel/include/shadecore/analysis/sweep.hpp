@@ -70,4 +70,16 @@ SweepResult run_sweep(const SweepOptions& opt);
 // Double-precision value of a variant (the same function the sweep measures against).
 double variant_golden(const std::string& variant, Cutoff cutoff, int n, double c);
 
+// A variant's contract on the quantisation error q = f_fixed − 2^F·f_double of the same input code, in output
+// ulps: lo < q (lo <= q when !lo_strict) and q <= hi (docs/spec.md: cs16 §3, its forms §3.4, Schlick §6.4, table
+// units §9.4). The one source of `shadecore sweep`'s verdict and of the bounds its quant_ulp.png draws.
+struct QuantContract {
+  std::string name;  // configs.json's contract of the variant (cs16: faithful)
+  double lo = 0, hi = 0;
+  bool lo_strict = false;
+  [[nodiscard]] bool met(double qmin, double qmax) const { return (lo_strict ? qmin > lo : qmin >= lo) && qmax <= hi; }
+};
+// Throws std::invalid_argument for an unknown variant.
+QuantContract quant_contract(const std::string& variant, const Format& f);
+
 }  // namespace shadecore
