@@ -10,7 +10,7 @@ Per row (a unit of config/configs.json "variants" at a width, or a lighting feat
      (gate-level, Icarus) and takes the energy per result from the netlist's own activity.
 The table units have no handoff bundle (the plain-Verilog bench cannot load the table RAM): their rows are
 synthesised and timed from the RTL (sc_specular with VARIANT set) without a gate-level run, and say so.
-Rows are cached in OUT/timing.cache.json by the SHA-256 of what decides them (rtl/, config/configs.json,
+Rows are cached in OUT/timing.cache.json by the SHA-256 of what decides them (the Verilog of rtl/, config/configs.json,
 signoff/signoff.py and fastmul.py, handoff/, the shadecore binary, the target, the vector count): a rerun
 computes only what changed.
 Long (hours from an empty cache on 2 cores; a lighting set with 8 lights takes the longest); run by hand.
@@ -18,8 +18,10 @@ Long (hours from an empty cache on 2 cores; a lighting set with 8 lights takes t
 import argparse
 import datetime
 import fcntl
+import glob
 import hashlib
 import json
+import math
 import os
 import re
 import shutil
@@ -39,7 +41,7 @@ FIELDS = ["name", "kind", "width", "contract", "latency_cycles", "period_ns", "w
 
 
 # What decides a row's numbers (with the shadecore binary, the target and the vector count): the cache key.
-DECIDING = ["rtl", "config/configs.json", "signoff/signoff.py", "signoff/fastmul.py", "handoff"]
+DECIDING = ["rtl/*.v", "rtl/*.vh", "config/configs.json", "signoff/signoff.py", "signoff/fastmul.py", "handoff"]
 
 
 class Failure(Exception):
@@ -50,7 +52,7 @@ def sha_tree(paths):
     h = hashlib.sha256()
     for base in paths:
         full = os.path.join(ROOT, base)
-        files = [full] if os.path.isfile(full) else sorted(
+        files = sorted(glob.glob(full)) if "*" in base else [full] if os.path.isfile(full) else sorted(
             os.path.join(d, f) for d, _, fs in os.walk(full) for f in fs if not f.endswith(".pyc"))
         for p in files:
             h.update(os.path.relpath(p, ROOT).encode())
@@ -165,8 +167,9 @@ def to_row(r, s):
     out["ns_um2"] = round(out["period_ns"] * out["area_um2"])
     if not out["met"]:
         out["reason"] = (f"misses {s['target_ns']} ns by {-out['wns_ns']:.3f} ns: the worst stage is "
-                         f"{cp['start_reg']} -> {cp['end_reg']}; closing it takes a register inside that stage "
-                         f"(about {max(1, round(-out['wns_ns'] / s['target_ns'] * 2 + 0.5))} more per such stage)")
+                         f"{cp['start_reg']} -> {cp['end_reg']} ({cp['levels']} cells); closing it takes that stage "
+                         f"cut into {math.ceil(st['fmax_period_ns'] / s['target_ns'] - 1e-9)} (Fmax period "
+                         f"{st['fmax_period_ns']} ns / {s['target_ns']} ns), and every other stage that misses likewise")
     if gs is None:
         out["reason_gate_sim"] = ("no gate-level run: the handoff bench cannot load a table RAM"
                                   if r["table"] else "not run")
