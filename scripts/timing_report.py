@@ -232,14 +232,23 @@ def plot(path, rows, footer):
     for ax, key, label in ((axes[0], "energy_pj_per_result", "energy per result (pJ, gate-level activity)"),
                            (axes[1], "ns_um2", "period × area (ns·µm²)")):
         placed = sorted(((r.get(key), err, r) for r, err in pts if r.get(key) is not None), key=lambda p: p[0])
-        for i, (x, err, r) in enumerate(placed):
+        for x, err, r in placed:
             ax.scatter([x], [err], s=36, marker="o" if r["met"] else "x")
-            # neighbours in x alternate above and below their point, so close points do not overprint
-            ax.annotate(r["name"], (x, err), textcoords="offset points", xytext=(4, 6 if i % 2 == 0 else -13),
-                        fontsize=8)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.autoscale_view()
+        fig.canvas.draw()
+        # labels: the first of the offsets (points) that keeps this label clear of those already placed
+        taken = []
+        for x, err, r in placed:
+            px, py = ax.transData.transform((x, err))
+            for dy in (6, -14, 18, -26, 30, -38, 42):
+                if all(abs(px - qx) > 95 or abs(py + dy - qy) > 12 for qx, qy in taken):
+                    break
+            taken.append((px, py + dy))
+            ax.annotate(r["name"], (x, err), textcoords="offset points", xytext=(4, dy), fontsize=8)
         ax.set_xlabel(label)
         ax.set_ylabel("max |cos^n − unit| over n = 16..1024 (sweep)")
-        ax.set_yscale("log")
         ax.grid(True, alpha=0.3)
     axes[0].set_title("error against energy (o meets 4.0 ns, x misses)", fontsize=10)
     axes[1].set_title("error against period × area", fontsize=10)
