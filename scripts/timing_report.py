@@ -246,7 +246,8 @@ def plot(path, rows, footer):
                 if all(abs(px - qx) > 95 or abs(py + dy - qy) > 12 for qx, qy in taken):
                     break
             taken.append((px, py + dy))
-            ax.annotate(r["name"], (x, err), textcoords="offset points", xytext=(4, dy), fontsize=8)
+            ax.annotate(r["name"], (x, err), textcoords="offset points", xytext=(4, dy), fontsize=8,
+                        arrowprops=None if abs(dy) < 15 else dict(arrowstyle="-", lw=0.5, color="0.4"))
         ax.set_xlabel(label)
         ax.set_ylabel("max |cos^n − unit| over n = 16..1024 (sweep)")
         ax.grid(True, alpha=0.3)

@@ -53,6 +53,9 @@ import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import signoff  # noqa: E402  the flow's tool runner, version probe and Fmax bisection
+
 LIB_DIR = "/usr/share/qflow/tech/osu018"
 TECH = "osu018"
 LIBERTY = os.path.join(LIB_DIR, "osu018_stdcells.lib")
@@ -79,33 +82,15 @@ def log(msg):
 
 
 def run(cmd, cwd, logfile, timeout, env=None):
-    """Run a tool, its output into logfile and the run log; returns (rc, text)."""
+    """signoff.run (output into logfile), recorded in the run log; returns (rc, text, seconds)."""
     t0 = time.time()
-    try:
-        p = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout, env=env)
-        out, rc = p.stdout + p.stderr, p.returncode
-    except subprocess.TimeoutExpired as e:
-        out = e.stdout.decode(errors="replace") if isinstance(e.stdout, bytes) else (e.stdout or "")
-        out += f"\n(timed out after {timeout} s)\n"
-        rc = 124
+    rc, out = signoff.run(cmd, cwd, logfile, timeout, env)
     dt = time.time() - t0
-    with open(logfile, "w") as f:
-        f.write(f"# {' '.join(cmd)}\n# cwd {cwd}, {dt:.1f} s, exit {rc}\n{out}")
     LOG.append(f"---- {' '.join(cmd)} (cwd {cwd}, {dt:.1f} s, exit {rc}) -> {logfile}")
     return rc, out, dt
 
 
-def tool_version(cmd, pattern=None):
-    try:
-        p = subprocess.run(cmd, capture_output=True, text=True, timeout=30)
-        text = p.stdout + p.stderr
-    except (OSError, subprocess.TimeoutExpired):
-        return "unknown"
-    if pattern:
-        m = re.search(pattern, text)
-        return m.group(0) if m else "unknown"
-    lines = text.strip().splitlines()
-    return lines[0] if lines else "unknown"
+tool_version = signoff.tool_version
 
 
 # ------------------------------------------------------------------------------------- netlist
@@ -326,32 +311,6 @@ puts "wns [sta::worst_slack -max]"
 report_checks -path_delay max -format end -group_count 1000000 -endpoint_count 1 -digits 4
 """
 
-FMAX_BODY = """
-proc set_period {{p}} {{
-  global IO_FRACTION
-  create_clock -name clk -period $p [get_ports {clock}]
-  set ins [list]
-  set outs [list]
-  foreach port [get_ports *] {{
-    set n [get_full_name $port]
-    if {{$n == "{clock}"}} {{ continue }}
-    if {{[get_property $port direction] == "input"}} {{ lappend ins $port }} else {{ lappend outs $port }}
-  }}
-  set_input_delay -clock clk [expr {{$IO_FRACTION * $p}}] $ins
-  set_output_delay -clock clk [expr {{$IO_FRACTION * $p}}] $outs
-}}
-set lo 0.05
-set hi {start}
-set_period $hi
-while {{[sta::worst_slack -max] < 0}} {{ set lo $hi; set hi [expr {{$hi * 2}}]; set_period $hi
-  if {{$hi > 10000}} {{ puts "fmax_failed"; exit 1 }} }}
-while {{$hi - $lo > 0.001}} {{
-  set mid [expr {{($lo + $hi) / 2.0}}]
-  set_period $mid
-  if {{[sta::worst_slack -max] >= 0}} {{ set hi $mid }} else {{ set lo $mid }}
-}}
-puts "fmax_period $hi"
-"""
 
 SCAN_BODY = """
 set d 1.0
@@ -458,8 +417,8 @@ def flow(a, log_path):
     for p in (netlist, sdc_path, so_json):
         if not os.path.isfile(p):
             raise Fail(f"{p} missing: run the sign-off first (shadecore handoff --signoff on, or signoff/signoff.py)")
-    signoff = json.load(open(so_json))
-    top = signoff.get("top")
+    so = json.load(open(so_json))
+    top = so.get("top")
     nod_sdc, der_sdc, sdc_period, derate = sdc_variants(open(sdc_path).read())
     periods = [sdc_period] + ([REPORT_PERIOD] if abs(sdc_period - REPORT_PERIOD) > 1e-9 else [])
 
@@ -584,7 +543,7 @@ def flow(a, log_path):
             out = sta_run(sta_dir, f"{key}_{p:.3f}", net_v, top, sdcs[(tag, p)], PATH_BODY, sp, a.timeout)
             r["at"][f"{p:.3f}"] = parse_path(out, orig_names, regs)
         out = sta_run(sta_dir, f"{key}_fmax", net_v, top, sdcs[(tag, sdc_period)],
-                      FMAX_BODY.format(clock=CLOCK, start=sdc_period), sp, a.timeout)
+                      signoff.fmax_tcl(sdc_period), sp, a.timeout)
         fm = re.search(r"fmax_period (\S+)", out)
         if not fm:
             raise Fail(f"Fmax bisection failed: {sta_dir}/{key}_fmax.rpt")
@@ -595,7 +554,7 @@ def flow(a, log_path):
         log(f"sta {key:12s}: WNS {w['wns_ns']:+.3f} ns at {sdc_period} ns, worst arrival {w['arrival_ns']:.3f} ns "
             f"({w['start_reg']} -> {w['end_reg']}), Fmax period {r['fmax_period_ns']:.3f} ns")
     # sign-off consistency: the derated pre-layout run must reproduce signoff.json's slack at the SDC period
-    so_wns = signoff.get("sta", {}).get("critical_path", {}).get("sdc_wns_ns")
+    so_wns = so.get("sta", {}).get("critical_path", {}).get("sdc_wns_ns")
     mine = results["pre_derated"]["at"][f"{sdc_period:.3f}"]["wns_ns"]
     if so_wns is not None and abs(so_wns - mine) > 0.002:
         raise Fail(f"pre-layout re-time with qflow names gives WNS {mine} ns, signoff.json {so_wns:.4f} ns")
@@ -647,7 +606,7 @@ def flow(a, log_path):
         }
     wl = {k: round(v, 1) for k, v in sorted(deff["wirelength_um"].items())}
     res = {
-        "bundle": bundle, "top": top, "library": signoff.get("library"),
+        "bundle": bundle, "top": top, "library": so.get("library"),
         "sdc_period_ns": sdc_period, "report_period_ns": REPORT_PERIOD, "derate_late": derate,
         "tools": {"qflow": tool_version([QFLOW, "-v"], r"Qflow version \S+ revision \S+"),
                   "graywolf": "graywolf " + tool_version(["dpkg-query", "-W", "-f", "${Version}", "graywolf"]),

@@ -59,11 +59,11 @@ def log(msg):
     print(f"signoff: {msg}", flush=True)
 
 
-def run(cmd, cwd, logfile, timeout=None):
+def run(cmd, cwd, logfile, timeout=None, env=None):
     """Run a tool, its output into logfile; returns (rc, text)."""
     t0 = time.time()
     try:
-        p = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout)
+        p = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout, env=env)
         out, rc = p.stdout + p.stderr, p.returncode
     except subprocess.TimeoutExpired as e:
         out = (e.stdout or b"").decode(errors="replace") if isinstance(e.stdout, bytes) else (e.stdout or "")
@@ -75,12 +75,18 @@ def run(cmd, cwd, logfile, timeout=None):
     return rc, out
 
 
-def tool_version(cmd):
+def tool_version(cmd, pattern=None):
+    """The first line a tool prints of its version, or the first match of pattern in its output."""
     try:
         p = subprocess.run(cmd, capture_output=True, text=True, timeout=30)
-        return (p.stdout + p.stderr).strip().splitlines()[0]
-    except (OSError, IndexError, subprocess.TimeoutExpired):
+    except (OSError, subprocess.TimeoutExpired):
         return "unknown"
+    text = p.stdout + p.stderr
+    if pattern:
+        m = re.search(pattern, text)
+        return m.group(0) if m else "unknown"
+    lines = text.strip().splitlines()
+    return lines[0] if lines else "unknown"
 
 
 def read_filelist(bundle):
@@ -182,33 +188,80 @@ def netlist_ports(netlist, top):
     return ports
 
 
-def write_sdc(path, top, ports, period, load, note):
-    ins = [p for p, d, w in ports if d == "input" and p != CLOCK]
-    outs = [p for p, d, w in ports if d == "output"]
+SIGNOFF_MARK = "# ---- added by signoff/signoff.py: drive, load and the wire allowance"
 
-    def plist(names):
-        return " ".join(f"{n}[*]" if w > 1 else n for n, d, w in ports if n in names)
-    text = f"""# constraints.sdc — {top}: measured by signoff/signoff.py (OSU 0.18 um typical, pre-layout)
-# {note}
-set CLK_PERIOD {period:.3f}
+
+def base_sdc(top, ports):
+    """The environment part of an SDC, for a directory that has no constraints.sdc of its own (a bundle has:
+    `shadecore handoff` writes it from cli/templates/handoff/constraints.sdc, and that text is kept)."""
+    def plist(d):
+        return " ".join(f"{n}[*]" if w > 1 else n for n, dd, w in ports if dd == d and n != CLOCK)
+    return f"""# constraints.sdc — {top} (no handoff SDC: written by signoff/signoff.py)
+set CLK_PERIOD 10.0
 create_clock -name clk -period $CLK_PERIOD [get_ports {CLOCK}]
 
-# Assumed environment: every input is launched by a flip-flop on the same clock outside the core and
-# arrives IO_FRACTION of the period after the edge, driven by an {DRIVE_CELL}; every output must be valid
-# IO_FRACTION of the period before the next edge and drives {load:.4f} pF (four {DRIVE_CELL} inputs).
-# rst_ni is synchronous: it is timed like any input. No multicycle or false paths.
+# Assumed environment: every input arrives IO_FRACTION of the period after the edge, every output is
+# needed IO_FRACTION of the period before the next edge. No multicycle or false paths.
 set IO_FRACTION {IO_FRACTION}
-set_input_delay  -clock clk [expr {{$IO_FRACTION * $CLK_PERIOD}}] [get_ports {{{plist(ins)}}}]
-set_output_delay -clock clk [expr {{$IO_FRACTION * $CLK_PERIOD}}] [get_ports {{{plist(outs)}}}]
-set_driving_cell -lib_cell {DRIVE_CELL} [get_ports {{{plist(ins)}}}]
-set_load {load:.5f} [get_ports {{{plist(outs)}}}]
+set_input_delay  -clock clk [expr {{$IO_FRACTION * $CLK_PERIOD}}] [get_ports {{{plist("input")}}}]
+set_output_delay -clock clk [expr {{$IO_FRACTION * $CLK_PERIOD}}] [get_ports {{{plist("output")}}}]
+"""
 
+
+def write_sdc(path, base, period, load, note):
+    """The SDC at a period: the base's environment (the handoff's I/O assumptions and port lists) with its
+    period set and the header's period note replaced, plus the sign-off's drive, load and derate."""
+    text = base.split(SIGNOFF_MARK)[0].rstrip() + "\n"
+    text = re.sub(r"^# (Target period from|No measured Fmax|or it was not measured|Measured: ).*\n", "", text,
+                  flags=re.M)
+    text, n = re.subn(r"^set CLK_PERIOD .*$", f"# Measured: {note}\nset CLK_PERIOD {period:.3f}", text, count=1,
+                      flags=re.M)
+    ins = re.search(r"^set_input_delay .*\[get_ports \{(.*)\}\]\s*$", text, re.M)
+    outs = re.search(r"^set_output_delay .*\[get_ports \{(.*)\}\]\s*$", text, re.M)
+    if n != 1 or not ins or not outs:
+        die(f"cannot use the SDC as a base (no 'set CLK_PERIOD' or I/O delay lines): {path}")
+    text += f"""
+{SIGNOFF_MARK} (OSU 0.18 um typical, pre-layout)
+# Inputs are driven by an {DRIVE_CELL}; outputs drive {load:.4f} pF (four {DRIVE_CELL} inputs).
+set_driving_cell -lib_cell {DRIVE_CELL} [get_ports {{{ins.group(1)}}}]
+set_load {load:.5f} [get_ports {{{outs.group(1)}}}]
 # Wires: the library has no wire-load model; cell delays are derated by {DERATE} as the allowance for
-# them (checked against a placed and routed unit: docs/timing.md).
+# them (checked on a placed and routed unit: docs/postlayout.md).
 set_timing_derate -late {DERATE}
 """
     with open(path, "w") as f:
         f.write(text)
+
+
+def fmax_tcl(start):
+    """Tcl for OpenSTA: Fmax by bisection on the period from `start` (ns), every input/output delay kept at
+    IO_FRACTION of it, to 1 ps; prints `fmax_period P`. Needs an SDC that sets IO_FRACTION."""
+    return f"""
+proc set_period {{p}} {{
+  global IO_FRACTION
+  create_clock -name clk -period $p [get_ports {CLOCK}]
+  set ins [list]
+  set outs [list]
+  foreach port [get_ports *] {{
+    set n [get_full_name $port]
+    if {{$n == "{CLOCK}"}} {{ continue }}
+    if {{[get_property $port direction] == "input"}} {{ lappend ins $port }} else {{ lappend outs $port }}
+  }}
+  set_input_delay -clock clk [expr {{$IO_FRACTION * $p}}] $ins
+  set_output_delay -clock clk [expr {{$IO_FRACTION * $p}}] $outs
+}}
+set lo 0.05
+set hi {start}
+set_period $hi
+while {{[sta::worst_slack -max] < 0}} {{ set lo $hi; set hi [expr {{$hi * 2}}]; set_period $hi
+  if {{$hi > 10000}} {{ puts "fmax_failed"; exit 1 }} }}
+while {{$hi - $lo > 0.001}} {{
+  set mid [expr {{($lo + $hi) / 2.0}}]
+  set_period $mid
+  if {{[sta::worst_slack -max] >= 0}} {{ set hi $mid }} else {{ set lo $mid }}
+}}
+puts "fmax_period $hi"
+"""
 
 
 # ------------------------------------------------------------------------------------------- sta
@@ -223,38 +276,13 @@ def sta_script(a, sdir, sdc, body):
         f"read_sdc {sdc}\n" + body
 
 
-def sta(a, sdir, ports, load):
+def sta(a, sdir, base, load):
     """WNS/TNS at the target, Fmax by bisection, reports at the closing period."""
     target_sdc = os.path.join(sdir, "target.sdc")
-    write_sdc(target_sdc, a.top, ports, a.target, load, f"the target period {a.target} ns")
+    write_sdc(target_sdc, base, a.target, load, f"the target period {a.target} ns")
     # Bisection on the period in one OpenSTA session: each constraint is a fraction of the period.
-    body = f"""
-proc set_period {{p}} {{
-  global IO_FRACTION
-  create_clock -name clk -period $p [get_ports {CLOCK}]
-  set ins [list]
-  set outs [list]
-  foreach port [get_ports *] {{
-    set n [get_full_name $port]
-    if {{$n == "{CLOCK}"}} {{ continue }}
-    if {{[get_property $port direction] == "input"}} {{ lappend ins $port }} else {{ lappend outs $port }}
-  }}
-  set_input_delay -clock clk [expr {{$IO_FRACTION * $p}}] $ins
-  set_output_delay -clock clk [expr {{$IO_FRACTION * $p}}] $outs
-}}
-puts "target_wns [sta::worst_slack -max]"
-puts "target_tns [sta::total_negative_slack -max]"
-set lo 0.05
-set hi {a.target}
-while {{[sta::worst_slack -max] < 0}} {{ set lo $hi; set hi [expr {{$hi * 2}}]; set_period $hi
-  if {{$hi > 10000}} {{ puts "fmax_failed"; exit 1 }} }}
-while {{$hi - $lo > 0.001}} {{
-  set mid [expr {{($lo + $hi) / 2.0}}]
-  set_period $mid
-  if {{[sta::worst_slack -max] >= 0}} {{ set hi $mid }} else {{ set lo $mid }}
-}}
-puts "fmax_period $hi"
-"""
+    body = ('puts "target_wns [sta::worst_slack -max]"\n'
+            'puts "target_tns [sta::total_negative_slack -max]"\n' + fmax_tcl(a.target))
     with open(os.path.join(sdir, "fmax.tcl"), "w") as f:
         f.write(sta_script(a, sdir, target_sdc, body))
     rc, out = run(["sta", "-no_splash", "-exit", "fmax.tcl"], sdir, os.path.join(sdir, "sta_fmax.log"), a.timeout)
@@ -554,12 +582,14 @@ def main():
         res["synth"] = synth(a, sdir)
         res["fo4_ns"] = fo4(a, sdir)
     if "sta" in steps:
-        ports = netlist_ports(os.path.join(sdir, "netlist.v"), a.top)
-        st = sta(a, sdir, ports, res["synth"]["load_pf"])
+        sdc_path = os.path.join(a.bundle, "constraints.sdc")
+        base = (open(sdc_path).read() if os.path.exists(sdc_path)
+                else base_sdc(a.top, netlist_ports(os.path.join(sdir, "netlist.v"), a.top)))
+        st = sta(a, sdir, base, res["synth"]["load_pf"])
         note = (f"the target {a.target} ns is met (WNS {st['wns_ns']:+.3f} ns)" if st["met"] else
                 f"the target {a.target} ns is missed (WNS {st['wns_ns']:+.3f} ns): the period is Fmax "
                 f"({st['fmax_period_ns']} ns) rounded up to 0.05 ns")
-        write_sdc(os.path.join(a.bundle, "constraints.sdc"), a.top, ports, st["period_ns"], res["synth"]["load_pf"], note)
+        write_sdc(sdc_path, base, st["period_ns"], res["synth"]["load_pf"], note)
         rep = reports(a, sdir, os.path.join(a.bundle, "constraints.sdc"))
         rep["start_reg"] = name_path(os.path.join(sdir, "netlist.v"), rep["start"])
         rep["end_reg"] = name_path(os.path.join(sdir, "netlist.v"), rep["end"])
