@@ -856,14 +856,18 @@ def plot(rows, path, footer):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
     panels = (("cells", "generic cells (Yosys synth; abc)"), ("transistors", "CMOS transistors (stat -tech cmos)"),
               ("luts", "iCE40 LUT4 (synth_ice40, no DSP)"))
     variants = sorted({r["variant"] for r in rows})
+    contract = {r["variant"]: r.get("contract", "?") for r in rows}
     markers = "osD^vP*Xhp<>"
     cfgs = sorted({(r["frac"], r["config"]) for r in rows})
     colours = plt.get_cmap("viridis")(list(i / max(1, len(cfgs) - 1) * 0.85 for i in range(len(cfgs))))
     colour = {c[1]: colours[i] for i, c in enumerate(cfgs)}
-    fig, axes = plt.subplots(1, 3, figsize=(16, 5.6))
+    fig, axes = plt.subplots(1, 4, figsize=(18, 6.4), gridspec_kw={"width_ratios": [1, 1, 1, 0.34]})
+    key_ax, axes = axes[3], axes[:3]
+    labels = []
     for ax, (key, xlabel) in zip(axes, panels):
         pts = []
         for r in rows:
@@ -875,38 +879,36 @@ def plot(rows, path, footer):
             m = markers[variants.index(r["variant"]) % len(markers)]
             ax.scatter([x], [y], marker=m, s=46, edgecolors=colour[r["config"]],
                        facecolors=colour[r["config"]] if full else "none", linewidths=1.4, zorder=3)
-        # Labels: points at about the same error (e.g. every Schlick form at 0.20) get staggered offsets.
-        offsets = (3, -10, 10, -17, 17, -24)
-        for i, (x, y, r) in enumerate(sorted(pts, key=lambda p: p[0])):
-            near = sum(1 for x2, y2, _ in sorted(pts, key=lambda p: p[0])[:i] if abs(math.log(y2 / y)) < 0.15)
-            ax.annotate(f"{r['variant']} ({r.get('contract', '?')}) F{r['frac']}", (x, y), fontsize=6,
-                        xytext=(4, offsets[near % len(offsets)]), textcoords="offset points", zorder=4)
         front = pareto(pts)
+        xmax = max(p[0] for p in pts) * 1.5 if pts else 1
         if front:
             xs, ys = [front[0][0]], [front[0][1]]
             for p in front[1:]:
                 xs += [p[0], p[0]]
                 ys += [ys[-1], p[1]]
-            xmax = max(p[0] for p in pts) * 1.5
             ax.plot(xs + [xmax], ys + [ys[-1]], color="0.55", lw=1.2, zorder=2)
         ax.set_xscale("log")
         ax.set_yscale("log")
+        if pts:  # room around the points for their labels
+            ax.set_xlim(min(p[0] for p in pts) / 2.2, xmax * 1.6)
+            ax.set_ylim(min(p[1] for p in pts) / 2.2, max(p[1] for p in pts) * 2.2)
         ax.set_xlabel(xlabel)
         ax.grid(alpha=0.3, which="both")
+        labels.append((ax, pts))
     axes[0].set_ylabel("max |cos^n θ − output| over the swept n (lower is better)")
-    from matplotlib.lines import Line2D
-    handles = [Line2D([], [], marker=markers[i % len(markers)], ls="", color="0.3", label=v) for i, v in enumerate(variants)]
+    handles = [Line2D([], [], marker=markers[i % len(markers)], ls="", color="0.3", label=f"{v} ({contract[v]})")
+               for i, v in enumerate(variants)]
     handles += [Line2D([], [], marker="s", ls="", color=colour[c], label=f"{c} (F = {f})") for f, c in cfgs]
     handles += [Line2D([], [], marker="o", ls="", mfc="none", color="0.3", label="< 1 fragment per clock"),
                 Line2D([], [], color="0.55", label="Pareto front")]
-    axes[2].legend(handles=handles, fontsize=7, loc="best")
-    fig.suptitle("Error against area: every unit × contract × width (lower left is better)", fontsize=11)
-    fig.tight_layout(rect=(0, 0.03, 1, 1))
-    fig.text(0.01, 0.005, footer, fontsize=6, color="0.35")
-    try:
-        fig.savefig(path, dpi=120, format="png")
-    finally:
-        plt.close(fig)
+    key_ax.axis("off")
+    key_ax.legend(handles=handles, fontsize=7, loc="center left", title="unit (contract), width", title_fontsize=7)
+    fig.suptitle("Error against area: every unit × contract × width (lower left is better); "
+                 "labels: unit and fraction bits F", fontsize=11)
+    figures.layout(fig)
+    for ax, pts in labels:  # after the layout: each label at the nearest free place, leader lines when far
+        figures.place_labels(ax, [(x, y, f"{r['variant']} F{r['frac']}") for x, y, r in sorted(pts, key=lambda p: p[:2])])
+    figures.save(fig, path, footer, dpi=120)
 
 
 # ---------------------------------------------------------------------------------------------------

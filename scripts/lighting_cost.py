@@ -181,36 +181,74 @@ def report_markdown(doc):
     return "\n".join(L)
 
 
+def _label(r):
+    """A row's short name on the figure: set, L lanes, S share (only when > 1), g spec_guard."""
+    share = r.get("share", 1)
+    return f"{r['set']} L{r['lanes']}{'' if share == 1 else f' S{share}'} g{r.get('spec_guard', 0)}"
+
+
 def plot(doc, path, footer_text):
+    """Cells and DSPs against throughput: the current rows coloured and labelled (labels placed clear of each
+    other, leader lines when moved away), the superseded rows (measurements of earlier RTL, listed with
+    their labels in docs/lighting.md §8.1's table) as small light-grey marks without labels."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+    from matplotlib.ticker import FuncFormatter, LogLocator
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import figures
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
-    for ax, key, label in ((axes[0], "cells", "Yosys generic cells"), (axes[1], "x7_dsp48", "xc7 DSP48E1"),):
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5.4))
+    labels = []
+    for ax, key, label in ((axes[0], "cells", "Yosys generic cells"), (axes[1], "x7_dsp48", "xc7 DSP48E1")):
+        current = []
         for r in doc["rows"]:
             v = r.get(key)
             if v is None:
                 continue
             x = r["fragments_per_clock"].get("8", r["fragments_per_clock"].get("1"))
-            colour = "C0" if r["set"].startswith("full") else "C1"
             mk = "o" if r.get("spec_guard", 0) else "s"
-            ax.scatter([x], [v], marker=mk, facecolors="none" if r.get("superseded") else colour, edgecolors=colour)
-            ax.annotate(f"{r['set']} L{r['lanes']}{'' if r.get('share', 1) == 1 else ' S' + str(r['share'])} g{r.get('spec_guard', 0)}{_old(r)}",
-                        (x, v), fontsize=6, xytext=(3, 3), textcoords="offset points")
+            if r.get("superseded"):
+                ax.scatter([x], [v], marker=mk, s=14, facecolors="none", edgecolors="0.72", linewidths=0.7, zorder=2)
+                continue
+            colour = "C0" if r["set"].startswith("full") else "C1"
+            ax.scatter([x], [v], marker=mk, s=40, color=colour, zorder=3)
+            current.append((x, v, _label(r)))
+        obstacles = []
         if key == "x7_dsp48":
-            ax.axhline(XC7A35T["dsp"], color="0.5", ls="--", lw=0.8)
-            ax.text(0.02, XC7A35T["dsp"], "XC7A35T: 90 DSP48E1", fontsize=6, va="bottom", color="0.4",
-                    transform=ax.get_yaxis_transform())
+            ax.axhline(XC7A35T["dsp"], color="0.5", ls="--", lw=0.8, zorder=1)
+            obstacles.append(ax.text(0.985, XC7A35T["dsp"], f"XC7A35T holds {XC7A35T['dsp']} DSP48E1", fontsize=7,
+                                     ha="right", va="bottom", color="0.3", transform=ax.get_yaxis_transform(),
+                                     bbox=dict(facecolor="white", edgecolor="none", pad=1.0)))
         ax.set_xscale("log", base=2)
         ax.set_yscale("log")
-        ax.set_xlim(0.02, 1.6)
+        ax.set_xlim(0.015, 2.5)
+        ys = [r[key] for r in doc["rows"] if r.get(key) is not None]
+        if ys:
+            ax.set_ylim(min(ys) / 2, max(ys) * 2)
+        ax.yaxis.set_major_locator(LogLocator(base=10, subs=(1, 2, 5)))
+        ax.yaxis.set_minor_locator(LogLocator(base=10, subs=(1, 2, 3, 4, 5, 6, 7, 8, 9)))
+        ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:,.0f}"))
+        ax.yaxis.set_minor_formatter(FuncFormatter(lambda v, _: ""))
+        ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}" if v >= 1 else f"1/{1 / v:g}"))
         ax.set_xlabel("fragments per clock, every light slot enabled")
         ax.set_ylabel(label)
         ax.set_title(f"{label} against throughput")
-    fig.suptitle("lighting core (docs/lighting_cost.json): ○ spec_guard 5, □ spec_guard 0; hollow = first "
-                 "programmable RTL or older RTL; blue the full sets, orange the other named sets", fontsize=8)
+        ax.grid(alpha=0.25, which="both")
+        labels.append((ax, current, obstacles))
+    handles = [Line2D([], [], marker="o", ls="", color="C0", label="full sets (8 light slots)"),
+               Line2D([], [], marker="o", ls="", color="C1", label="other named sets"),
+               Line2D([], [], marker="o", ls="", mfc="none", color="0.3", label="○ spec_guard 5, □ spec_guard 0"),
+               Line2D([], [], marker="o", ls="", mfc="none", color="0.72", markersize=4,
+                      label="earlier RTL of the same sets (history: docs/lighting.md §8.1 table)")]
+    axes[0].legend(handles=handles, fontsize=7, loc="lower left")
+    fig.suptitle("Lighting core cost against throughput (docs/lighting_cost.json). Labels: feature set, L lanes, "
+                 "S share (clocks per light, when > 1),\ng spec_guard (extra fraction bits of the specular path)",
+                 fontsize=9)
+    figures.layout(fig)
+    for ax, current, obstacles in labels:
+        obstacles = obstacles + [l for l in [ax.get_legend()] if l is not None]
+        figures.place_labels(ax, sorted(current), fontsize=7, obstacles=obstacles)
     figures.save(fig, path, footer_text)
 
 
@@ -246,7 +284,18 @@ def main():
     ap.add_argument("--timeout", type=int, default=7200, help="seconds per synthesis step")
     ap.add_argument("--report", action="store_true",
                     help="only write docs/lighting.md §8.1's table and docs/lighting_cost.png from --out")
+    ap.add_argument("--plot", metavar="PNG",
+                    help="only redraw the figure of --out into PNG (docs/lighting.md is not touched)")
     a = ap.parse_args()
+    if a.plot:
+        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        import figures
+        figures.require("matplotlib")
+        if not os.path.exists(a.out):
+            sys.exit(f"lighting_cost.py: error: {a.out} does not exist")
+        plot(json.load(open(a.out)), a.plot, figures.footer(
+            "scripts/lighting_cost.py --plot (rows: " + os.path.relpath(a.out, ROOT) + ")"))
+        return
     if a.report:
         sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
         import figures

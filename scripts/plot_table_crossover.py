@@ -15,9 +15,12 @@ and, with --json, writes them. Needs matplotlib (Debian's /usr/bin/python3).
 """
 import argparse
 import json
+import os
 import sys
 
-import matplotlib
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import figures  # noqa: E402  scripts/figures.py: footer, atomic save, the overlap check
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -51,7 +54,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("files", nargs="+", help="shadecore sweep --json files (one per variant; cs16 is the reference)")
     ap.add_argument("--out", required=True, help="PNG to write")
-    ap.add_argument("--note", default="", help="provenance line printed under the plot (command, machine, date)")
+    ap.add_argument("--note", default="", help="provenance line printed under the plot (command, machine, date; "
+                    "default: this command line, this machine, today)")
     ap.add_argument("--json", help="also write the crossovers and the errors at a few n as JSON")
     a = ap.parse_args()
 
@@ -85,10 +89,9 @@ def main():
     ax.set_title("Table-and-interpolate (Mesa shine table) vs cs16: total error against cos^n")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
-    if a.note:
-        fig.text(0.01, 0.005, a.note, fontsize=6, ha="left", va="bottom", wrap=True)
-        fig.subplots_adjust(bottom=0.16)
-    fig.savefig(a.out, dpi=120)
+    short = [os.path.basename(x) if os.path.isabs(x) else x for x in sys.argv[1:]]  # keeps the footer on the figure
+    note = a.note or figures.footer("scripts/plot_table_crossover.py " + " ".join(short))
+    figures.save(fig, a.out, note, dpi=120)
     if a.json:
         with open(a.json, "w") as f:
             json.dump(summary, f, indent=2)

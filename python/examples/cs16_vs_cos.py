@@ -10,6 +10,10 @@ the feature set gl_default, programmed from a GL-like state dict; one fragment p
 core's double reference with exact cos^n. Everything is whole arrays: no Python loop over pixels or codes.
 """
 import argparse
+import datetime
+import os
+import platform
+import sys
 
 import matplotlib
 
@@ -18,6 +22,18 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import shadecore  # noqa: E402
+
+
+def footer(command):
+    """Command, machine and date, as every figure of the project names them (scripts/figures.py)."""
+    cpu = platform.machine()
+    try:
+        with open("/proc/cpuinfo") as f:
+            cpu = next((ln.split(":", 1)[1].strip() + f", {os.cpu_count()} cores" for ln in f
+                        if ln.startswith("model name")), cpu)
+    except OSError:
+        pass
+    return f"{command} | {cpu} | {datetime.date.today().isoformat()}"
 
 
 def lit_sphere(n, size=200):
@@ -79,6 +95,8 @@ def main():
     ax[3].set_title("exact (cos^n, double) − C model")
     ax[3].axis("off")
     fig.colorbar(im, ax=ax[3], label="output LSBs (2^-16), largest channel")
+    fig.supxlabel(footer("python/examples/cs16_vs_cos.py " + " ".join(sys.argv[1:])), x=0.01, ha="left", fontsize=6,
+                  color="0.35")
     fig.savefig(args.out, dpi=110)
     print(f"wrote {args.out} (shadecore {shadecore.__version__})")
 
