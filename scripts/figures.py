@@ -159,8 +159,14 @@ def check(fig, path, dpi):
         return
     import json
 
+    import matplotlib.text
+
+    problems = text_problems(fig, dpi)
+    today = datetime.date.today().isoformat()
+    if not any(machine() in t.get_text() and today in t.get_text() for t in fig.findobj(matplotlib.text.Text)):
+        problems.append("no footer naming this machine and today's date")
     with open(out, "a") as f:
-        f.write(json.dumps({"path": os.path.abspath(path), "problems": text_problems(fig, dpi)}) + "\n")
+        f.write(json.dumps({"path": os.path.abspath(path), "problems": problems}) + "\n")
 
 
 def _draw(fig, path, footer_text, dpi):
