@@ -946,7 +946,13 @@ def main():
         tmp = os.path.join(a.out, f".tradeoffs.png.tmp.{os.getpid()}")
         md = open(os.path.join(a.out, "tradeoffs.md")).read() if os.path.exists(os.path.join(a.out, "tradeoffs.md")) else ""
         m = re.search(r"Command: `([^`]*)`", md)
-        plot(rows, tmp, figures.footer(m.group(1) if m else "scripts/cost_report.py"))
+        w = re.search(r"Machine: (.*?); date: (\d{4}-\d{2}-\d{2})", md)
+        if m and w:  # the data's provenance: the report's command, machine and date, then when it was redrawn
+            footer = (f"{m.group(1)} | {w.group(1)} | {w.group(2)}; redrawn {datetime.date.today().isoformat()} "
+                      "by scripts/cost_report.py --replot")
+        else:
+            footer = figures.footer(m.group(1) if m else "scripts/cost_report.py")
+        plot(rows, tmp, footer)
         os.replace(tmp, os.path.join(a.out, "tradeoffs.png"))
         return 0
     cfgs = json.load(open(os.path.join(ROOT, "config", "configs.json")))

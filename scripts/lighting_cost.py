@@ -252,6 +252,14 @@ def plot(doc, path, footer_text):
     figures.save(fig, path, footer_text)
 
 
+def provenance(doc, out_json, how):
+    """The figure's footer: where its rows came from (file, machine, measurement dates), then how it was drawn."""
+    when = sorted(v[:10] for r in doc["rows"] for v in r.get("when", {}).values())
+    span = f"{when[0]} to {when[-1]}" if when else doc.get("date", "?")
+    return (f"rows: {os.path.relpath(out_json, ROOT)}, scripts/lighting_cost.py --steps ... | {doc.get('machine', '?')} | "
+            f"measured {span}; drawn {datetime.date.today().isoformat()} by {how}")
+
+
 def write_report(doc, out_json):
     """docs/lighting.md §8.1 (between the markers) and docs/lighting_cost.png from the JSON."""
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -264,7 +272,7 @@ def write_report(doc, out_json):
     block = MARK_BEGIN + "\n\n" + report_markdown(doc) + "\n" + MARK_END
     md = md[:md.index(MARK_BEGIN)] + block + md[md.index(MARK_END) + len(MARK_END):]
     png = os.path.join(ROOT, "docs", "lighting_cost.png")
-    plot(doc, png, figures.footer("scripts/lighting_cost.py --report (rows: " + os.path.relpath(out_json, ROOT) + ")"))
+    plot(doc, png, provenance(doc, out_json, "scripts/lighting_cost.py --report"))
     tmp = md_path + ".tmp"
     open(tmp, "w").write(md)
     os.replace(tmp, md_path)
@@ -293,8 +301,7 @@ def main():
         figures.require("matplotlib")
         if not os.path.exists(a.out):
             sys.exit(f"lighting_cost.py: error: {a.out} does not exist")
-        plot(json.load(open(a.out)), a.plot, figures.footer(
-            "scripts/lighting_cost.py --plot (rows: " + os.path.relpath(a.out, ROOT) + ")"))
+        plot(json.load(open(a.out)), a.plot, provenance(json.load(open(a.out)), a.out, "scripts/lighting_cost.py --plot"))
         return
     if a.report:
         sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
