@@ -31,6 +31,7 @@
 #include "commands.hpp"
 #include "output.hpp"
 #include "shadecore/common/args.hpp"
+#include "shadecore/common/legend.hpp"
 #include "shadecore/common/png.hpp"
 #include "shadecore/render/glref.hpp"
 #include "shadecore/render/render.hpp"
@@ -179,7 +180,19 @@ void run_gl_compare(const GlCompareArgs& a, bool json_given, bool size_given, bo
   if (dir_out >= 0) {
     files.emplace_back("mesa.png", canvas::encode_png(gl.width, gl.height, gl.rgb));
     files.emplace_back("exact.png", canvas::encode_png(fr.width, fr.height, exact_rgb));
-    files.emplace_back("diff.png", canvas::encode_png(fr.width, fr.height, cmp.diff_rgb));
+    // The amplified difference with its key below (glref.hpp, Comparison::diff_rgb; the image at the top left).
+    const std::string tol = std::to_string(a.tolerance);
+    const canvas::Canvas d = canvas::with_key_legend(
+        fr.width, fr.height, cmp.diff_rgb,
+        {{{0, 0, 0}, "equal (or background)"},
+         {{120, 120, 120}, "1.." + tol + " LSB (grey, 60 per LSB)"},
+         {{208, 0, 0}, "exact brighter than GL by more than " + tol + " LSB"},
+         {{0, 0, 208}, "GL brighter than exact by more than " + tol + " LSB"},
+         {{255, 255, 0}, "covered in one image only"},
+         {{255, 0, 255}, "a different object in each"},
+         {{60, 50, 40}, "not comparable: the exact image at 1/4"}},
+        "exact vs Mesa GL, 8-bit LSB, largest channel");
+    files.emplace_back("diff.png", canvas::encode_png(d.width, d.height, d.rgb));
   }
   if (json_given) {
     json j;

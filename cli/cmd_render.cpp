@@ -538,7 +538,13 @@ void run_render(const RenderArgs& a) {
     files.emplace_back("diff_exact.png", encode_png(d.width, d.height, d.rgb));
     if (a.rtl) {
       files.emplace_back("rtl.png", encode_png(rimg.width, rimg.height, render::to_rgb8(rimg)));
-      files.emplace_back("diff_rtl.png", encode_png(rimg.width, rimg.height, render::mismatch_rgb8(main_image, rimg)));
+      // The mismatch map with its key below (the image at the top left, pixel coordinates unchanged).
+      const Canvas k = with_key_legend(rimg.width, rimg.height, render::mismatch_rgb8(main_image, rimg),
+                                       {{{255, 255, 255}, "RTL pixel differs from the C model's"},
+                                        {{40, 40, 40}, "covered, RTL = C model"},
+                                        {{0, 0, 0}, "background (no object), equal"}},
+                                       "RTL vs C model, per pixel");
+      files.emplace_back("diff_rtl.png", encode_png(k.width, k.height, k.rgb));
     }
     if (sheet) files.emplace_back("contact_sheet.png", encode_png(sheet_canvas.width, sheet_canvas.height, sheet_canvas.rgb));
   }

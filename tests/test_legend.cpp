@@ -268,3 +268,35 @@ TEST(Legend, ContactSheetPlaceAndErrors) {
   // Small cells: columns widen to the longest header word instead of cutting it.
   EXPECT_GE(L.slot_w, text_box(0, 0, "cs16_faithful", 1).w);
 }
+
+// Issue 38: the key under diff_rtl.png and gl-compare's diff.png. For image widths from tiny to wide: the image
+// is where it was, every text and swatch inside the canvas and below the image, no two overlapping, each swatch
+// drawn in its colour.
+TEST(Legend, KeyLegendNeverOverlaps) {
+  const std::vector<KeyEntry> entries = {{{255, 255, 255}, "RTL pixel differs from the C model's"},
+                                         {{40, 40, 40}, "covered, RTL = C model"},
+                                         {{255, 0, 255}, "a different object in each, with a long explanation "
+                                                         "that has to wrap onto a second line on narrow images"}};
+  for (int w : {1, 7, 48, 96, 215, 216, 480, 700, 1700}) {
+    const int h = 20;
+    std::vector<uint8_t> img(static_cast<size_t>(w) * h * 3, 77);
+    KeyLegend L;
+    const Canvas cv = with_key_legend(w, h, img, entries, "RTL vs C model, per pixel", &L);
+    const std::string what = "width " + std::to_string(w);
+    const Box canvas{0, 0, cv.width, cv.height};
+    EXPECT_EQ(pixel(cv, w - 1, h - 1), (std::array<uint8_t, 3>{77, 77, 77})) << what;
+    EXPECT_GE(L.texts.size(), entries.size() + 1) << what;
+    std::vector<Box> boxes;
+    for (const auto& t : L.texts) boxes.push_back(t.box);
+    for (const auto& b : L.swatches) boxes.push_back(b);
+    for (size_t i = 0; i < boxes.size(); ++i) {
+      EXPECT_TRUE(boxes[i].inside(canvas)) << what << ": box " << i << " outside the canvas";
+      EXPECT_GE(boxes[i].y, h) << what << ": box " << i << " on the image";
+      for (size_t j = i + 1; j < boxes.size(); ++j) EXPECT_FALSE(boxes[i].overlaps(boxes[j])) << what << ": " << i << "/" << j;
+    }
+    ASSERT_EQ(L.swatches.size(), entries.size());
+    for (size_t i = 0; i < entries.size(); ++i)
+      EXPECT_EQ(pixel(cv, L.swatches[i].x, L.swatches[i].y), entries[i].colour) << what;
+  }
+  EXPECT_THROW(with_key_legend(4, 4, std::vector<uint8_t>(5), entries, "x"), std::invalid_argument);
+}

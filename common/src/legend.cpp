@@ -228,6 +228,59 @@ Canvas with_diff_legend(int w, int h, const std::vector<uint8_t>& rgb, int F, co
   return cv;
 }
 
+// ---- Key legend -------------------------------------------------------------------------------------------
+
+KeyLegend layout_key_legend(int x, int y, int width, const std::vector<KeyEntry>& entries, const std::string& caption,
+                            int scale) {
+  KeyLegend L;
+  L.scale = scale = std::max(1, scale);
+  const int s = scale, m = 4 * s, line = Canvas::kTextRows * s, gap = 2 * s, sw = 7 * s;
+  const int inner_x = x + m, inner_w = std::max(1, width - 2 * m);
+  int yc = y + m;
+  for (const auto& ln : wrap_text(caption, inner_w, s)) {
+    L.texts.push_back({text_box(inner_x, yc, ln, s), ln, s});
+    yc += line + gap;
+  }
+  const int tx = inner_x + sw + 2 * s + 4 * s;  // swatch, its frame, a gap
+  const int tw = std::max(1, inner_x + inner_w - tx);
+  for (const auto& e : entries) {
+    L.swatches.push_back(Box{inner_x + s, yc + s, sw, sw});
+    for (const auto& ln : wrap_text(e.text, tw, s)) {
+      L.texts.push_back({text_box(tx, yc, ln, s), ln, s});
+      yc += line + gap;
+    }
+  }
+  L.region = Box{x, y, width, yc - gap + m - y};
+  return L;
+}
+
+KeyLegend draw_key_legend(Canvas& cv, int x, int y, int width, const std::vector<KeyEntry>& entries,
+                          const std::string& caption, int scale) {
+  const KeyLegend L = layout_key_legend(x, y, width, entries, caption, scale);
+  const int s = L.scale;
+  for (size_t i = 0; i < entries.size(); ++i) {
+    const Box& b = L.swatches[i];
+    cv.fill(b.x - s, b.y - s, b.w + 2 * s, b.h + 2 * s, kFrame, kFrame, kFrame);
+    cv.fill(b.x, b.y, b.w, b.h, entries[i].colour[0], entries[i].colour[1], entries[i].colour[2]);
+  }
+  for (const auto& t : L.texts) cv.text(t.box.x, t.box.y, t.text, kInk, kInk, kInk, s);
+  return L;
+}
+
+Canvas with_key_legend(int w, int h, const std::vector<uint8_t>& rgb, const std::vector<KeyEntry>& entries,
+                       const std::string& caption, KeyLegend* layout) {
+  if (w < 1 || h < 1 || rgb.size() != static_cast<size_t>(w) * h * 3)
+    throw std::invalid_argument("with_key_legend: bad image size");
+  const int s = legend_scale(w);
+  const int W = std::max(w, diff_legend_min_width(s));
+  const KeyLegend probe = layout_key_legend(0, h, W, entries, caption, s);
+  Canvas cv(W, h + probe.region.h, kStripGrey);
+  cv.blit(0, 0, w, h, rgb);
+  const KeyLegend L = draw_key_legend(cv, 0, h, W, entries, caption, s);
+  if (layout) *layout = L;
+  return cv;
+}
+
 // ---- Contact sheet ---------------------------------------------------------------------------------------
 
 Box SheetLayout::cell(int row, int col) const {

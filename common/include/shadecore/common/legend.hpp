@@ -124,6 +124,34 @@ DiffLegend draw_diff_legend(Canvas& cv, int x, int y, int width, int F, int scal
 Canvas with_diff_legend(int w, int h, const std::vector<uint8_t>& rgb, int F, const std::string& what = "cmodel",
                         DiffLegend* layout = nullptr);
 
+// ---- A key of colours (issue 38: diff_rtl.png, gl-compare's diff.png) -------------------------------------
+
+// One line of a key: a colour swatch and what the colour means.
+struct KeyEntry {
+  std::array<uint8_t, 3> colour{};
+  std::string text;
+};
+
+// What draw_key_legend draws and where: the caption's lines, then one entry per line (a framed swatch, its text
+// wrapped beside it).
+struct KeyLegend {
+  Box region;
+  int scale = 1;
+  std::vector<Box> swatches;     // one per entry, inside its frame
+  std::vector<TextBox> texts;    // caption lines and entry lines
+  [[nodiscard]] std::vector<TextBox> all_text() const { return texts; }
+};
+
+KeyLegend layout_key_legend(int x, int y, int width, const std::vector<KeyEntry>& entries, const std::string& caption,
+                            int scale);
+KeyLegend draw_key_legend(Canvas& cv, int x, int y, int width, const std::vector<KeyEntry>& entries,
+                          const std::string& caption, int scale);
+
+// An image (w × h RGB) with its key below, as with_diff_legend: the image at (0, 0), the canvas
+// max(w, diff_legend_min_width) wide.
+Canvas with_key_legend(int w, int h, const std::vector<uint8_t>& rgb, const std::vector<KeyEntry>& entries,
+                       const std::string& caption, KeyLegend* layout = nullptr);
+
 // ---- The contact sheet --------------------------------------------------------------------------------------
 
 // Columns are slots at least cell_w wide (wider when a header word needs it, plus one character between
