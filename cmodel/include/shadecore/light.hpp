@@ -875,6 +875,27 @@ inline std::vector<RegWrite> light_off_writes(int j) {
   return {{static_cast<uint32_t>(j) * kLightStride + kReg_light_mode, 0u}};
 }
 
+// GL's initial state of every register slot j's hardware has, with the light off: what a driver writes for each
+// light at context creation, since the registers are not reset. Position (0, 0, 1) (GL's (0, 0, 1, 0): the same
+// code as a unit direction and as a position), ambient 0, diffuse and specular 1 for light 0 and 0 for the
+// others, kc = 1, kl = kq = 0 where the slot attenuates, spot direction (0, 0, −1), cutoff 180 and exponent 0
+// where it can be spot. A later mode write alone (enable, kind) then meets defined registers.
+inline std::vector<RegWrite> light_reset_writes(const LightCore& core, int j) {
+  const FeatureSet& fs = core.features();
+  LightParams lp;
+  lp.enabled = false;
+  if (j != 0)
+    for (int c = 0; c < 3; ++c) lp.diffuse[c] = lp.specular[c] = 0;
+  lp.position[3] = 1;
+  if (fs.slot_can(j, LightKind::Spot)) lp.kind = LightKind::Spot;
+  else if (fs.slot_can(j, LightKind::PointAtt)) lp.kind = LightKind::PointAtt;
+  else if (fs.slot_can(j, LightKind::Point)) lp.kind = LightKind::Point;
+  else lp.kind = LightKind::Directional, lp.position[3] = 0;
+  std::vector<RegWrite> w = light_writes(core, j, lp);
+  w.front().data = 0;  // the mode word: off, kind 0 (light_writes puts it first)
+  return w;
+}
+
 inline uint32_t light_model_word(const ModeParams& m) {
   return (m.local_viewer ? kModelLocalViewer : 0u) | (m.phong ? kModelPhong : 0u) | (m.normalize ? kModelNormalize : 0u) |
          (m.separate_specular ? kModelSeparateSpecular : 0u) | (m.two_side ? kModelTwoSide : 0u);

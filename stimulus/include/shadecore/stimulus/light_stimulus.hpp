@@ -32,6 +32,7 @@
 #include <deque>
 #include <map>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "shadecore/stimulus/light_stream.hpp"
@@ -109,6 +110,7 @@ class LightStimulus {
       }
     }
     rng_ = Rng::for_item(seed_, index);
+    check_written(index);
     c.is_write = false;
     c.f = random_fragment();
     if (core_.features().two_side) c.f.back = (rng_.next() & 1) != 0;  // the facing bit (drawn only where it exists)
@@ -173,6 +175,43 @@ class LightStimulus {
       c.w = w;
       q.push_back(c);
       shadow_.write(W_, w.addr, w.data);
+      if (w.addr < written_.size()) written_[w.addr] = true;
+      check_due_ = true;
+    }
+  }
+  // The generator's own check of the register contract (docs/lighting.md §4: registers are not reset, a program
+  // writes every register it relies on): before a fragment, every register an enabled light relies on (mode,
+  // position, colours; attenuation for point_att and spot; the spot registers for spot) has been written. A
+  // 2-state simulator and the C model would agree on an unwritten register (both read 0) and hide the bug; a
+  // 4-state simulator and the hardware would not (it showed as X in Icarus).
+  void check_written(uint64_t frag) {
+    if (!check_due_) return;  // nothing written since the last check
+    check_due_ = false;
+    const FeatureSet& fs = core_.features();
+    for (int j = 0; j < fs.num_lights(); ++j) {
+      const uint32_t base = static_cast<uint32_t>(j) * kLightStride;
+      const uint32_t mode = shadow_.light[static_cast<size_t>(j)].mode;
+      const uint32_t k = mode >> 1;
+      if ((mode & kModeEnable) == 0 || k >= static_cast<uint32_t>(kNumLightKinds)) continue;
+      const auto kind = static_cast<LightKind>(k);
+      if (!fs.slot_can(j, kind)) continue;  // a kind the slot cannot take: the light is off
+      std::vector<uint32_t> regs;
+      for (uint32_t c = 0; c < 3; ++c)
+        for (uint32_t r : {kReg_light_position, kReg_light_ambient, kReg_light_diffuse, kReg_light_specular}) regs.push_back(r + c);
+      if (has_att(kind)) regs.insert(regs.end(), {kReg_light_kc, kReg_light_kl, kReg_light_kq});
+      if (kind == LightKind::Spot)
+        regs.insert(regs.end(), {kReg_light_spot_direction, kReg_light_spot_direction + 1, kReg_light_spot_direction + 2,
+                                 kReg_light_spot_cos, kReg_light_spot_exponent});
+      for (uint32_t r : regs)
+        if (!written_[base + r]) {
+          std::string name = std::to_string(base + r);
+          for (const auto& reg : kRegisters)
+            if (reg.per_light && r >= reg.addr && r < reg.addr + static_cast<uint32_t>(reg.count))
+              name = std::string(reg.name) + "[" + std::to_string(r - reg.addr) + "] (address " + name + ")";
+          throw std::logic_error("light stimulus: fragment " + std::to_string(frag) + " would be lit by light " +
+                                 std::to_string(j) + " (" + to_string(kind) + ") whose register " + name +
+                                 " was never written (a bug of the generator: registers are not reset)");
+        }
     }
   }
   void push(const std::vector<RegWrite>& ws) { queue_writes(pending_, ws); }
@@ -275,6 +314,9 @@ class LightStimulus {
     double ga[3] = {u(0, 0.4), u(0, 0.4), u(0, 0.4)};
     push(global_writes(core_, ga, random_modes()));
     push(random_material());
+    // every slot's registers at GL's initial state first (a driver's context creation), so a later raw mode
+    // write that changes a slot's kind meets defined attenuation and spot registers
+    for (int j = 0; j < core_.features().num_lights(); ++j) push(light_reset_writes(core_, j));
     for (int j = 0; j < core_.features().num_lights(); ++j) push(random_light(j));
   }
   // Raw register data: every register of the map, random bits or an extreme of its width.
@@ -397,6 +439,7 @@ class LightStimulus {
 
   // Directed programs (docs/lighting.md §7): each a register program followed by the hard fragments.
   void add_frag(const Fragment& f) {
+    check_written(directed_frags_);
     CoreCommand c;
     c.f = f;
     directed_.push_back(c);
@@ -412,6 +455,9 @@ class LightStimulus {
   void build_directed() {
     const int nl = core_.features().num_lights();
     const int64_t one = int64_t{1} << F_;
+    // 0. every slot's registers at GL's initial state (a driver's context creation): the passes below change a
+    //    slot's kind by its mode word alone
+    for (int j = 0; j < nl; ++j) add_writes(light_reset_writes(core_, j));
     // 1. a plain program; every hard fragment kind, several times
     double ga[3] = {0.2, 0.2, 0.2};
     add_writes(global_writes(core_, ga));
@@ -799,6 +845,8 @@ class LightStimulus {
   uint64_t directed_frags_ = 0;
   std::deque<CoreCommand> pending_;
   LightRegs shadow_{};
+  std::vector<bool> written_ = std::vector<bool>(size_t{1} << kRegAddrBits);  // addresses written so far
+  bool check_due_ = true;
   size_t pos_ = 0;
   uint64_t frags_ = 0, planned_ = 0;
 };
