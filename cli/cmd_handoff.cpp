@@ -58,7 +58,7 @@ void run(HandoffArgs& ha) {
   a.count_given = ha.sub->count("--count") > 0;
   if (ha.core == "lighting") {
     // The feature set fixes the unit and the widths: the unit options do not apply.
-    for (const char* opt : {"--variant", "--config", "--frac", "--guard", "--cutoff", "--norm", "--coef"})
+    for (const char* opt : {"--variant", "--config", "--frac", "--guard", "--cutoff", "--norm", "--coef", "--mreg"})
       if (ha.sub->count(opt) > 0)
         throw std::invalid_argument(std::string(opt) + " does not apply to --core lighting (the feature set fixes the "
                                     "specular unit and the widths)");
@@ -96,6 +96,9 @@ void add_handoff(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "on", "off"}));
   sub->add_option("--clock-target", l.clock_target, "Target clock period of the sign-off in ns (default 4.0)")
       ->check(CLI::Range(0.5, 1000.0));
+  sub->add_option("--mreg", a->unit->mreg,
+                  "cs16's pipelining parameter MREG: 1 puts a register inside each of its five products (latency 7 -> "
+                  "12, the same outputs; rtl/sc_cs16.v, docs/signoff.md), default 0");
   sub->add_option("--core", a->core, "Which core: specular (default) or lighting")->check(cliargs::NonEmpty("core"));
   sub->add_option("--features", l.features, "Lighting core feature set: a name of config/configs.json \"feature_sets\" "
                                             "or a JSON file (with --core lighting)")->check(cliargs::NonEmpty("feature set"));

@@ -109,7 +109,7 @@ std::string wrapper_v(const Bundle& b) {
       "// Purpose  : the bundle's top level: rtl/sc_specular.v with every parameter fixed, so no -G / -P /\n"
       "//            defparam is needed downstream.\n"
       "//              VARIANT = {vid} ({vname}), FRAC = {F}, GUARD = {G}, CUTOFF = {cut} ({cutname}),\n"
-      "//              TAGW = {tagw}, ENERGY = {norm}, COEFW = {coefw}\n"
+      "//              TAGW = {tagw}, ENERGY = {norm}, COEFW = {coefw}, MREG = {mregv}\n"
       "//            Ports, formats, handshake, reset, latency ({lat} cycles) and programming: interface.md.\n"
       "// Ports of sc_specular not brought out:\n{unused}"
       "// Made by  : {cmd}\n"
@@ -118,13 +118,14 @@ std::string wrapper_v(const Bundle& b) {
       "module {top} (\n{ports});\n\n"
       "  sc_specular #(\n"
       "      .VARIANT({vid}),\n      .FRAC   ({F}),\n      .GUARD  ({G}),\n      .CUTOFF ({cut}),\n"
-      "      .TAGW   ({tagw}),\n      .ENERGY ({norm}),\n      .COEFW  ({coefw})\n"
+      "      .TAGW   ({tagw}),\n      .ENERGY ({norm}),\n      .COEFW  ({coefw}){mreg}\n"
       "  ) u_core (\n{conns}  );\n\nendmodule\n\n`default_nettype wire\n",
       fmt::arg("top", b.top), fmt::arg("vid", static_cast<int>(s.variant)), fmt::arg("vname", s.variant_name),
       fmt::arg("F", s.format.frac), fmt::arg("G", s.format.guard), fmt::arg("cut", static_cast<int>(s.cutoff)),
       fmt::arg("cutname", to_string(s.cutoff)), fmt::arg("tagw", b.tagw), fmt::arg("norm", s.norm ? 1 : 0),
       fmt::arg("coefw", s.coef_bits()), fmt::arg("lat", b.latency), fmt::arg("unused", unused.empty() ? "//   (none)\n" : unused),
-      fmt::arg("cmd", command_line()), fmt::arg("ports", ports), fmt::arg("conns", conns));
+      fmt::arg("cmd", command_line()), fmt::arg("ports", ports), fmt::arg("conns", conns),
+      fmt::arg("mregv", s.mreg), fmt::arg("mreg", s.mreg != 0 ? fmt::format(",\n      .MREG   ({})", s.mreg) : std::string()));
 }
 
 std::string tb_config_vh(const Bundle& b, size_t maxvec) {

@@ -39,6 +39,7 @@ struct UnitOptions {
   std::string cutoff = "theta_cr";
   std::string norm;    // "" (off), a model key (phong, ...), or "all" (model and kind chosen per n)
   std::string coef = "fitted";
+  int mreg = 0;        // the pipelining parameter (handoff --mreg; rtl/sc_cs16.v MREG)
   CLI::Option* cutoff_opt = nullptr;
   CLI::Option* guard_opt = nullptr;
   CLI::Option* frac_opt = nullptr;
@@ -55,6 +56,7 @@ struct UnitSpec {
   bool norm = false;
   int norm_model = -1;  // index into kModels; -1 = per n (Unit::set_energy)
   CoefKind coef_kind = CoefKind::Fitted;
+  int mreg = 0;  // rtl/sc_cs16.v MREG: a register inside each product (cs16 only; Unit::set_mreg)
 
   // cs16 or one of its squarer forms (cs16_faithful, cs16_compact): G and the cut-off apply.
   [[nodiscard]] bool is_cs16() const { return variant == VariantId::cs16 || squarer_form(variant) != nullptr; }
@@ -72,11 +74,13 @@ struct UnitSpec {
     if (is_cs16()) s += " G=" + std::to_string(format.guard) + ") cutoff " + to_string(cutoff);
     else s += ")";
     if (norm) s += ", norm " + norm_label();
+    if (mreg) s += ", MREG " + std::to_string(mreg);
     return s;
   }
   [[nodiscard]] Unit unit() const {
     Unit u(variant, format, cutoff);
     if (norm) u.set_energy(true, norm_model, coef_kind);
+    u.set_mreg(mreg);
     return u;
   }
 };
@@ -128,6 +132,10 @@ inline UnitSpec resolve_unit(const UnitOptions& o) {
   } else if (coef_given) {
     throw std::invalid_argument("--coef needs --norm MODEL");
   }
+  s.mreg = o.mreg;
+  if (s.mreg != 0 && s.mreg != 1) throw std::invalid_argument("--mreg " + std::to_string(s.mreg) + " out of range (0 or 1)");
+  if (s.mreg != 0 && s.variant != VariantId::cs16)
+    throw std::invalid_argument("--mreg 1 applies to cs16 only (its reference form), not to " + s.variant_name);
   return s;
 }
 

@@ -19,10 +19,14 @@
 //          (rtl/sc_mul_pool.v, squaring k at stage k; each squarer takes the one valid stage of its
 //          group) and a fragment is accepted only SHARE stages behind the one ahead (rtl/sc_pipe_ctrl.v
 //          GAP): one fragment per SHARE clocks, the same outputs and latency.           (default 1)
+//   MREG   0 or 1 (FORM = 0, SHARE = 1): the pipelining parameter. 1 puts a register inside each of
+//          the five products (n·d and the four squarings, rtl/sc_mul_reg.v: a DSP block's M register;
+//          the standard-cell flow places it between the partial-product tree and the final adder),
+//          so each product spans two clocks: LATENCY = 12, the same outputs.                (default 0)
 //
 // Ports : docs/spec.md §4 (clk_i, rst_ni synchronous active-low, AXI-Stream style valid/ready).
 //
-// Latency   : LATENCY = 7 clock cycles (FORM = 0; FORM = 1: 5, below). A fragment presented in
+// Latency   : LATENCY = 7 clock cycles (FORM = 0; 12 with MREG = 1; FORM = 1: 5, below). A fragment presented in
 //             cycle t and accepted at the rising edge that ends cycle t is presented on out_*
 //             (out_valid_o = 1) in cycle t+LATENCY, when out_ready_i is high throughout. In general
 //             the result appears after the LATENCY-th *advancing* edge counted from the accepting
@@ -88,7 +92,8 @@ module sc_cs16 #(
     parameter integer SQ_K3    = 99,
     parameter integer SQ_K4    = 99,
     parameter integer SQ_COMP  = 0,
-    parameter integer SHARE    = 1
+    parameter integer SHARE    = 1,
+    parameter integer MREG     = 0
 ) (
     // clk_i, rst_ni; mat_we_i, mat_n_i[10:0], mat_thr_i[FRAC:0]; in_valid_i, in_ready_o,
     // in_cos_i[FRAC+1:0], in_tag_i; out_valid_o, out_ready_i, out_spec_o[FRAC:0], out_tag_o
@@ -122,6 +127,12 @@ module sc_cs16 #(
     if (SHARE < 1 || SHARE > 4) begin : g_check_share
       sc_cs16_error_illegal_SHARE_legal_range_is_1_to_4 u_error ();
     end
+    if (MREG != 0 && MREG != 1) begin : g_check_mreg
+      sc_cs16_error_illegal_MREG_must_be_0_or_1 u_error ();
+    end
+    if (MREG != 0 && (FORM != 0 || SHARE != 1)) begin : g_check_mreg_form
+      sc_cs16_error_illegal_MREG_1_needs_FORM_0_and_SHARE_1 u_error ();
+    end
   endgenerate
 
   localparam [F:0]    ONE      = {1'b1, {F{1'b0}}};           // 2^F, cos θ = 1.0
@@ -130,8 +141,9 @@ module sc_cs16 #(
 
   // ---------------------------------------------------------------------------- handshake
   // One global enable: every stage moves when the output stage is empty or being taken.
-  // LATENCY register stages: S0..S6 in the reference form, S1..S5 in FORM = 1 (no S0, no S6).
-  localparam integer LATENCY = (FORM == 0) ? 7 : 5;
+  // LATENCY register stages: S0..S6 in the reference form (and with MREG = 1 the five product
+  // registers M1..M5), S1..S5 in FORM = 1 (no S0, no S6).
+  localparam integer LATENCY = (FORM == 0) ? 7 + 5 * MREG : 5;
   wire               adv;                  // global enable (rtl/sc_pipe_ctrl.v)
   wire [LATENCY-1:0] v_stage;              // valid bit of each stage (the shared squarers' selection)
   sc_pipe_ctrl #(.DEPTH(LATENCY), .GAP((FORM == 0) ? SHARE : 1)) u_ctrl (
@@ -162,6 +174,8 @@ module sc_cs16 #(
     end
   endfunction
 
+  genvar k;
+
   // ---------------------------------------------------------------------------- S0: clamp
   wire        cos_neg  = in_cos_i[F+1];
   wire        cos_over = !cos_neg && (in_cos_i[F:0] > ONE);
@@ -186,17 +200,43 @@ module sc_cs16 #(
       end
 
       // ---------------------------------------------------------------------------- S1: scale, offset, cut
-      wire [BW-1:0] nd      = {{(BW-11){1'b0}}, s0_n_q} * {{(BW-F-1){1'b0}}, s0_d_q};  // < 2^(F+11)
-      wire [BW-1:0] base    = BASE_ONE - nd;                 // two's complement, exact
-      wire          base_le0 = (nd >= BASE_ONE);             // base <= 0
-      wire [BW-1:0] mag     = base_le0 ? (nd - BASE_ONE) : base;  // |base|
+      // base = 2^(F+4) − n·d (signed, exact). MREG = 1: the same integer as n·c + (16 − n)·2^F, so no
+      // subtractor d = 2^F − c sits between the input and S0 (S0's d is unused) nor in front of the
+      // multiplier; n·c is an rtl/sc_mul_reg.v whose register M1 sits between S0 and S1, and the cut test,
+      // 16 − n and the tag wait in M1 beside it.
+      wire [BW-1:0]   base;                                  // two's complement, exact
+      wire            base_le0;                              // base <= 0
+      wire [BW-1:0]   mag;                                   // |base|
+      wire [TAGW-1:0] s0_tag_m;                              // the tag beside the product
+      wire            cthr_m;                                // c < thr beside the product
+      if (MREG != 0) begin : g_nd_m
+        wire [BW-1:0] nc;                                    // n·c <= 2^(F+10)
+        wire [12:0]   k_m;                                   // 16 − n, two's complement
+        sc_mul_reg #(.AW(11), .BW(F+1), .PW(BW), .SIGNED(0)) u_nd (
+            .clk_i(clk_i), .en_i(adv), .a_i(s0_n_q), .b_i(s0_c_q), .p_o(nc));
+        sc_delay #(.W(TAGW + 14), .DEPTH(1)) u_dly_m1 (
+            .clk_i(clk_i), .en_i(adv), .d_i({s0_tag_q, s0_c_q < s0_thr_q, 13'd16 - {2'b00, s0_n_q}}),
+            .q_o({s0_tag_m, cthr_m, k_m}));
+        assign base     = nc + {k_m, {F{1'b0}}};            // BW = F + 13
+        assign base_le0 = base[BW-1] || (base == {BW{1'b0}});
+        assign mag      = base[BW-1] ? ({BW{1'b0}} - base) : base;   // base = 0 gives 0 either way
+        wire unused_d = &{1'b0, s0_d_q};
+      end else begin : g_nd
+        wire [BW-1:0] nd = {{(BW-11){1'b0}}, s0_n_q} * {{(BW-F-1){1'b0}}, s0_d_q};  // < 2^(F+11)
+        assign base     = BASE_ONE - nd;
+        assign base_le0 = (nd >= BASE_ONE);
+        assign mag      = base_le0 ? (nd - BASE_ONE) : base;
+        assign s0_tag_m = s0_tag_q;
+        assign cthr_m   = s0_c_q < s0_thr_q;
+      end
       wire          cut;
       // cut decision (one test per CUTOFF form)
       if (CUTOFF == 0) begin : g_cut_theta_cr
-        assign cut = (s0_c_q < s0_thr_q);
+        assign cut = cthr_m;
+        wire unused_le0 = &{1'b0, base_le0};               // the sign test is the other form's cut
       end else begin : g_cut_sign_clamp
         assign cut = base_le0;
-        wire unused_thr = &{1'b0, s0_thr_q, s0_c_q};       // thr and c are not needed by this form
+        wire unused_thr = &{1'b0, cthr_m};                 // thr and c are not needed by this form
       end
       // |base| <= 2^(F+4) for every shaded fragment (spec §3.2), so F+5 bits carry it exactly.
       wire [W:0] x0_d = cut ? {(W+1){1'b0}} : {mag[F+4:0], {(G-4){1'b0}}};
@@ -207,24 +247,37 @@ module sc_cs16 #(
       always @(posedge clk_i) begin
         if (adv) begin
           s1_x_q   <= x0_d;
-          s1_tag_q <= s0_tag_q;
+          s1_tag_q <= s0_tag_m;
         end
       end
 
       // ---------------------------------------------------------------------------- S2..S5: x <- floor(x^2 / 2^W)
       // squaring k (0..3) reads stage S(k+1); with SHARE > 1 those of SHARE consecutive stages share one
-      // squarer, which takes the stage whose valid bit is set (rtl/sc_mul_pool.v)
+      // squarer, which takes the stage whose valid bit is set (rtl/sc_mul_pool.v); with MREG = 1 each
+      // squaring is an rtl/sc_mul_reg.v whose register M(k+2) sits between S(k+1) and S(k+2), the tag beside it
       localparam integer XW = W + 1;
       localparam [63:0]  SQ_W = {32'd0, XW[7:0], XW[7:0], XW[7:0], XW[7:0]};
       reg  [W:0]      s2_x_q, s3_x_q, s4_x_q, s5_x_q;
       reg  [TAGW-1:0] s2_tag_q, s3_tag_q, s4_tag_q, s5_tag_q;
       wire [4*XW-1:0] sq_in = {s4_x_q, s3_x_q, s2_x_q, s1_x_q};
       wire [4*2*XW-1:0] sq;   // squaring k's x·x at [2k·XW +: 2XW]
-      sc_mul_pool #(
-          .NOP(4), .SH(SHARE), .ON(15), .ST({32'd0, 8'd4, 8'd3, 8'd2, 8'd1}), .AW(SQ_W), .BW(SQ_W),
-          .AMX(XW), .BMX(XW), .SIGNED(0)
-      ) u_sq (
-          .a_i(sq_in), .b_i(sq_in), .sel_i(v_stage[4:1]), .p_o(sq));
+      wire [4*TAGW-1:0] tag_m;  // the tag of S(k+1) beside squaring k's product at [k·TAGW +: TAGW]
+      if (MREG != 0) begin : g_sq_m
+        for (k = 0; k < 4; k = k + 1) begin : g_k
+          sc_mul_reg #(.AW(XW), .BW(XW), .PW(2 * XW), .SIGNED(0)) u_sq (
+              .clk_i(clk_i), .en_i(adv), .a_i(sq_in[k*XW +: XW]), .b_i(sq_in[k*XW +: XW]),
+              .p_o(sq[k*2*XW +: 2*XW]));
+        end
+        sc_delay #(.W(4 * TAGW), .DEPTH(1)) u_dly_tag (
+            .clk_i(clk_i), .en_i(adv), .d_i({s4_tag_q, s3_tag_q, s2_tag_q, s1_tag_q}), .q_o(tag_m));
+      end else begin : g_sq
+        sc_mul_pool #(
+            .NOP(4), .SH(SHARE), .ON(15), .ST({32'd0, 8'd4, 8'd3, 8'd2, 8'd1}), .AW(SQ_W), .BW(SQ_W),
+            .AMX(XW), .BMX(XW), .SIGNED(0)
+        ) u_sq (
+            .a_i(sq_in), .b_i(sq_in), .sel_i(v_stage[4:1]), .p_o(sq));
+        assign tag_m = {s4_tag_q, s3_tag_q, s2_tag_q, s1_tag_q};
+      end
       wire [2*W+1:0] sq1 = sq[0*2*XW +: 2*XW];
       wire [2*W+1:0] sq2 = sq[1*2*XW +: 2*XW];
       wire [2*W+1:0] sq3 = sq[2*2*XW +: 2*XW];
@@ -235,13 +288,13 @@ module sc_cs16 #(
       always @(posedge clk_i) begin
         if (adv) begin
           s2_x_q   <= sq1[2*W:W];
-          s2_tag_q <= s1_tag_q;
+          s2_tag_q <= tag_m[0*TAGW +: TAGW];
           s3_x_q   <= sq2[2*W:W];
-          s3_tag_q <= s2_tag_q;
+          s3_tag_q <= tag_m[1*TAGW +: TAGW];
           s4_x_q   <= sq3[2*W:W];
-          s4_tag_q <= s3_tag_q;
+          s4_tag_q <= tag_m[2*TAGW +: TAGW];
           s5_x_q   <= sq4[2*W:W];
-          s5_tag_q <= s4_tag_q;
+          s5_tag_q <= tag_m[3*TAGW +: TAGW];
         end
       end
 

@@ -30,6 +30,8 @@
 //   SHARE    1..4 (the lighting core's `share`; default 1): cs16 and schlick_nr share their multipliers
 //            over SHARE consecutive stages and accept a fragment at most every SHARE clocks (their
 //            headers); the other units ignore it.
+//   MREG     0 or 1 (default 0): the pipelining parameter of cs16 (SHARE = 1; rtl/sc_cs16.v): a register
+//            inside each of its five products, latency 7 -> 12, the same outputs; the other units ignore it.
 //   COEFW    coefficient (and, with ENERGY = 1, output) width I+F, FRAC+1..FRAC+16 (default FRAC+8,
 //            enough for every model's coef over n = 16..1024). mat_coef_i is ignored when ENERGY = 0.
 // Table port: tab_we_i, tab_addr_i[9:0], tab_value_i[FRAC:0], tab_delta_i[FRAC:0] write one entry of a
@@ -51,7 +53,8 @@ module sc_specular #(
     parameter integer TAGW    = 8,
     parameter integer ENERGY  = 0,
     parameter integer COEFW   = FRAC + 8,
-    parameter integer SHARE   = 1
+    parameter integer SHARE   = 1,
+    parameter integer MREG    = 0
 ) (
     input  wire              clk_i,
     input  wire              rst_ni,
@@ -84,7 +87,7 @@ module sc_specular #(
   wire [UTAGW-1:0] u_in_tag, u_out_tag;
   // GUARD and CUTOFF configure cs16 only. Referenced here so that lint does not flag them as unused
   // when sc_specular sits below another top with a Schlick VARIANT (they are ignored then).
-  wire unused_cfg = (GUARD == 0) || (CUTOFF == 0) || (SHARE == 0);
+  wire unused_cfg = (GUARD == 0) || (CUTOFF == 0) || (SHARE == 0) || (MREG == 0);
   // The table write port is used by the table units only.
   // (The table sizes are referenced here too: outside g_table they would be unused parameters.)
   wire is_table = ((VARIANT == VARIANT_TABLE256) || (VARIANT == VARIANT_TABLE1024)) &&
@@ -114,7 +117,8 @@ module sc_specular #(
           .GUARD (GUARD),
           .CUTOFF(CUTOFF),
           .TAGW  (UTAGW),
-          .SHARE (SHARE)
+          .SHARE (SHARE),
+          .MREG  (MREG)
       ) u_unit (
           `SC_SPECULAR_UNIT_PORTS
       );

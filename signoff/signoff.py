@@ -129,11 +129,15 @@ def synth(a, sdir):
     incs, files = read_filelist(a.bundle)
     lib = a.liberty
     inc = " ".join(f"-I{os.path.join(a.bundle, i)}" for i in incs)
-    src = " ".join(os.path.join(a.bundle, f) for f in files)
+    # rtl/sc_mul_reg.v (a product with its pipeline register, the units' MREG): a black box here, mapped by
+    # fastmul.py to tree | register | adder (the register between the tree and the final adder)
+    lib_files = [f for f in files if a.arith == "fast" and os.path.basename(f) == "sc_mul_reg.v"]
+    src = " ".join(os.path.join(a.bundle, f) for f in files if f not in lib_files)
     load = 4 * lib_input_cap(lib, DRIVE_CELL)
     with open(os.path.join(sdir, "abc.constr"), "w") as f:
         f.write(f"set_driving_cell {DRIVE_CELL}\nset_load {load:.5f}\n")
-    prep = (f"read_verilog -defer {inc} {src}\n"
+    prep = (f"read_verilog -defer {inc} {src}\n" +
+            "".join(f"read_verilog -lib {inc} {os.path.join(a.bundle, f)}\n" for f in lib_files) +
             f"hierarchy -check -top {a.top}" + "".join(f" -chparam {k} {v}" for k, v in a.chparam) + "\n"
             "proc; flatten; opt_expr; opt_clean; check; opt -nodffe -nosdff; fsm; opt; wreduce; peepopt; opt_clean\n")
     with open(os.path.join(sdir, "prep.ys"), "w") as f:
@@ -143,9 +147,13 @@ def synth(a, sdir):
         die(f"Yosys preparation failed (exit {rc}): {sdir}/yosys_prep.log")
     shapes = fastmul.shapes_of(os.path.join(sdir, "prep.json")) if a.arith == "fast" else []
     fastmul.write_map(shapes, os.path.join(sdir, "fastmul_map.v"))
+    mregs = fastmul.mulreg_shapes_of(os.path.join(sdir, "prep.json")) if lib_files else []
+    fastmul.write_mulreg_map(mregs, os.path.join(sdir, "mulreg_map.v"))
     os.remove(os.path.join(sdir, "prep.json"))
     period_ps = int(round(a.target * 1000))
     mapcmd = "techmap -map fastmul_map.v; opt_clean\n" if a.arith == "fast" else ""
+    if lib_files:
+        mapcmd = "techmap -autoproc -map mulreg_map.v; opt_clean\nselect -assert-none t:sc_mul_reg\n" + mapcmd
     script = (f"read_liberty -lib {lib}\nread_rtlil prep.il\n" + mapcmd +
               f"synth -top {a.top} -run coarse:\n"
               f"dfflibmap -liberty {lib}\n"
@@ -168,8 +176,9 @@ def synth(a, sdir):
     flops = sum(int(m.group(1)) for m in re.finditer(r"\s(\d+)\s*$", "\n".join(
         l for l in area.splitlines() if re.search(r"\bDFF\w+\b", l)), re.M))
     log(f"synth: {cells} cells, {um2:.0f} um2, {flops} flip-flops, {len(shapes)} multiplier shape(s) "
-        f"mapped fast ({time.time() - t0:.0f} s)")
-    return {"cells": cells, "area_um2": um2, "flops": flops, "mul_shapes": len(shapes), "load_pf": load}
+        f"mapped fast, {len(mregs)} registered-product shape(s) ({time.time() - t0:.0f} s)")
+    return {"cells": cells, "area_um2": um2, "flops": flops, "mul_shapes": len(shapes), "mulreg_shapes": len(mregs),
+            "load_pf": load}
 
 
 # ------------------------------------------------------------------------------------------- ports

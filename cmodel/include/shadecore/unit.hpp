@@ -50,6 +50,10 @@ inline std::string_view variant_name(VariantId id) {
   return "?";
 }
 
+// rtl/sc_cs16.v's latency (reference form) and the product registers MREG = 1 adds (n·d and four squarings)
+inline constexpr int kCs16Latency = 7;
+inline constexpr int kCs16MregStages = 5;
+
 class Unit {
  public:
   // Throws std::invalid_argument for an illegal format or an unknown variant.
@@ -95,11 +99,23 @@ class Unit {
   }
   [[nodiscard]] bool energy() const { return energy_; }
 
+  // The pipelining parameter MREG of rtl/sc_cs16.v (reference form, SHARE = 1): 1 puts a register inside
+  // each of cs16's five products (rtl/sc_mul_reg.v), kCs16MregStages more cycles, the same outputs.
+  void set_mreg(int mreg) {
+    if (mreg != 0 && mreg != 1) throw std::invalid_argument("MREG " + std::to_string(mreg) + " out of range (0 or 1)");
+    if (mreg != 0 && variant_ != VariantId::cs16)
+      throw std::invalid_argument("MREG = 1 applies to cs16 only (its reference form), not " +
+                                  std::string(variant_name(variant_)));
+    mreg_ = mreg;
+  }
+  [[nodiscard]] int mreg() const { return mreg_; }
+
   // Pipeline latency in cycles: accepted at the rising edge ending cycle t -> out_valid_o in t+latency.
   [[nodiscard]] int latency() const {
     if (is_cs16_form()) return kCs16FormLatency + (energy_ ? 2 : 0);  // rtl/sc_cs16.v FORM = 1: S1..S5
     switch (variant_) {
-      case VariantId::cs16: return 7 + (energy_ ? 2 : 0);  // rtl/sc_cs16.v: S0..S6 (+ sc_energy N1, N2)
+      case VariantId::cs16:  // rtl/sc_cs16.v: S0..S6 (+ M1..M5 with MREG = 1; + sc_energy N1, N2)
+        return kCs16Latency + kCs16MregStages * mreg_ + (energy_ ? 2 : 0);
       // Schlick units (docs/spec.md §6.5): div/iter S0, S1, Q0..Q(F+1); nr S0..S9.
       case VariantId::schlick_div: return schlick_div_latency(format_.frac) + (energy_ ? 2 : 0);
       case VariantId::schlick_nr: return kSchlickNrLatency + (energy_ ? 2 : 0);
@@ -182,6 +198,7 @@ class Unit {
   Cutoff cutoff_;
   Cs16Stages stages_{};  // cs16 forms only
   bool energy_ = false;
+  int mreg_ = 0;
   int energy_model_ = -1;
   CoefKind energy_kind_ = CoefKind::Fitted;
 };

@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: Apache-2.0
+// ============================================================================================
+// Filename : rtl/sc_mul_reg.v
+// Purpose  : a product with its own pipeline register (a DSP block's M register): p_o is
+//            (a_i · b_i) mod 2^PW of the operands as they were one enabled edge ago. The units'
+//            pipelining parameter MREG (rtl/sc_cs16.v) puts one behind each product, so that a
+//            product's delay is cut across two clock cycles.
+//
+// Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
+//   AW, BW  operand widths, >= 1                                           (default 8, 8)
+//   PW      product width, >= 1; the product is taken modulo 2^PW            (default 16)
+//   SIGNED  0: unsigned operands; 1: both two's complement                   (default 0)
+//
+// Ports : clk_i    clock, the register loads on the rising edge
+//         en_i     enable (the pipeline's global enable)
+//         a_i[AW-1:0], b_i[BW-1:0]  operands (a square: the same bits on both)
+//         p_o[PW-1:0]               the registered product
+//
+// Latency : 1 enabled edge. No reset: the pipeline's valid bits qualify the register.
+//
+// Implementation: behavioural (`*` then a register), so FPGA flows put the register into the DSP
+// block. The standard-cell flow (signoff/signoff.py) reads this module as a black box and maps each
+// instance with signoff/fastmul.py to the partial-product tree, the register on its two carry-save
+// rows, and the final Kogge-Stone adder after the register: the register cuts the product between
+// the tree and the adder. The gate-level simulation shows the mapped netlist computes the same bits.
+// ============================================================================================
+`default_nettype none
+
+module sc_mul_reg #(
+    parameter integer AW     = 8,
+    parameter integer BW     = 8,
+    parameter integer PW     = 16,
+    parameter integer SIGNED = 0
+) (
+    input  wire          clk_i,
+    input  wire          en_i,
+    input  wire [AW-1:0] a_i,
+    input  wire [BW-1:0] b_i,
+    output wire [PW-1:0] p_o
+);
+
+  // ---------------------------------------------------------------------------- check configuration
+  // Portable Verilog-2005 elaboration error: a failing check instantiates a module that does not
+  // exist, named after the message; every tool stops with "unknown module <message>".
+  generate
+    if (AW < 1 || BW < 1 || PW < 1) begin : g_check_w
+      sc_mul_reg_error_illegal_AW_BW_PW_must_be_at_least_1 u_error ();
+    end
+    if (SIGNED != 0 && SIGNED != 1) begin : g_check_signed
+      sc_mul_reg_error_illegal_SIGNED_must_be_0_or_1 u_error ();
+    end
+  endgenerate
+
+  wire [PW-1:0] p;
+  generate
+    if (SIGNED != 0) begin : g_signed
+      assign p = $signed(a_i) * $signed(b_i);
+    end else begin : g_unsigned
+      assign p = a_i * b_i;
+    end
+  endgenerate
+
+  reg [PW-1:0] m_q;
+  always @(posedge clk_i) begin
+    if (en_i) m_q <= p;
+  end
+  assign p_o = m_q;
+
+endmodule
+
+`default_nettype wire
