@@ -200,26 +200,24 @@ module sc_cs16 #(
       end
 
       // ---------------------------------------------------------------------------- S1: scale, offset, cut
-      // base = 2^(F+4) − n·d (signed, exact). MREG = 1: the same integer as n·c + (16 − n)·2^F, so no
-      // subtractor d = 2^F − c sits between the input and S0 (S0's d is unused) nor in front of the
-      // multiplier; n·c is an rtl/sc_mul_reg.v whose register M1 sits between S0 and S1, and the cut test,
-      // 16 − n and the tag wait in M1 beside it.
+      // base = 2^(F+4) − n·d (signed, exact). MREG = 1: the same integer as 2^(F+4) + n·(c − 2^F), where
+      // c − 2^F (in [−2^F, 0]) is c with bit F inverted read as a signed F+1-bit word: no subtractor between
+      // the input and S0 (S0's d is unused) nor in front of the multiplier. n·(c − 2^F) is a signed
+      // rtl/sc_mul_reg.v whose register M1 sits between S0 and S1; the cut test and the tag wait beside it.
       wire [BW-1:0]   base;                                  // two's complement, exact
       wire            base_le0;                              // base <= 0
       wire [BW-1:0]   mag;                                   // |base|
       wire [TAGW-1:0] s0_tag_m;                              // the tag beside the product
       wire            cthr_m;                                // c < thr beside the product
       if (MREG != 0) begin : g_nd_m
-        wire [BW-1:0] nc;                                    // n·c <= 2^(F+10)
-        wire [12:0]   k_m;                                   // 16 − n, two's complement
-        sc_mul_reg #(.AW(11), .BW(F+1), .PW(BW), .SIGNED(0)) u_nd (
-            .clk_i(clk_i), .en_i(adv), .a_i(s0_n_q), .b_i(s0_c_q), .p_o(nc));
-        sc_delay #(.W(TAGW + 14), .DEPTH(1)) u_dly_m1 (
-            .clk_i(clk_i), .en_i(adv), .d_i({s0_tag_q, s0_c_q < s0_thr_q, 13'd16 - {2'b00, s0_n_q}}),
-            .q_o({s0_tag_m, cthr_m, k_m}));
-        assign base     = nc + {k_m, {F{1'b0}}};            // BW = F + 13
+        wire [BW-1:0] ncd;                                   // n·(c − 2^F) in [−2^(F+10), 0]
+        sc_mul_reg #(.AW(12), .BW(F+1), .PW(BW), .SIGNED(1)) u_nd (
+            .clk_i(clk_i), .en_i(adv), .a_i({1'b0, s0_n_q}), .b_i({~s0_c_q[F], s0_c_q[F-1:0]}), .p_o(ncd));
+        sc_delay #(.W(TAGW + 1), .DEPTH(1)) u_dly_m1 (
+            .clk_i(clk_i), .en_i(adv), .d_i({s0_tag_q, s0_c_q < s0_thr_q}), .q_o({s0_tag_m, cthr_m}));
+        assign base     = ncd + BASE_ONE;
         assign base_le0 = base[BW-1] || (base == {BW{1'b0}});
-        assign mag      = base[BW-1] ? ({BW{1'b0}} - base) : base;   // base = 0 gives 0 either way
+        assign mag      = base;   // S1 holds base itself, signed (below): no |base| needed
         wire unused_d = &{1'b0, s0_d_q};
       end else begin : g_nd
         wire [BW-1:0] nd = {{(BW-11){1'b0}}, s0_n_q} * {{(BW-F-1){1'b0}}, s0_d_q};  // < 2^(F+11)
@@ -238,11 +236,20 @@ module sc_cs16 #(
         assign cut = base_le0;
         wire unused_thr = &{1'b0, cthr_m};                 // thr and c are not needed by this form
       end
-      // |base| <= 2^(F+4) for every shaded fragment (spec §3.2), so F+5 bits carry it exactly.
-      wire [W:0] x0_d = cut ? {(W+1){1'b0}} : {mag[F+4:0], {(G-4){1'b0}}};
-      wire unused_mag = &{1'b0, mag[BW-1:F+5]};
+      // |base| <= 2^(F+4) for every shaded fragment (spec §3.2), so F+5 bits carry it exactly. MREG = 1:
+      // S1 holds base itself, signed in F+6 bits (X1W = W+2), and the first squaring squares it
+      // (base² = |base|²): no negation after the multiplier.
+      localparam integer X1W = (MREG != 0) ? W + 2 : W + 1;
+      wire [X1W-1:0] x0_d;
+      if (MREG != 0) begin : g_x0_signed
+        assign x0_d = cut ? {X1W{1'b0}} : {mag[F+5:0], {(G-4){1'b0}}};
+        wire unused_mag = &{1'b0, mag[BW-1:F+6]};
+      end else begin : g_x0
+        assign x0_d = cut ? {X1W{1'b0}} : {mag[F+4:0], {(G-4){1'b0}}};
+        wire unused_mag = &{1'b0, mag[BW-1:F+5]};
+      end
 
-      reg [W:0]      s1_x_q;
+      reg [X1W-1:0]  s1_x_q;
       reg [TAGW-1:0] s1_tag_q;
       always @(posedge clk_i) begin
         if (adv) begin
@@ -259,18 +266,23 @@ module sc_cs16 #(
       localparam [63:0]  SQ_W = {32'd0, XW[7:0], XW[7:0], XW[7:0], XW[7:0]};
       reg  [W:0]      s2_x_q, s3_x_q, s4_x_q, s5_x_q;
       reg  [TAGW-1:0] s2_tag_q, s3_tag_q, s4_tag_q, s5_tag_q;
-      wire [4*XW-1:0] sq_in = {s4_x_q, s3_x_q, s2_x_q, s1_x_q};
+      wire [4*XW-1:0] sq_in = {s4_x_q, s3_x_q, s2_x_q, s1_x_q[W:0]};
       wire [4*2*XW-1:0] sq;   // squaring k's x·x at [2k·XW +: 2XW]
       wire [4*TAGW-1:0] tag_m;  // the tag of S(k+1) beside squaring k's product at [k·TAGW +: TAGW]
       if (MREG != 0) begin : g_sq_m
-        for (k = 0; k < 4; k = k + 1) begin : g_k
+        // squaring 0 of the signed S1 (W+2 bits; the square <= 2^(2W) fits the same 2W+2 bits), 1..3 unsigned
+        sc_mul_reg #(.AW(XW + 1), .BW(XW + 1), .PW(2 * XW), .SIGNED(1)) u_sq0 (
+            .clk_i(clk_i), .en_i(adv), .a_i(s1_x_q), .b_i(s1_x_q), .p_o(sq[0 +: 2*XW]));
+        for (k = 1; k < 4; k = k + 1) begin : g_k
           sc_mul_reg #(.AW(XW), .BW(XW), .PW(2 * XW), .SIGNED(0)) u_sq (
               .clk_i(clk_i), .en_i(adv), .a_i(sq_in[k*XW +: XW]), .b_i(sq_in[k*XW +: XW]),
               .p_o(sq[k*2*XW +: 2*XW]));
         end
+        wire unused_sq_in = &{1'b0, sq_in[XW-1:0]};   // squaring 0 reads the signed s1_x_q
         sc_delay #(.W(4 * TAGW), .DEPTH(1)) u_dly_tag (
             .clk_i(clk_i), .en_i(adv), .d_i({s4_tag_q, s3_tag_q, s2_tag_q, s1_tag_q}), .q_o(tag_m));
       end else begin : g_sq
+        wire unused_s1 = &{1'b0, s1_x_q};   // (read through sq_in; X1W = W+1 here)
         sc_mul_pool #(
             .NOP(4), .SH(SHARE), .ON(15), .ST({32'd0, 8'd4, 8'd3, 8'd2, 8'd1}), .AW(SQ_W), .BW(SQ_W),
             .AMX(XW), .BMX(XW), .SIGNED(0)
