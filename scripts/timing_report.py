@@ -66,7 +66,10 @@ def rows_of(cfg, only, configs):
         for c in cfg["configs"]:
             if c["name"] in configs:
                 rows.append({"name": v["name"], "kind": "unit", "config": c, "contract": v["contract"],
-                             "variant": v, "table": "entries" in v})
+                             "variant": v, "table": "entries" in v, "mreg": 0})
+                if v.get("mreg"):  # the pipelining parameter (rtl/sc_cs16.v MREG): a row with it on
+                    rows.append({"name": v["name"] + "+mreg", "kind": "unit", "config": c, "contract": v["contract"],
+                                 "variant": v, "table": False, "mreg": 1})
     for s in cfg["feature_sets"]:
         rows.append({"name": s["name"], "kind": "lighting", "config": {"name": s.get("config", "default")},
                      "contract": "lighting", "set": s, "table": False})
@@ -80,7 +83,7 @@ def rows_of(cfg, only, configs):
 
 
 def row_id(r):
-    return f"{r['kind']}:{r['name']}:{r['config']['name']}"
+    return f"{r['kind']}:{r['name']}:{r['config']['name']}"  # name carries +mreg
 
 
 def bundle(a, r, d):
@@ -100,7 +103,9 @@ def bundle(a, r, d):
     cmd = [a.shadecore, "handoff", "--out", d, "--no-ice40", "--synth", "skip", "--signoff", "on",
            "--clock-target", str(a.target), "--seed", "1", "--count", str(count_of(a, r))]
     if r["kind"] == "unit":
-        cmd += ["--variant", r["name"], "--config", r["config"]["name"]]
+        cmd += ["--variant", r["variant"]["name"], "--config", r["config"]["name"]]
+        if r.get("mreg"):
+            cmd += ["--mreg", str(r["mreg"])]
     else:
         cmd += ["--core", "lighting", "--features", r["name"]]
     p = subprocess.run(cmd, capture_output=True, text=True, timeout=a.timeout)
