@@ -1,0 +1,657 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
+"""Mutation score of the handoff benches (issue 36, docs/mutation.md).
+
+For each design point: a handoff bundle from the CLI (`shadecore handoff ... --synth skip --signoff off`),
+the unit's module elaborated with the bundle's own parameters (Yosys: read the bundle's RTL, `hierarchy
+-top <bundle top>`, the derived unit module renamed to its plain name, then `hierarchy -top <unit>; proc;
+flatten; opt`, as MCY prepares a design), `mutate -list N -seed S` (fixed seed) and, per mutant, `mutate`
+applied and `write_verilog` under the module's own name (its parameter list kept, unused, so the wrapper's
+`#(...)` still binds). The bundle's run_icarus.sh then runs with FILELIST= a copy of filelist.f in which the
+unit's file is that mutant (every other module unchanged), cheapest check first:
+
+  hard     vectors/hard*.hex (the directed vectors), the recorded seed
+  random   vectors/random*.hex
+  nogap    every vector file, IN_GAP=0 OUT_STALL=0 (no gaps or backpressure: exact latency)
+  seed2    every vector file, SEED=2 RESET_AT=5 (other gaps / backpressure, an early reset)
+
+each bounded in time (timeout = max(--min-timeout, --timeout-factor x the unmutated design's time)).
+A bench failure kills the mutant; a stage that runs out of time makes it "timeout" (counted apart).
+A survivor is "equivalent" only when Yosys proves it (bounded by --eq-timeout): equiv_make of the original and
+the mutant (every same-named net paired, the mutated wire left out), equiv_simple -seq N, equiv_induct -seq N,
+`equiv_status -assert` (every pair proved, the output ports among them).
+Every other survivor needs a reason: scripts/mutation_reasons.json, keyed "<design>:<mutant id>".
+
+Results are cached per mutant (WORK/<design>/cache.json, written after each mutant, keyed by a fingerprint
+of the prepared design, the mutation list and the bench), so an interrupted run resumes where it stopped.
+
+  scripts/mutation.py [--design D ...] [--count 300] [--seed 1] [--jobs 2]   all listed designs; docs/
+  scripts/mutation.py --design cs16 --mutant 3 --expect killed               one mutant (ctest)
+  scripts/mutation.py --list                                                 the designs
+
+Exit status: 0 done (with --expect: the mutant had the expected result), 1 failure, 2 bad arguments.
+"""
+import argparse
+import datetime
+import hashlib
+import json
+import multiprocessing
+import os
+import platform
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+REASONS = os.path.join(ROOT, "scripts", "mutation_reasons.json")
+
+# Design points, in the order of the report. "handoff": the CLI's arguments; "unit": the mutated module
+# (None: from config/configs.json variants[].rtl[0]).
+DESIGNS = [
+    ("cs16", ["--variant", "cs16", "--config", "default"], None),
+    ("cs16_compact", ["--variant", "cs16_compact", "--config", "default"], None),
+    ("schlick_div", ["--variant", "schlick_div", "--config", "default"], None),
+    ("schlick_nr", ["--variant", "schlick_nr", "--config", "default"], None),
+    ("schlick_iter", ["--variant", "schlick_iter", "--config", "default"], None),
+    ("cs16_faithful", ["--variant", "cs16_faithful", "--config", "default"], None),
+    ("light_gl_default", ["--core", "lighting", "--features", "gl_default"], "sc_light"),
+    ("light_full_shared", ["--core", "lighting", "--features", "full_shared"], "sc_light"),
+]
+# Units that cannot be run: the handoff bundle has no bench for the table RAM.
+NO_BENCH = {
+    "table256": "no handoff bench for the table RAM (the bundle cannot be made for a table unit)",
+    "table1024": "no handoff bench for the table RAM (the bundle cannot be made for a table unit)",
+}
+STAGES = ["hard", "random", "nogap", "seed2"]
+
+
+class ArgError(Exception):
+    pass
+
+
+class OneLineParser(argparse.ArgumentParser):
+    def error(self, message):
+        sys.stderr.write("mutation.py: error: %s\n" % message)
+        sys.exit(2)
+
+
+def die(msg, code=1):
+    sys.stderr.write("mutation.py: error: %s\n" % msg)
+    sys.exit(code)
+
+
+def log(msg):
+    sys.stdout.write(msg + "\n")
+    sys.stdout.flush()
+
+
+def sha(*parts):
+    h = hashlib.sha256()
+    for p in parts:
+        h.update(p if isinstance(p, bytes) else str(p).encode())
+        h.update(b"\0")
+    return h.hexdigest()[:16]
+
+
+def run(cmd, cwd=None, env=None, timeout=None):
+    """Run cmd in its own process group; returns (rc or None on timeout, output, seconds)."""
+    t0 = time.time()
+    p = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                         start_new_session=True)
+    try:
+        out, _ = p.communicate(timeout=timeout)
+        return p.returncode, out.decode(errors="replace"), time.time() - t0
+    except subprocess.TimeoutExpired:
+        try:
+            os.killpg(p.pid, signal.SIGTERM)
+            out, _ = p.communicate(timeout=10)
+        except (subprocess.TimeoutExpired, ProcessLookupError):
+            try:
+                os.killpg(p.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+            out, _ = p.communicate()
+        return None, out.decode(errors="replace"), time.time() - t0
+
+
+def unit_module(design_args, unit):
+    if unit:
+        return unit
+    variant = design_args[design_args.index("--variant") + 1]
+    cfg = json.load(open(os.path.join(ROOT, "config", "configs.json")))
+    for v in cfg["variants"]:
+        if v["name"] == variant:
+            return os.path.splitext(v["rtl"][0])[0]
+    raise ArgError("unknown variant %s" % variant)
+
+
+# ----------------------------------------------------------------------------------------------------
+# preparation: bundle, elaborated unit, mutation list
+
+
+def make_bundle(cli, name, handoff_args, bundle, vec_seed, vec_count):
+    cmd = [cli, "handoff"] + handoff_args + ["--seed", str(vec_seed), "--count", str(vec_count),
+                                             "--no-ice40", "--synth", "skip", "--signoff", "off",
+                                             "--out", bundle, "--force"]
+    stamp = os.path.join(bundle, ".mutation_cmd")
+    if os.path.isfile(stamp) and open(stamp).read() == " ".join(cmd[1:]) and \
+            os.path.isfile(os.path.join(bundle, "run_icarus.sh")):
+        return cmd
+    log("[%s] %s" % (name, " ".join(["shadecore"] + cmd[1:])))
+    rc, out, secs = run(["nice", "-n", "10"] + cmd)
+    if rc != 0:
+        raise RuntimeError("handoff failed (%s):\n%s" % (rc, out[-3000:]))
+    with open(stamp, "w") as f:
+        f.write(" ".join(cmd[1:]))
+    log("[%s] bundle made in %.0f s" % (name, secs))
+    return cmd
+
+
+def read_filelist(bundle):
+    incdirs, files = [], []
+    for line in open(os.path.join(bundle, "filelist.f")):
+        line = line.strip()
+        if not line or line.startswith("//") or line.startswith("#"):
+            continue
+        if line.startswith("+incdir+"):
+            incdirs.append(line[len("+incdir+"):])
+        else:
+            files.append(line)
+    return incdirs, files
+
+
+def bundle_top(bundle):
+    m = re.search(r"^\s*(\w+)\s+dut\s*\(", open(os.path.join(bundle, "tb", "tb_dut.vh")).read(), re.M)
+    if not m:
+        raise RuntimeError("cannot find the design under test in tb/tb_dut.vh")
+    return m.group(1)
+
+
+def prepare(name, bundle, unit, count, seed, wdir):
+    """design.il (the unit elaborated with the bundle's parameters, flattened) and mutations.txt."""
+    incdirs, files = read_filelist(bundle)
+    unit_file = [f for f in files if os.path.basename(f) == unit + ".v"]
+    if len(unit_file) != 1:
+        raise RuntimeError("%s.v is not in the bundle's filelist.f" % unit)
+    top = bundle_top(bundle)
+    inc = " ".join("-I" + d for d in incdirs)
+    ys = os.path.join(wdir, "elab.ys")
+    with open(ys, "w") as f:
+        f.write("read_verilog %s %s\nhierarchy -check -top %s\nls\n" % (inc, " ".join(files), top))
+    rc, out, _ = run(["yosys", "-q", "-l", os.path.join(wdir, "elab.log"), ys], cwd=bundle)
+    if rc != 0:
+        raise RuntimeError("yosys elaboration failed:\n" + out[-3000:])
+    elab = open(os.path.join(wdir, "elab.log")).read()
+    # the parameters the wrapper passes to the unit (for the report; the derived module carries them)
+    params = {}
+    m = re.search(r"derive mode using pre-parsed AST for module `\\%s'\.\n((?:Parameter .*\n)*)" % unit, elab)
+    if m:
+        for pl in m.group(1).splitlines():
+            k, v = pl[len("Parameter \\"):].split(" = ", 1)
+            params[k] = v
+    derived = [ln.strip() for ln in elab.splitlines()
+               if re.fullmatch(r"\s+(\$paramod\S*\\%s|%s)" % (re.escape(unit), re.escape(unit)), ln)]
+    if len(derived) != 1:
+        raise RuntimeError("expected one instance of %s below %s, found %s" % (unit, top, derived))
+    ren = "" if derived[0] == unit else "rename %s %s\n" % (derived[0], unit)
+    with open(ys, "w") as f:
+        f.write("read_verilog %s %s\nhierarchy -check -top %s\n%shierarchy -check -top %s\n"
+                "proc\nflatten\nopt\nstat\nwrite_rtlil %s\nmutate -list %d -seed %d -o %s\n"
+                % (inc, " ".join(files), top, ren, unit, os.path.join(wdir, "design.il"), count, seed,
+                   os.path.join(wdir, "mutations.txt")))
+    rc, out, _ = run(["yosys", "-q", "-l", os.path.join(wdir, "prep.log"), ys], cwd=bundle)
+    if rc != 0:
+        raise RuntimeError("yosys preparation failed:\n" + out[-3000:])
+    muts = [ln.strip() for ln in open(os.path.join(wdir, "mutations.txt")) if ln.strip()]
+    # the unit's own parameter names: declared again (unused) in every mutant so the wrapper's #(...) binds
+    src = open(os.path.join(bundle, unit_file[0])).read()
+    hm = re.search(r"module\s+%s\s*#\s*\((.*?)\)\s*\(" % re.escape(unit), src, re.S)
+    pnames = re.findall(r"\bparameter\s+(?:integer\s+|signed\s+|\[[^\]]*\]\s*)*(\w+)", hm.group(1)) if hm else []
+    return {"unit_file": unit_file[0], "top": top, "params": params, "pnames": pnames, "mutations": muts}
+
+
+# ----------------------------------------------------------------------------------------------------
+# one mutant
+
+
+def write_mutant(ctx, idx, mdir):
+    mut = ctx["mutations"][idx - 1] if idx > 0 else None
+    vfile = os.path.join(mdir, "%s.v" % ctx["unit"])
+    ys = os.path.join(mdir, "mutate.ys")
+    with open(ys, "w") as f:
+        f.write("read_rtlil %s\n%s\nwrite_verilog -noattr %s\n" % (ctx["design_il"], mut or "", vfile))
+    rc, out, _ = run(["yosys", "-q", ys], cwd=mdir, timeout=300)
+    if rc != 0:
+        raise RuntimeError("yosys mutate failed:\n" + out[-2000:])
+    text = open(vfile).read()
+    if ctx["pnames"]:
+        decl = "#(" + ", ".join("parameter %s = 0" % p for p in ctx["pnames"]) + ") "
+        text, n = re.subn(r"^module %s\(" % re.escape(ctx["unit"]), "module %s %s(" % (ctx["unit"], decl),
+                          text, count=1, flags=re.M)
+        if n != 1:
+            raise RuntimeError("cannot find the module header in the mutant")
+    with open(vfile, "w") as f:
+        f.write(text)
+    fl = os.path.join(mdir, "filelist.f")
+    with open(os.path.join(ctx["bundle"], "filelist.f")) as src, open(fl, "w") as dst:
+        for line in src:
+            dst.write(vfile + "\n" if line.strip() == ctx["unit_file"] else line)
+    return fl
+
+
+def stage_env(ctx, stage, fl):
+    env = dict(os.environ, FILELIST=fl, TMPDIR=os.path.dirname(fl))
+    if stage == "hard":
+        env["VECTORS"] = " ".join(ctx["hard"])
+    elif stage == "random":
+        env["VECTORS"] = " ".join(ctx["random"])
+    elif stage == "nogap":
+        env.update(IN_GAP="0", OUT_STALL="0")
+    elif stage == "seed2":
+        env.update(SEED="2", RESET_AT="5")
+    return env
+
+
+def simulate(ctx, stage, fl, timeout):
+    rc, out, secs = run(["sh", "./run_icarus.sh"], cwd=ctx["bundle"], env=stage_env(ctx, stage, fl),
+                        timeout=timeout)
+    fail = [ln for ln in out.splitlines() if ln.startswith("FAIL")]
+    return rc, (fail[0] if fail else out.strip().splitlines()[-1] if out.strip() else ""), secs
+
+
+def equivalence(ctx, idx, mdir):
+    """'equivalent' (proved) or 'unknown' (not proved within the time bound), with a one-line account.
+
+    Yosys's equivalence flow on the original (gold) and the mutant (gate): equiv_make pairs every net of
+    the same name (ports, registers, internal nets) except the mutated wire itself (its value may differ
+    where the difference is masked further on), equiv_simple -seq N proves each pair on its cone and
+    equiv_induct -seq N proves the rest by induction (every pair, with the others as assumptions); only
+    `equiv_status -assert` (every pair proved, the output ports among them) counts as equivalent."""
+    mut = ctx["mutations"][idx - 1]
+    unit = ctx["unit"]
+    wire = re.search(r"-wire (\S+)", mut)
+    bl = os.path.join(mdir, "blacklist.txt")
+    with open(bl, "w") as f:
+        f.write((wire.group(1) + "\n") if wire else "")
+    ys = os.path.join(mdir, "equiv.ys")
+    n = ctx["eq_steps"]
+    with open(ys, "w") as f:
+        f.write("read_rtlil %s\ncopy %s gold\n%s\nrename %s gate\n"
+                "equiv_make -blacklist %s gold gate equiv\nhierarchy -top equiv\nflatten\nopt_clean\n"
+                "equiv_simple -seq %d\nequiv_induct -seq %d\nequiv_status -assert\n"
+                % (ctx["design_il"], unit, mut, unit, bl, n, n))
+    logf = os.path.join(mdir, "equiv.log")
+    rc, out, secs = run(["yosys", "-q", "-l", logf, ys], cwd=mdir, timeout=ctx["eq_timeout"])
+    logtxt = open(logf).read() if os.path.isfile(logf) else ""
+    if rc == 0 and "Equivalence successfully proven!" in logtxt:
+        return "equivalent", "equiv_simple/equiv_induct -seq %d: every pair proved (%.0f s)" % (n, secs)
+    if rc is None:
+        return "unknown", "equiv_*: not proved within %d s" % ctx["eq_timeout"]
+    m = re.search(r"Of those cells (\d+) are proven and (\d+) are unproven", logtxt)
+    return "unknown", "equiv_*: not proved (%s)" % ("%s of %d pairs unproven" % (m.group(2), int(m.group(1)) + int(m.group(2)))
+                                                   if m else "rc %s" % rc)
+
+
+def run_mutant(args):
+    ctx, idx = args
+    mdir = tempfile.mkdtemp(prefix="m%d_" % idx, dir=ctx["tmp"])
+    res = {"id": idx, "mutation": ctx["mutations"][idx - 1] if idx > 0 else "none"}
+    t0 = time.time()
+    try:
+        fl = write_mutant(ctx, idx, mdir)
+        res["status"] = "survived"
+        for stage in ctx["stages"]:
+            rc, line, secs = simulate(ctx, stage, fl, ctx["timeouts"][stage])
+            if rc is None:
+                res.update(status="timeout", stage=stage, detail="no result in %.0f s" % secs)
+                break
+            if rc != 0:
+                res.update(status="killed", stage=stage, detail=line[:300])
+                break
+        if res["status"] == "survived" and idx > 0 and ctx["eq_timeout"] > 0:
+            eq, why = equivalence(ctx, idx, mdir)
+            res["equivalence"] = why
+            if eq == "equivalent":
+                res["status"] = "equivalent"
+        if res["status"] == "survived" and idx > 0:
+            keep = os.path.join(ctx["wdir"], "survivors")
+            os.makedirs(keep, exist_ok=True)
+            shutil.copy(os.path.join(mdir, "%s.v" % ctx["unit"]), os.path.join(keep, "m%03d_%s.v" % (idx, ctx["unit"])))
+    except Exception as e:  # noqa: BLE001 - reported as an error result, the run goes on
+        res.update(status="error", detail=str(e)[-500:])
+    finally:
+        shutil.rmtree(mdir, ignore_errors=True)
+    res["seconds"] = round(time.time() - t0, 2)
+    return res
+
+
+def nice_init():
+    try:
+        os.nice(10)
+    except OSError:
+        pass
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+# ----------------------------------------------------------------------------------------------------
+# one design
+
+
+def load_cache(path, fp):
+    try:
+        c = json.load(open(path))
+        if c.get("fingerprint") == fp:
+            return c
+    except (OSError, ValueError):
+        pass
+    return {"fingerprint": fp, "results": {}}
+
+
+def save_cache(path, cache):
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        json.dump(cache, f, indent=1, sort_keys=True)
+    os.replace(tmp, path)
+
+
+def run_design(opts, name, handoff_args, unit_opt, only=None):
+    unit = unit_module(handoff_args, unit_opt)
+    wdir = os.path.join(opts.work, name)
+    os.makedirs(wdir, exist_ok=True)
+    bundle = os.path.join(wdir, "bundle")
+    cmd = make_bundle(opts.cli, name, handoff_args, bundle, opts.vec_seed, opts.vec_count)
+    prep = prepare(name, bundle, unit, opts.count, opts.seed, wdir)
+    vecs = sorted(f for f in os.listdir(os.path.join(bundle, "vectors")) if f.endswith(".hex"))
+    hard = ["vectors/" + f for f in vecs if f.startswith("hard")]
+    rand = ["vectors/" + f for f in vecs if not f.startswith("hard")]
+    stages = [s for s in STAGES if s in opts.stages and not (s == "hard" and not hard)
+              and not (s == "random" and not rand)]
+    ctx = dict(prep, unit=unit, bundle=bundle, wdir=wdir, design_il=os.path.join(wdir, "design.il"),
+               hard=hard, random=rand, stages=stages, eq_timeout=opts.eq_timeout, eq_steps=opts.eq_steps,
+               tmp=os.path.join(wdir, "tmp"), timeouts={})
+    os.makedirs(ctx["tmp"], exist_ok=True)
+    fp = sha(open(ctx["design_il"], "rb").read(), "\n".join(prep["mutations"]), " ".join(cmd[1:]),
+             ",".join(stages), opts.eq_timeout, opts.eq_steps,
+             *[open(os.path.join(bundle, v), "rb").read() for v in hard + rand])
+    cache_path = os.path.join(wdir, "cache.json")
+    cache = load_cache(cache_path, fp)
+    # the unmutated design through the same flow: must pass every stage; its times set the time bounds
+    if "baseline" not in cache:
+        fl = write_mutant(ctx, 0, tempfile.mkdtemp(prefix="m0_", dir=ctx["tmp"]))
+        base = {}
+        for stage in stages:
+            rc, line, secs = simulate(ctx, stage, fl, 3600)
+            if rc != 0:
+                raise RuntimeError("the unmutated design (Yosys round trip) fails stage %s: %s" % (stage, line))
+            base[stage] = round(secs, 2)
+        shutil.rmtree(os.path.dirname(fl), ignore_errors=True)
+        cache["baseline"] = base
+        save_cache(cache_path, cache)
+    for stage in stages:
+        ctx["timeouts"][stage] = max(opts.min_timeout, opts.timeout_factor * cache["baseline"][stage])
+    log("[%s] unit %s (%s), %d mutants (seed %d), stages %s, baseline %s s" % (
+        name, unit, ", ".join("%s=%s" % kv for kv in prep["params"].items()) or "no parameters",
+        len(prep["mutations"]), opts.seed, "/".join(stages),
+        " ".join("%s %.1f" % (s, cache["baseline"][s]) for s in stages)))
+    ids = only if only else list(range(1, len(prep["mutations"]) + 1))
+    for i in ids:
+        if not 1 <= i <= len(prep["mutations"]):
+            raise ArgError("--mutant %d: %s has %d mutants" % (i, name, len(prep["mutations"])))
+    todo = [i for i in ids if str(i) not in cache["results"] or cache["results"][str(i)]["status"] == "error"]
+    done = len(ids) - len(todo)
+    if done:
+        log("[%s] %d of %d mutants from the cache" % (name, done, len(ids)))
+    counts = {}
+    for i in ids:
+        if str(i) in cache["results"] and i not in todo:
+            s = cache["results"][str(i)]["status"]
+            counts[s] = counts.get(s, 0) + 1
+    t0 = time.time()
+    if todo:
+        with multiprocessing.Pool(opts.jobs, initializer=nice_init) as pool:
+            for r in pool.imap_unordered(run_mutant, [(ctx, i) for i in todo]):
+                cache["results"][str(r["id"])] = r
+                save_cache(cache_path, cache)
+                done += 1
+                counts[r["status"]] = counts.get(r["status"], 0) + 1
+                log("[%s] %3d/%d  m%03d %-10s %-7s %5.1f s  | %s" % (
+                    name, done, len(ids), r["id"], r["status"], r.get("stage", ""), r["seconds"],
+                    " ".join("%s %d" % kv for kv in sorted(counts.items()))))
+    shutil.rmtree(ctx["tmp"], ignore_errors=True)
+    return {"name": name, "unit": unit, "handoff": "shadecore " + " ".join(cmd[1:]).replace(bundle, "DIR"),
+            "params": prep["params"], "stages": stages, "timeouts": ctx["timeouts"],
+            "baseline": cache["baseline"], "results": [cache["results"][str(i)] for i in ids],
+            "wall_seconds": round(time.time() - t0, 1)}
+
+
+# ----------------------------------------------------------------------------------------------------
+# report
+
+
+def summarise(d):
+    c = {k: 0 for k in ("killed", "survived", "timeout", "equivalent", "error")}
+    by_stage = {}
+    for r in d["results"]:
+        c[r["status"]] = c.get(r["status"], 0) + 1
+        if r["status"] == "killed":
+            by_stage[r["stage"]] = by_stage.get(r["stage"], 0) + 1
+    total = len(d["results"])
+    denom = total - c["equivalent"]
+    return dict(c, total=total, killed_by_stage=by_stage,
+                score=round(100.0 * c["killed"] / denom, 2) if denom else None)
+
+
+def tool_versions():
+    def first(cmd):
+        try:
+            return subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                  timeout=30).stdout.decode().strip().splitlines()[0]
+        except (OSError, IndexError, subprocess.SubprocessError):
+            return "?"
+    return {"yosys": first(["yosys", "-V"]), "icarus": first(["iverilog", "-V"]),
+            "python": platform.python_version()}
+
+
+def describe(mut):
+    """A short reading of a mutate command: mode, wire[bit], source lines."""
+    f = dict(re.findall(r"-(mode|wire|wirebit|cell|port|portbit|ctrlbit) (\S+)", mut))
+    srcs = re.findall(r"-src (\S+)", mut)
+    what = {"inv": "inverted", "const0": "tied to 0", "const1": "tied to 1",
+            "cnot0": "XOR-ed with bit %s of the same signal, inverted when it is 0" % f.get("ctrlbit"),
+            "cnot1": "XOR-ed with bit %s of the same signal, inverted when it is 1" % f.get("ctrlbit")}
+    return "%s[%s] %s (%s)" % (f.get("wire", "?"), f.get("wirebit", "?"), what.get(f.get("mode"), f.get("mode")),
+                               ", ".join(srcs))
+
+
+def write_report(opts, designs, md_path, json_path):
+    reasons = json.load(open(REASONS)) if os.path.isfile(REASONS) else {}
+    now = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
+    machine = "%s, %d cores, %s" % (platform.node(), os.cpu_count() or 0, platform.platform())
+    tools = tool_versions()
+    regen = "scripts/mutation.py --count %d --seed %d --jobs %d" % (opts.count, opts.seed, opts.jobs) + \
+        "".join(" --design %s" % d["name"] for d in designs)
+    out = {"command": regen, "date": now, "machine": machine, "tools": tools, "count": opts.count,
+           "seed": opts.seed, "vector_seed": opts.vec_seed, "vector_count": opts.vec_count,
+           "not_run": NO_BENCH, "designs": []}
+    L = ["<!-- SPDX-License-Identifier: Apache-2.0 -->",
+         "# Mutation score of the handoff benches",
+         "",
+         "How many injected bugs the self-checking handoff bench kills (issue 36). Generated by "
+         "`scripts/mutation.py` (its header has the method); the JSON beside it is docs/mutation.json.",
+         "",
+         "Method, in short: the unit's module is elaborated by Yosys with the parameters the bundle's wrapper "
+         "gives it, flattened (its sub-modules are mutated too, inside this instance), and `mutate -list N "
+         "-seed S` picks N mutations (invert a bit, tie it to 0 or 1, XOR it with another bit of its signal). "
+         "Each mutant is written back as the module's own file and the bundle's `run_icarus.sh` runs with it, "
+         "cheapest first: `hard` (the directed vectors), `random`, `nogap` (every vector, no input gaps and no "
+         "backpressure: exact latency), `seed2` (other gaps and backpressure, a reset after 5 vectors); each "
+         "stage is time-bounded (max(%d s, %g × the unmutated time)). A survivor counts as *equivalent* only "
+         "when Yosys proves it: `equiv_make` of original and mutant (same-named nets paired, the mutated wire "
+         "left out), `equiv_simple -seq 8`, `equiv_induct -seq 8`, `equiv_status -assert`; "
+         "every other survivor is listed with its reason. Score = killed / (total − equivalent)."
+         % (opts.min_timeout, opts.timeout_factor),
+         "",
+         "Regenerate: `%s` (about %s min on this machine; cached per mutant in %s/, so a rerun resumes)."
+         % (regen, "?", os.path.relpath(opts.work, ROOT) if opts.work.startswith(ROOT) else opts.work),
+         "",
+         "Machine: %s. Date: %s. Tools: %s; %s; Python %s. Mutation seed %d, vectors seed %d (%d random)."
+         % (machine, now, tools["yosys"], tools["icarus"], tools["python"], opts.seed, opts.vec_seed,
+            opts.vec_count),
+         "",
+         "| design | unit | mutants | killed (hard / random / nogap / seed2) | survived | timed out | "
+         "equivalent | score |",
+         "|---|---|---:|---|---:|---:|---:|---:|"]
+    total_min = 0.0
+    for d in designs:
+        s = summarise(d)
+        total_min += d.get("wall_seconds", 0) / 60.0
+        ks = s["killed_by_stage"]
+        L.append("| %s | %s | %d | %d (%s) | %d | %d | %d | %s |" % (
+            d["name"], d["unit"], s["total"], s["killed"], " / ".join(str(ks.get(st, 0)) for st in STAGES),
+            s["survived"], s["timeout"], s["equivalent"],
+            "%.2f %%" % s["score"] if s["score"] is not None else "-"))
+        out["designs"].append({"name": d["name"], "unit": d["unit"], "handoff": d["handoff"],
+                               "params": d["params"], "stages": d["stages"], "timeouts": d["timeouts"],
+                               "baseline_seconds": d["baseline"], "summary": s,
+                               "results": d["results"]})
+    for n, why in NO_BENCH.items():
+        L.append("| %s | sc_table | - | not run: %s | | | | |" % (n, why))
+    L[L.index("Regenerate: `%s` (about %s min on this machine; cached per mutant in %s/, so a rerun resumes)."
+              % (regen, "?", os.path.relpath(opts.work, ROOT) if opts.work.startswith(ROOT) else opts.work))] = \
+        "Regenerate: `%s` (about %.0f min of wall time on this machine for the mutants; cached per mutant in " \
+        "%s/, so a rerun resumes)." % (regen, max(total_min, 1),
+                                      os.path.relpath(opts.work, ROOT) if opts.work.startswith(ROOT) else opts.work)
+    L += ["", "Bundles: `shadecore handoff <args> --seed %d --count %d --no-ice40 --synth skip --signoff off "
+          "--out DIR`, per design:" % (opts.vec_seed, opts.vec_count), ""]
+    for d in designs:
+        L.append("- %s: `%s`; unit parameters %s" % (
+            d["name"], " ".join(x for x in d["handoff"].split() if True),
+            ", ".join("%s=%s" % kv for kv in d["params"].items()) or "(none)"))
+    L += ["", "## Survivors", ""]
+    missing = 0
+    for d in designs:
+        surv = [r for r in d["results"] if r["status"] in ("survived", "timeout", "error")]
+        L.append("### %s" % d["name"])
+        L.append("")
+        if not surv:
+            L.append("None: every non-equivalent mutant is killed.")
+        for r in surv:
+            key = "%s:%d" % (d["name"], r["id"])
+            why = reasons.get(key)
+            if why is None and r["status"] == "survived":
+                missing += 1
+            L.append("- m%03d %s — %s%s%s" % (
+                r["id"], r["status"], describe(r["mutation"]),
+                ("; " + r["equivalence"]) if r.get("equivalence") else "",
+                ("; " + r["detail"]) if r["status"] != "survived" and r.get("detail") else ""))
+            L.append("  - reason: %s" % (why or "(none written yet)"))
+            L.append("  - `%s`" % r["mutation"])
+        eqs = [r for r in d["results"] if r["status"] == "equivalent"]
+        if eqs:
+            L.append("")
+            L.append("Proved equivalent (%d): %s." % (len(eqs), ", ".join("m%03d %s" % (r["id"], describe(r["mutation"]))
+                                                                         for r in eqs)))
+        L.append("")
+    L += ["Table units (table256, table1024): not run — %s." % NO_BENCH["table256"], ""]
+    with open(md_path, "w") as f:
+        f.write("\n".join(L))
+    with open(json_path, "w") as f:
+        json.dump(out, f, indent=1)
+    return missing
+
+
+# ----------------------------------------------------------------------------------------------------
+
+
+def main(argv):
+    names = [d[0] for d in DESIGNS]
+    ap = OneLineParser(description="Mutation score of the handoff benches (docs/mutation.md).")
+    ap.add_argument("--design", action="append", help="design point (repeatable; default all): " + ", ".join(names))
+    ap.add_argument("--count", type=int, default=300, help="mutants per design (mutate -list N), default 300")
+    ap.add_argument("--seed", type=int, default=1, help="mutate -seed, default 1")
+    ap.add_argument("--jobs", type=int, default=2, help="parallel simulations (1..2 on this machine), default 2")
+    ap.add_argument("--mutant", type=int, action="append", help="run only this mutant id (repeatable; no report)")
+    ap.add_argument("--expect", choices=["killed", "survived", "timeout", "equivalent"],
+                    help="with --mutant: exit 0 only if every chosen mutant has this result")
+    ap.add_argument("--stages", default=",".join(STAGES), help="checks in order (default %s)" % ",".join(STAGES))
+    ap.add_argument("--cli", default=os.path.join(ROOT, "build", "cli", "shadecore"), help="the shadecore CLI")
+    ap.add_argument("--work", default=os.path.join(ROOT, "build-mutation"), help="work and cache directory")
+    ap.add_argument("--vec-seed", type=int, default=1, help="handoff --seed (vectors, gaps), default 1")
+    ap.add_argument("--vec-count", type=int, default=2000, help="handoff --count, default 2000")
+    ap.add_argument("--min-timeout", type=float, default=20.0, help="seconds, lower bound of a stage's time limit")
+    ap.add_argument("--timeout-factor", type=float, default=5.0, help="stage time limit / unmutated time, default 5")
+    ap.add_argument("--eq-timeout", type=int, default=300, help="seconds for the equivalence proof (0: skip)")
+    ap.add_argument("--eq-steps", type=int, default=8, help="equiv_simple/equiv_induct -seq N, default 8")
+    ap.add_argument("--md", default=os.path.join(ROOT, "docs", "mutation.md"))
+    ap.add_argument("--json", default=os.path.join(ROOT, "docs", "mutation.json"))
+    ap.add_argument("--no-report", action="store_true", help="do not write docs/mutation.md and .json")
+    ap.add_argument("--list", action="store_true", help="print the design points and exit")
+    opts = ap.parse_args(argv)
+    if opts.list:
+        for n, a, u in DESIGNS:
+            log("%-18s %s" % (n, " ".join(a)))
+        for n, why in NO_BENCH.items():
+            log("%-18s not run: %s" % (n, why))
+        return 0
+    for d in opts.design or []:
+        if d in NO_BENCH:
+            ap.error("--design %s: %s" % (d, NO_BENCH[d]))
+        if d not in names:
+            ap.error("--design %s: unknown (one of %s)" % (d, ", ".join(names)))
+    if not 1 <= opts.count <= 100000:
+        ap.error("--count must be 1..100000")
+    cores = os.cpu_count() or 1
+    if not 1 <= opts.jobs <= max(2, cores):
+        ap.error("--jobs must be 1..%d" % max(2, cores))
+    opts.stages = [s.strip() for s in opts.stages.split(",") if s.strip()]
+    bad = [s for s in opts.stages if s not in STAGES]
+    if bad or not opts.stages:
+        ap.error("--stages: unknown stage %s (of %s)" % (",".join(bad) or "(none)", ",".join(STAGES)))
+    if opts.expect and not opts.mutant:
+        ap.error("--expect needs --mutant")
+    if opts.mutant and (not opts.design or len(opts.design) != 1):
+        ap.error("--mutant needs exactly one --design")
+    if opts.min_timeout <= 0 or opts.timeout_factor <= 0 or opts.eq_timeout < 0 or opts.eq_steps < 1:
+        ap.error("time limits must be positive")
+    if not (os.path.isfile(opts.cli) and os.access(opts.cli, os.X_OK)):
+        ap.error("no shadecore CLI at %s (build it, or --cli)" % opts.cli)
+    for tool in ("yosys", "iverilog", "vvp"):
+        if not shutil.which(tool):
+            ap.error("%s not found" % tool)
+    opts.work = os.path.abspath(opts.work)
+    chosen = [d for d in DESIGNS if not opts.design or d[0] in opts.design]
+    results = []
+    for name, hargs, unit in chosen:
+        try:
+            results.append(run_design(opts, name, hargs, unit, only=opts.mutant))
+        except ArgError as e:
+            die(str(e), 2)
+        except RuntimeError as e:
+            die("%s: %s" % (name, e))
+        s = summarise(results[-1])
+        log("[%s] mutants %d killed %d survived %d timeout %d equivalent %d error %d score %s %%" % (
+            name, s["total"], s["killed"], s["survived"], s["timeout"], s["equivalent"], s["error"], s["score"]))
+    if opts.mutant:
+        bad = [r for d in results for r in d["results"] if opts.expect and r["status"] != opts.expect]
+        for d in results:
+            for r in d["results"]:
+                log("%s m%03d %s %s %s" % (d["name"], r["id"], r["status"], r.get("stage", ""), r.get("detail", "")))
+        if bad:
+            die("%d mutant(s) not %s" % (len(bad), opts.expect))
+        return 0
+    if not opts.no_report:
+        missing = write_report(opts, results, opts.md, opts.json)
+        log("wrote %s and %s%s" % (opts.md, opts.json,
+                                   " (%d survivors without a reason)" % missing if missing else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except KeyboardInterrupt:
+        die("interrupted (finished mutants are in the cache; run again to resume)", 130)
