@@ -97,13 +97,18 @@ def sha(*parts):
     return h.hexdigest()[:16]
 
 
+CHILD = [None]  # the running child's process group (killed when a worker is terminated)
+
+
 def run(cmd, cwd=None, env=None, timeout=None):
     """Run cmd in its own process group; returns (rc or None on timeout, output, seconds)."""
     t0 = time.time()
     p = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                          start_new_session=True)
+    CHILD[0] = p.pid
     try:
         out, _ = p.communicate(timeout=timeout)
+        CHILD[0] = None
         return p.returncode, out.decode(errors="replace"), time.time() - t0
     except subprocess.TimeoutExpired:
         try:
@@ -329,12 +334,22 @@ def run_mutant(args):
     return res
 
 
+def on_term(signum, frame):
+    if CHILD[0]:
+        try:
+            os.killpg(CHILD[0], signal.SIGTERM)
+        except OSError:
+            pass
+    os._exit(1)
+
+
 def nice_init():
     try:
         os.nice(10)
     except OSError:
         pass
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, on_term)
 
 
 # ----------------------------------------------------------------------------------------------------
@@ -375,10 +390,14 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
                tmp=os.path.join(wdir, "tmp"), timeouts={})
     os.makedirs(ctx["tmp"], exist_ok=True)
     fp = sha(open(ctx["design_il"], "rb").read(), "\n".join(prep["mutations"]), " ".join(cmd[1:]),
-             ",".join(stages), opts.eq_timeout, opts.eq_steps,
+             ",".join(stages), opts.eq_steps,
              *[open(os.path.join(bundle, v), "rb").read() for v in hard + rand])
     cache_path = os.path.join(wdir, "cache.json")
     cache = load_cache(cache_path, fp)
+    if opts.no_cache:
+        cache.pop("baseline", None)
+        for i in (only or list(range(1, len(prep["mutations"]) + 1))):
+            cache["results"].pop(str(i), None)
     # the unmutated design through the same flow: must pass every stage; its times set the time bounds
     if "baseline" not in cache:
         fl = write_mutant(ctx, 0, tempfile.mkdtemp(prefix="m0_", dir=ctx["tmp"]))
@@ -412,7 +431,8 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
             counts[s] = counts.get(s, 0) + 1
     t0 = time.time()
     if todo:
-        with multiprocessing.Pool(opts.jobs, initializer=nice_init) as pool:
+        pool = multiprocessing.Pool(opts.jobs, initializer=nice_init)
+        try:
             for r in pool.imap_unordered(run_mutant, [(ctx, i) for i in todo]):
                 cache["results"][str(r["id"])] = r
                 save_cache(cache_path, cache)
@@ -421,6 +441,12 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
                 log("[%s] %3d/%d  m%03d %-10s %-7s %5.1f s  | %s" % (
                     name, done, len(ids), r["id"], r["status"], r.get("stage", ""), r["seconds"],
                     " ".join("%s %d" % kv for kv in sorted(counts.items()))))
+            pool.close()
+        except BaseException:
+            pool.terminate()
+            raise
+        finally:
+            pool.join()
     shutil.rmtree(ctx["tmp"], ignore_errors=True)
     return {"name": name, "unit": unit, "handoff": "shadecore " + " ".join(cmd[1:]).replace(bundle, "DIR"),
             "params": prep["params"], "stages": stages, "timeouts": ctx["timeouts"],
@@ -584,11 +610,12 @@ def main(argv):
     ap.add_argument("--vec-count", type=int, default=2000, help="handoff --count, default 2000")
     ap.add_argument("--min-timeout", type=float, default=20.0, help="seconds, lower bound of a stage's time limit")
     ap.add_argument("--timeout-factor", type=float, default=5.0, help="stage time limit / unmutated time, default 5")
-    ap.add_argument("--eq-timeout", type=int, default=300, help="seconds for the equivalence proof (0: skip)")
+    ap.add_argument("--eq-timeout", type=int, default=60, help="seconds for the equivalence proof (0: skip)")
     ap.add_argument("--eq-steps", type=int, default=8, help="equiv_simple/equiv_induct -seq N, default 8")
     ap.add_argument("--md", default=os.path.join(ROOT, "docs", "mutation.md"))
     ap.add_argument("--json", default=os.path.join(ROOT, "docs", "mutation.json"))
     ap.add_argument("--no-report", action="store_true", help="do not write docs/mutation.md and .json")
+    ap.add_argument("--no-cache", action="store_true", help="run every chosen mutant again (the cache is rewritten)")
     ap.add_argument("--list", action="store_true", help="print the design points and exit")
     opts = ap.parse_args(argv)
     if opts.list:
