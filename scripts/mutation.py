@@ -14,6 +14,8 @@ unit's file is that mutant (every other module unchanged), cheapest check first:
   random   vectors/random*.hex
   nogap    every vector file, IN_GAP=0 OUT_STALL=0 (no gaps or backpressure: exact latency)
   seed2    every vector file, SEED=2 RESET_AT=5 (other gaps / backpressure, an early reset)
+  extra    more vectors from the CLI (`shadecore vectors ... --mode random`, no C++ change): units, three
+           files with n in 16..31, 32..127 and 128..1024 (seeds 11, 12, 13); lighting, one file of seed 11
 
 each bounded in time (timeout = max(--min-timeout, --timeout-factor x the unmutated design's time)).
 A bench failure kills the mutant; a stage that runs out of time makes it "timeout" (counted apart).
@@ -66,7 +68,7 @@ NO_BENCH = {
     "table256": "no handoff bench for the table RAM (the bundle cannot be made for a table unit)",
     "table1024": "no handoff bench for the table RAM (the bundle cannot be made for a table unit)",
 }
-STAGES = ["hard", "random", "nogap", "seed2"]
+STAGES = ["hard", "random", "nogap", "seed2", "extra"]
 
 
 class ArgError(Exception):
@@ -258,6 +260,8 @@ def stage_env(ctx, stage, fl):
         env.update(IN_GAP="0", OUT_STALL="0")
     elif stage == "seed2":
         env.update(SEED="2", RESET_AT="5")
+    elif stage == "extra":
+        env["VECTORS"] = " ".join(ctx["extra"])
     return env
 
 
@@ -302,14 +306,21 @@ def equivalence(ctx, idx, mdir):
 
 
 def run_mutant(args):
-    ctx, idx = args
+    ctx, idx, prev = args
     mdir = tempfile.mkdtemp(prefix="m%d_" % idx, dir=ctx["tmp"])
     res = {"id": idx, "mutation": ctx["mutations"][idx - 1] if idx > 0 else "none"}
-    t0 = time.time()
+    done = []
+    if prev and prev.get("status") == "survived":  # a survivor of fewer stages: only the new ones
+        res = dict(prev)
+        done = prev.get("stages", [])
+    t0 = time.time() - (prev or {}).get("seconds", 0) if done else time.time()
     try:
         fl = write_mutant(ctx, idx, mdir)
         res["status"] = "survived"
+        res["stages"] = ctx["stages"]
         for stage in ctx["stages"]:
+            if stage in done:
+                continue
             rc, line, secs = simulate(ctx, stage, fl, ctx["timeouts"][stage])
             if rc is None:
                 res.update(status="timeout", stage=stage, detail="no result in %.0f s" % secs)
@@ -317,7 +328,7 @@ def run_mutant(args):
             if rc != 0:
                 res.update(status="killed", stage=stage, detail=line[:300])
                 break
-        if res["status"] == "survived" and idx > 0 and ctx["eq_timeout"] > 0:
+        if res["status"] == "survived" and idx > 0 and ctx["eq_timeout"] > 0 and "equivalence" not in res:
             eq, why = equivalence(ctx, idx, mdir)
             res["equivalence"] = why
             if eq == "equivalent":
@@ -373,6 +384,29 @@ def save_cache(path, cache):
     os.replace(tmp, path)
 
 
+def make_extra(opts, name, handoff_args, wdir):
+    """The extra stage's vector files (shadecore vectors, random mode): n bands for a unit, a seed for lighting."""
+    edir = os.path.join(wdir, "extra")
+    os.makedirs(edir, exist_ok=True)
+    jobs = [(None, 11)] if "lighting" in handoff_args else [("16..31", 11), ("32..127", 12), ("128..1024", 13)]
+    files = []
+    for band, seed in jobs:
+        out = os.path.join(edir, "random_n%s_seed%d.hex" % ((band or "all").replace("..", "-"), seed))
+        cmd = [opts.cli, "vectors"] + handoff_args + ["--mode", "random", "--count", str(opts.vec_count),
+                                                      "--seed", str(seed), "--out", out]
+        if band:
+            cmd[-2:-2] = ["--n", band]
+        stamp = out + ".cmd"
+        if not (os.path.isfile(out) and os.path.isfile(stamp) and open(stamp).read() == " ".join(cmd[1:])):
+            rc, txt, _ = run(["nice", "-n", "10"] + cmd)
+            if rc != 0:
+                raise RuntimeError("shadecore vectors failed:\n" + txt[-2000:])
+            with open(stamp, "w") as f:
+                f.write(" ".join(cmd[1:]))
+        files.append(out)
+    return files
+
+
 def run_design(opts, name, handoff_args, unit_opt, only=None):
     unit = unit_module(handoff_args, unit_opt)
     wdir = os.path.join(opts.work, name)
@@ -383,15 +417,16 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
     vecs = sorted(f for f in os.listdir(os.path.join(bundle, "vectors")) if f.endswith(".hex"))
     hard = ["vectors/" + f for f in vecs if f.startswith("hard")]
     rand = ["vectors/" + f for f in vecs if not f.startswith("hard")]
+    extra = make_extra(opts, name, handoff_args, wdir) if "extra" in opts.stages else []
     stages = [s for s in STAGES if s in opts.stages and not (s == "hard" and not hard)
-              and not (s == "random" and not rand)]
+              and not (s == "random" and not rand) and not (s == "extra" and not extra)]
     ctx = dict(prep, unit=unit, bundle=bundle, wdir=wdir, design_il=os.path.join(wdir, "design.il"),
-               hard=hard, random=rand, stages=stages, eq_timeout=opts.eq_timeout, eq_steps=opts.eq_steps,
-               tmp=os.path.join(wdir, "tmp"), timeouts={})
+               hard=hard, random=rand, extra=extra, stages=stages, eq_timeout=opts.eq_timeout,
+               eq_steps=opts.eq_steps, tmp=os.path.join(wdir, "tmp"), timeouts={})
     os.makedirs(ctx["tmp"], exist_ok=True)
+    # the fingerprint: what a cached result depends on (a new stage re-runs the survivors in it only)
     fp = sha(open(ctx["design_il"], "rb").read(), "\n".join(prep["mutations"]), " ".join(cmd[1:]),
-             ",".join(stages), opts.eq_steps,
-             *[open(os.path.join(bundle, v), "rb").read() for v in hard + rand])
+             opts.eq_steps, *[open(os.path.join(bundle, v), "rb").read() for v in hard + rand])
     cache_path = os.path.join(wdir, "cache.json")
     cache = load_cache(cache_path, fp)
     if opts.no_cache:
@@ -399,16 +434,17 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
         for i in (only or list(range(1, len(prep["mutations"]) + 1))):
             cache["results"].pop(str(i), None)
     # the unmutated design through the same flow: must pass every stage; its times set the time bounds
-    if "baseline" not in cache:
+    base = cache.setdefault("baseline", {})
+    if any(st not in base for st in stages):
         fl = write_mutant(ctx, 0, tempfile.mkdtemp(prefix="m0_", dir=ctx["tmp"]))
-        base = {}
         for stage in stages:
+            if stage in base:
+                continue
             rc, line, secs = simulate(ctx, stage, fl, 3600)
             if rc != 0:
                 raise RuntimeError("the unmutated design (Yosys round trip) fails stage %s: %s" % (stage, line))
             base[stage] = round(secs, 2)
         shutil.rmtree(os.path.dirname(fl), ignore_errors=True)
-        cache["baseline"] = base
         save_cache(cache_path, cache)
     for stage in stages:
         ctx["timeouts"][stage] = max(opts.min_timeout, opts.timeout_factor * cache["baseline"][stage])
@@ -420,7 +456,10 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
     for i in ids:
         if not 1 <= i <= len(prep["mutations"]):
             raise ArgError("--mutant %d: %s has %d mutants" % (i, name, len(prep["mutations"])))
-    todo = [i for i in ids if str(i) not in cache["results"] or cache["results"][str(i)]["status"] == "error"]
+    def stale(r):
+        return r["status"] == "error" or (r["status"] == "survived" and
+                                          any(st not in r.get("stages", STAGES[:4]) for st in stages))
+    todo = [i for i in ids if str(i) not in cache["results"] or stale(cache["results"][str(i)])]
     done = len(ids) - len(todo)
     if done:
         log("[%s] %d of %d mutants from the cache" % (name, done, len(ids)))
@@ -433,9 +472,13 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
     if todo:
         pool = multiprocessing.Pool(opts.jobs, initializer=nice_init)
         try:
-            for r in pool.imap_unordered(run_mutant, [(ctx, i) for i in todo]):
+            for r in pool.imap_unordered(run_mutant, [(ctx, i, cache["results"].get(str(i))) for i in todo]):
                 cache["results"][str(r["id"])] = r
                 save_cache(cache_path, cache)
+                if r["status"] != "survived":
+                    stale_v = os.path.join(wdir, "survivors", "m%03d_%s.v" % (r["id"], unit))
+                    if os.path.exists(stale_v):
+                        os.remove(stale_v)
                 done += 1
                 counts[r["status"]] = counts.get(r["status"], 0) + 1
                 log("[%s] %3d/%d  m%03d %-10s %-7s %5.1f s  | %s" % (
@@ -514,12 +557,14 @@ def write_report(opts, designs, md_path, json_path):
          "-seed S` picks N mutations (invert a bit, tie it to 0 or 1, XOR it with another bit of its signal). "
          "Each mutant is written back as the module's own file and the bundle's `run_icarus.sh` runs with it, "
          "cheapest first: `hard` (the directed vectors), `random`, `nogap` (every vector, no input gaps and no "
-         "backpressure: exact latency), `seed2` (other gaps and backpressure, a reset after 5 vectors); each "
+         "backpressure: exact latency), `seed2` (other gaps and backpressure, a reset after 5 vectors), `extra` "
+         "(more random vectors from `shadecore vectors`: for a unit 3 × %d with n in 16..31, 32..127, "
+         "128..1024, seeds 11, 12, 13; for the lighting core one file of seed 11 — no C++ change); each "
          "stage is time-bounded (max(%d s, %g × the unmutated time)). A survivor counts as *equivalent* only "
          "when Yosys proves it: `equiv_make` of original and mutant (same-named nets paired, the mutated wire "
          "left out), `equiv_simple -seq 8`, `equiv_induct -seq 8`, `equiv_status -assert`; "
          "every other survivor is listed with its reason. Score = killed / (total − equivalent)."
-         % (opts.min_timeout, opts.timeout_factor),
+         % (opts.vec_count, opts.min_timeout, opts.timeout_factor),
          "",
          "Regenerate: `%s` (about %s min on this machine; cached per mutant in %s/, so a rerun resumes)."
          % (regen, "?", os.path.relpath(opts.work, ROOT) if opts.work.startswith(ROOT) else opts.work),
@@ -528,13 +573,13 @@ def write_report(opts, designs, md_path, json_path):
          % (machine, now, tools["yosys"], tools["icarus"], tools["python"], opts.seed, opts.vec_seed,
             opts.vec_count),
          "",
-         "| design | unit | mutants | killed (hard / random / nogap / seed2) | survived | timed out | "
-         "equivalent | score |",
+         "| design | unit | mutants | killed (%s) | survived | timed out | equivalent | score |"
+         % " / ".join(STAGES),
          "|---|---|---:|---|---:|---:|---:|---:|"]
     total_min = 0.0
     for d in designs:
         s = summarise(d)
-        total_min += d.get("wall_seconds", 0) / 60.0
+        total_min += sum(r.get("seconds", 0) for r in d["results"]) / 60.0 / max(1, opts.jobs)
         ks = s["killed_by_stage"]
         L.append("| %s | %s | %d | %d (%s) | %d | %d | %d | %s |" % (
             d["name"], d["unit"], s["total"], s["killed"], " / ".join(str(ks.get(st, 0)) for st in STAGES),
