@@ -491,10 +491,29 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
         finally:
             pool.join()
     shutil.rmtree(ctx["tmp"], ignore_errors=True)
-    return {"name": name, "unit": unit, "handoff": "shadecore " + " ".join(cmd[1:]).replace(bundle, "DIR"),
+    meta = {"name": name, "unit": unit, "handoff": "shadecore " + " ".join(cmd[1:]).replace(bundle, "DIR"),
             "params": prep["params"], "stages": stages, "timeouts": ctx["timeouts"],
-            "baseline": cache["baseline"], "results": [cache["results"][str(i)] for i in ids],
-            "wall_seconds": round(time.time() - t0, 1)}
+            "baseline": cache["baseline"], "eq_timeout": opts.eq_timeout, "eq_steps": opts.eq_steps,
+            "count": opts.count, "seed": opts.seed}
+    if not only:
+        cache["meta"] = meta
+        save_cache(cache_path, cache)
+    return dict(meta, results=[cache["results"][str(i)] for i in ids], wall_seconds=round(time.time() - t0, 1))
+
+
+def cached_design(opts, name):
+    """A finished design's results from its cache (--report-only), or None."""
+    try:
+        c = json.load(open(os.path.join(opts.work, name, "cache.json")))
+    except (OSError, ValueError):
+        return None
+    meta = c.get("meta")
+    if not meta or meta["count"] != opts.count or meta["seed"] != opts.seed:
+        return None
+    res = [c["results"].get(str(i)) for i in range(1, meta["count"] + 1)]
+    if any(r is None for r in res):
+        return None
+    return dict(meta, results=res)
 
 
 # ----------------------------------------------------------------------------------------------------
@@ -589,6 +608,8 @@ def write_report(opts, designs, md_path, json_path):
                                "params": d["params"], "stages": d["stages"], "timeouts": d["timeouts"],
                                "baseline_seconds": d["baseline"], "summary": s,
                                "results": d["results"]})
+    for n in getattr(opts, "pending", []):
+        L.append("| %s | | - | not run yet (time) | | | | |" % n)
     for n, why in NO_BENCH.items():
         L.append("| %s | sc_table | - | not run: %s | | | | |" % (n, why))
     L[L.index("Regenerate: `%s` (about %s min on this machine; cached per mutant in %s/, so a rerun resumes)."
@@ -655,13 +676,15 @@ def main(argv):
     ap.add_argument("--vec-count", type=int, default=2000, help="handoff --count, default 2000")
     ap.add_argument("--min-timeout", type=float, default=20.0, help="seconds, lower bound of a stage's time limit")
     ap.add_argument("--timeout-factor", type=float, default=5.0, help="stage time limit / unmutated time, default 5")
-    ap.add_argument("--eq-timeout", type=int, default=60, help="seconds for the equivalence proof (0: skip)")
+    ap.add_argument("--eq-timeout", type=int, default=30, help="seconds for the equivalence proof (0: skip)")
     ap.add_argument("--eq-steps", type=int, default=8, help="equiv_simple/equiv_induct -seq N, default 8")
     ap.add_argument("--md", default=os.path.join(ROOT, "docs", "mutation.md"))
     ap.add_argument("--json", default=os.path.join(ROOT, "docs", "mutation.json"))
     ap.add_argument("--no-report", action="store_true", help="do not write docs/mutation.md and .json")
     ap.add_argument("--no-cache", action="store_true", help="run every chosen mutant again (the cache is rewritten)")
     ap.add_argument("--list", action="store_true", help="print the design points and exit")
+    ap.add_argument("--report-only", action="store_true",
+                    help="write docs/mutation.md and .json from the finished designs' caches, run nothing")
     opts = ap.parse_args(argv)
     if opts.list:
         for n, a, u in DESIGNS:
@@ -685,6 +708,8 @@ def main(argv):
         ap.error("--stages: unknown stage %s (of %s)" % (",".join(bad) or "(none)", ",".join(STAGES)))
     if opts.expect and not opts.mutant:
         ap.error("--expect needs --mutant")
+    if opts.report_only and opts.mutant:
+        ap.error("--report-only takes no --mutant")
     if opts.mutant and (not opts.design or len(opts.design) != 1):
         ap.error("--mutant needs exactly one --design")
     if opts.min_timeout <= 0 or opts.timeout_factor <= 0 or opts.eq_timeout < 0 or opts.eq_steps < 1:
@@ -697,6 +722,14 @@ def main(argv):
     opts.work = os.path.abspath(opts.work)
     chosen = [d for d in DESIGNS if not opts.design or d[0] in opts.design]
     results = []
+    if opts.report_only:
+        results = [r for r in (cached_design(opts, d[0]) for d in chosen) if r]
+        missing = [d[0] for d in chosen if d[0] not in [r["name"] for r in results]]
+        opts.pending = missing
+        write_report(opts, results, opts.md, opts.json)
+        log("wrote %s and %s from %d finished design(s)%s" % (opts.md, opts.json, len(results),
+                                                         "; not finished: " + ", ".join(missing) if missing else ""))
+        return 0
     for name, hargs, unit in chosen:
         try:
             results.append(run_design(opts, name, hargs, unit, only=opts.mutant))
