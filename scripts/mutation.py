@@ -140,20 +140,44 @@ def unit_module(design_args, unit):
 # preparation: bundle, elaborated unit, mutation list
 
 
-def make_bundle(cli, name, handoff_args, bundle, vec_seed, vec_count):
+def snapshot(opts):
+    """The sources at --source (a commit) as a tree for SHADECORE_ROOT: the bundle's RTL, configs and templates
+    come from a commit, not from a working tree that someone may be editing."""
+    rc, out, _ = run(["git", "-C", ROOT, "rev-parse", "--verify", opts.source + "^{commit}"])
+    if rc != 0:
+        raise ArgError("--source %s: not a commit" % opts.source)
+    commit = out.strip()
+    dest = os.path.join(opts.work, "src", commit[:12])
+    if not os.path.isfile(os.path.join(dest, ".complete")):
+        shutil.rmtree(dest, ignore_errors=True)
+        os.makedirs(dest)
+        rc, out, _ = run(["sh", "-c", "git -C '%s' archive %s | tar -x -C '%s'" % (ROOT, commit, dest)])
+        if rc != 0:
+            raise RuntimeError("git archive failed: " + out[-500:])
+        open(os.path.join(dest, ".complete"), "w").close()
+    return commit, dest
+
+
+def cli_env(opts):
+    return dict(os.environ, SHADECORE_ROOT=opts.src_dir)
+
+
+def make_bundle(opts, name, handoff_args, bundle):
+    cli, vec_seed, vec_count = opts.cli, opts.vec_seed, opts.vec_count
     cmd = [cli, "handoff"] + handoff_args + ["--seed", str(vec_seed), "--count", str(vec_count),
                                              "--no-ice40", "--synth", "skip", "--signoff", "off",
                                              "--out", bundle, "--force"]
     stamp = os.path.join(bundle, ".mutation_cmd")
-    if os.path.isfile(stamp) and open(stamp).read() == " ".join(cmd[1:]) and \
+    key = " ".join(cmd[1:]) + " @" + opts.commit
+    if os.path.isfile(stamp) and open(stamp).read() == key and \
             os.path.isfile(os.path.join(bundle, "run_icarus.sh")):
         return cmd
-    log("[%s] %s" % (name, " ".join(["shadecore"] + cmd[1:])))
-    rc, out, secs = run(["nice", "-n", "10"] + cmd)
+    log("[%s] %s (sources of %s)" % (name, " ".join(["shadecore"] + cmd[1:]), opts.commit[:12]))
+    rc, out, secs = run(["nice", "-n", "10"] + cmd, env=cli_env(opts))
     if rc != 0:
         raise RuntimeError("handoff failed (%s):\n%s" % (rc, out[-3000:]))
     with open(stamp, "w") as f:
-        f.write(" ".join(cmd[1:]))
+        f.write(key)
     log("[%s] bundle made in %.0f s" % (name, secs))
     return cmd
 
@@ -397,12 +421,13 @@ def make_extra(opts, name, handoff_args, wdir):
         if band:
             cmd[-2:-2] = ["--n", band]
         stamp = out + ".cmd"
-        if not (os.path.isfile(out) and os.path.isfile(stamp) and open(stamp).read() == " ".join(cmd[1:])):
-            rc, txt, _ = run(["nice", "-n", "10"] + cmd)
+        key = " ".join(cmd[1:]) + " @" + opts.commit
+        if not (os.path.isfile(out) and os.path.isfile(stamp) and open(stamp).read() == key):
+            rc, txt, _ = run(["nice", "-n", "10"] + cmd, env=cli_env(opts))
             if rc != 0:
                 raise RuntimeError("shadecore vectors failed:\n" + txt[-2000:])
             with open(stamp, "w") as f:
-                f.write(" ".join(cmd[1:]))
+                f.write(key)
         files.append(out)
     return files
 
@@ -412,7 +437,7 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
     wdir = os.path.join(opts.work, name)
     os.makedirs(wdir, exist_ok=True)
     bundle = os.path.join(wdir, "bundle")
-    cmd = make_bundle(opts.cli, name, handoff_args, bundle, opts.vec_seed, opts.vec_count)
+    cmd = make_bundle(opts, name, handoff_args, bundle)
     prep = prepare(name, bundle, unit, opts.count, opts.seed, wdir)
     vecs = sorted(f for f in os.listdir(os.path.join(bundle, "vectors")) if f.endswith(".hex"))
     hard = ["vectors/" + f for f in vecs if f.startswith("hard")]
@@ -494,7 +519,7 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
     meta = {"name": name, "unit": unit, "handoff": "shadecore " + " ".join(cmd[1:]).replace(bundle, "DIR"),
             "params": prep["params"], "stages": stages, "timeouts": ctx["timeouts"],
             "baseline": cache["baseline"], "eq_timeout": opts.eq_timeout, "eq_steps": opts.eq_steps,
-            "count": opts.count, "seed": opts.seed}
+            "count": opts.count, "seed": opts.seed, "source": opts.commit}
     if not only:
         cache["meta"] = meta
         save_cache(cache_path, cache)
@@ -672,6 +697,7 @@ def main(argv):
     ap.add_argument("--stages", default=",".join(STAGES), help="checks in order (default %s)" % ",".join(STAGES))
     ap.add_argument("--cli", default=os.path.join(ROOT, "build", "cli", "shadecore"), help="the shadecore CLI")
     ap.add_argument("--work", default=os.path.join(ROOT, "build-mutation"), help="work and cache directory")
+    ap.add_argument("--source", default="HEAD", help="the commit whose RTL the bundles take (default HEAD)")
     ap.add_argument("--vec-seed", type=int, default=1, help="handoff --seed (vectors, gaps), default 1")
     ap.add_argument("--vec-count", type=int, default=2000, help="handoff --count, default 2000")
     ap.add_argument("--min-timeout", type=float, default=20.0, help="seconds, lower bound of a stage's time limit")
@@ -730,13 +756,24 @@ def main(argv):
         log("wrote %s and %s from %d finished design(s)%s" % (opts.md, opts.json, len(results),
                                                          "; not finished: " + ", ".join(missing) if missing else ""))
         return 0
+    try:
+        opts.commit, opts.src_dir = snapshot(opts)
+    except ArgError as e:
+        die(str(e), 2)
+    except RuntimeError as e:
+        die(str(e))
+    failed = []
     for name, hargs, unit in chosen:
         try:
             results.append(run_design(opts, name, hargs, unit, only=opts.mutant))
         except ArgError as e:
             die(str(e), 2)
         except RuntimeError as e:
-            die("%s: %s" % (name, e))
+            if len(chosen) == 1:
+                die("%s: %s" % (name, e))
+            log("[%s] not run: %s" % (name, str(e).replace("\n", " | ")[:400]))
+            failed.append(name)
+            continue
         s = summarise(results[-1])
         log("[%s] mutants %d killed %d survived %d timeout %d equivalent %d error %d score %s %%" % (
             name, s["total"], s["killed"], s["survived"], s["timeout"], s["equivalent"], s["error"], s["score"]))
@@ -748,14 +785,21 @@ def main(argv):
         if bad:
             die("%d mutant(s) not %s" % (len(bad), opts.expect))
         return 0
+    opts.pending = failed
     if not opts.no_report:
         missing = write_report(opts, results, opts.md, opts.json)
         log("wrote %s and %s%s" % (opts.md, opts.json,
                                    " (%d survivors without a reason)" % missing if missing else ""))
-    return 0
+    return 1 if failed else 0
+
+
+def main_term(signum, frame):
+    raise KeyboardInterrupt
 
 
 if __name__ == "__main__":
+    signal.signal(signal.SIGTERM, main_term)  # kill PID: the workers and their simulations stop too
+    signal.signal(signal.SIGINT, signal.default_int_handler)  # also when started in the background
     try:
         sys.exit(main(sys.argv[1:]))
     except KeyboardInterrupt:
