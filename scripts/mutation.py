@@ -576,8 +576,9 @@ def describe(mut):
     what = {"inv": "inverted", "const0": "tied to 0", "const1": "tied to 1",
             "cnot0": "XOR-ed with bit %s of the same signal, inverted when it is 0" % f.get("ctrlbit"),
             "cnot1": "XOR-ed with bit %s of the same signal, inverted when it is 1" % f.get("ctrlbit")}
-    return "%s[%s] %s (%s)" % (f.get("wire", "?"), f.get("wirebit", "?"), what.get(f.get("mode"), f.get("mode")),
-                               ", ".join(srcs))
+    where = "%s[%s]" % (f["wire"], f.get("wirebit", "?")) if "wire" in f else \
+        "port %s[%s] of %s" % (f.get("port", "?"), f.get("portbit", "?"), f.get("cell", "?"))
+    return "%s %s (%s)" % (where, what.get(f.get("mode"), f.get("mode")), ", ".join(srcs))
 
 
 def write_report(opts, designs, md_path, json_path):
@@ -645,9 +646,11 @@ def write_report(opts, designs, md_path, json_path):
     L += ["", "Bundles: `shadecore handoff <args> --seed %d --count %d --no-ice40 --synth skip --signoff off "
           "--out DIR`, per design:" % (opts.vec_seed, opts.vec_count), ""]
     for d in designs:
-        L.append("- %s: `%s`; unit parameters %s" % (
-            d["name"], " ".join(x for x in d["handoff"].split() if True),
-            ", ".join("%s=%s" % kv for kv in d["params"].items()) or "(none)"))
+        L.append("- %s: `%s` (sources of commit %s); unit %s with %s; stage time limits %s s; equivalence "
+                 "bound %s s" % (
+                     d["name"], d["handoff"], d.get("source", "?")[:12], d["unit"],
+                     ", ".join("%s=%s" % kv for kv in d["params"].items()) or "no parameters",
+                     " / ".join("%s %.0f" % (st, t) for st, t in d["timeouts"].items()), d.get("eq_timeout", "?")))
     L += ["", "## Survivors", ""]
     missing = 0
     for d in designs:
