@@ -452,11 +452,20 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
     # the fingerprint: what a cached result depends on (a new stage re-runs the survivors in it only)
     fp = sha(open(ctx["design_il"], "rb").read(), "\n".join(prep["mutations"]), " ".join(cmd[1:]),
              opts.eq_steps, *[open(os.path.join(bundle, v), "rb").read() for v in hard + rand])
+    if getattr(opts, "pick", None):
+        hit = [i for i, m in enumerate(prep["mutations"], 1) if re.search(opts.pick, m)]
+        if not hit:
+            raise ArgError("--pick %s: no mutant of %s matches" % (opts.pick, name))
+        only = (only or []) + hit[:1]
+    ids = only if only else list(range(1, len(prep["mutations"]) + 1))
+    for i in ids:
+        if not 1 <= i <= len(prep["mutations"]):
+            raise ArgError("--mutant %d: %s has %d mutants" % (i, name, len(prep["mutations"])))
     cache_path = os.path.join(wdir, "cache.json")
     cache = load_cache(cache_path, fp)
     if opts.no_cache:
         cache.pop("baseline", None)
-        for i in (only or list(range(1, len(prep["mutations"]) + 1))):
+        for i in ids:
             cache["results"].pop(str(i), None)
     # the unmutated design through the same flow: must pass every stage; its times set the time bounds
     base = cache.setdefault("baseline", {})
@@ -477,10 +486,8 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
         name, unit, ", ".join("%s=%s" % kv for kv in prep["params"].items()) or "no parameters",
         len(prep["mutations"]), opts.seed, "/".join(stages),
         " ".join("%s %.1f" % (s, cache["baseline"][s]) for s in stages)))
-    ids = only if only else list(range(1, len(prep["mutations"]) + 1))
-    for i in ids:
-        if not 1 <= i <= len(prep["mutations"]):
-            raise ArgError("--mutant %d: %s has %d mutants" % (i, name, len(prep["mutations"])))
+
+
     def stale(r):
         return r["status"] == "error" or (r["status"] == "survived" and
                                           any(st not in r.get("stages", STAGES[:4]) for st in stages))
@@ -695,6 +702,8 @@ def main(argv):
     ap.add_argument("--seed", type=int, default=1, help="mutate -seed, default 1")
     ap.add_argument("--jobs", type=int, default=2, help="parallel simulations (1..2 on this machine), default 2")
     ap.add_argument("--mutant", type=int, action="append", help="run only this mutant id (repeatable; no report)")
+    ap.add_argument("--pick", metavar="REGEX",
+                    help="run the first mutant whose mutate command matches REGEX (as --mutant; no report)")
     ap.add_argument("--expect", choices=["killed", "survived", "timeout", "equivalent"],
                     help="with --mutant: exit 0 only if every chosen mutant has this result")
     ap.add_argument("--stages", default=",".join(STAGES), help="checks in order (default %s)" % ",".join(STAGES))
@@ -735,12 +744,18 @@ def main(argv):
     bad = [s for s in opts.stages if s not in STAGES]
     if bad or not opts.stages:
         ap.error("--stages: unknown stage %s (of %s)" % (",".join(bad) or "(none)", ",".join(STAGES)))
-    if opts.expect and not opts.mutant:
-        ap.error("--expect needs --mutant")
-    if opts.report_only and opts.mutant:
-        ap.error("--report-only takes no --mutant")
-    if opts.mutant and (not opts.design or len(opts.design) != 1):
-        ap.error("--mutant needs exactly one --design")
+    if opts.pick:
+        try:
+            re.compile(opts.pick)
+        except re.error as e:
+            ap.error("--pick: bad regular expression (%s)" % e)
+    single = opts.mutant or opts.pick
+    if opts.expect and not single:
+        ap.error("--expect needs --mutant or --pick")
+    if opts.report_only and single:
+        ap.error("--report-only takes no --mutant or --pick")
+    if single and (not opts.design or len(opts.design) != 1):
+        ap.error("--mutant and --pick need exactly one --design")
     if opts.min_timeout <= 0 or opts.timeout_factor <= 0 or opts.eq_timeout < 0 or opts.eq_steps < 1:
         ap.error("time limits must be positive")
     if not (os.path.isfile(opts.cli) and os.access(opts.cli, os.X_OK)):
@@ -768,7 +783,7 @@ def main(argv):
     failed = []
     for name, hargs, unit in chosen:
         try:
-            results.append(run_design(opts, name, hargs, unit, only=opts.mutant))
+            results.append(run_design(opts, name, hargs, unit, only=list(opts.mutant or [])))
         except ArgError as e:
             die(str(e), 2)
         except RuntimeError as e:
@@ -780,7 +795,7 @@ def main(argv):
         s = summarise(results[-1])
         log("[%s] mutants %d killed %d survived %d timeout %d equivalent %d error %d score %s %%" % (
             name, s["total"], s["killed"], s["survived"], s["timeout"], s["equivalent"], s["error"], s["score"]))
-    if opts.mutant:
+    if single:
         bad = [r for d in results for r in d["results"] if opts.expect and r["status"] != opts.expect]
         for d in results:
             for r in d["results"]:
