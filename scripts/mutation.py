@@ -212,25 +212,29 @@ def prepare(name, bundle, unit, count, seed, wdir):
     inc = " ".join("-I" + d for d in incdirs)
     ys = os.path.join(wdir, "elab.ys")
     with open(ys, "w") as f:
-        f.write("read_verilog %s %s\nhierarchy -check -top %s\nls\n" % (inc, " ".join(files), top))
+        f.write("read_verilog %s %s\nhierarchy -top %s\nls\n" % (inc, " ".join(files), top))
     rc, out, _ = run(["yosys", "-q", "-l", os.path.join(wdir, "elab.log"), ys], cwd=bundle)
     if rc != 0:
         raise RuntimeError("yosys elaboration failed:\n" + out[-3000:])
     elab = open(os.path.join(wdir, "elab.log")).read()
     # the parameters the wrapper passes to the unit (for the report; the derived module carries them)
-    params = {}
-    m = re.search(r"derive mode using pre-parsed AST for module `\\%s'\.\n((?:Parameter .*\n)*)" % unit, elab)
-    if m:
-        for pl in m.group(1).splitlines():
-            k, v = pl[len("Parameter \\"):].split(" = ", 1)
-            params[k] = v
     derived = [ln.strip() for ln in elab.splitlines()
                if re.fullmatch(r"\s+(\$paramod\S*\\%s|%s)" % (re.escape(unit), re.escape(unit)), ln)]
     if len(derived) != 1:
         raise RuntimeError("expected one instance of %s below %s, found %s" % (unit, top, derived))
+    # the parameters the wrapper passes to the unit (for the report): the derive step of that very module
+    params = {}
+    m = re.search(r"derive mode using pre-parsed AST for module `\\%s'\.\n((?:Parameter .*\n)*)"
+                  r"Generating RTLIL representation for module `%s'" % (re.escape(unit), re.escape(derived[0])), elab)
+    if m:
+        for pl in m.group(1).splitlines():
+            k, v = pl[len("Parameter \\"):].split(" = ", 1)
+            if re.fullmatch(r"32'[01]{32}", v):  # a negative integer, printed as bits
+                v = str(int(v[3:], 2) - (1 << 32) if v[3] == "1" else int(v[3:], 2))
+            params[k] = v
     ren = "" if derived[0] == unit else "rename %s %s\n" % (derived[0], unit)
     with open(ys, "w") as f:
-        f.write("read_verilog %s %s\nhierarchy -check -top %s\n%shierarchy -check -top %s\n"
+        f.write("read_verilog %s %s\nhierarchy -top %s\n%shierarchy -check -top %s\n"
                 "proc\nflatten\nopt\nstat\nwrite_rtlil %s\nmutate -list %d -seed %d -o %s\n"
                 % (inc, " ".join(files), top, ren, unit, os.path.join(wdir, "design.il"), count, seed,
                    os.path.join(wdir, "mutations.txt")))
@@ -658,7 +662,14 @@ def write_report(opts, designs, md_path, json_path):
                      d["name"], d["handoff"], d.get("source", "?")[:12], d["unit"],
                      ", ".join("%s=%s" % kv for kv in d["params"].items()) or "no parameters",
                      " / ".join("%s %.0f" % (st, t) for st, t in d["timeouts"].items()), d.get("eq_timeout", "?")))
-    L += ["", "## Survivors", ""]
+    L += ["", "## Survivors", "",
+          "Each survivor that is not proved equivalent, with what the mutation does and why the bench misses it "
+          "(scripts/mutation_reasons.json). \"Equivalent under the contract\" means no input that obeys the unit's "
+          "documented contract can show the change; \"equivalent for every input\" means the reason is a proof by "
+          "hand that the Yosys bound did not reach. Terms:", ""]
+    for term, text in sorted(reasons.get("_definitions", {}).items()):
+        L.append("- **%s**: %s" % (term, text))
+    L.append("")
     missing = 0
     for d in designs:
         surv = [r for r in d["results"] if r["status"] in ("survived", "timeout", "error")]
