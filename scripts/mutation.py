@@ -19,9 +19,11 @@ unit's file is that mutant (every other module unchanged), cheapest check first:
 
 each bounded in time (timeout = max(--min-timeout, --timeout-factor x the unmutated design's time)).
 A bench failure kills the mutant; a stage that runs out of time makes it "timeout" (counted apart).
-A survivor is "equivalent" only when Yosys proves it (bounded by --eq-timeout): equiv_make of the original and
-the mutant (every same-named net paired, the mutated wire left out), equiv_simple -seq N, equiv_induct -seq N,
-`equiv_status -assert` (every pair proved, the output ports among them).
+A survivor is "equivalent" only when Yosys proves it (each proof bounded by --eq-timeout; see equivalence()):
+(a) combinational SAT of a miter with every flip-flop exposed as a port pair, else (b) equiv_make of the
+original and the mutant (same-named nets paired, the mutated wire left out), equiv_simple -seq N,
+equiv_induct -seq N, `equiv_status -assert`. --eq-timeout 0 skips it; a later run with a bound adds it to
+the cached survivors.
 Every other survivor needs a reason: scripts/mutation_reasons.json, keyed "<design>:<mutant id>".
 
 Results are cached per mutant (WORK/<design>/cache.json, written after each mutant, keyed by a fingerprint
@@ -69,6 +71,7 @@ NO_BENCH = {
     "table1024": "no handoff bench for the table RAM (the bundle cannot be made for a table unit)",
 }
 STAGES = ["hard", "random", "nogap", "seed2", "extra"]
+EQ_METHOD = 2  # equivalence(): 2 = combinational SAT, then equiv_*; a survivor of an older method is tried again
 
 
 class ArgError(Exception):
@@ -301,15 +304,34 @@ def simulate(ctx, stage, fl, timeout):
 
 
 def equivalence(ctx, idx, mdir):
-    """'equivalent' (proved) or 'unknown' (not proved within the time bound), with a one-line account.
+    """'equivalent' (proved) or 'unknown' (not proved within the time bounds), with a one-line account.
 
-    Yosys's equivalence flow on the original (gold) and the mutant (gate): equiv_make pairs every net of
-    the same name (ports, registers, internal nets) except the mutated wire itself (its value may differ
-    where the difference is masked further on), equiv_simple -seq N proves each pair on its cone and
-    equiv_induct -seq N proves the rest by induction (every pair, with the others as assumptions); only
-    `equiv_status -assert` (every pair proved, the output ports among them) counts as equivalent."""
+    Two Yosys proofs, each bounded by --eq-timeout, the first that succeeds counts:
+    (a) combinational: every flip-flop of the original (gold) and the mutant (gate) turned into a port pair
+        (`dffunmap; expose -evert-dff`: its Q an input, its D an output, same names on both sides), a miter
+        of the two (`miter -equiv -make_outputs`), the shared logic merged (`opt_merge`), `sat -prove trigger 0`:
+        the same next state and outputs from every state, reachable or not — sequential equivalence follows.
+        A model here is no counter-example (the state may be unreachable), so (b) is tried next.
+    (b) Yosys's equivalence flow: equiv_make pairs every net of the same name except the mutated wire itself
+        (its value may differ where the difference is masked further on), equiv_simple -seq N and
+        equiv_induct -seq N (every pair, with the others as assumptions); `equiv_status -assert` (every pair
+        proved, the output ports among them) counts as equivalent."""
     mut = ctx["mutations"][idx - 1]
     unit = ctx["unit"]
+    tries = []
+    ys = os.path.join(mdir, "comb.ys")
+    with open(ys, "w") as f:
+        f.write("read_rtlil %s\ncopy %s gold\n%s\nrename %s gate\ndffunmap\nexpose -evert-dff gold gate\n"
+                "miter -equiv -flatten -make_outputs -ignore_gold_x gold gate miter\nhierarchy -top miter\n"
+                "opt -fast\nopt_merge -share_all\nopt_clean\nsat -verify -prove trigger 0 miter\n"
+                % (ctx["design_il"], unit, mut, unit))
+    logf = os.path.join(mdir, "comb.log")
+    rc, out, secs = run(["yosys", "-q", "-l", logf, ys], cwd=mdir, timeout=ctx["eq_timeout"])
+    logtxt = open(logf).read() if os.path.isfile(logf) else ""
+    if rc == 0 and "no model found: SUCCESS!" in logtxt:
+        return "equivalent", "combinational SAT with the flip-flops as ports: proved (%.0f s)" % secs
+    tries.append("combinational SAT: %s" % ("timed out" if rc is None else "a model from some state"
+                                            if "model found: FAIL" in logtxt else "rc %s" % rc))
     wire = re.search(r"-wire (\S+)", mut)
     bl = os.path.join(mdir, "blacklist.txt")
     with open(bl, "w") as f:
@@ -326,11 +348,10 @@ def equivalence(ctx, idx, mdir):
     logtxt = open(logf).read() if os.path.isfile(logf) else ""
     if rc == 0 and "Equivalence successfully proven!" in logtxt:
         return "equivalent", "equiv_simple/equiv_induct -seq %d: every pair proved (%.0f s)" % (n, secs)
-    if rc is None:
-        return "unknown", "equiv_*: not proved within %d s" % ctx["eq_timeout"]
     m = re.search(r"Of those cells (\d+) are proven and (\d+) are unproven", logtxt)
-    return "unknown", "equiv_*: not proved (%s)" % ("%s of %d pairs unproven" % (m.group(2), int(m.group(1)) + int(m.group(2)))
-                                                   if m else "rc %s" % rc)
+    tries.append("equiv_*: %s" % ("timed out" if rc is None else "%s of %d pairs unproven"
+                                  % (m.group(2), int(m.group(1)) + int(m.group(2))) if m else "rc %s" % rc))
+    return "unknown", "not proved within %d s each (%s)" % (ctx["eq_timeout"], "; ".join(tries))
 
 
 def run_mutant(args):
@@ -356,9 +377,11 @@ def run_mutant(args):
             if rc != 0:
                 res.update(status="killed", stage=stage, detail=line[:300])
                 break
-        if res["status"] == "survived" and idx > 0 and ctx["eq_timeout"] > 0 and "equivalence" not in res:
+        if res["status"] == "survived" and idx > 0 and ctx["eq_timeout"] > 0 and \
+                res.get("eq_method") != EQ_METHOD:
             eq, why = equivalence(ctx, idx, mdir)
             res["equivalence"] = why
+            res["eq_method"] = EQ_METHOD
             if eq == "equivalent":
                 res["status"] = "equivalent"
         if res["status"] == "survived" and idx > 0:
@@ -493,8 +516,9 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
 
 
     def stale(r):
-        return r["status"] == "error" or (r["status"] == "survived" and
-                                          any(st not in r.get("stages", STAGES[:4]) for st in stages))
+        return r["status"] == "error" or (r["status"] == "survived" and (
+            any(st not in r.get("stages", STAGES[:4]) for st in stages) or
+            (opts.eq_timeout > 0 and r.get("eq_method") != EQ_METHOD)))
     todo = [i for i in ids if str(i) not in cache["results"] or stale(cache["results"][str(i)])]
     done = len(ids) - len(todo)
     if done:
@@ -634,8 +658,11 @@ def write_report(opts, designs, md_path, json_path):
          "(more random vectors from `shadecore vectors`: for a unit 3 × %d with n in 16..31, 32..127, "
          "128..1024, seeds 11, 12, 13; for the lighting core one file of seed 11 — no C++ change); each "
          "stage is time-bounded (max(%d s, %g × the unmutated time)). A survivor counts as *equivalent* only "
-         "when Yosys proves it: `equiv_make` of original and mutant (same-named nets paired, the mutated wire "
-         "left out), `equiv_simple -seq 8`, `equiv_induct -seq 8`, `equiv_status -assert`; "
+         "when Yosys proves it, each proof bounded by the design's equivalence bound: (a) a miter of original and "
+         "mutant with every flip-flop exposed as a port pair (`dffunmap; expose -evert-dff; miter -equiv; "
+         "opt_merge; sat -prove trigger 0`: the same next state and outputs from every state), else (b) "
+         "`equiv_make` (same-named nets paired, the mutated wire left out), `equiv_simple -seq 8`, "
+         "`equiv_induct -seq 8`, `equiv_status -assert`; "
          "every other survivor is listed with its reason. Score = killed / (total − equivalent) (issue 36's "
          "figure, target >= 98 %%); the last column also leaves out the survivors whose written reason shows them "
          "equivalent for every input (by hand, where the 30 s Yosys bound did not reach) or under the unit's "
@@ -706,7 +733,8 @@ def write_report(opts, designs, md_path, json_path):
                 missing += 1
             L.append("- m%03d %s — %s%s%s" % (
                 r["id"], r["status"], describe(r["mutation"]),
-                ("; " + r["equivalence"]) if r.get("equivalence") else "",
+                ("; " + r["equivalence"]) if r.get("equivalence") else
+                ("; equivalence not attempted yet" if r["status"] == "survived" else ""),
                 ("; " + r["detail"]) if r["status"] != "survived" and r.get("detail") else ""))
             L.append("  - reason: %s" % (why or "(none written yet)"))
             L.append("  - `%s`" % r["mutation"])
