@@ -383,7 +383,7 @@ json parse_outcome(const ShardSpec& s, int status, const std::string& out, const
         }
       }
   } else if (s.kind == "bare") {
-    static const std::regex re(R"(bare: config \S+ n \d+\.\.\d+: (\d+) sent, (\d+) out, (\d+) mismatches)");
+    static const std::regex re(R"(bare: \S+ config \S+ MREG \d+ n \d+\.\.\d+: (\d+) sent, (\d+) out, (\d+) mismatches)");
     std::smatch m;
     if (std::regex_search(out, m, re)) {
       r["vectors"] = std::stoull(m[2]);

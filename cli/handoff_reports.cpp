@@ -242,7 +242,10 @@ void report_signoff(BundleBase& b, const fs::path& dir, const std::function<void
   if (r.status == 2)
     throw std::runtime_error("the gate-level simulation of the mapped netlist failed (signoff/gatesim_icarus.log): " +
                              last_line_with(r.out, "gatesim"));
-  if (r.status != 0) throw std::runtime_error("the sign-off failed: " + last_line_with(r.out, "signoff: error"));
+  if (r.status != 0) {  // its own one-line error, else the last line it printed (a crash, a traceback's last line)
+    const std::string why = last_line_with(r.out, "signoff: error");
+    throw std::runtime_error("the sign-off failed (reports/signoff.log): " + (why.empty() ? last_line_with(r.out, "") : why));
+  }
   const nlohmann::json j = nlohmann::json::parse(read_text(dir / "signoff" / "signoff.json"));
   const auto& st = j.at("sta");
   const double period = st.at("period_ns").get<double>(), wns = st.at("wns_ns").get<double>();

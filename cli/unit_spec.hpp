@@ -134,8 +134,7 @@ inline UnitSpec resolve_unit(const UnitOptions& o) {
   }
   s.mreg = o.mreg;
   if (s.mreg != 0 && s.mreg != 1) throw std::invalid_argument("--mreg " + std::to_string(s.mreg) + " out of range (0 or 1)");
-  if (s.mreg != 0 && s.variant != VariantId::cs16)
-    throw std::invalid_argument("--mreg 1 applies to cs16 only (its reference form), not to " + s.variant_name);
+  if (s.mreg != 0) Unit(s.variant, s.format, s.cutoff).set_mreg(s.mreg);  // a variant without MREG: its one-line error
   return s;
 }
 

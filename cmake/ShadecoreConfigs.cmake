@@ -127,13 +127,19 @@ foreach(i RANGE ${_lastv})
   if(_noentries)
     set(_ventries_n 0)
   endif()
+  # "mreg_stages": the unit takes the pipelining parameter MREG; MREG = 1 adds this many cycles (0 when absent)
+  string(JSON _vmreg ERROR_VARIABLE _nomreg GET "${_cfg_json}" variants ${i} mreg_stages)
+  if(_nomreg)
+    set(_vmreg 0)
+  endif()
   list(APPEND SHADECORE_VARIANT_NAMES "${_vname}")
   set(SHADECORE_VARIANT_${_vname}_ID "${_vid}")
   set(SHADECORE_VARIANT_${_vname}_CONTRACT "${_vcontract}")
   set(SHADECORE_VARIANT_${_vname}_ENTRIES "${_ventries_n}")
+  set(SHADECORE_VARIANT_${_vname}_MREG_STAGES "${_vmreg}")
   string(TOUPPER "${_vname}" _vupper)
   string(APPEND _venum "  ${_vname} = ${_vid},\n")
-  string(APPEND _ventries "    NamedVariant{\"${_vname}\", VariantId::${_vname}, \"${_vcontract}\", ${_ventries_n}},\n")
+  string(APPEND _ventries "    NamedVariant{\"${_vname}\", VariantId::${_vname}, \"${_vcontract}\", ${_ventries_n}, ${_vmreg}},\n")
   string(APPEND _vvh "localparam integer VARIANT_${_vupper} = ${_vid};\n")
   if(NOT _ventries_n EQUAL 0)
     string(APPEND _vvh "localparam integer VARIANT_${_vupper}_ENTRIES = ${_ventries_n};\n")
@@ -195,8 +201,9 @@ namespace shadecore {
 enum class VariantId : int {
 ${_venum}};
 // contract: the variant's kind / error contract from configs.json (\"table\" for the per-material table
-// units, \"\" when not given); entries: table size of a \"table\" variant (0 otherwise).
-struct NamedVariant { std::string_view name; VariantId id; std::string_view contract; int entries; };
+// units, \"\" when not given); entries: table size of a \"table\" variant (0 otherwise); mreg_stages: the cycles the
+// pipelining parameter MREG = 1 adds (a register inside each product, rtl/sc_mul_reg.v; 0: the unit has no MREG).
+struct NamedVariant { std::string_view name; VariantId id; std::string_view contract; int entries; int mreg_stages; };
 inline constexpr std::array<NamedVariant, ${_nv}> kVariants{{
 ${_ventries}}};
 // cs16 forms with folded truncated squarers (\"squarer\" in configs.json; docs/spec.md §3.4).

@@ -202,20 +202,22 @@ module sc_cs16 #(
       // ---------------------------------------------------------------------------- S1: scale, offset, cut
       // base = 2^(F+4) − n·d (signed, exact). MREG = 1: the same integer as 2^(F+4) + n·(c − 2^F), where
       // c − 2^F (in [−2^F, 0]) is c with bit F inverted read as a signed F+1-bit word: no subtractor between
-      // the input and S0 (S0's d is unused) nor in front of the multiplier. n·(c − 2^F) is a signed
-      // rtl/sc_mul_reg.v whose register M1 sits between S0 and S1; the cut test and the tag wait beside it.
+      // the input and S0 (S0's d is unused) nor in front of the multiplier. n·(c − 2^F) + 2^(F+4) is a signed
+      // rtl/sc_mul_reg.v with the constant as its addend (inside the tree), its register M1 between S0 and S1;
+      // the cut test and the tag wait beside it.
       wire [BW-1:0]   base;                                  // two's complement, exact
       wire            base_le0;                              // base <= 0
       wire [BW-1:0]   mag;                                   // |base|
       wire [TAGW-1:0] s0_tag_m;                              // the tag beside the product
       wire            cthr_m;                                // c < thr beside the product
       if (MREG != 0) begin : g_nd_m
-        wire [BW-1:0] ncd;                                   // n·(c − 2^F) in [−2^(F+10), 0]
-        sc_mul_reg #(.AW(12), .BW(F+1), .PW(BW), .SIGNED(1)) u_nd (
-            .clk_i(clk_i), .en_i(adv), .a_i({1'b0, s0_n_q}), .b_i({~s0_c_q[F], s0_c_q[F-1:0]}), .p_o(ncd));
+        wire [BW-1:0] ncd;                                   // 2^(F+4) + n·(c − 2^F) (the addend in the tree)
+        sc_mul_reg #(.AW(12), .BW(F+1), .PW(BW), .SIGNED(1), .ADD(1), .CW(F+5)) u_nd (
+            .clk_i(clk_i), .en_i(adv), .a_i({1'b0, s0_n_q}), .b_i({~s0_c_q[F], s0_c_q[F-1:0]}),
+            .c_i(BASE_ONE[F+4:0]), .p_o(ncd));
         sc_delay #(.W(TAGW + 1), .DEPTH(1)) u_dly_m1 (
             .clk_i(clk_i), .en_i(adv), .d_i({s0_tag_q, s0_c_q < s0_thr_q}), .q_o({s0_tag_m, cthr_m}));
-        assign base     = ncd + BASE_ONE;
+        assign base     = ncd;
         assign base_le0 = base[BW-1] || (base == {BW{1'b0}});
         assign mag      = base;   // S1 holds base itself, signed (below): no |base| needed
         wire unused_d = &{1'b0, s0_d_q};
@@ -272,10 +274,10 @@ module sc_cs16 #(
       if (MREG != 0) begin : g_sq_m
         // squaring 0 of the signed S1 (W+2 bits; the square <= 2^(2W) fits the same 2W+2 bits), 1..3 unsigned
         sc_mul_reg #(.AW(XW + 1), .BW(XW + 1), .PW(2 * XW), .SIGNED(1)) u_sq0 (
-            .clk_i(clk_i), .en_i(adv), .a_i(s1_x_q), .b_i(s1_x_q), .p_o(sq[0 +: 2*XW]));
+            .clk_i(clk_i), .en_i(adv), .a_i(s1_x_q), .b_i(s1_x_q), .c_i(1'b0), .p_o(sq[0 +: 2*XW]));
         for (k = 1; k < 4; k = k + 1) begin : g_k
           sc_mul_reg #(.AW(XW), .BW(XW), .PW(2 * XW), .SIGNED(0)) u_sq (
-              .clk_i(clk_i), .en_i(adv), .a_i(sq_in[k*XW +: XW]), .b_i(sq_in[k*XW +: XW]),
+              .clk_i(clk_i), .en_i(adv), .a_i(sq_in[k*XW +: XW]), .b_i(sq_in[k*XW +: XW]), .c_i(1'b0),
               .p_o(sq[k*2*XW +: 2*XW]));
         end
         wire unused_sq_in = &{1'b0, sq_in[XW-1:0]};   // squaring 0 reads the signed s1_x_q

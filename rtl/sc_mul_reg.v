@@ -2,7 +2,8 @@
 // ============================================================================================
 // Filename : rtl/sc_mul_reg.v
 // Purpose  : a product with its own pipeline register (a DSP block's M register): p_o is
-//            (a_i · b_i) mod 2^PW of the operands as they were one enabled edge ago. The units'
+//            (a_i · b_i + c_i) mod 2^PW of the operands as they were one enabled edge ago (the addend
+//            c_i with ADD = 1, a DSP block's C port; the cell flow adds it inside the product's tree). The units'
 //            pipelining parameter MREG (rtl/sc_cs16.v) puts one behind each product, so that a
 //            product's delay is cut across two clock cycles.
 //
@@ -10,10 +11,13 @@
 //   AW, BW  operand widths, >= 1                                           (default 8, 8)
 //   PW      product width, >= 1; the product is taken modulo 2^PW            (default 16)
 //   SIGNED  0: unsigned operands; 1: both two's complement                   (default 0)
+//   ADD     0: no addend (c_i unused); 1: p = a·b + c_i, c_i unsigned          (default 0)
+//   CW      width of c_i, >= 1                                               (default 1)
 //
 // Ports : clk_i    clock, the register loads on the rising edge
 //         en_i     enable (the pipeline's global enable)
 //         a_i[AW-1:0], b_i[BW-1:0]  operands (a square: the same bits on both)
+//         c_i[CW-1:0]               the addend (ADD = 1; tie to 0 otherwise)
 //         p_o[PW-1:0]               the registered product
 //
 // Latency : 1 enabled edge. No reset: the pipeline's valid bits qualify the register.
@@ -30,12 +34,15 @@ module sc_mul_reg #(
     parameter integer AW     = 8,
     parameter integer BW     = 8,
     parameter integer PW     = 16,
-    parameter integer SIGNED = 0
+    parameter integer SIGNED = 0,
+    parameter integer ADD    = 0,
+    parameter integer CW     = 1
 ) (
     input  wire          clk_i,
     input  wire          en_i,
     input  wire [AW-1:0] a_i,
     input  wire [BW-1:0] b_i,
+    input  wire [CW-1:0] c_i,
     output wire [PW-1:0] p_o
 );
 
@@ -43,20 +50,38 @@ module sc_mul_reg #(
   // Portable Verilog-2005 elaboration error: a failing check instantiates a module that does not
   // exist, named after the message; every tool stops with "unknown module <message>".
   generate
-    if (AW < 1 || BW < 1 || PW < 1) begin : g_check_w
-      sc_mul_reg_error_illegal_AW_BW_PW_must_be_at_least_1 u_error ();
+    if (AW < 1 || BW < 1 || PW < 1 || CW < 1) begin : g_check_w
+      sc_mul_reg_error_illegal_AW_BW_PW_CW_must_be_at_least_1 u_error ();
+    end
+    if (ADD != 0 && ADD != 1) begin : g_check_add
+      sc_mul_reg_error_illegal_ADD_must_be_0_or_1 u_error ();
     end
     if (SIGNED != 0 && SIGNED != 1) begin : g_check_signed
       sc_mul_reg_error_illegal_SIGNED_must_be_0_or_1 u_error ();
     end
   endgenerate
 
-  wire [PW-1:0] p;
+  wire [PW-1:0] p, c;
   generate
+    if (ADD != 0) begin : g_add
+      if (CW >= PW) begin : g_c_trunc
+        assign c = c_i[PW-1:0];
+        if (CW > PW) begin : g_c_unused
+          wire unused_c = &{1'b0, c_i[CW-1:PW]};
+        end
+      end else begin : g_c_ext
+        assign c = {{(PW-CW){1'b0}}, c_i};
+      end
+    end else begin : g_no_add
+      assign c = {PW{1'b0}};
+      wire unused_c = &{1'b0, c_i};
+    end
     if (SIGNED != 0) begin : g_signed
-      assign p = $signed(a_i) * $signed(b_i);
+      wire [PW-1:0] ab = $signed(a_i) * $signed(b_i);
+      assign p = ab + c;
     end else begin : g_unsigned
-      assign p = a_i * b_i;
+      wire [PW-1:0] ab = a_i * b_i;
+      assign p = ab + c;
     end
   endgenerate
 

@@ -10,12 +10,14 @@
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
 //   FRAC   F, fraction bits of cos θ and of the output     8 <= F <= 24   (default 16)
 //   TAGW   width of the opaque tag that travels with each fragment, >= 1  (default 8)
+//   MREG   0 or 1, the pipelining parameter: 1 forms n·d in rtl/sc_mul_reg.v, whose register M1 sits
+//          between S0 and S1 (LATENCY F + 5), the same outputs                     (default 0)
 //   (no GUARD: the divider is exact up to its final rounding; mat_thr_i is not used)
 //
 // Ports : docs/spec.md §4 (clk_i, rst_ni synchronous active-low, AXI-Stream style valid/ready).
 //
 // Latency   : LATENCY = F + 4 clock cycles (20 at F = 16): S0, S1 and the F+2 quotient stages
-//             Q0..Q(F+1). A fragment accepted at a rising edge is on out_* (out_valid_o = 1)
+//             Q0..Q(F+1); F + 5 with MREG = 1 (M1). A fragment accepted at a rising edge is on out_* (out_valid_o = 1)
 //             after the (F+4)th advancing edge from it; an edge advances the pipeline iff
 //             (!out_valid_o || out_ready_i) before it (one global enable, as rtl/sc_cs16.v).
 // Throughput: one fragment per clock while out_ready_i is high.
@@ -55,7 +57,8 @@
 
 module sc_schlick_div #(
     parameter integer FRAC = 16,
-    parameter integer TAGW = 8
+    parameter integer TAGW = 8,
+    parameter integer MREG = 0
 ) (
     // clk_i, rst_ni; mat_we_i, mat_n_i[10:0], mat_thr_i[FRAC:0]; in_valid_i, in_ready_o,
     // in_cos_i[FRAC+1:0], in_tag_i; out_valid_o, out_ready_i, out_spec_o[FRAC:0], out_tag_o
@@ -65,7 +68,7 @@ module sc_schlick_div #(
   localparam integer F  = FRAC;
   localparam integer DB = FRAC + 11;   // Dc <= n*2^F <= 2^(F+10)
   localparam integer NQ = FRAC + 2;    // quotient bits = division stages Q0..Q(F+1)
-  localparam integer NS = FRAC + 4;    // register stages S0, S1, Q0..Q(F+1) = latency
+  localparam integer NS = FRAC + 4 + MREG;  // register stages S0, (M1,) S1, Q0..Q(F+1) = latency
 
   // ---------------------------------------------------------------------------- check configuration
   // Portable Verilog-2005 elaboration error: a failing check instantiates a module that does not
@@ -76,6 +79,9 @@ module sc_schlick_div #(
     end
     if (TAGW < 1) begin : g_check_tagw
       sc_schlick_div_error_illegal_TAGW_must_be_at_least_1 u_error ();
+    end
+    if (MREG != 0 && MREG != 1) begin : g_check_mreg
+      sc_schlick_div_error_illegal_MREG_must_be_0_or_1 u_error ();
     end
   endgenerate
 
@@ -107,8 +113,32 @@ module sc_schlick_div #(
   end
 
   // ---------------------------------------------------------------------------- S1: denominator
-  wire [DB-1:0] den_d = ({{(DB-11){1'b0}}, s0_n_q} * {{(DB-F-1){1'b0}}, s0_d_q})
-                      + {{(DB-F-1){1'b0}}, s0_c_q};
+  // MREG = 1: Dc = (−n)·(c − 2^F) + c, where c − 2^F (in [−2^F, 0]) is c with bit F inverted read as a signed
+  // F+1-bit word (no subtractor in front of the multiplier; S0's d is unused) and −n is formed in S0 from the
+  // material register; one signed rtl/sc_mul_reg.v with c as its addend (inside the tree), its register M1
+  // between S0 and S1, c and the tag beside it.
+  wire [DB-1:0]   den_d;
+  wire [F:0]      s0_c_m;
+  wire [TAGW-1:0] s0_tag_m;
+  generate
+    if (MREG != 0) begin : g_den_m
+      reg  [11:0] s0_nn_q;   // −n, two's complement
+      always @(posedge clk_i) begin
+        if (adv) s0_nn_q <= 12'd0 - {1'b0, mat_n_q};
+      end
+      wire [DB:0] dc;        // (−n)·(c − 2^F) + c = n·d + c = Dc <= 2^(F+10): bit DB is 0
+      sc_mul_reg #(.AW(12), .BW(F+1), .PW(DB+1), .SIGNED(1), .ADD(1), .CW(F+1)) u_nd (
+          .clk_i(clk_i), .en_i(adv), .a_i(s0_nn_q), .b_i({~s0_c_q[F], s0_c_q[F-1:0]}), .c_i(s0_c_q), .p_o(dc));
+      sc_delay #(.W(TAGW + F + 1), .DEPTH(1)) u_dly_m1 (
+          .clk_i(clk_i), .en_i(adv), .d_i({s0_tag_q, s0_c_q}), .q_o({s0_tag_m, s0_c_m}));
+      assign den_d = dc[DB-1:0];
+      wire unused_den = &{1'b0, dc[DB], s0_d_q, s0_n_q};
+    end else begin : g_den
+      assign den_d = ({{(DB-11){1'b0}}, s0_n_q} * {{(DB-F-1){1'b0}}, s0_d_q}) + {{(DB-F-1){1'b0}}, s0_c_q};
+      assign s0_c_m = s0_c_q;
+      assign s0_tag_m = s0_tag_q;
+    end
+  endgenerate
 
   reg [DB-1:0]   s1_den_q;
   reg [F:0]      s1_c_q;
@@ -116,8 +146,8 @@ module sc_schlick_div #(
   always @(posedge clk_i) begin
     if (adv) begin
       s1_den_q <= den_d;
-      s1_c_q   <= s0_c_q;
-      s1_tag_q <= s0_tag_q;
+      s1_c_q   <= s0_c_m;
+      s1_tag_q <= s0_tag_m;
     end
   end
 

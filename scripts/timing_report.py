@@ -67,7 +67,7 @@ def rows_of(cfg, only, configs):
             if c["name"] in configs:
                 rows.append({"name": v["name"], "kind": "unit", "config": c, "contract": v["contract"],
                              "variant": v, "table": "entries" in v, "mreg": 0})
-                if v.get("mreg"):  # the pipelining parameter (rtl/sc_cs16.v MREG): a row with it on
+                if v.get("mreg_stages"):  # the pipelining parameter MREG (rtl/sc_mul_reg.v): a row with it on
                     rows.append({"name": v["name"] + "+mreg", "kind": "unit", "config": c, "contract": v["contract"],
                                  "variant": v, "table": False, "mreg": 1})
     for s in cfg["feature_sets"]:

@@ -5,8 +5,9 @@ Runs on a bundle written by `shadecore handoff` (filelist.f, tb/, vectors/, run_
 its results into BUNDLE/signoff/ (and BUNDLE/constraints.sdc with the measured clock):
 
   synth    Yosys 0.23: prepare (proc, flatten, opt, wreduce), map every `$mul` to a Dadda tree with a
-           Kogge-Stone adder (signoff/fastmul.py; `$add`/`$sub`/compares already become Yosys's
-           Brent-Kung `$lcu`), synth, dfflibmap, then ABC with the library, the target delay and load
+           Kogge-Stone adder (signoff/fastmul.py; every other `$add`/`$sub`/compare's carry unit `$lcu`
+           Kogge-Stone too, instead of Yosys's Brent-Kung; rtl/sc_mul_reg.v black boxes to tree | register |
+           adder), synth, dfflibmap, then ABC with the library, the target delay and load
            and drive constraints (the same driving cell and load as the SDC): ABC's `buffer` pass
            builds the buffer trees of high-fanout nets (the pipeline enable, valid, stall). The mapped
            netlist is signoff/netlist.v (bus ports kept, internal nets split to bits).
@@ -149,13 +150,17 @@ def synth(a, sdir):
     fastmul.write_map(shapes, os.path.join(sdir, "fastmul_map.v"))
     mregs = fastmul.mulreg_shapes_of(os.path.join(sdir, "prep.json")) if lib_files else []
     fastmul.write_mulreg_map(mregs, os.path.join(sdir, "mulreg_map.v"))
+    if a.arith == "fast":
+        fastmul.write_lcu_map(os.path.join(sdir, "lcu_map.v"))
     os.remove(os.path.join(sdir, "prep.json"))
     period_ps = int(round(a.target * 1000))
     mapcmd = "techmap -map fastmul_map.v; opt_clean\n" if a.arith == "fast" else ""
     if lib_files:
         mapcmd = "techmap -autoproc -map mulreg_map.v; opt_clean\nselect -assert-none t:sc_mul_reg\n" + mapcmd
     script = (f"read_liberty -lib {lib}\nread_rtlil prep.il\n" + mapcmd +
-              f"synth -top {a.top} -run coarse:\n"
+              (f"synth -top {a.top} -run coarse:fine\n"  # every $alu's carries Kogge-Stone (fastmul.LCU_KS)
+               "techmap -map +/techmap.v -map lcu_map.v\nopt -fast\n"
+               f"synth -top {a.top} -run fine:\n" if a.arith == "fast" else f"synth -top {a.top} -run coarse:\n") +
               f"dfflibmap -liberty {lib}\n"
               f"abc -liberty {lib} -D {period_ps} -constr abc.constr\n"
               "opt_clean -purge\nsetundef -zero\nsplitnets\nopt_clean -purge\n"

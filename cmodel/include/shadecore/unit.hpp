@@ -50,9 +50,15 @@ inline std::string_view variant_name(VariantId id) {
   return "?";
 }
 
-// rtl/sc_cs16.v's latency (reference form) and the product registers MREG = 1 adds (n·d and four squarings)
+// rtl/sc_cs16.v's latency (reference form)
 inline constexpr int kCs16Latency = 7;
-inline constexpr int kCs16MregStages = 5;
+// The cycles the pipelining parameter MREG = 1 adds to a variant (configs.json variants[].mreg_stages: a register
+// inside each product of the unit, rtl/sc_mul_reg.v); 0: the variant has no MREG.
+constexpr int mreg_stages(VariantId id) {
+  for (const auto& v : kVariants)
+    if (v.id == id) return v.mreg_stages;
+  return 0;
+}
 
 class Unit {
  public:
@@ -99,13 +105,18 @@ class Unit {
   }
   [[nodiscard]] bool energy() const { return energy_; }
 
-  // The pipelining parameter MREG of rtl/sc_cs16.v (reference form, SHARE = 1): 1 puts a register inside
-  // each of cs16's five products (rtl/sc_mul_reg.v), kCs16MregStages more cycles, the same outputs.
+  // The pipelining parameter MREG (rtl/sc_cs16.v reference form with SHARE = 1, rtl/sc_schlick_div.v): 1 puts a
+  // register inside each of the unit's products (rtl/sc_mul_reg.v), mreg_stages(variant) more cycles, the same
+  // outputs.
   void set_mreg(int mreg) {
     if (mreg != 0 && mreg != 1) throw std::invalid_argument("MREG " + std::to_string(mreg) + " out of range (0 or 1)");
-    if (mreg != 0 && variant_ != VariantId::cs16)
-      throw std::invalid_argument("MREG = 1 applies to cs16 only (its reference form), not " +
+    if (mreg != 0 && mreg_stages(variant_) == 0) {
+      std::string known;
+      for (const auto& v : kVariants)
+        if (v.mreg_stages > 0) known += (known.empty() ? "" : ", ") + std::string(v.name);
+      throw std::invalid_argument("MREG = 1 applies to " + known + " (configs.json variants[].mreg_stages), not " +
                                   std::string(variant_name(variant_)));
+    }
     mreg_ = mreg;
   }
   [[nodiscard]] int mreg() const { return mreg_; }
@@ -115,9 +126,10 @@ class Unit {
     if (is_cs16_form()) return kCs16FormLatency + (energy_ ? 2 : 0);  // rtl/sc_cs16.v FORM = 1: S1..S5
     switch (variant_) {
       case VariantId::cs16:  // rtl/sc_cs16.v: S0..S6 (+ M1..M5 with MREG = 1; + sc_energy N1, N2)
-        return kCs16Latency + kCs16MregStages * mreg_ + (energy_ ? 2 : 0);
+        return kCs16Latency + mreg_stages(variant_) * mreg_ + (energy_ ? 2 : 0);
       // Schlick units (docs/spec.md §6.5): div/iter S0, S1, Q0..Q(F+1); nr S0..S9.
-      case VariantId::schlick_div: return schlick_div_latency(format_.frac) + (energy_ ? 2 : 0);
+      case VariantId::schlick_div:  // + M1 with MREG = 1 (n·d)
+        return schlick_div_latency(format_.frac) + mreg_stages(variant_) * mreg_ + (energy_ ? 2 : 0);
       case VariantId::schlick_nr: return kSchlickNrLatency + (energy_ ? 2 : 0);
       case VariantId::schlick_iter: return schlick_iter_latency(format_.frac) + (energy_ ? 2 : 0);
       case VariantId::table256:
