@@ -20,7 +20,7 @@ unit's file is that mutant (every other module unchanged), cheapest check first:
 each bounded in time (timeout = max(--min-timeout, --timeout-factor x the unmutated design's time)).
 A bench failure kills the mutant; a stage that runs out of time makes it "timeout" (counted apart).
 A survivor is "equivalent" only when Yosys proves it (each proof bounded by --eq-timeout; see equivalence()):
-(a) combinational SAT of a miter with every flip-flop exposed as a port pair, else (b) equiv_make of the
+(0) a tied bit that is that constant already, (a) combinational SAT of a miter with every flip-flop exposed as a port pair, else (b) equiv_make of the
 original and the mutant (same-named nets paired, the mutated wire left out), equiv_simple -seq N,
 equiv_induct -seq N, `equiv_status -assert`. --eq-timeout 0 skips it; a later run with a bound adds it to
 the cached survivors.
@@ -71,7 +71,7 @@ NO_BENCH = {
     "table1024": "no handoff bench for the table RAM (the bundle cannot be made for a table unit)",
 }
 STAGES = ["hard", "random", "nogap", "seed2", "extra"]
-EQ_METHOD = 2  # equivalence(): 2 = combinational SAT, then equiv_*; a survivor of an older method is tried again
+EQ_METHOD = 3  # equivalence(): 3 = constant bit, combinational SAT, equiv_*; an older method's survivor is tried again
 
 
 class ArgError(Exception):
@@ -306,7 +306,9 @@ def simulate(ctx, stage, fl, timeout):
 def equivalence(ctx, idx, mdir):
     """'equivalent' (proved) or 'unknown' (not proved within the time bounds), with a one-line account.
 
-    Two Yosys proofs, each bounded by --eq-timeout, the first that succeeds counts:
+    Yosys proofs, each bounded by --eq-timeout, the first that succeeds counts:
+    (0) a tie (const0/const1) of a bit that is that constant already: `sat -seq 1 -prove WIRE[BIT] VALUE` on
+        the original, every flip-flop free (any state, reachable or not): the mutant is the same circuit.
     (a) combinational: every flip-flop of the original (gold) and the mutant (gate) turned into a port pair
         (`dffunmap; expose -evert-dff`: its Q an input, its D an output, same names on both sides), a miter
         of the two (`miter -equiv -make_outputs`), the shared logic merged (`opt_merge`), `sat -prove trigger 0`:
@@ -319,6 +321,21 @@ def equivalence(ctx, idx, mdir):
     mut = ctx["mutations"][idx - 1]
     unit = ctx["unit"]
     tries = []
+    f = dict(re.findall(r"-(mode|wire|wirebit) (\S+)", mut))
+    if f.get("mode") in ("const0", "const1") and "wire" in f and "wirebit" in f:
+        ys = os.path.join(mdir, "const.ys")
+        with open(ys, "w") as fh:
+            fh.write("read_rtlil %s\ncd %s\nrename %s mutation_check_w\n"
+                     "sat -verify -seq 1 -prove mutation_check_w[%s] 1'b%s\n"
+                     % (ctx["design_il"], unit, f["wire"], f["wirebit"], f["mode"][-1]))
+        logf = os.path.join(mdir, "const.log")
+        rc, out, secs = run(["yosys", "-q", "-l", logf, ys], cwd=mdir, timeout=ctx["eq_timeout"])
+        logtxt = open(logf).read() if os.path.isfile(logf) else ""
+        if rc == 0 and "no model found: SUCCESS!" in logtxt:
+            return "equivalent", "the tied bit %s[%s] is %s in every state already (sat -seq 1 -prove, %.0f s)" % (
+                f["wire"], f["wirebit"], f["mode"][-1], secs)
+        tries.append("constant bit: %s" % ("timed out" if rc is None else "not constant"
+                                           if "model found: FAIL" in logtxt else "rc %s" % rc))
     ys = os.path.join(mdir, "comb.ys")
     with open(ys, "w") as f:
         f.write("read_rtlil %s\ncopy %s gold\n%s\nrename %s gate\ndffunmap\nexpose -evert-dff gold gate\n"
@@ -658,7 +675,8 @@ def write_report(opts, designs, md_path, json_path):
          "(more random vectors from `shadecore vectors`: for a unit 3 × %d with n in 16..31, 32..127, "
          "128..1024, seeds 11, 12, 13; for the lighting core one file of seed 11 — no C++ change); each "
          "stage is time-bounded (max(%d s, %g × the unmutated time)). A survivor counts as *equivalent* only "
-         "when Yosys proves it, each proof bounded by the design's equivalence bound: (a) a miter of original and "
+         "when Yosys proves it, each proof bounded by the design's equivalence bound: (0) for a tie to 0 or 1, the "
+         "bit is that constant in the original from every state (`sat -seq 1 -prove`), else (a) a miter of original and "
          "mutant with every flip-flop exposed as a port pair (`dffunmap; expose -evert-dff; miter -equiv; "
          "opt_merge; sat -prove trigger 0`: the same next state and outputs from every state), else (b) "
          "`equiv_make` (same-named nets paired, the mutated wire left out), `equiv_simple -seq 8`, "
