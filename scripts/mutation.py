@@ -711,7 +711,10 @@ def write_report(opts, designs, md_path, json_path):
         out["designs"].append({"name": d["name"], "unit": d["unit"], "handoff": d["handoff"],
                                "params": d["params"], "stages": d["stages"], "timeouts": d["timeouts"],
                                "baseline_seconds": d["baseline"], "summary": s,
-                               "results": d["results"]})
+                               "equivalence_bound_seconds": d.get("eq_timeout"), "source": d.get("source"),
+                               # killed: id, stage and the first failure line; the others in full
+                               "results": [{k: v for k, v in r.items() if k in ("id", "status", "stage", "detail")}
+                                           if r["status"] == "killed" else r for r in d["results"]]})
     for n in getattr(opts, "pending", []):
         L.append("| %s | | - | not run yet (time) | | | | | |" % n)
     for n, why in NO_BENCH.items():
