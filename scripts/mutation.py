@@ -745,6 +745,9 @@ def write_report(opts, designs, md_path, json_path):
         surv = [r for r in d["results"] if r["status"] in ("survived", "timeout", "error")]
         L.append("### %s" % d["name"])
         L.append("")
+        note = reasons.get("_notes", {}).get(d["name"])
+        if note:
+            L += ["Review note (not a per-mutant reason): " + note, ""]
         if not surv:
             L.append("None: every non-equivalent mutant is killed.")
         for r in surv:
