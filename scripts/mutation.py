@@ -769,6 +769,8 @@ def write_report(opts, designs, md_path, json_path):
                                                                          for r in eqs)))
         L.append("")
     L += ["Table units (table256, table1024): not run — %s." % NO_BENCH["table256"], ""]
+    if reasons.get("_findings"):
+        L += ["## Findings and what is left", ""] + ["- " + t for t in reasons["_findings"]] + [""]
     with open(md_path, "w") as f:
         f.write("\n".join(L))
     with open(json_path, "w") as f:
