@@ -546,6 +546,13 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
             s = cache["results"][str(i)]["status"]
             counts[s] = counts.get(s, 0) + 1
     t0 = time.time()
+    meta = {"name": name, "unit": unit, "handoff": "shadecore " + " ".join(cmd[1:]).replace(bundle, "DIR"),
+            "params": prep["params"], "stages": stages, "timeouts": ctx["timeouts"],
+            "baseline": cache["baseline"], "eq_timeout": opts.eq_timeout, "eq_steps": opts.eq_steps,
+            "count": opts.count, "seed": opts.seed, "source": opts.commit}
+    if not only:
+        cache["meta"] = dict(meta, complete=False)
+        save_cache(cache_path, cache)
     if todo:
         pool = multiprocessing.Pool(opts.jobs, initializer=nice_init)
         try:
@@ -568,12 +575,8 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
         finally:
             pool.join()
     shutil.rmtree(ctx["tmp"], ignore_errors=True)
-    meta = {"name": name, "unit": unit, "handoff": "shadecore " + " ".join(cmd[1:]).replace(bundle, "DIR"),
-            "params": prep["params"], "stages": stages, "timeouts": ctx["timeouts"],
-            "baseline": cache["baseline"], "eq_timeout": opts.eq_timeout, "eq_steps": opts.eq_steps,
-            "count": opts.count, "seed": opts.seed, "source": opts.commit}
     if not only:
-        cache["meta"] = meta
+        cache["meta"] = dict(meta, complete=True)
         save_cache(cache_path, cache)
     return dict(meta, results=[cache["results"][str(i)] for i in ids], wall_seconds=round(time.time() - t0, 1))
 
@@ -588,8 +591,11 @@ def cached_design(opts, name):
     if not meta or meta["count"] != opts.count or meta["seed"] != opts.seed:
         return None
     res = [c["results"].get(str(i)) for i in range(1, meta["count"] + 1)]
-    if any(r is None for r in res):
+    done = [r for r in res if r is not None]
+    if not done:
         return None
+    if len(done) < len(res) or meta.get("complete") is False:
+        return dict(meta, results=done, partial=True)
     return dict(meta, results=res)
 
 
@@ -704,7 +710,8 @@ def write_report(opts, designs, md_path, json_path):
         ks = s["killed_by_stage"]
         sc = s["survivors_by_reason"]
         L.append("| %s | %s | %d | %d (%s) | %d (%d / %d / %d) | %d | %d | %s | %s |" % (
-            d["name"], d["unit"], s["total"], s["killed"], " / ".join(str(ks.get(st, 0)) for st in STAGES),
+            d["name"] + (" (partial: %d of %d run)" % (len(d["results"]), d["count"]) if d.get("partial") else ""),
+            d["unit"], s["total"], s["killed"], " / ".join(str(ks.get(st, 0)) for st in STAGES),
             s["survived"], sc["all"], sc["contract"], sc["other"], s["timeout"], s["equivalent"],
             "%.2f %%" % s["score"] if s["score"] is not None else "-",
             "%.2f %%" % s["score_reasoned"] if s["score_reasoned"] is not None else "-"))
