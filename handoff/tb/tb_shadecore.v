@@ -85,6 +85,9 @@ module tb_shadecore;
   integer next_idx, pidx, rst_left, lat, e;
   reg     have, valid_q, mid_done, mat_loaded, held, done;
   reg [31:0] rng;
+  reg [31:0] jrng;   // its own stream: the junk on the material port (below) leaves rng's gaps as they were
+  reg [63:0] junk;
+  wire unused_junk = &{1'b0, junk};   // only the port widths' low bits are driven
   reg [31:0] ld_n, ld_thr, ld_coef;
   reg [TAGW-1:0] held_tag;
   reg [OUTW-1:0] held_spec;
@@ -167,6 +170,7 @@ module tb_shadecore;
       end
 
     rng = (seed == 0) ? 32'h1234_5678 : seed;
+    jrng = rng ^ 32'h9e37_79b9;
     cyc = 0; adv = 0; idle = 0; tail = 0; checked = 0; accepted = 0; dropped = 0; resets = 0;
     mat_writes = 0; next_idx = 0; pidx = 0; rst_left = RESET_CYCLES; q_head = 0; q_count = 0;
     have = 1'b0; valid_q = 1'b0; mid_done = 1'b0; mat_loaded = 1'b0; held = 1'b0; done = 1'b0;
@@ -247,6 +251,15 @@ module tb_shadecore;
         next_idx = next_idx + 1;
       end
       mat_we = 1'b0;
+      // Junk on the material port whenever mat_we_i is low: a material register that loads without
+      // mat_we_i (or a fragment that reads the port instead of the register) then shows as a mismatch.
+      jrng = xs32(jrng);
+      junk[63:32] = jrng;
+      jrng = xs32(jrng);
+      junk[31:0] = jrng;
+      mat_n    = junk[10:0];
+      mat_thr  = junk[FRAC:0];
+      mat_coef = junk[COEFW-1:0];
       if (have) begin
         if (!mat_loaded || new_material(pidx)) begin
           // A material write is a bubble: a fragment accepted at the write edge would still be
