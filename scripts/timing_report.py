@@ -229,7 +229,7 @@ def plot(path, rows, footer):
         if r["kind"] != "unit":
             continue
         cfg = r["width"].split(" ")[0]
-        t = trade.get((r["name"], cfg))
+        t = trade.get((r["name"].split("+")[0], cfg))  # "<unit>+mreg": the same outputs, so the unit's error
         if t is None or t.get("total_abs_max") is None:
             continue
         pts.append((r, t["total_abs_max"]))
@@ -242,12 +242,14 @@ def plot(path, rows, footer):
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.autoscale_view()
+        lo, hi = ax.get_ylim()
+        ax.set_ylim(lo, hi * 3)  # headroom: every label goes above its point (below would leave the axes)
         fig.canvas.draw()
         # labels: the first of the offsets (points) that keeps this label clear of those already placed
         taken = []
         for x, err, r in placed:
             px, py = ax.transData.transform((x, err))
-            for dy in (6, -14, 18, -26, 30, -38, 42):
+            for dy in (6, 18, 30, 42, 54, 66, 78):
                 if all(abs(px - qx) > 95 or abs(py + dy - qy) > 12 for qx, qy in taken):
                     break
             taken.append((px, py + dy))
