@@ -7,7 +7,9 @@
 # yosys-smtbmc), sollya and gappa are the proof tools of the formal suite (docs/formal.md, docs/bounds.md).
 # libosmesa6-dev (Mesa's off-screen GL, llvmpipe) with the GL headers (libgl-dev: GL/gl.h, mesa-common-dev) is
 # the outside reference of `shadecore gl-compare` (docs/gl_compare.md). qflow-tech-osu018 (the OSU 0.18 um cell
-# library) and opensta (OpenSTA) are the timing and energy sign-off (signoff/, docs/signoff.md).
+# library) and opensta (OpenSTA) are the timing and energy sign-off (signoff/, docs/signoff.md). apitrace,
+# mesa-utils (glxgears), xvfb with xauth (xvfb-run) and libsnappy-dev (the capture reader's decompressor) are
+# `shadecore replay` (docs/replay.md); `scripts/setup.sh xscreensaver-gl` adds the programs of its table.
 set -euo pipefail
 
 PACKAGES=(
@@ -20,6 +22,7 @@ PACKAGES=(
   python3-dev python3-pybind11 python3-pytest
   slurm-wlm munge
   qflow-tech-osu018 opensta
+  apitrace mesa-utils xvfb xauth libsnappy-dev
   "$@"
 )
 
