@@ -10,12 +10,13 @@
 # library) and opensta (OpenSTA) are the timing and energy sign-off (signoff/, docs/signoff.md). apitrace,
 # mesa-utils (glxgears), xvfb with xauth (xvfb-run) and libsnappy-dev (the capture reader's decompressor) are
 # `shadecore replay` (docs/replay.md); `scripts/setup.sh xscreensaver-gl` adds the programs of its table.
+# lcov (genhtml) turns the merged Verilator coverage into HTML (`regress --coverage`, docs/coverage.md).
 set -euo pipefail
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libfmt-dev libpng-dev libtinyobjloader-dev
-  verilator libsystemc-dev yosys iverilog
+  verilator libsystemc-dev yosys iverilog lcov
   z3 sollya gappa
   libosmesa6-dev libgl-dev mesa-common-dev
   python3 python3-numpy python3-matplotlib zlib1g-dev
