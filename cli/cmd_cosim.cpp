@@ -27,6 +27,7 @@
 
 #include "shadecore/common/args.hpp"
 #include "commands.hpp"
+#include "coverage.hpp"
 #include "light_rtl.hpp"
 #include "output.hpp"
 #include "shadecore/common/progress.hpp"
@@ -53,6 +54,7 @@ struct CosimArgs {
   long long reset_at = -2;
   int shards = 0;
   std::string trace, json_path;
+  std::string coverage_dir;  // --coverage DIR: the coverage build, its merged database, summary and HTML there
   int show = 5;
   bool norm = false;              // sc_specular ENERGY = 1 (energy-normalised output, docs/spec.md §7)
   std::string coef_model, coef_kind;
@@ -174,7 +176,16 @@ void run_cosim(const CosimArgs& a) {
   if (sims.empty()) throw std::runtime_error("this shadecore was built without the RTL co-simulation (SHADECORE_WITH_RTL=OFF)");
   const auto it = sims.find(cfg);
   if (it == sims.end()) throw std::runtime_error("no simulator built for config '" + cfg + "'");
-  const std::string sim = it->second;
+  std::string sim = it->second;
+  // --coverage DIR: the coverage build of this one model instead (built on demand, cached), each shard writing
+  // its database into a scratch directory under DIR, merged there at the end (docs/coverage.md).
+  std::string cov_tmp;
+  if (!a.coverage_dir.empty()) {
+    coverage::check_output_dir(a.coverage_dir, "--coverage");
+    sim = coverage::ensure_unit({a.variant, cfg, a.cutoff, a.norm}, /*bare=*/false, false).exe;
+    cov_tmp = (std::filesystem::path(a.coverage_dir) / fmt::format(".shards.{}", ::getpid())).string();
+    std::filesystem::create_directories(cov_tmp);
+  }
   if (::access(sim.c_str(), X_OK) != 0)
     throw std::runtime_error("simulator " + sim + " not built (cmake --build <build dir>)");
 
@@ -222,6 +233,7 @@ void run_cosim(const CosimArgs& a) {
     else if (a.mode == "random")
       v.insert(v.end(), {"--reset-at", std::to_string(stimulus::default_reset_index(seed, a.count))});
     if (!trace_tmp.empty()) v.insert(v.end(), {"--trace", trace_tmp});
+    if (!cov_tmp.empty()) v.insert(v.end(), {"--coverage", fmt::format("{}/shard{}.dat", cov_tmp, i)});
     if (a.norm) v.push_back("--norm");
     if (a.coef_model_given) v.insert(v.end(), {"--coef-model", a.coef_model});
     if (a.coef_given) v.insert(v.end(), {"--coef", a.coef_kind});
@@ -333,6 +345,19 @@ void run_cosim(const CosimArgs& a) {
     }
     outs.set(json_out, j.dump(2) + "\n");
   }
+  // The coverage of the run (a failing one too: it is part of its record).
+  if (!cov_tmp.empty()) {
+    std::vector<std::string> dats;
+    for (int i = 0; i < shards; ++i) dats.push_back(fmt::format("{}/shard{}.dat", cov_tmp, i));
+    struct Cleanup {
+      std::string d;
+      ~Cleanup() {
+        std::error_code ec;
+        std::filesystem::remove_all(d, ec);
+      }
+    } cleanup{cov_tmp};
+    coverage::report(dats, a.coverage_dir, coverage::waivers_in_use(), /*html=*/true, /*quiet=*/false);
+  }
   // A FAIL verdict is a completed run: its JSON and waveform are the record of the failure.
   outs.commit();
   if (trace_out >= 0) fmt::print("cosim: waveform written to {}\n", a.trace);
@@ -376,6 +401,13 @@ void add_cosim(CLI::App& app) {
   auto* shards_opt = sub->add_option("--shards", args->shards, "parallel simulator processes (0 = one per core; at most 64)")
                          ->check(Int(0, kMaxParallel));
   sub->add_option("--trace", args->trace, "FST waveform file (one shard)")->check(NonEmpty("path"));
+  sub->add_option("--coverage", args->coverage_dir,
+                  "run the coverage build of the model (built on demand, cached) and write DIR/coverage.dat (merged over "
+                  "the shards), DIR/summary.json and DIR/html (docs/coverage.md)")
+      ->check(NonEmpty("directory"));
+  // regress's shards: the database alone (the merge after the run makes the report); no help line.
+  auto cov_raw = std::make_shared<bool>(false);
+  sub->add_flag("--coverage-db-only", *cov_raw, "")->group("");
   sub->add_option("--json", args->json_path, "write the merged result as JSON (atomically)")->check(NonEmpty("path"));
   sub->add_flag("--norm", args->norm, "energy-normalised output: sc_specular ENERGY = 1 (cs16, theta_cr)");
   auto* cm_opt = sub->add_option("--coef-model", args->coef_model,
@@ -404,7 +436,7 @@ void add_cosim(CLI::App& app) {
                                     "with the same seed and --reset-at)")
                         ->check(UInt(0, uint64_t{1} << 40));
   sub->callback([args, n_opt, count_opt, shards_opt, cm_opt, coef_opt, core, features, feat_opt, harness, harness_opt,
-                 first, first_opt, sub] {
+                 first, first_opt, cov_raw, sub] {
     if (*core == "lighting") {
       for (const char* unit_only : {"--variant", "--config", "--cutoff", "--n", "--norm", "--coef-model", "--coef",
                                     "--shards", "--trace", "--mat-rate"})
@@ -421,6 +453,9 @@ void add_cosim(CLI::App& app) {
       la.json_path = args->json_path;
       la.harness = *harness;
       la.first = *first;
+      la.coverage_dir = args->coverage_dir;
+      la.coverage_report = !*cov_raw;
+      if (*cov_raw && la.coverage_dir.empty()) throw std::invalid_argument("--coverage-db-only needs --coverage DIR");
       la.reset_at = sub->count("--reset-at") > 0 ? static_cast<int64_t>(args->reset_at) : -2;
       if (la.first != 0 && la.mode != "random") throw std::invalid_argument("--first applies to --mode random only");
       if (lighting_cosim(la) != 0) throw CheckFailed("cosim: FAIL (lighting core '" + la.features + "')");
@@ -430,6 +465,7 @@ void add_cosim(CLI::App& app) {
     if (harness_opt->count() > 0)
       throw std::invalid_argument("--harness needs --core lighting (the unit's bare harness is shadecore_bare_<config>)");
     if (first_opt->count() > 0) throw std::invalid_argument("--first needs --core lighting (the unit's shards: --shards)");
+    if (*cov_raw) throw std::invalid_argument("--coverage-db-only is regress's, for --core lighting");
     args->n_given = n_opt->count() > 0;
     args->count_given = count_opt->count() > 0;
     args->shards_given = shards_opt->count() > 0;

@@ -42,6 +42,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "coverage.hpp"
 #include "handoff_bundle.hpp"
 #include "output.hpp"
 #include "shadecore/common/args.hpp"
@@ -176,7 +177,10 @@ RandomShards random_shards(const json& j, const std::string& name, uint64_t seed
 }
 
 // Expands the plan into shards (deterministic: a function of the plan and this build's simulators).
-std::vector<ShardSpec> expand(const json& plan) {
+// With `coverage` (regress --coverage, docs/coverage.md) every co-simulation shard runs the coverage build of its
+// model (built here, on demand, into the core cache) and writes its database to "{cov}" = DIR/coverage/shards/ID/
+// coverage.dat; sweeps and commands simulate no RTL and run as without it.
+std::vector<ShardSpec> expand(const json& plan, bool coverage = false) {
   if (!plan.is_object() || !plan.contains("jobs") || !plan["jobs"].is_array() || plan["jobs"].empty())
     throw std::invalid_argument("plan: needs a non-empty \"jobs\" array");
   for (const auto& [k, v] : plan.items())
@@ -230,10 +234,13 @@ std::vector<ShardSpec> expand(const json& plan) {
       } else if (harness != "systemc") {
         throw std::invalid_argument(fmt::format("plan: job '{}': harness must be bare, systemc or auto", name));
       }
-      const auto sims = bare ? bare_sims() : cosim_sims();
+      auto sims = bare ? bare_sims() : cosim_sims();
       if (sims.empty()) throw std::runtime_error("this shadecore was built without the RTL co-simulation (SHADECORE_WITH_RTL=OFF)");
-      const auto it = sims.find(std::string(nc.name));
+      auto it = sims.find(std::string(nc.name));
       if (it == sims.end()) throw std::runtime_error(fmt::format("plan: job '{}': no {} simulator built for config '{}'", name, bare ? "bare" : "SystemC", cfg));
+      if (coverage) it->second = coverage::ensure_unit({variant, std::string(nc.name), cutoff, norm}, bare, false).exe;
+      const std::vector<std::string> cov_args = coverage ? std::vector<std::string>{"--coverage", "{cov}/coverage.dat"}
+                                                          : std::vector<std::string>{};
       const auto [n_lo, n_hi] = cliargs::parse_n_range(get<std::string>(j, name, "n", "16..1024"));
       const uint64_t seed = get<uint64_t>(j, name, "seed", 1);
       if (seed == 0) throw std::invalid_argument(fmt::format("plan: job '{}': seed must be >= 1 (a plan is reproducible)", name));
@@ -243,6 +250,7 @@ std::vector<ShardSpec> expand(const json& plan) {
                   "--in-stall", num(get<double>(j, name, "in_stall", 0.0)), "--out-stall", num(get<double>(j, name, "out_stall", 0.0)),
                   "--seed", std::to_string(seed)};
         if (norm) common.push_back("--norm");
+        common.insert(common.end(), cov_args.begin(), cov_args.end());
         if (j.contains("coef_model")) common.insert(common.end(), {"--coef-model", get<std::string>(j, name, "coef_model", "")});
         if (j.contains("coef")) common.insert(common.end(), {"--coef", get<std::string>(j, name, "coef", "")});
       }
@@ -253,6 +261,7 @@ std::vector<ShardSpec> expand(const json& plan) {
           const int lo = n_lo + static_cast<int>(static_cast<long long>(total) * k / shards);
           const int hi = n_lo + static_cast<int>(static_cast<long long>(total) * (k + 1) / shards) - 1;
           std::vector<std::string> v = bare ? std::vector<std::string>{it->second, "--no-progress"} : common;
+          if (bare) v.insert(v.end(), cov_args.begin(), cov_args.end());
           v.insert(v.end(), {"--n", fmt::format("{}..{}", lo, hi)});
           if (!bare && j.contains("reset_at")) v.insert(v.end(), {"--reset-at", std::to_string(get<int64_t>(j, name, "reset_at", -1))});
           add(k, shards, bare ? "bare" : "sim", v);
@@ -310,6 +319,7 @@ std::vector<ShardSpec> expand(const json& plan) {
           self, "cosim", "--core", "lighting", "--harness", harness, "--features", get<std::string>(j, name, "features", "full"),
           "--mode", mode, "--seed", std::to_string(seed), "--in-stall", num(get<double>(j, name, "in_stall", 0.0)),
           "--out-stall", num(get<double>(j, name, "out_stall", 0.0)), "--no-progress"};
+      if (coverage) common.insert(common.end(), {"--coverage", "{cov}", "--coverage-db-only"});
       if (mode == "directed") {
         if (j.contains("reset_at")) common.insert(common.end(), {"--reset-at", std::to_string(get<int64_t>(j, name, "reset_at", -1))});
         common.insert(common.end(), {"--count", std::to_string(count)});
@@ -469,6 +479,16 @@ int run_shard(const std::string& dir_s, const std::string& id_given, const std::
     fs::remove_all(work, ec);
     fs::create_directories(work.parent_path(), ec);
   }
+  // "{cov}": the shard's coverage directory, DIR/coverage/shards/ID (emptied per attempt; regress --coverage).
+  const fs::path cov = dir / "coverage" / "shards" / id;
+  bool uses_cov = false;
+  for (auto& a : argv)
+    for (size_t at; (at = a.find("{cov}")) != std::string::npos; uses_cov = true) a.replace(at, 5, cov.string());
+  if (uses_cov) {
+    fs::remove_all(cov, ec);
+    fs::create_directories(cov, ec);
+    if (ec) throw std::runtime_error("cannot create " + cov.string() + ": " + ec.message());
+  }
   if (!s.raw_json.empty()) argv.insert(argv.end(), {"--json", raw.string()});
 
   const fs::path log = dir / "logs" / (id + ".log");
@@ -521,6 +541,9 @@ struct RegressArgs {
   int max_running = 0;
   int poll_ms = 2000;
   bool merge_only = false;
+  bool coverage = false;     // --coverage: coverage builds, per-shard databases, merged after the run
+  std::string waivers;       // --waivers FILE (default: config/coverage_waivers.json)
+  bool waivers_given = false;
   ProgressFlags progress;
 };
 
@@ -776,7 +799,9 @@ int run_regress(const RegressArgs& a) {
   if (a.slurm && a.jobs) throw std::invalid_argument("-j applies to --local only (Slurm places the shards)");
   std::string plan_file;
   json plan = load_plan(a.plan, plan_file);
-  const std::vector<ShardSpec> specs = expand(plan);
+  if (a.waivers_given && !a.coverage) throw std::invalid_argument("--waivers applies with --coverage only");
+  if (a.coverage && a.waivers_given) coverage::read_waivers(a.waivers);  // a malformed file fails before the run
+  const std::vector<ShardSpec> specs = expand(plan, a.coverage);
   const std::string plan_name = plan.value("name", fs::path(plan_file).stem().string());
   const json sj = shards_json(specs);
 
@@ -860,7 +885,42 @@ int run_regress(const RegressArgs& a) {
   write_atomic(dir / "run.json", runlog.dump(2) + "\n");
 
   // ---- merge and report
-  const json merged = merge(plan, specs, st);
+  json merged = merge(plan, specs, st);
+  // ---- coverage: the databases of the completed shards, merged (DIR/coverage/merged.dat, summary.json, html/)
+  std::string cov_error;
+  if (a.coverage) {
+    std::vector<std::string> dats;
+    size_t want = 0;
+    for (const auto& s : st) {
+      const fs::path d = dir / "coverage" / "shards" / s.spec->id / "coverage.dat";
+      bool uses = false;
+      for (const auto& x : s.spec->argv) uses = uses || x.find("{cov}") != std::string::npos;
+      if (!uses) continue;
+      ++want;
+      if (s.done && fs::exists(d, ec)) dats.push_back(d.string());
+    }
+    json cj = {{"databases", dats.size()}, {"shards_with_coverage", want}};
+    if (dats.empty()) {
+      cov_error = "no shard wrote a coverage database";
+    } else {
+      try {
+        const std::string wf = a.waivers_given ? a.waivers : coverage::waivers_in_use();
+        const auto sum = coverage::report(dats, (dir / "coverage").string(), wf, /*html=*/true, /*quiet=*/true);
+        fs::rename(dir / "coverage" / "coverage.dat", dir / "coverage" / "merged.dat", ec);
+        cj["database"] = "coverage/merged.dat";
+        cj["html"] = "coverage/html/index.html";
+        cj["waivers"] = wf.empty() ? json() : json(fs::path(wf).filename().string());
+        cj["waivers_applied"] = sum["waivers"]["applied"].size();
+        cj["modules"] = json::parse(sum["modules"].dump());
+        cj["totals"] = json::parse(sum["totals"].dump());
+      } catch (const std::exception& e) {
+        cov_error = e.what();
+      }
+    }
+    if (!cov_error.empty()) cj["error"] = cov_error;
+    if (dats.size() < want) cj["partial"] = true;
+    merged["coverage"] = cj;
+  }
   write_atomic(dir / "merged.json", merged.dump(2) + "\n");
   const std::string desc = plan.value("description", std::string());
   std::string md = fmt::format("# shadecore regress: plan {}\n\n{}Run directory `{}`; written {} by `{}` on {} ({} backend); "
@@ -902,6 +962,27 @@ int run_regress(const RegressArgs& a) {
     md += "\n## Problems\n\n";
     for (const auto& p : problems) md += "- " + p + "\n";
   }
+  if (merged.contains("coverage")) {
+    const auto& c = merged["coverage"];
+    md += fmt::format("\n## Coverage\n\n{} of {} shard database(s) merged into `coverage/merged.dat`{}; HTML `coverage/html/index.html`; "
+                      "hit / (total − waived) per module, details in `coverage/summary.json` (docs/coverage.md).\n\n",
+                      c["databases"].get<size_t>(), c["shards_with_coverage"].get<size_t>(), c.contains("partial") ? " (PARTIAL)" : "");
+    if (c.contains("error")) md += "Coverage ERROR: " + c["error"].get<std::string>() + "\n";
+    if (c.contains("modules")) {
+      md += "| module | line | branch | toggle | functional |\n|---|---:|---:|---:|---:|\n";
+      auto cell = [](const json& row, const char* k) -> std::string {
+        if (!row.contains(k)) return "–";
+        const auto& x = row[k];
+        return fmt::format("{}/{} ({:.2f} %)", x["hit"].get<uint64_t>(), x["total"].get<uint64_t>() - x["waived"].get<uint64_t>(),
+                           x["percent"].get<double>());
+      };
+      for (const auto& row : c["modules"])
+        md += fmt::format("| {} | {} | {} | {} | {} |\n", row["module"].get<std::string>(), cell(row, "line"), cell(row, "branch"),
+                          cell(row, "toggle"), cell(row, "functional"));
+      json t = c["totals"];
+      md += fmt::format("| **all** | {} | {} | {} | {} |\n", cell(t, "line"), cell(t, "branch"), cell(t, "toggle"), cell(t, "functional"));
+    }
+  }
   write_atomic(dir / "summary.md", md);
   for (const auto& j : merged["jobs"])
     fmt::print("regress: {:<28} {:>4} shard(s) {:>16} vectors {:>8} mismatches  {}\n", j["name"].get<std::string>(),
@@ -912,7 +993,17 @@ int run_regress(const RegressArgs& a) {
              missing ? "INCOMPLETE" : (merged["ok"].get<bool>() ? "PASS" : "FAIL"), grouped(tot["vectors"].get<uint64_t>()),
              grouped(tot["mismatches"].get<uint64_t>()), wall, dir.string(), dir.string());
   std::fflush(stdout);
+  if (merged.contains("coverage") && merged["coverage"].contains("modules")) {
+    const auto& t = merged["coverage"]["totals"];
+    auto pc = [&t](const char* k) { return t.contains(k) ? fmt::format("{:.2f} %", t[k]["percent"].get<double>()) : std::string("–"); };
+    fmt::print("regress: coverage: line {}, branch {}, toggle {}, functional {} of non-waived points ({} databases); "
+               "{}/coverage/summary.json, {}/coverage/html/index.html\n",
+               pc("line"), pc("branch"), pc("toggle"), pc("functional"), merged["coverage"]["databases"].get<size_t>(),
+               dir.string(), dir.string());
+    std::fflush(stdout);
+  }
   if (missing) throw std::runtime_error(fmt::format("{} shard(s) did not complete (named above with their logs)", missing));
+  if (!cov_error.empty()) throw std::runtime_error("coverage: " + cov_error);
   if (!merged["ok"].get<bool>()) throw CheckFailed("regression FAILED (see " + (dir / "summary.md").string() + ")");
   return 0;
 }
@@ -938,8 +1029,14 @@ void add_regress(CLI::App& app) {
   sub->add_flag("--merge-only", a->merge_only,
                 "run nothing: write the merged report of the shards --out holds (missing ones: INCOMPLETE, exit 1)");
   sub->add_option("--poll", a->poll_ms, "--slurm: milliseconds between squeue polls (default 2000)")->check(Int(100, 600000));
+  sub->add_flag("--coverage", a->coverage,
+                "run the coverage builds of the models; merge the shards' databases into DIR/coverage (merged.dat, "
+                "summary.json, html/) and add the per-module summary to merged.json (docs/coverage.md)");
+  auto* wopt = sub->add_option("--waivers", a->waivers, "--coverage: the waiver file (default config/coverage_waivers.json)")
+                   ->check(NonEmpty("path"));
   a->progress.add(sub);
-  sub->callback([a] {
+  sub->callback([a, wopt] {
+    a->waivers_given = wopt->count() > 0;
     const int rc = run_regress(*a);
     (void)rc;
   });

@@ -10,6 +10,8 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,7 +35,26 @@ const char* harness_name(Harness h);
 
 // Build (or find) the simulator of `fs` for harness `h`. Progress on stderr when building (it takes
 // ~30–90 s). Throws std::runtime_error with one line (and the log path) if Verilator or the compiler fails.
-CoreBuild ensure_core(const FeatureSet& fs, bool quiet = false, Harness h = Harness::SystemC);
+// `coverage`: the coverage build of the set (line, branch and toggle points; docs/coverage.md), cached apart
+// (<key>-cov) from the speed build.
+CoreBuild ensure_core(const FeatureSet& fs, bool quiet = false, Harness h = Harness::SystemC, bool coverage = false);
+
+// One simulator built on demand from a CMake project of sim/ and cached by key (the lighting core per
+// feature set; the coverage builds, cli/coverage.hpp): configured and built into <cache>/<key>/, stamped with
+// a hash of everything it is made of, a lock file serialising concurrent builds of one key.
+struct ProjectBuild {
+  std::string key;                           // cache subdirectory
+  std::string project;                       // the CMake project, relative to the source tree ("sim/light_core")
+  std::vector<std::string> harness_sources;  // the sim/ .cpp files it compiles (hashed into the stamp)
+  std::vector<std::string> defines;          // -D... for the configure step (after the source/generated dirs)
+  std::string target;                        // the executable target (and file name in <cache>/<key>/)
+  std::string stamp = "stamp", log = "build.log";  // per target
+  std::string noun = "core";                 // "building its <noun> into ..."
+  std::string first_use;                     // why a first build starts
+  std::string what;                          // the progress line while it builds
+  std::function<void(const std::filesystem::path& dir)> prepare;  // generated files, before configuring
+};
+CoreBuild ensure_build(const ProjectBuild& pb, bool quiet);
 
 struct RtlRunOptions {
   double in_stall = 0.0, out_stall = 0.0;
@@ -70,6 +91,8 @@ struct LightCosimArgs {
   uint64_t seed = 0;               // 0 = pick one (printed)
   double in_stall = 0.0, out_stall = 0.0;
   std::string json_path;
+  std::string coverage_dir;        // --coverage DIR: the set's coverage build; DIR/coverage.dat, summary.json, html
+  bool coverage_report = true;     // false (regress shards): DIR/coverage.dat only, the merge makes the report
   bool quiet = false;
 };
 int lighting_cosim(const LightCosimArgs& a);

@@ -4,7 +4,7 @@
 // in_valid_i and out_ready_i always high, exhaustive codes for an n range. With --check each output
 // is compared with the C model, exactly as the SystemC scoreboard does (minus tags and latency).
 //
-//   shadecore_bare_default [--n LO..HI] [--no-check] [--progress | --no-progress]
+//   shadecore_bare_default [--n LO..HI] [--no-check] [--progress | --no-progress] [--coverage FILE]
 //
 // Exit status (docs/cli.md): 0 every output checked and equal (and at least one checked); 2 the run
 // completed with a mismatch or a missing output (or nothing checked); 1 a bad argument (one line).
@@ -18,6 +18,7 @@
 #include <string>
 
 #include "Vbare_cs16.h"
+#include "tb_coverage.hpp"
 #include "shadecore/common/args.hpp"
 #include "shadecore/common/progress.hpp"
 #include "shadecore/configs.hpp"
@@ -28,12 +29,13 @@ int main(int argc, char** argv) {
   std::string prog = argv[0];
   if (const auto slash = prog.rfind('/'); slash != std::string::npos) prog = prog.substr(slash + 1);
   const auto usage_error = [&](const std::string& msg) {
-    std::fprintf(stderr, "%s: error: %s (usage: %s [--n LO..HI] [--no-check] [--progress|--no-progress])\n",
+    std::fprintf(stderr, "%s: error: %s (usage: %s [--n LO..HI] [--no-check] [--progress|--no-progress] [--coverage FILE])\n",
                  prog.c_str(), msg.c_str(), prog.c_str());
     return 1;
   };
   int n_lo = 16, n_hi = 1024;
   bool check = true, force_progress = false, no_progress = false;
+  std::string coverage;  // the coverage build's database (sim/unit_core; tb_coverage.hpp)
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--n")) {
       if (i + 1 >= argc) return usage_error("--n needs a value");
@@ -42,6 +44,10 @@ int main(int argc, char** argv) {
       } catch (const std::exception& e) {
         return usage_error(std::string("--n: ") + e.what());
       }
+    } else if (!std::strcmp(argv[i], "--coverage")) {
+      if (i + 1 >= argc || !*argv[i + 1]) return usage_error("--coverage needs a path");
+      coverage = argv[++i];
+      if (const std::string e = shadecore::sim::coverage_option_error(coverage); !e.empty()) return usage_error(e);
     } else if (!std::strcmp(argv[i], "--no-check")) {
       check = false;
     } else if (!std::strcmp(argv[i], "--progress")) {
@@ -49,7 +55,7 @@ int main(int argc, char** argv) {
     } else if (!std::strcmp(argv[i], "--no-progress")) {
       no_progress = true;
     } else if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
-      std::printf("usage: %s [--n LO..HI] [--no-check] [--progress|--no-progress]\n"
+      std::printf("usage: %s [--n LO..HI] [--no-check] [--progress|--no-progress] [--coverage FILE]\n"
                   "cs16 (theta_cr) Verilated without SystemC, every code of every n in LO..HI (default 16..1024),\n"
                   "each output compared with the C model unless --no-check.\n",
                   prog.c_str());
@@ -133,6 +139,12 @@ int main(int argc, char** argv) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   bar.stop();
   top.final();
+  try {
+    shadecore::sim::write_coverage(&ctx, coverage);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: error: %s\n", prog.c_str(), e.what());
+    return 1;
+  }
   std::printf("bare: %s config %s MREG %d n %d..%d: %llu sent, %llu out, %llu mismatches%s, %llu off latency %d, "
               "%llu cycles, %.3f s, %.0f vectors/s, %.0f cycles/s\n",
               std::string(variant_name(kVariant)).c_str(), SHADECORE_BARE_CONFIG, SHADECORE_BARE_MREG, n_lo, n_hi, (unsigned long long)sent, (unsigned long long)got,

@@ -36,6 +36,7 @@
 #include "shadecore/configs.hpp"
 #include "shadecore/unit.hpp"
 #include "sim_models.hpp"
+#include "tb_coverage.hpp"
 #include "tb_driver.hpp"
 #include "tb_monitor.hpp"
 #include "tb_options.hpp"
@@ -96,6 +97,7 @@ class ProgressProbe : public sc_core::sc_module {
 struct RunConfig {
   std::string repro;
   std::string trace_file;  // where the waveform is written while the run lasts ("" = none)
+  std::string coverage_file;  // coverage build: where the database is written at the end ("" = none)
   bool progress_bar = false, progress_lines = false;
 };
 
@@ -137,6 +139,7 @@ int run(const Options& o, const Unit& unit, const RunConfig& rc, std::string& ca
   if (tfp) tfp->close();
   sb.finish();
   dut.final();
+  write_coverage(Verilated::threadContextp(), rc.coverage_file);  // while the model (its counters) lives
 
   const Format& f = unit.format();
   // A run that checked nothing is not a pass; a watchdog stop is named as the cause.
@@ -269,6 +272,9 @@ int main_impl(int argc, char** argv) {
   app.add_option("--trace", o.trace, "write an FST waveform to this file (also: +trace, +trace=FILE)")
       ->check(NonEmpty("path"));
   app.add_option("--show", o.show, "errors printed in full per kind")->check(Int(0, 1000000));
+  std::string coverage;
+  app.add_option("--coverage", coverage, "coverage build only: write the coverage database (coverage.dat) here")
+      ->check(NonEmpty("path"));
   auto* inject_opt =
       app.add_option("--inject", o.inject, "self-test: corrupt one observed output (value | drop | dup); the run must FAIL")
           ->check(CLI::IsMember({"value", "drop", "dup"}));
@@ -309,6 +315,7 @@ int main_impl(int argc, char** argv) {
     if (o.mode != Mode::Random && first_opt->count()) throw std::invalid_argument("--first applies to --mode random only");
     if (o.mode != Mode::Random && mat_opt->count()) throw std::invalid_argument("--mat-rate applies to --mode random only");
     if (inject_at_opt->count() && !inject_opt->count()) throw std::invalid_argument("--inject-at needs --inject");
+    if (const std::string e = coverage_option_error(coverage); !e.empty()) throw std::invalid_argument(e);
     if (!norm && (coef_model_opt->count() || coef_opt->count()))
       throw std::invalid_argument("--coef-model and --coef apply with --norm only");
     const Format* fmt = nullptr;
@@ -377,6 +384,7 @@ int main_impl(int argc, char** argv) {
       trace_out = outs.file("--trace", o.trace, /*allow_stream=*/false);
       rc.trace_file = outs.produce_path(trace_out, {".hier"});
     }
+    if (!coverage.empty()) rc.coverage_file = outs.produce_path(outs.file("--coverage", coverage, /*allow_stream=*/false));
     rc.progress_bar = io::progress_wanted(force_progress, no_progress);
     rc.progress_lines = progress_lines;
     if (!o.quiet)

@@ -111,6 +111,7 @@ LightHarnessStats run_bare(const LightOptions& o, const LightCore& core, LightSt
     if (stop) break;
   }
   top.final();
+  write_coverage(&ctx, o.coverage);  // while the model (its counters) lives
   return light_harness_stats(mon, drv);
 }
 

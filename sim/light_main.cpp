@@ -35,6 +35,7 @@ LightHarnessStats run_systemc(const LightOptions& o, const LightCore& core, Ligh
   sc_core::sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
   sc_core::sc_start();
   dut.final();
+  write_coverage(Verilated::threadContextp(), o.coverage);  // while the model (its counters) lives
   return light_harness_stats(mon, drv);
 }
 

@@ -34,6 +34,7 @@
 #include "shadecore/stimulus/light_stimulus.hpp"
 #include "shadecore/stimulus/light_stream.hpp"
 #include "shadecore/stimulus/specular.hpp"
+#include "tb_coverage.hpp"
 #include "tb_light_logic.hpp"
 
 namespace shadecore::sim {
@@ -53,6 +54,7 @@ struct LightOptions {
   uint64_t inject_at = 100;
   bool quiet = false;
   std::string label = "custom";
+  std::string coverage;  // coverage build: the database written at the end of the run (tb_coverage.hpp)
 };
 
 // What a harness's clock loop reports back (the scoreboard holds the rest).
@@ -232,6 +234,8 @@ inline int light_harness_main(int argc, char** argv, const char* harness, const 
                             ->check(UInt(1, uint64_t{1} << 40));
   app.add_option("--label", o.label, "the feature set's name, for the report")->check(NonEmpty("label"));
   app.add_flag("--quiet", o.quiet, "print only the COSIM-RESULT line when the run passes");
+  app.add_option("--coverage", o.coverage, "coverage build only: write the coverage database (coverage.dat) here")
+      ->check(NonEmpty("path"));
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -250,6 +254,7 @@ inline int light_harness_main(int argc, char** argv, const char* harness, const 
     if (o.mode == "stream" && !in_opt->count()) throw std::invalid_argument("--mode stream needs --in FILE");
     if (o.mode != "stream" && (in_opt->count() || out_opt->count())) throw std::invalid_argument("--in and --out apply to --mode stream only");
     if (inject_at_opt->count() && !inject_opt->count()) throw std::invalid_argument("--inject-at needs --inject");
+    if (const std::string e = coverage_option_error(o.coverage); !e.empty()) throw std::invalid_argument(e);
     if (o.seed == 0) {
       o.seed = (static_cast<uint64_t>(std::random_device{}()) << 32) ^ std::random_device{}();
       if (o.seed == 0) o.seed = 1;

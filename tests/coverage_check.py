@@ -1,0 +1,240 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
+"""Checks of the RTL coverage machinery (issue 36, docs/coverage.md), counted by hand here, independently of
+cli/coverage.cpp.
+
+--quick (ctest coverage.summary, a second or two): Verilator databases written here by hand (two runs of two
+  modules: line, branch and toggle points, two parameterisations of one module) through `shadecore coverage`:
+  the merge sums the runs, the per-module hit / total / waived / percent equal the hand count, a waiver applies
+  to what it names (by source text, file, signal glob); a waiver that matches nothing, a waived point that was
+  hit, a malformed waiver file and a file that is no database are each a one-line error with exit 1 and nothing
+  written.
+--run (ctest coverage.regress, label long: builds the coverage model of cs16 once, ~2 min, then cached):
+  `shadecore regress --plan tests/data/coverage/tiny.json --local --coverage` — every co-simulation shard writes
+  its database, the merge after the run equals the hand-made union of the shards' databases module by module,
+  merged.json carries that summary, the HTML report is there, and a rerun of the same --out (resume) runs nothing
+  and writes the same merged.json.
+"""
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from collections import defaultdict
+
+FAILS = []
+
+
+def check(cond, what):
+    print(("ok   " if cond else "FAIL ") + what)
+    if not cond:
+        FAILS.append(what)
+
+
+def key(**kv):
+    order = ["f", "l", "n", "page", "o", "S", "h"]
+    return "".join("\x01%s\x02%s" % (k, kv[k]) for k in order if k in kv)
+
+
+def write_dat(path, points):
+    with open(path, "w") as f:
+        f.write("# SystemC::Coverage-3\n")
+        for k, c in points:
+            f.write("C '%s' %d\n" % (k, c))
+
+
+def parse_dat(path):
+    pts = {}
+    with open(path, encoding="utf-8", errors="surrogateescape") as f:
+        assert f.readline().startswith("# SystemC::Coverage")
+        for line in f:
+            if not line.startswith("C '"):
+                continue
+            q2 = line.rindex("'")
+            pts[line[3:q2]] = pts.get(line[3:q2], 0) + int(line[q2 + 1:])
+    return pts
+
+
+def fields(k):
+    out = {}
+    for part in k.split("\x01")[1:]:
+        a, b = part.split("\x02", 1)
+        out[a] = b
+    return out
+
+
+KIND = {"v_line": "line", "v_branch": "branch", "v_toggle": "toggle", "v_func": "functional"}
+
+
+def hand_summary(points):
+    """module -> kind -> [hit, total] (no waivers); a point reached through both harnesses (hierarchy under "dut."
+    or "TOP.") is one point."""
+    same = {}
+    for k, c in points.items():
+        fl = fields(k)
+        fl["h"] = fl.get("h", "").split(".", 1)[-1]
+        ident = tuple(sorted(fl.items()))
+        same[ident] = same.get(ident, 0) + c
+    s = defaultdict(lambda: defaultdict(lambda: [0, 0]))
+    for ident, c in same.items():
+        fl = dict(ident)
+        typ, mod = fl["page"].split("/", 1)
+        kind = KIND.get(typ, typ)
+        if kind != "functional" and "__" in mod:
+            mod = mod[:mod.index("__")]
+        s[mod][kind][1] += 1
+        if c > 0:
+            s[mod][kind][0] += 1
+    return s
+
+
+def run(cmd, **kw):
+    return subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **kw)
+
+
+def quick(sc, work):
+    src = os.path.join(work, "rtl_a.v")
+    with open(src, "w") as f:
+        f.write("module a;\n  always @(posedge clk) q <= d;\n  default: y = 0;  // defensive\n  if (x) z = 1;\n")
+    A = dict(f=src, h="TOP.a")
+    run1 = [
+        (key(l=2, n=3, page="v_line/a", o="block", **A), 7),
+        (key(l=3, n=5, page="v_line/a", o="case", **A), 0),       # the defensive default: never hit
+        (key(l=4, n=3, page="v_branch/a", o="if", **A), 0),
+        (key(l=4, n=4, page="v_branch/a", o="else", **A), 3),
+        (key(l=1, n=9, page="v_toggle/a", o="tag[0]", **A), 4),
+        (key(l=1, n=9, page="v_toggle/a", o="tag[31]", **A), 0),  # a constant-tied bit: waived by signal glob
+        (key(l=1, n=9, page="v_toggle/b__W8", o="q[0]", f=src, h="TOP.a.u_b8"), 0),
+        (key(l=1, n=9, page="v_toggle/b__W4", o="q[0]", f=src, h="TOP.a.u_b4"), 2),
+    ]
+    run2 = [
+        (key(l=4, n=3, page="v_branch/a", o="if", **A), 5),       # the second run reaches the if
+        (key(l=1, n=9, page="v_toggle/b__W8", o="q[0]", f=src, h="TOP.a.u_b8"), 0),
+        (key(l=1, n=9, page="v_toggle/b__W8", o="q[1]", f=src, h="TOP.a.u_b8"), 1),
+        (key(l=2, n=3, page="v_line/a", o="block", f=src, h="dut.a"), 0),  # the same point through the SystemC harness
+    ]
+    d1, d2 = os.path.join(work, "r1.dat"), os.path.join(work, "r2.dat")
+    write_dat(d1, run1)
+    write_dat(d2, run2)
+    good = os.path.join(work, "good.json")
+    with open(good, "w") as f:
+        json.dump({"waivers": [
+            {"id": "a-default", "module": "a", "kind": "line", "source": "default: y = 0;",
+             "reason": "defensive default of a case whose selector takes only listed values"},
+            {"id": "a-tag-msb", "module": "a", "kind": "toggle", "signal": "tag[3?]",
+             "reason": "tag bits above the testbench's tag width are tied low"},
+            {"id": "zz-absent", "module": "zz_*", "kind": "toggle", "signal": "*",
+             "reason": "a module this database does not hold: not applicable, no error"},
+        ]}, f)
+    out = os.path.join(work, "out")
+    r = run([sc, "coverage", d1, d2, "--out", out, "--waivers", good, "--no-html"])
+    check(r.returncode == 0, "shadecore coverage on two hand-made runs exits 0 (%s)" % r.stderr.strip())
+    if r.returncode != 0:
+        return
+    merged = parse_dat(os.path.join(out, "coverage.dat"))
+    union = parse_dat(d1)
+    for k, c in parse_dat(d2).items():
+        union[k] = union.get(k, 0) + c
+    check(merged == union, "the merged database is the sum of the two runs (%d keys)" % len(union))
+    s = json.load(open(os.path.join(out, "summary.json")))
+    mods = {m["module"]: m for m in s["modules"]}
+    # By hand: module a: line 1 hit of 2 (1 waived; "dut.a" and "TOP.a" are one point) -> 1/1 = 100 %; branch 2/2; toggle tag[0] hit, tag[31] waived -> 1/1.
+    # Module b (two parameterisations, W8 and W4): toggle W8 q[0] 0, W8 q[1] 1, W4 q[0] 2 -> 2 of 3.
+    expect = {"a": {"line": (1, 2, 1, 100.0), "branch": (2, 2, 0, 100.0), "toggle": (1, 2, 1, 100.0)},
+              "b": {"toggle": (2, 3, 0, 66.66)}}
+    for m, kinds in expect.items():
+        for k, (hit, tot, wv, pc) in kinds.items():
+            got = mods.get(m, {}).get(k, {})
+            check((got.get("hit"), got.get("total"), got.get("waived"), got.get("percent")) == (hit, tot, wv, pc),
+                  "%s %s: hit %d, total %d, waived %d, %.2f %% (summary: %s)" % (m, k, hit, tot, wv, pc, got))
+    check(s["totals"]["toggle"]["hit"] == 3 and s["totals"]["toggle"]["total"] == 5, "totals add the modules")
+    check([a["id"] for a in s["waivers"]["applied"]] == ["a-default", "a-tag-msb"] and
+          s["waivers"]["not_applicable"] == ["zz-absent"], "applied and not-applicable waivers are listed")
+    check(s["holes"].get("b") == ["toggle q[0] (rtl_a.v:1 a.u_b8)"], "the one hole of b is named: %s" % s["holes"].get("b"))
+    hand = hand_summary(union)
+    check(hand["b"]["toggle"] == [2, 3] and hand["a"]["branch"] == [2, 2], "the hand count agrees with itself")
+
+    def refused(waivers, needle, what, dats=(d1, d2)):
+        wf = os.path.join(work, "w_%d.json" % len(os.listdir(work)))
+        with open(wf, "w") as f:
+            f.write(waivers if isinstance(waivers, str) else json.dumps({"waivers": waivers}))
+        o = os.path.join(work, "refused_%d" % len(os.listdir(work)))
+        r = run([sc, "coverage", *dats, "--out", o, "--waivers", wf, "--no-html"])
+        lines = [x for x in r.stderr.splitlines() if x.strip()]
+        check(r.returncode == 1 and len(lines) == 1 and needle in lines[0] and not os.path.exists(o) and
+              not any(x.startswith(os.path.basename(o)) for x in os.listdir(work)),
+              "%s: exit 1, one line naming it, nothing written (%r)" % (what, lines[-1] if lines else ""))
+
+    refused([{"id": "stale", "module": "a", "kind": "line", "source": "no such text", "reason": "a waiver for code that is gone"}],
+            "waiver 'stale' (a line) matches nothing", "a waiver that matches nothing")
+    refused([{"id": "wrong", "module": "a", "kind": "toggle", "signal": "tag[0]", "reason": "claims a bit that toggles"}],
+            "waiver 'wrong' claims toggle tag[0]", "a waived point that was hit")
+    refused([{"id": "noreason", "module": "a", "kind": "toggle", "signal": "x"}], "a reason is required", "a waiver without a reason")
+    refused([{"id": "k", "module": "a", "kind": "fsm", "signal": "x", "reason": "an unknown kind of point"}], "kind 'fsm'",
+            "an unknown kind")
+    refused("{not json", "not valid JSON", "a waiver file that is not JSON")
+    bogus = os.path.join(work, "bogus.dat")
+    with open(bogus, "w") as f:
+        f.write("hello\n")
+    refused([], "is not a Verilator coverage database", "a file that is no database", dats=(d1, bogus))
+
+
+def full(sc, root, work):
+    plan = os.path.join(root, "tests", "data", "coverage", "tiny.json")
+    out = os.path.join(work, "run")
+    shutil.rmtree(out, ignore_errors=True)
+    r = run([sc, "regress", "--plan", plan, "--local", "-j", "2", "--coverage", "--out", out, "--no-progress"])
+    print(r.stdout[-3000:])
+    check(r.returncode == 0, "regress --coverage on the tiny plan passes (%s)" % r.stderr.strip()[-300:])
+    if r.returncode != 0:
+        return
+    merged = json.load(open(os.path.join(out, "merged.json")))
+    shards = json.load(open(os.path.join(out, "shards.json")))
+    dats = [os.path.join(out, "coverage", "shards", s["id"], "coverage.dat") for s in shards
+            if any("{cov}" in a for a in s["argv"])]
+    check(len(dats) >= 3 and all(os.path.exists(d) for d in dats), "every co-simulation shard wrote its database (%d)" % len(dats))
+    union = {}
+    for d in dats:
+        for k, c in parse_dat(d).items():
+            union[k] = union.get(k, 0) + c
+    check(parse_dat(os.path.join(out, "coverage", "merged.dat")) == union, "merged.dat is the sum of the shards' databases")
+    hand = hand_summary(union)
+    cov = merged.get("coverage", {})
+    got = {m["module"]: m for m in cov.get("modules", [])}
+    check(set(got) == set(hand), "merged.json summarises every module of the databases: %s" % sorted(hand))
+    for m, kinds in hand.items():
+        for k, (hit, tot) in kinds.items():
+            g = got.get(m, {}).get(k, {})
+            # a waived point counts neither as hit nor as a hole (and is never hit: that is an error)
+            check(g.get("total") == tot and g.get("hit") == hit, "%s %s: total %d, hit %d by hand; summary %s" % (m, k, tot, hit, g))
+    check(os.path.exists(os.path.join(out, "coverage", "html", "index.html")), "the HTML report is written")
+    before = open(os.path.join(out, "merged.json")).read()
+    r2 = run([sc, "regress", "--plan", plan, "--local", "-j", "2", "--coverage", "--out", out, "--no-progress"])
+    check(r2.returncode == 0 and "to run" in r2.stdout and open(os.path.join(out, "merged.json")).read() == before,
+          "a rerun of the same --out (resume) runs nothing and writes the same merged.json")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build", required=True)
+    ap.add_argument("--work", required=True)
+    g = ap.add_mutually_exclusive_group(required=True)
+    g.add_argument("--quick", action="store_true")
+    g.add_argument("--run", action="store_true")
+    a = ap.parse_args()
+    sc = os.path.join(a.build, "cli", "shadecore")
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    os.makedirs(a.work, exist_ok=True)
+    work = tempfile.mkdtemp(dir=a.work)
+    try:
+        quick(sc, work) if a.quick else full(sc, root, work)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    print("coverage_check: %s" % ("PASS" if not FAILS else "FAIL (%d)" % len(FAILS)))
+    return 0 if not FAILS else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
