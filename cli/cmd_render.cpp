@@ -50,6 +50,7 @@
 #include "shadecore/render/scene.hpp"
 
 #include "light_rtl.hpp"
+#include "render_rtl.hpp"
 
 namespace shadecore::cli {
 namespace {
@@ -185,55 +186,6 @@ std::pair<int, int> parse_size(const std::string& s) {
 }
 
 std::string set_line(const FeatureSet& fs) { return fs.summary() + "  [key " + fs.key() + "]"; }
-
-struct RtlTotals {
-  double sim_seconds = 0, build_seconds = 0;
-  uint64_t cycles = 0, core_mismatches = 0;
-  bool ok = true;
-  json cores = json::array();
-};
-
-// Every fragment of every core through the Verilated RTL.
-std::vector<std::vector<Colour>> run_rtl(const render::Frame& fr, RtlTotals& tot) {
-  std::vector<std::vector<Colour>> out;
-  for (size_t g = 0; g < fr.groups.size(); ++g) {
-    const auto& grp = fr.groups[g];
-    std::vector<sim::CoreCommand> cmds;
-    cmds.reserve(grp.cmds.size());
-    for (const auto& c : grp.cmds) {
-      sim::CoreCommand k;
-      k.is_write = c.is_write;
-      k.w = c.w;
-      k.f = c.f;
-      cmds.push_back(k);
-    }
-    RtlRunOptions o;
-    o.quiet = false;
-    // run_core_rtl reports the build (when the core is new) and the simulation on stderr itself.
-    RtlRunResult r = run_core_rtl(grp.fs, cmds, o);
-    if (r.colours.size() != grp.dests.size())
-      throw std::runtime_error(fmt::format("RTL core {} returned {} colours for {} fragments ({})", grp.fs.key(),
-                                           r.colours.size(), grp.dests.size(), r.summary));
-    tot.sim_seconds += r.sim_seconds;
-    tot.build_seconds += r.build.build_seconds;
-    tot.cycles += r.cycles;
-    tot.core_mismatches += r.mismatches;
-    tot.ok = tot.ok && r.ok;
-    tot.cores.push_back({{"key", grp.fs.key()},
-                         {"fragments", grp.dests.size()},
-                         {"register_writes", grp.writes},
-                         {"cycles", r.cycles},
-                         {"sim_seconds", r.sim_seconds},
-                         {"core_mismatches", r.mismatches},
-                         {"ok", r.ok},
-                         {"built_now", r.build.built_now},
-                         {"build_seconds", r.build.build_seconds},
-                         {"simulator", r.build.exe},
-                         {"summary", r.summary}});
-    out.push_back(std::move(r.colours));
-  }
-  return out;
-}
 
 struct Rendered {
   render::Frame frame;

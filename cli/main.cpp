@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   shadecore::cli::add_light_sweep(app);
   shadecore::cli::add_render(app);
   shadecore::cli::add_gl_compare(app);
+  shadecore::cli::add_replay(app);
   shadecore::cli::add_regress(app);
   shadecore::cli::add_coverage(app);
   // Parse and run: one-line errors, exit statuses 0 / 1 / 2 (docs/cli.md), --version.

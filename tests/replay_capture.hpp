@@ -4,13 +4,65 @@
 // mesa-utils (glxgears) and xvfb (xvfb-run), as the Slurm tests skip without slurm-wlm.
 #pragma once
 
+#include <snappy.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <string>
 
 namespace shadecore::test {
+
+// The decompressed stream, written with the format's encodings.
+struct Stream {
+  std::string b;
+  Stream& byte(unsigned v) {
+    b += static_cast<char>(v);
+    return *this;
+  }
+  Stream& uint(uint64_t v) {
+    do {
+      unsigned c = v & 0x7f;
+      v >>= 7;
+      if (v) c |= 0x80;
+      b += static_cast<char>(c);
+    } while (v);
+    return *this;
+  }
+  Stream& str(const std::string& s) {
+    uint(s.size());
+    b += s;
+    return *this;
+  }
+  Stream& f32(float f) {
+    char c[4];
+    std::memcpy(c, &f, 4);
+    b.append(c, 4);
+    return *this;
+  }
+  Stream& f64(double d) {
+    char c[8];
+    std::memcpy(c, &d, 8);
+    b.append(c, 8);
+    return *this;
+  }
+};
+
+// A capture file: 'at' and the stream in Snappy chunks of at most `chunk` bytes.
+inline std::string container(const std::string& stream, size_t chunk = 1 << 20) {
+  std::string f = "at";
+  for (size_t at = 0; at < stream.size(); at += chunk) {
+    std::string c;
+    snappy::Compress(stream.data() + at, std::min(chunk, stream.size() - at), &c);
+    const uint32_t n = static_cast<uint32_t>(c.size());
+    for (int k = 0; k < 4; ++k) f += static_cast<char>((n >> (8 * k)) & 0xff);
+    f += c;
+  }
+  return f;
+}
 
 struct Capture {
   bool ok = false;

@@ -422,8 +422,8 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
   fr.two_side = sc.two_side;
   const int F = fr.F;
   const Camera cam = s.camera ? *s.camera : sc.camera;
-  const Mat4 view = look_at(cam);
-  const Mat4 proj = perspective(cam, static_cast<double>(fr.width) / fr.height);
+  const Mat4 view = s.view ? *s.view : look_at(cam);
+  const Mat4 proj = s.projection ? *s.projection : perspective(cam, static_cast<double>(fr.width) / fr.height);
   const size_t no = sc.objects.size();
   std::vector<int> drawn;
   if (s.objects.empty())

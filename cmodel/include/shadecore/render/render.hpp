@@ -72,6 +72,10 @@ struct Settings {
   std::optional<VariantId> unit;              // every specular material through this unit
   std::optional<scene::Camera> camera;
   std::vector<int> objects;                   // only these objects (empty: all)
+  // A GL front end's matrices (row-major) in place of the camera's gluLookAt / gluPerspective (the camera's `near`
+  // stays the rasteriser's near plane): `shadecore replay` gives vertices and lights in eye space (view = identity)
+  // and the program's own projection (glFrustum, glOrtho, glLoadMatrix…).
+  std::optional<std::array<double, 16>> view, projection;
 };
 
 // The colours an object sends to the core under colour material (objects[i].color_material): per channel the

@@ -1,0 +1,383 @@
+// SPDX-License-Identifier: Apache-2.0
+// shadecore replay — a real GL program's frame through the lighting core: an apitrace capture read by
+// shadecore_trace, its calls executed by the GL 1.x front end (shadecore_glfront) and the frame drawn by the same
+// back end as `shadecore render` (render::prepare, the C model, the exact reference, the RTL), compared with Mesa's
+// image of the same frame (docs/replay.md).
+//
+//   shadecore replay TRACE (--frame K | --call N) [--rtl] [--full-core] [--out DIR] [--json FILE]
+//                          [--mesa | --reference PNG] [--tolerance LSB]
+//
+// Into DIR (staged and committed together, docs/cli.md): cmodel.png (C model), exact.png (LightCore::eval_double
+// with exact cos^n), rtl.png (--rtl: bit-identical to cmodel.png, or the run fails), mesa.png and diff.png (--mesa:
+// glretrace's snapshot of the frame under xvfb-run; --reference PNG: the given image, and diff.png).
+// The comparison is gl-compare's (glref::compare) over the exact image: Mesa's snapshot has no object ids, so a
+// pixel of it is covered where it differs from the frame's clear colour (8-bit), and shows the object the exact
+// image shows there; the objects drawn with a capability the core lacks (texturing, blending, fog, …) are not
+// comparable. PASS (exit 0): p99 <= --tolerance and max <= 2·tolerance LSB over the compared pixels with no coverage
+// difference; else exit 2 with every output written.
+#include <png.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "output.hpp"
+#include "render_rtl.hpp"
+#include "shadecore/common/args.hpp"
+#include "shadecore/common/legend.hpp"
+#include "shadecore/common/png.hpp"
+#include "shadecore/common/subprocess.hpp"
+#include "shadecore/glfront/frontend.hpp"
+#include "shadecore/glfront/trace.hpp"
+#include "shadecore/render/glref.hpp"
+#include "shadecore/render/render.hpp"
+
+namespace shadecore::cli {
+namespace {
+
+namespace fsys = std::filesystem;
+using json = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+
+struct ReplayArgs {
+  std::string trace, out_dir, json_path, reference;
+  uint64_t frame = 0, call = 0;
+  bool rtl = false, full_core = false, mesa = false;
+  int tolerance = 2;
+};
+
+struct Png {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgb;
+};
+
+Png read_png(const std::string& path, const std::string& what) {
+  png_image im{};
+  im.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&im, path.c_str()))
+    throw std::runtime_error(what + " " + path + ": not a readable PNG (" + im.message + ")");
+  im.format = PNG_FORMAT_RGB;
+  Png p;
+  p.width = static_cast<int>(im.width), p.height = static_cast<int>(im.height);
+  p.rgb.resize(PNG_IMAGE_SIZE(im));
+  if (!png_image_finish_read(&im, nullptr, p.rgb.data(), 0, nullptr)) {
+    const std::string m = im.message;
+    png_image_free(&im);
+    throw std::runtime_error(what + " " + path + ": " + m);
+  }
+  return p;
+}
+
+// glretrace (eglretrace for EGL captures) under xvfb-run: the snapshot after call N.
+Png mesa_snapshot(const std::string& trace, const std::string& api, uint64_t call, int w, int h) {
+  const char* tools[] = {"xvfb-run", api == "egl" ? "eglretrace" : "glretrace"};
+  for (const char* t : tools)
+    if (proc::run({"sh", "-c", std::string("command -v ") + t}).status != 0)
+      throw std::runtime_error(std::string("--mesa needs ") + t +
+                               " (Debian packages apitrace and xvfb; scripts/setup.sh installs them)");
+  const fsys::path dir = fsys::temp_directory_path() / fmt::format("shadecore-replay-{}", ::getpid());
+  fsys::remove_all(dir);
+  fsys::create_directories(dir);
+  proc::Options o;
+  o.env = {{"LIBGL_ALWAYS_SOFTWARE", "1"}};
+  const std::string screen = fmt::format("-screen 0 {}x{}x24", std::max(w, 640), std::max(h, 480));
+  const proc::Result r = proc::run({"xvfb-run", "-a", "-s", screen, tools[1], "-S", std::to_string(call), "-s",
+                                    dir.string() + "/", trace},
+                                   o);
+  const fsys::path png = dir / fmt::format("{:010d}.png", call);
+  if (!fsys::exists(png)) {
+    std::string err = r.err.empty() ? r.out : r.err;
+    std::replace(err.begin(), err.end(), '\n', ' ');
+    if (err.size() > 200) err = err.substr(0, 200) + "…";
+    fsys::remove_all(dir);
+    throw std::runtime_error(fmt::format("{} wrote no snapshot of call {} (exit {}): {}", tools[1], call, r.status, err));
+  }
+  Png p = read_png(png.string(), std::string(tools[1]) + "'s snapshot");
+  fsys::remove_all(dir);
+  return p;
+}
+
+json stats_json(const glref::DiffStats& s) {
+  json j;
+  j["pixels"] = s.pixels;
+  j["p50_lsb"] = s.p50;
+  j["p99_lsb"] = s.p99;
+  j["max_lsb"] = s.max;
+  j["mean_lsb"] = s.mean;
+  j["above_tolerance"] = s.above;  // pixels above the p99 tolerance
+  if (s.max_x >= 0) j["max_at"] = {s.max_x, s.max_y};
+  return j;
+}
+
+void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool json_given, bool ref_given) {
+  const auto t0 = Clock::now();
+  if (frame_given == call_given) throw std::invalid_argument("give one of --frame K and --call N");
+  if (a.mesa && ref_given) throw std::invalid_argument("--mesa and --reference exclude each other");
+
+  // Outputs: checked now, written together at the end. --json may lie inside --out.
+  io::OutputSet outs;
+  std::vector<std::string> names = {"cmodel.png", "exact.png"};
+  if (a.rtl) names.push_back("rtl.png");
+  if (a.mesa || ref_given) names.insert(names.end(), {"mesa.png", "diff.png"});
+  std::string json_member;
+  if (json_given && !a.out_dir.empty()) {
+    const fsys::path jp = fsys::absolute(a.json_path).lexically_normal(), dp = fsys::absolute(a.out_dir).lexically_normal();
+    if (jp.parent_path() == dp) {
+      json_member = jp.filename().string();
+      if (std::find(names.begin(), names.end(), json_member) != names.end())
+        throw std::invalid_argument("--json " + a.json_path + " is one of the images written to --out");
+    }
+  }
+  int dir_out = -1;
+  if (!a.out_dir.empty()) {
+    std::vector<std::string> all = names;
+    if (!json_member.empty()) all.push_back(json_member);
+    dir_out = outs.dir("--out", a.out_dir, all);
+  }
+  const int json_out = !json_given || !json_member.empty() ? -1 : outs.file("--json", a.json_path);
+  outs.check_input(a.trace, "the capture");
+  if (ref_given) outs.check_input(a.reference, "the reference image");
+
+  // The front end: the capture up to the frame, GL's state, the frame's triangles.
+  glfront::Handover h;
+  uint64_t chunks = 0;
+  unsigned version = 0;
+  try {
+    trace::Reader reader(a.trace);
+    chunks = reader.chunks();
+    version = reader.version();
+    glfront::ReplayOptions ro;
+    if (frame_given) ro.frame = a.frame;
+    else ro.call = a.call;
+    h = glfront::replay_frame(reader, ro, a.trace);
+  } catch (const trace::TraceError& e) {
+    throw std::runtime_error(e.what());
+  } catch (const glfront::ReplayError& e) {
+    throw std::runtime_error(e.what());
+  }
+  const double t_front = std::chrono::duration<double>(Clock::now() - t0).count();
+
+  // The back end: render's.
+  h.settings.full_core = a.full_core;
+  render::Frame fr;
+  try {
+    fr = render::prepare(h.scene, h.meshes, h.settings);
+  } catch (const scene::SceneError& e) {
+    throw std::runtime_error(e.what());
+  }
+  std::vector<std::vector<Colour>> cm;
+  std::vector<std::vector<render::RefColour>> ex;
+  uint64_t writes = 0, vertex_frags = 0, face_frags = 0, pixel_frags = 0;
+  json cores = json::array();
+  for (const auto& g : fr.groups) {
+    cm.push_back(render::run_cmodel(g));
+    ex.push_back(render::run_reference(g, LightCore::SpecRef::Exact));
+    writes += g.writes, vertex_frags += g.vertices, face_frags += g.faces, pixel_frags += g.pixels;
+    cores.push_back({{"key", g.fs.key()}, {"summary", g.fs.summary()}, {"register_writes", g.writes},
+                     {"fragments", g.dests.size()}});
+  }
+  const render::Image img = render::resolve(fr, cm);
+  const render::RefImage exact = render::resolve_reference(fr, ex);
+  const std::vector<uint8_t> exact_rgb = render::to_rgb8(exact);
+  const auto err_exact = render::error_vs(img, exact);
+
+  const auto& st = h.stats;
+  fmt::print("capture {}: trace version {}, {} chunks; {} calls read, frame {} = calls {}..{} ({} calls, {} executed with display lists)\n",
+             scene::printable(a.trace, 0), version, chunks, st.calls_read, h.frame, h.first_call, h.snapshot_call,
+             st.calls_in_frame, st.calls_executed);
+  fmt::print("front end: {} primitives, {} vertices, {} triangles ({} culled); {} objects, {} materials, {} lights; {}x{}\n",
+             st.primitives, st.vertices, st.triangles, st.culled, h.scene.objects.size(), h.scene.materials.size(),
+             h.scene.lights.size(), fr.width, fr.height);
+  std::string unsup;
+  for (const auto& [n, k] : st.unsupported) unsup += fmt::format("{}{} ×{}", unsup.empty() ? "" : ", ", n, k);
+  fmt::print("unsupported calls: {}\n", unsup.empty() ? "none" : unsup);
+  for (const auto& [n, k] : st.notes) fmt::print("note: {} (×{})\n", n, k);
+  if (h.non_unit_normals)
+    fmt::print("note: {} vertices have normals of length ≠ 1 that GL uses as they are (no GL_NORMALIZE); the core "
+               "normalises them (worst length {:.6f})\n", h.non_unit_normals, h.worst_normal_length);
+  for (const auto& g : fr.groups)
+    fmt::print("core {}: {} register writes, {} vertex fragments  [key {}]\n", g.fs.summary(), g.writes, g.vertices, g.fs.key());
+  fmt::print("C model vs exact cos^n: max {:.2f} LSB over {} px\n", err_exact.max_lsb, err_exact.pixels);
+
+  // RTL.
+  json rtl_json = nullptr;
+  bool rtl_ok = true;
+  render::Image rimg;
+  if (a.rtl) {
+    RtlTotals tot;
+    const auto cols = run_rtl(fr, tot);
+    rimg = render::resolve(fr, cols);
+    const uint64_t bad = render::mismatching_pixels(img, rimg);
+    rtl_ok = bad == 0 && tot.ok && tot.core_mismatches == 0;
+    fmt::print("RTL: {} cycles, {:.2f} s simulated; {} mismatching pixels vs the C model\n", tot.cycles, tot.sim_seconds, bad);
+    rtl_json = {{"mismatching_pixels", bad}, {"cycles", tot.cycles}, {"sim_seconds", tot.sim_seconds},
+                {"core_mismatches", tot.core_mismatches}, {"ok", rtl_ok}, {"cores", tot.cores}};
+  }
+
+  // The reference: Mesa's snapshot of the same frame, or a given image.
+  json cmp_json = nullptr;
+  bool cmp_pass = true;
+  std::vector<uint8_t> diff_rgb;
+  Png ref;
+  int diff_w = 0, diff_h = 0;
+  std::string verdict;
+  if (a.mesa || ref_given) {
+    ref = a.mesa ? mesa_snapshot(a.trace, h.api, h.snapshot_call, fr.width, fr.height)
+                 : read_png(a.reference, "--reference");
+    if (ref.width != fr.width || ref.height != fr.height)
+      throw std::runtime_error(fmt::format("the reference image is {}x{}, the frame {}x{}", ref.width, ref.height,
+                                           fr.width, fr.height));
+    const std::vector<int32_t> exact_obj = glref::object_map(fr);
+    glref::GlImage gl;
+    gl.width = ref.width, gl.height = ref.height, gl.rgb = ref.rgb;
+    gl.object.assign(static_cast<size_t>(ref.width) * ref.height, -1);
+    std::array<uint8_t, 3> bg{};
+    for (int c = 0; c < 3; ++c) bg[c] = static_cast<uint8_t>(std::lround(h.scene.background[c] * 255));
+    for (size_t p = 0; p < gl.object.size(); ++p) {
+      const bool covered = ref.rgb[3 * p] != bg[0] || ref.rgb[3 * p + 1] != bg[1] || ref.rgb[3 * p + 2] != bg[2];
+      if (covered) gl.object[p] = exact_obj[p] >= 0 ? exact_obj[p] : 0;
+    }
+    auto checks = glref::check_objects(h.scene, fr.object_shading);
+    for (size_t o = 0; o < checks.size(); ++o)
+      if (!h.object_excluded[o].empty()) {
+        checks[o].comparable = false;
+        for (const auto& r : h.object_excluded[o]) checks[o].reasons.push_back(r + " on");
+      }
+    glref::Comparison cmp = glref::compare(fr.width, fr.height, exact_rgb, exact_obj, gl, checks, a.tolerance, false);
+    cmp_pass = cmp.pass && cmp.comparable.max <= 2 * a.tolerance;
+    diff_rgb = cmp.diff_rgb;
+    diff_w = fr.width, diff_h = fr.height;
+    verdict = fmt::format("{}: p50 {} / p99 {} / max {} LSB (tolerance p99 {}, max {}) over {} compared pixels; covered: "
+                          "exact {}, reference {}, by one only {}; {} px above {} LSB",
+                          cmp_pass ? "PASS" : "FAIL", cmp.comparable.p50, cmp.comparable.p99, cmp.comparable.max,
+                          a.tolerance, 2 * a.tolerance, cmp.comparable.pixels, cmp.covered_exact, cmp.covered_gl,
+                          cmp.coverage_mismatch, cmp.comparable.above, a.tolerance);
+    cmp_json = {{"reference", a.mesa ? (h.api == "egl" ? "eglretrace" : "glretrace") : a.reference},
+                {"snapshot_call", h.snapshot_call},
+                {"tolerance_p99_lsb", a.tolerance},
+                {"tolerance_max_lsb", 2 * a.tolerance},
+                {"p50_lsb", cmp.comparable.p50},
+                {"p99_lsb", cmp.comparable.p99},
+                {"max_lsb", cmp.comparable.max},
+                {"mean_lsb", cmp.comparable.mean},
+                {"compared_pixels", cmp.comparable.pixels},
+                {"covered_exact", cmp.covered_exact},
+                {"covered_reference", cmp.covered_gl},
+                {"covered_both", cmp.covered_both},
+                {"coverage_mismatch", cmp.coverage_mismatch},
+                {"pass", cmp_pass},
+                {"comparable", stats_json(cmp.comparable)},
+                {"all", stats_json(cmp.all)}};
+  }
+
+  std::vector<std::pair<std::string, std::string>> files;
+  if (dir_out >= 0) {
+    files.emplace_back("cmodel.png", canvas::encode_png(img.width, img.height, render::to_rgb8(img)));
+    files.emplace_back("exact.png", canvas::encode_png(fr.width, fr.height, exact_rgb));
+    if (a.rtl) files.emplace_back("rtl.png", canvas::encode_png(rimg.width, rimg.height, render::to_rgb8(rimg)));
+    if (a.mesa || ref_given) {
+      files.emplace_back("mesa.png", canvas::encode_png(ref.width, ref.height, ref.rgb));
+      const std::string tol = std::to_string(a.tolerance);
+      const canvas::Canvas d = canvas::with_key_legend(
+          diff_w, diff_h, diff_rgb,
+          {{{0, 0, 0}, "equal (or background)"},
+           {{120, 120, 120}, "1.." + tol + " LSB (grey, 60 per LSB)"},
+           {{208, 0, 0}, "exact brighter than the reference by more than " + tol + " LSB"},
+           {{0, 0, 208}, "the reference brighter than exact by more than " + tol + " LSB"},
+           {{255, 255, 0}, "covered in one image only"},
+           {{60, 50, 40}, "not compared: the exact image at 1/4"}},
+          "exact vs the reference, 8-bit LSB, largest channel");
+      files.emplace_back("diff.png", canvas::encode_png(d.width, d.height, d.rgb));
+    }
+  }
+  if (json_given) {
+    json j;
+    j["capture"] = a.trace;
+    j["command"] = command_line();
+    j["date"] = utc_now();
+    j["trace_version"] = version;
+    j["api"] = h.api;
+    j["frame"] = h.frame;
+    j["first_call"] = h.first_call;
+    j["snapshot_call"] = h.snapshot_call;
+    j["width"] = fr.width;
+    j["height"] = fr.height;
+    j["calls_read"] = st.calls_read;
+    j["calls_in_frame"] = st.calls_in_frame;
+    j["calls_executed"] = st.calls_executed;
+    j["primitives"] = st.primitives;
+    j["vertices"] = st.vertices;
+    j["triangles"] = st.triangles;
+    j["culled"] = st.culled;
+    j["vertices_lit"] = vertex_frags;
+    j["faces_lit"] = face_frags;
+    j["register_writes"] = writes;
+    j["core_cycles"] = a.rtl ? rtl_json["cycles"] : json(nullptr);
+    json keys = json::array();
+    for (const auto& g : fr.groups) keys.push_back(g.fs.key());
+    j["feature_set_keys"] = keys;
+    j["cores"] = cores;
+    j["unsupported_calls"] = st.unsupported;
+    j["ignored_calls"] = st.ignored;
+    j["notes"] = st.notes;
+    j["non_unit_normals"] = {{"count", h.non_unit_normals}, {"worst_length", h.worst_normal_length}};
+    json objs = json::array();
+    for (size_t o = 0; o < h.scene.objects.size(); ++o)
+      objs.push_back({{"name", h.scene.objects[o].name}, {"where", h.scene.objects[o].where},
+                      {"shading", scene::to_string(fr.object_shading[o])}, {"excluded", h.object_excluded[o]}});
+    j["objects"] = objs;
+    j["cmodel_vs_exact_max_lsb16"] = err_exact.max_lsb;
+    j["rtl"] = rtl_json;
+    j["comparison"] = cmp_json;
+    j["seconds"] = {{"front_end", t_front}, {"total", std::chrono::duration<double>(Clock::now() - t0).count()}};
+    if (json_out >= 0) outs.set(json_out, j.dump(2) + "\n");
+    else files.emplace_back(json_member, j.dump(2) + "\n");
+  }
+  if (dir_out >= 0) {
+    const std::string stage = outs.stage(dir_out);
+    for (const auto& [name, content] : files) write_staged(stage + "/" + name, content);
+  }
+  outs.commit();
+  std::fflush(stdout);
+  if (!rtl_ok) throw CheckFailed("replay: the RTL image differs from the C model's");
+  if (!verdict.empty()) {
+    if (!cmp_pass) throw CheckFailed("replay " + verdict);
+    fmt::print("replay {}\n", verdict);
+  }
+}
+
+}  // namespace
+
+void add_replay(CLI::App& app) {
+  auto args = std::make_shared<ReplayArgs>();
+  auto* sub = app.add_subcommand("replay",
+                                 "play one frame of an apitrace capture of an OpenGL 1.x program through the GL front end "
+                                 "and the lighting core, against Mesa's image of it (docs/replay.md)");
+  sub->add_option("trace", args->trace, "apitrace capture (.trace)")->required()->check(cliargs::NonEmpty("capture path"));
+  auto* frame_opt = sub->add_option("--frame", args->frame, "frame K (from 1): the calls between the (K-1)-th and the K-th swap")
+                        ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
+  auto* call_opt = sub->add_option("--call", args->call, "the image after call N (the frame from the last swap before it)");
+  sub->add_flag("--rtl", args->rtl, "also light every vertex with the Verilated core (bit-identical to the C model, or fail)");
+  sub->add_flag("--full-core", args->full_core, "program the full core instead of the derived smallest one");
+  sub->add_option("--out", args->out_dir, "write cmodel.png, exact.png (rtl.png, mesa.png, diff.png) here")
+      ->check(cliargs::NonEmpty("path"));
+  auto* json_opt = sub->add_option("--json", args->json_path, "write a JSON report (atomically)")->check(cliargs::NonEmpty("path"));
+  sub->add_flag("--mesa", args->mesa, "compare with Mesa: glretrace's snapshot of the frame under xvfb-run");
+  auto* ref_opt = sub->add_option("--reference", args->reference, "compare with this PNG of the frame")
+                      ->check(cliargs::NonEmpty("path"));
+  sub->add_option("--tolerance", args->tolerance, "8-bit LSBs allowed at the 99th percentile (twice that at the max; default 2)")
+      ->check(CLI::Range(0, 127));
+  sub->callback([args, frame_opt, call_opt, json_opt, ref_opt] {
+    run_replay(*args, frame_opt->count() > 0, call_opt->count() > 0, json_opt->count() > 0, ref_opt->count() > 0);
+  });
+}
+
+}  // namespace shadecore::cli

@@ -1,0 +1,482 @@
+// SPDX-License-Identifier: Apache-2.0
+// The GL 1.x front end of `shadecore replay` (shadecore/glfront/frontend.hpp), call by call against OpenGL 2.1's
+// rules: matrix stacks, display lists (nesting, COMPILE_AND_EXECUTE, arrays captured at compile time), each
+// primitive type's provoking vertex, facing and culling, normals with and without GL_NORMALIZE / GL_RESCALE_NORMAL,
+// glMaterial between glBegin and glEnd, colour material, lights in eye space, unsupported-call accounting; and the
+// frame selection of replay_frame on captures built here.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "replay_capture.hpp"
+#include "shadecore/glfront/frontend.hpp"
+#include "shadecore/glfront/trace.hpp"
+
+namespace {
+
+using shadecore::glfront::Gl;
+using shadecore::glfront::Mat4;
+using shadecore::glfront::ReplayError;
+using shadecore::trace::Call;
+using shadecore::trace::FunctionSig;
+using shadecore::trace::Value;
+using Kind = Value::Kind;
+
+Value F(double d) {
+  Value v;
+  v.kind = Kind::Double;
+  v.d = d;
+  return v;
+}
+Value I(int64_t i) {
+  Value v;
+  v.kind = Kind::SInt;
+  v.i = i;
+  return v;
+}
+Value A(const std::vector<double>& xs) {
+  Value v;
+  v.kind = Kind::Array;
+  for (double x : xs) v.items.push_back(F(x));
+  return v;
+}
+Value Blob(const void* p, size_t n) {
+  Value v;
+  v.kind = Kind::Blob;
+  v.s.assign(static_cast<const char*>(p), n);
+  return v;
+}
+
+// Calls as the reader gives them (one signature per name, numbered in order).
+struct Driver {
+  Gl gl;
+  std::map<std::string, std::shared_ptr<FunctionSig>> sigs;
+  uint64_t no = 0;
+  void operator()(const std::string& name, std::vector<Value> args = {}) {
+    auto& s = sigs[name];
+    if (!s) {
+      s = std::make_shared<FunctionSig>();
+      s->name = name;
+    }
+    Call c;
+    c.no = no++;
+    c.sig = s;
+    c.args = std::move(args);
+    gl.call(c);
+  }
+  // shorthands
+  void v3(double x, double y, double z) { (*this)("glVertex3f", {F(x), F(y), F(z)}); }
+  void colour(double r) { (*this)("glColor3f", {F(r), F(0), F(0)}); }
+  void en(int64_t cap) { (*this)("glEnable", {I(cap)}); }
+};
+
+enum : int64_t {
+  MODELVIEW = 0x1700, PROJECTION = 0x1701, TRIANGLES = 4, TRIANGLE_STRIP = 5, TRIANGLE_FAN = 6, QUADS = 7,
+  QUAD_STRIP = 8, POLYGON = 9, LINES = 1, FLAT = 0x1D00, CULL_FACE = 0x0B44, CW = 0x0900, NORMALIZE = 0x0BA1,
+  RESCALE_NORMAL = 0x803A, FRONT = 0x0404, BACK = 0x0405, FRONT_AND_BACK = 0x0408, DIFFUSE = 0x1201,
+  COLOR_MATERIAL = 0x0B57, AMBIENT = 0x1200, LIGHT0 = 0x4000, POSITION = 0x1203, LIGHTING = 0x0B50,
+  DEPTH_TEST = 0x0B71, COMPILE = 0x1300, COMPILE_AND_EXECUTE = 0x1301, FLOAT = 0x1406, VERTEX_ARRAY = 0x8074,
+  UNSIGNED_BYTE = 0x1401, TEXTURE_2D = 0x0DE1,
+};
+
+void expect_mat(const Mat4& m, const std::vector<double>& rowmajor) {
+  for (int i = 0; i < 16; ++i) EXPECT_NEAR(m[i], rowmajor[i], 1e-12) << "element " << i;
+}
+
+TEST(ReplayFrontend, MatrixStacksAndTransforms) {
+  Driver d;
+  d("glMatrixMode", {I(MODELVIEW)});
+  d("glTranslatef", {F(1), F(2), F(3)});
+  d("glPushMatrix");
+  EXPECT_EQ(d.gl.modelview_depth(), 2u);
+  d("glRotatef", {F(90), F(0), F(0), F(1)});
+  // T · R(90° about z): x → y
+  expect_mat(d.gl.modelview(), {0, -1, 0, 1, 1, 0, 0, 2, 0, 0, 1, 3, 0, 0, 0, 1});
+  d("glScalef", {F(2), F(3), F(4)});
+  expect_mat(d.gl.modelview(), {0, -3, 0, 1, 2, 0, 0, 2, 0, 0, 4, 3, 0, 0, 0, 1});
+  d("glPopMatrix");
+  expect_mat(d.gl.modelview(), {1, 0, 0, 1, 0, 1, 0, 2, 0, 0, 1, 3, 0, 0, 0, 1});
+  d("glPopMatrix");  // underflow: an error GL ignores
+  EXPECT_EQ(d.gl.modelview_depth(), 1u);
+  EXPECT_EQ(d.gl.stats().notes.count("glPopMatrix of an empty stack (GL_STACK_UNDERFLOW, ignored)"), 1u);
+  // glLoadMatrixf is column-major
+  d("glLoadMatrixf", {A({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 7, 8, 9, 1})});
+  expect_mat(d.gl.modelview(), {1, 0, 0, 7, 0, 1, 0, 8, 0, 0, 1, 9, 0, 0, 0, 1});
+  d("glMultMatrixd", {A({2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1})});
+  expect_mat(d.gl.modelview(), {2, 0, 0, 7, 0, 2, 0, 8, 0, 0, 2, 9, 0, 0, 0, 1});
+  // the projection stack is separate
+  d("glMatrixMode", {I(PROJECTION)});
+  d("glLoadIdentity");
+  d("glFrustum", {F(-1), F(1), F(-1), F(1), F(5), F(60)});
+  expect_mat(d.gl.projection(), {5, 0, 0, 0, 0, 5, 0, 0, 0, 0, -65.0 / 55, -600.0 / 55, 0, 0, -1, 0});
+  expect_mat(d.gl.modelview(), {2, 0, 0, 7, 0, 2, 0, 8, 0, 0, 2, 9, 0, 0, 0, 1});
+  d("glLoadIdentity");
+  d("glOrtho", {F(0), F(4), F(0), F(2), F(-1), F(1)});
+  expect_mat(d.gl.projection(), {0.5, 0, 0, -1, 0, 1, 0, -1, 0, 0, -1, 0, 0, 0, 0, 1});
+}
+
+// Draws `n` vertices of `mode` under flat shading, vertex k coloured red = k/100; returns the provoking vertex
+// index of each triangle (its last vertex after assembly).
+std::vector<int> provoking(int64_t mode, int n) {
+  Driver d;
+  d("glShadeModel", {I(FLAT)});
+  d("glBegin", {I(mode)});
+  for (int k = 0; k < n; ++k) {
+    d.colour(k / 100.0);
+    // a convex fan of points on a circle, counter-clockwise (no triangle degenerates whatever the mode)
+    const double a = 2 * 3.14159265358979 * k / (n + 1);
+    d.v3(std::cos(a), std::sin(a), -2);
+  }
+  d("glEnd");
+  std::vector<int> out;
+  for (const auto& t : d.gl.triangles()) {
+    EXPECT_TRUE(t.flat);
+    out.push_back(static_cast<int>(std::lround(t.v[2].colour[0] * 100)));
+  }
+  return out;
+}
+
+TEST(ReplayFrontend, ProvokingVertexPerPrimitiveType) {
+  // OpenGL 2.1 table 2.12 (1-based i): triangles 3i, strip / fan i+2, quads 4i, quad strip 2i+2, polygon 1
+  EXPECT_EQ(provoking(TRIANGLES, 7), (std::vector<int>{2, 5}));  // the 7th vertex is left over
+  EXPECT_EQ(provoking(TRIANGLE_STRIP, 6), (std::vector<int>{2, 3, 4, 5}));
+  EXPECT_EQ(provoking(TRIANGLE_FAN, 6), (std::vector<int>{2, 3, 4, 5}));
+  EXPECT_EQ(provoking(QUADS, 9), (std::vector<int>{3, 3, 7, 7}));
+  EXPECT_EQ(provoking(QUAD_STRIP, 7), (std::vector<int>{3, 3, 5, 5}));
+  EXPECT_EQ(provoking(POLYGON, 5), (std::vector<int>{0, 0, 0}));
+}
+
+TEST(ReplayFrontend, FacingFrontFaceAndCulling) {
+  auto draw = [](bool cw, bool cull, int64_t cull_face) {
+    Driver d;
+    if (cw) d("glFrontFace", {I(CW)});
+    if (cull) d.en(CULL_FACE);
+    d("glCullFace", {I(cull_face)});
+    d("glBegin", {I(TRIANGLES)});
+    d.v3(0, 0, -2), d.v3(1, 0, -2), d.v3(0, 1, -2);  // counter-clockwise on screen
+    d.v3(0, 0, -2), d.v3(0, 1, -2), d.v3(1, 0, -2);  // clockwise
+    d("glEnd");
+    return std::make_pair(d.gl.triangles(), d.gl.stats().culled);
+  };
+  {
+    const auto [t, culled] = draw(false, true, BACK);
+    ASSERT_EQ(t.size(), 1u);
+    EXPECT_EQ(culled, 1u);
+    EXPECT_EQ(t[0].v[1].eye[0], 1);  // the CCW one: (0,0), (1,0), (0,1), its provoking vertex (0,1) last
+    EXPECT_EQ(t[0].v[2].eye[1], 1);
+  }
+  {
+    const auto [t, culled] = draw(true, true, BACK);  // glFrontFace(GL_CW): the clockwise one is front
+    ASSERT_EQ(t.size(), 1u);
+    // handed over counter-clockwise: (0,1), (1,0) swapped to put the winding right, provoking vertex (1,0) last
+    EXPECT_EQ(t[0].v[2].eye[0], 1);
+    EXPECT_EQ(t[0].v[2].eye[1], 0);
+    const auto& a = t[0].v;
+    const double area = (a[1].eye[0] - a[0].eye[0]) * (a[2].eye[1] - a[0].eye[1]) -
+                        (a[2].eye[0] - a[0].eye[0]) * (a[1].eye[1] - a[0].eye[1]);
+    EXPECT_GT(area, 0);
+  }
+  EXPECT_EQ(draw(false, true, FRONT_AND_BACK).first.size(), 0u);
+  EXPECT_EQ(draw(false, false, BACK).first.size(), 2u);  // GL_CULL_FACE off: both
+}
+
+// The eye-space normal GL lights vertex (0,0,-2) with, for normal n under modelview scale s and the given enables.
+std::array<double, 3> eye_normal(std::array<double, 3> s, std::array<double, 3> n, std::vector<int64_t> caps) {
+  Driver d;
+  for (auto c : caps) d.en(c);
+  d("glScalef", {F(s[0]), F(s[1]), F(s[2])});
+  d("glNormal3f", {F(n[0]), F(n[1]), F(n[2])});
+  d("glBegin", {I(TRIANGLES)});
+  d.v3(0, 0, -2), d.v3(1, 0, -2), d.v3(0, 1, -2);
+  d("glEnd");
+  EXPECT_EQ(d.gl.triangles().size(), 1u);
+  return d.gl.triangles().at(0).v[0].normal;
+}
+
+TEST(ReplayFrontend, NormalsFollowGlRules) {
+  // neither: the inverse transpose, not renormalised — a uniform scale of 2 halves the normal
+  auto n = eye_normal({2, 2, 2}, {0, 0, 1}, {});
+  EXPECT_NEAR(n[2], 0.5, 1e-12);
+  // GL_RESCALE_NORMAL: back to unit length for a uniform scale
+  n = eye_normal({2, 2, 2}, {0, 0, 1}, {RESCALE_NORMAL});
+  EXPECT_NEAR(n[2], 1.0, 1e-12);
+  // … but only by the third row of M^-1: a non-uniform scale (1, 1, 2) leaves (1, 0, 0) at length 2
+  n = eye_normal({1, 1, 2}, {1, 0, 0}, {RESCALE_NORMAL});
+  EXPECT_NEAR(n[0], 2.0, 1e-12);
+  // GL_NORMALIZE: unit, in the inverse transpose's direction
+  n = eye_normal({1, 2, 1}, {0, std::sqrt(0.5), std::sqrt(0.5)}, {NORMALIZE});
+  EXPECT_NEAR(std::hypot(n[1], n[2]), 1.0, 1e-12);
+  EXPECT_NEAR(n[1] / n[2], 0.5, 1e-12);
+  // both: GL_NORMALIZE wins
+  n = eye_normal({1, 1, 2}, {1, 0, 0}, {RESCALE_NORMAL, NORMALIZE});
+  EXPECT_NEAR(n[0], 1.0, 1e-12);
+}
+
+TEST(ReplayFrontend, DisplayListsCompileExecuteAndNest) {
+  Driver d;
+  d("glGenLists", {I(3)});
+  d("glNewList", {I(1), I(COMPILE)});
+  d("glTranslatef", {F(1), F(0), F(0)});
+  d("glEndList");
+  EXPECT_EQ(d.gl.modelview()[3], 0);  // GL_COMPILE: not executed
+  d("glCallList", {I(1)});
+  EXPECT_EQ(d.gl.modelview()[3], 1);
+  d("glNewList", {I(2), I(COMPILE_AND_EXECUTE)});
+  d("glTranslatef", {F(0), F(1), F(0)});
+  d("glCallList", {I(1)});  // nested: resolved when list 2 runs
+  d("glEndList");
+  EXPECT_EQ(d.gl.modelview()[3], 2);  // executed while compiled
+  EXPECT_EQ(d.gl.modelview()[7], 1);
+  d("glNewList", {I(1), I(COMPILE)});  // list 1 redefined: list 2 now calls the new one
+  d("glTranslatef", {F(10), F(0), F(0)});
+  d("glEndList");
+  d("glCallList", {I(2)});
+  EXPECT_EQ(d.gl.modelview()[3], 12);
+  EXPECT_EQ(d.gl.modelview()[7], 2);
+  // glListBase + glCallLists (ubyte offsets)
+  d("glLoadIdentity");
+  d("glListBase", {I(1)});
+  const uint8_t offs[2] = {0, 0};
+  d("glCallLists", {I(2), I(UNSIGNED_BYTE), Blob(offs, 2)});
+  EXPECT_EQ(d.gl.modelview()[3], 20);
+  d("glDeleteLists", {I(1), I(1)});
+  EXPECT_FALSE(d.gl.list_defined(1));
+  d("glCallList", {I(1)});  // deleted: nothing
+  EXPECT_EQ(d.gl.modelview()[3], 20);
+  // a list calling itself stops at GL's nesting limit (64) instead of recursing forever
+  d("glNewList", {I(3), I(COMPILE)});
+  d("glTranslatef", {F(0), F(0), F(1)});
+  d("glCallList", {I(3)});
+  d("glEndList");
+  d("glLoadIdentity");
+  d("glCallList", {I(3)});
+  EXPECT_EQ(d.gl.modelview()[11], 64);
+}
+
+TEST(ReplayFrontend, ArrayDrawsInAListUseTheArraysAtCompileTime) {
+  Driver d;
+  const float a[9] = {0, 0, -2, 1, 0, -2, 0, 1, -2};
+  const float b[9] = {5, 5, -2, 6, 5, -2, 5, 6, -2};
+  d("glEnableClientState", {I(VERTEX_ARRAY)});
+  d("glVertexPointer", {I(3), I(FLOAT), I(0), Blob(a, sizeof a)});
+  d("glNewList", {I(1), I(COMPILE)});
+  d("glDrawArrays", {I(TRIANGLES), I(0), I(3)});
+  d("glEndList");
+  EXPECT_TRUE(d.gl.triangles().empty());
+  d("glVertexPointer", {I(3), I(FLOAT), I(0), Blob(b, sizeof b)});
+  d("glCallList", {I(1)});
+  ASSERT_EQ(d.gl.triangles().size(), 1u);
+  EXPECT_EQ(d.gl.triangles()[0].v[2].eye[0], 0);  // a's, not b's
+  d("glDrawArrays", {I(TRIANGLES), I(0), I(3)});  // now b's
+  ASSERT_EQ(d.gl.triangles().size(), 2u);
+  EXPECT_EQ(d.gl.triangles()[1].v[2].eye[0], 5);
+  // glDrawElements with indices in the capture
+  const uint8_t idx[3] = {2, 1, 0};
+  d("glDrawElements", {I(TRIANGLES), I(3), I(UNSIGNED_BYTE), Blob(idx, 3)});
+  ASSERT_EQ(d.gl.triangles().size(), 3u);
+  EXPECT_EQ(d.gl.stats().primitives, 3u);
+}
+
+TEST(ReplayFrontend, MaterialBetweenBeginAndEnd) {
+  Driver d;
+  d("glShadeModel", {I(FLAT)});
+  d("glBegin", {I(TRIANGLES)});
+  d("glMaterialfv", {I(FRONT), I(DIFFUSE), A({1, 0, 0, 1})});
+  d.v3(0, 0, -2), d.v3(1, 0, -2), d.v3(0, 1, -2);
+  d("glMaterialfv", {I(FRONT), I(DIFFUSE), A({0, 1, 0, 1})});
+  d.v3(0, 0, -2), d.v3(1, 0, -2);
+  d("glMaterialfv", {I(FRONT), I(DIFFUSE), A({0, 0, 1, 1})});
+  d.v3(0, 1, -2);
+  d("glEnd");
+  const auto& t = d.gl.triangles();
+  ASSERT_EQ(t.size(), 2u);
+  const auto& mats = d.gl.materials();
+  EXPECT_EQ(mats[t[0].v[2].material][0].diffuse[0], 1);  // the provoking vertex's material
+  EXPECT_EQ(mats[t[1].v[2].material][0].diffuse[2], 1);
+  EXPECT_EQ(mats[t[1].v[2].material][1].diffuse[2], 0.8);  // GL_FRONT only: the back keeps GL's default
+  EXPECT_EQ(d.gl.material(false).diffuse[2], 1);
+}
+
+TEST(ReplayFrontend, ColourMaterialTracksTheCurrentColour) {
+  Driver d;
+  d("glColor3f", {F(0.5), F(0.25), F(1)});
+  EXPECT_EQ(d.gl.material(false).diffuse[0], 0.8);  // off: no tracking
+  d.en(COLOR_MATERIAL);                             // on: the current colour at once (AMBIENT_AND_DIFFUSE)
+  EXPECT_EQ(d.gl.material(false).diffuse[1], 0.25);
+  EXPECT_EQ(d.gl.material(true).ambient[2], 1);
+  d("glColorMaterial", {I(FRONT), I(AMBIENT)});
+  d("glColor4ub", {I(255), I(0), I(51), I(255)});
+  EXPECT_EQ(d.gl.material(false).ambient[0], 1);
+  EXPECT_DOUBLE_EQ(d.gl.material(false).ambient[2], 0.2);
+  EXPECT_EQ(d.gl.material(true).ambient[0], 0.5);  // GL_FRONT only
+}
+
+TEST(ReplayFrontend, LightsAreInEyeSpaceAtTheCall) {
+  Driver d;
+  d("glTranslatef", {F(0), F(0), F(-5)});
+  d("glLightfv", {I(LIGHT0), I(POSITION), A({0, 0, 0, 1})});
+  d("glLightfv", {I(LIGHT0 + 1), I(POSITION), A({0, 0, 1, 0})});
+  d("glLoadIdentity");
+  EXPECT_EQ(d.gl.lighting().lights[0].position[2], -5);
+  EXPECT_EQ(d.gl.lighting().lights[0].diffuse[0], 1);  // GL_LIGHT0's default diffuse
+  EXPECT_EQ(d.gl.lighting().lights[1].diffuse[0], 0);  // the others' is black
+  EXPECT_EQ(d.gl.lighting().lights[1].position[3], 0);
+  d.en(LIGHT0);
+  EXPECT_TRUE(d.gl.lighting().lights[0].enabled);
+  EXPECT_FALSE(d.gl.lighting().lights[1].enabled);
+}
+
+TEST(ReplayFrontend, UnsupportedCallsAreCountedAndExcludedOrRefused) {
+  Driver d;
+  d.en(DEPTH_TEST);
+  d("glViewport", {I(0), I(0), I(64), I(64)});
+  d("glBindTexture", {I(TEXTURE_2D), I(1)});
+  d("glTexImage2D", {});
+  d("glTexImage2D", {});
+  d.en(TEXTURE_2D);
+  d("glBegin", {I(TRIANGLES)});
+  d("glTexCoord2f", {F(0), F(0)});
+  d.v3(0, 0, -2), d.v3(1, 0, -2), d.v3(0, 1, -2);
+  d("glEnd");
+  const auto& u = d.gl.stats().unsupported;
+  EXPECT_EQ(u.at("glTexImage2D"), 2u);
+  EXPECT_EQ(u.at("glBindTexture"), 1u);
+  EXPECT_EQ(u.at("glTexCoord2f"), 1u);
+  ASSERT_EQ(d.gl.triangles().size(), 1u);
+  EXPECT_EQ(d.gl.triangles()[0].excluded, std::vector<std::string>{"GL_TEXTURE_2D"});
+  EXPECT_TRUE(d.gl.refusals().empty());
+  // handed over: drawn (coverage), its object not compared
+  const auto h = shadecore::glfront::hand_over(d.gl, "t");
+  ASSERT_EQ(h.object_excluded.size(), 1u);
+  EXPECT_EQ(h.object_excluded[0], std::vector<std::string>{"GL_TEXTURE_2D"});
+  // lines: their pixels are unknown to the back end, the frame is refused with the reason
+  d("glBegin", {I(LINES)});
+  d.v3(0, 0, -2), d.v3(1, 0, -2);
+  d("glEnd");
+  ASSERT_EQ(d.gl.refusals().size(), 1u);
+  try {
+    (void)shadecore::glfront::hand_over(d.gl, "t");
+    ADD_FAILURE() << "no ReplayError";
+  } catch (const ReplayError& e) {
+    EXPECT_NE(std::string(e.what()).find("GL_LINES"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ReplayFrontend, HandOverGroupsTrianglesAndRefusesMixedSmoothMaterials) {
+  Driver d;
+  d.en(DEPTH_TEST);
+  d.en(LIGHTING);
+  d.en(LIGHT0);
+  d("glViewport", {I(0), I(0), I(32), I(32)});
+  d("glBegin", {I(TRIANGLES)});
+  d.v3(0, 0, -2), d.v3(1, 0, -2), d.v3(0, 1, -2);
+  d("glEnd");
+  d("glMaterialfv", {I(FRONT_AND_BACK), I(DIFFUSE), A({0, 1, 0, 1})});
+  d("glBegin", {I(TRIANGLES)});
+  d.v3(0, 0, -3), d.v3(1, 0, -3), d.v3(0, 1, -3);
+  d("glEnd");
+  auto h = shadecore::glfront::hand_over(d.gl, "t");
+  EXPECT_EQ(h.scene.width, 32);
+  ASSERT_EQ(h.scene.objects.size(), 2u);  // two materials: two runs
+  ASSERT_EQ(h.scene.materials.size(), 2u);
+  EXPECT_EQ(h.scene.materials[1].diffuse[1], 1);
+  ASSERT_EQ(h.scene.lights.size(), 1u);
+  EXPECT_EQ(h.meshes[1].pos[0][2], -3);
+  EXPECT_EQ(h.scene.flat_rule, shadecore::scene::FlatRule::ProvokingVertex);
+  // smooth shading with glMaterial between a triangle's vertices: refused (per-vertex material batches)
+  d("glBegin", {I(TRIANGLES)});
+  d.v3(0, 0, -2);
+  d("glMaterialfv", {I(FRONT_AND_BACK), I(DIFFUSE), A({0, 0, 1, 1})});
+  d.v3(1, 0, -2), d.v3(0, 1, -2);
+  d("glEnd");
+  EXPECT_THROW((void)shadecore::glfront::hand_over(d.gl, "t"), ReplayError);
+}
+
+// A capture built byte by byte: `frames` frames of one triangle each (fake glViewport 32x32, glClear, glBegin…).
+std::string tiny_capture(int frames, bool core_profile = false) {
+  using shadecore::test::Stream;
+  Stream s;
+  s.uint(6).uint(6).str("");
+  uint64_t no = 0;
+  std::map<std::string, uint64_t> ids;
+  auto call = [&](const std::string& name, const std::vector<std::function<void(Stream&)>>& args, bool fake = false) {
+    s.byte(0).uint(0);
+    auto it = ids.find(name);
+    if (it == ids.end()) {
+      const uint64_t id = ids.size();
+      ids[name] = id;
+      s.uint(id).str(name).uint(args.size());
+      for (size_t k = 0; k < args.size(); ++k) s.str("a" + std::to_string(k));
+    } else {
+      s.uint(it->second);
+    }
+    for (size_t k = 0; k < args.size(); ++k) {
+      s.byte(1).uint(k);
+      args[k](s);
+    }
+    if (fake) s.byte(5).uint(1);
+    s.byte(0);
+    s.byte(1).uint(no++).byte(0);
+  };
+  auto u = [](uint64_t v) { return [v](Stream& t) { t.byte(4).uint(v); }; };
+  auto f = [](float v) { return [v](Stream& t) { t.byte(5).f32(v); }; };
+  if (core_profile)
+    call("glXCreateContextAttribsARB", {u(1), u(2), u(0), u(1), [](Stream& t) {
+           t.byte(0x0b).uint(6).byte(4).uint(0x2091).byte(4).uint(3).byte(4).uint(0x9126).byte(4).uint(1).byte(4).uint(0).byte(4).uint(0);
+         }});
+  call("glXMakeCurrent", {u(1), u(2), u(3)});
+  call("glViewport", {u(0), u(0), u(32), u(32)}, true);
+  call("glEnable", {u(0x0B71)});
+  for (int k = 0; k < frames; ++k) {
+    call("glClear", {u(0x4100)});
+    call("glBegin", {u(4)});
+    call("glVertex3f", {f(-1), f(-1), f(-0.5)});
+    call("glVertex3f", {f(1), f(-1), f(-0.5)});
+    call("glVertex3f", {f(0), f(1), f(-0.5)});
+    call("glEnd", {});
+    call("glXSwapBuffers", {u(1), u(2)});
+  }
+  return shadecore::test::container(s.b);
+}
+
+TEST(ReplayFrontend, FramesAreTheCallsBetweenSwaps) {
+  const std::string cap = tiny_capture(3);
+  shadecore::trace::Reader r(cap, "tiny.trace");
+  shadecore::glfront::ReplayOptions o;
+  o.frame = 2;
+  const auto h = shadecore::glfront::replay_frame(r, o, "tiny.trace");
+  EXPECT_EQ(h.frame, 2u);
+  EXPECT_EQ(h.first_call, 10u);     // calls 0..2 set up, frame 1 = 3..9 (swap at 9)
+  EXPECT_EQ(h.snapshot_call, 15u);  // the last call before the second swap (16)
+  EXPECT_EQ(h.stats.calls_in_frame, 6u);
+  EXPECT_EQ(h.stats.primitives, 1u);
+  EXPECT_EQ(h.api, "glx");
+  EXPECT_EQ(h.scene.width, 32);
+  ASSERT_EQ(h.meshes.size(), 1u);
+  EXPECT_EQ(h.meshes[0].faces.size(), 1u);
+  // past the end: one line naming how many frames there are
+  shadecore::trace::Reader r2(cap, "tiny.trace");
+  o.frame = 4;
+  try {
+    (void)shadecore::glfront::replay_frame(r2, o, "tiny.trace");
+    ADD_FAILURE() << "no error";
+  } catch (const ReplayError& e) {
+    EXPECT_STREQ(e.what(), "tiny.trace: frame 4 is past the end: the capture has 3 complete frames (3 swaps)");
+  }
+  // a core-profile context
+  shadecore::trace::Reader r3(tiny_capture(1, true), "core.trace");
+  o.frame = 1;
+  try {
+    (void)shadecore::glfront::replay_frame(r3, o, "core.trace");
+    ADD_FAILURE() << "no error";
+  } catch (const ReplayError& e) {
+    EXPECT_NE(std::string(e.what()).find("core-profile"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
