@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -67,23 +68,43 @@ bool glob(const std::string& pat, const std::string& s) {
   return p == pat.size();
 }
 
-// Source lines of the RTL files the points name (read once each).
+// Source lines of the RTL files the points name (read once each), and the Verilog function each line is in.
 class Sources {
  public:
   const std::string& line(const std::string& file, int n) {
-    auto it = files_.find(file);
-    if (it == files_.end()) {
-      std::vector<std::string> lines;
-      std::ifstream in(file);
-      for (std::string l; std::getline(in, l);) lines.push_back(l);
-      it = files_.emplace(file, std::move(lines)).first;
-    }
+    const File& f = load(file);
     static const std::string none;
-    return n >= 1 && static_cast<size_t>(n) <= it->second.size() ? it->second[static_cast<size_t>(n - 1)] : none;
+    return n >= 1 && static_cast<size_t>(n) <= f.lines.size() ? f.lines[static_cast<size_t>(n - 1)] : none;
+  }
+  // The name of the `function ... endfunction` around line n ("" outside every function).
+  const std::string& function_at(const std::string& file, int n) {
+    const File& f = load(file);
+    static const std::string none;
+    return n >= 1 && static_cast<size_t>(n) <= f.func.size() ? f.func[static_cast<size_t>(n - 1)] : none;
   }
 
  private:
-  std::map<std::string, std::vector<std::string>> files_;
+  struct File {
+    std::vector<std::string> lines, func;
+  };
+  const File& load(const std::string& file) {
+    auto it = files_.find(file);
+    if (it != files_.end()) return it->second;
+    File f;
+    std::ifstream in(file);
+    static const std::regex open(R"(^\s*(?:automatic\s+)?function\b(?:\s+(?:automatic|signed|integer|real|\[[^\]]*\]))*\s+(\w+))");
+    static const std::regex close(R"(\bendfunction\b)");
+    std::string cur;
+    for (std::string l; std::getline(in, l);) {
+      std::smatch m;
+      if (cur.empty() && std::regex_search(l, m, open)) cur = m[1];
+      f.lines.push_back(l);
+      f.func.push_back(cur);
+      if (std::regex_search(l, close)) cur.clear();
+    }
+    return files_.emplace(file, std::move(f)).first->second;
+  }
+  std::map<std::string, File> files_;
 };
 
 bool matches(const Waiver& w, const Point& p, Sources& src) {
@@ -93,6 +114,10 @@ bool matches(const Waiver& w, const Point& p, Sources& src) {
   if (!w.comment.empty() && w.comment != p.comment) return false;
   if (!w.signal.empty() && !glob(w.signal, p.comment)) return false;
   if (!w.source.empty() && src.line(p.file, p.line).find(w.source) == std::string::npos) return false;
+  if (!w.function.empty()) {
+    const std::string& fn = src.function_at(p.file, p.line);
+    if (fn.empty() || !glob(w.function, fn)) return false;
+  }
   return true;
 }
 
@@ -220,7 +245,8 @@ std::vector<Waiver> read_waivers(const std::string& path) {
     throw std::invalid_argument(path + ": needs a \"waivers\" array");
   for (const auto& [k, v] : j.items())
     if (k != "waivers" && k != "description") throw std::invalid_argument(path + ": unknown key '" + k + "'");
-  static const std::set<std::string> keys = {"id", "module", "kind", "file", "signal", "source", "comment", "hier", "reason", "property"};
+  static const std::set<std::string> keys = {"id",      "module", "kind",   "file",   "function", "signal",
+                                             "source",  "comment", "hier", "reason", "property"};
   std::vector<Waiver> out;
   std::set<std::string> ids;
   for (const auto& w : j["waivers"]) {
@@ -236,6 +262,7 @@ std::vector<Waiver> read_waivers(const std::string& path) {
     x.signal = w.value("signal", "");
     x.source = w.value("source", "");
     x.file = w.value("file", "");
+    x.function = w.value("function", "");
     x.comment = w.value("comment", "");
     x.hier = w.value("hier", "");
     x.reason = w.value("reason", "");
@@ -248,8 +275,9 @@ std::vector<Waiver> read_waivers(const std::string& path) {
     if (x.reason.size() < 10) throw std::invalid_argument(fmt::format("{}: waiver '{}': a reason is required", path, x.id));
     if (x.kind == "toggle" && x.signal.empty())
       throw std::invalid_argument(fmt::format("{}: waiver '{}': a toggle waiver names its signal bits (\"signal\")", path, x.id));
-    if ((x.kind == "line" || x.kind == "branch") && x.source.empty() && x.file.empty())
-      throw std::invalid_argument(fmt::format("{}: waiver '{}': a {} waiver quotes its source line (\"source\") or names its file", path, x.id, x.kind));
+    if ((x.kind == "line" || x.kind == "branch") && x.source.empty() && x.file.empty() && x.function.empty())
+      throw std::invalid_argument(fmt::format(
+          "{}: waiver '{}': a {} waiver quotes its source line (\"source\") or names its file or function", path, x.id, x.kind));
     if (x.kind == "functional" && x.signal.empty())
       throw std::invalid_argument(fmt::format("{}: waiver '{}': a functional waiver names its bins (\"signal\")", path, x.id));
     out.push_back(std::move(x));

@@ -42,9 +42,10 @@ void merge(const std::vector<std::string>& inputs, const std::string& out);
 
 // The reviewed waivers of unreachable points (config/coverage_waivers.json, docs/coverage.md).
 struct Waiver {
-  // module: a glob on the RTL module; file: a glob on the source file's name; signal: a glob on the toggle bit or
+  // module: a glob on the RTL module; file: a glob on the source file's name; function: a glob on the Verilog
+  // function the point is in (constant functions run at elaboration only); signal: a glob on the toggle bit or
   // functional bin; source: a substring of the point's source line; comment, hier as the points have them.
-  std::string id, module, kind, file, signal, source, comment, hier, reason, property;
+  std::string id, module, kind, file, function, signal, source, comment, hier, reason, property;
 };
 std::vector<Waiver> read_waivers(const std::string& path);  // throws std::invalid_argument on a malformed file
 std::string default_waivers();                              // <source tree>/config/coverage_waivers.json

@@ -97,11 +97,13 @@ def run(cmd, **kw):
 def quick(sc, work):
     src = os.path.join(work, "rtl_a.v")
     with open(src, "w") as f:
-        f.write("module a;\n  always @(posedge clk) q <= d;\n  default: y = 0;  // defensive\n  if (x) z = 1;\n")
+        f.write("module a;\n  always @(posedge clk) q <= d;\n  default: y = 0;  // defensive\n  if (x) z = 1;\n"
+                "  function integer fsize(input integer x);\n    fsize = x + 1;\n  endfunction\n")
     A = dict(f=src, h="TOP.a")
     run1 = [
         (key(l=2, n=3, page="v_line/a", o="block", **A), 7),
         (key(l=3, n=5, page="v_line/a", o="case", **A), 0),       # the defensive default: never hit
+        (key(l=6, n=5, page="v_line/a", o="block", **A), 0),      # inside the constant function fsize
         (key(l=4, n=3, page="v_branch/a", o="if", **A), 0),
         (key(l=4, n=4, page="v_branch/a", o="else", **A), 3),
         (key(l=1, n=9, page="v_toggle/a", o="tag[0]", **A), 4),
@@ -123,6 +125,8 @@ def quick(sc, work):
         json.dump({"waivers": [
             {"id": "a-default", "module": "a", "kind": "line", "source": "default: y = 0;",
              "reason": "defensive default of a case whose selector takes only listed values"},
+            {"id": "a-elab-function", "module": "a", "kind": "line", "function": "fsize",
+             "reason": "a constant function evaluated at elaboration only"},
             {"id": "a-tag-msb", "module": "a", "kind": "toggle", "signal": "tag[3?]",
              "reason": "tag bits above the testbench's tag width are tied low"},
             {"id": "zz-absent", "module": "zz_*", "kind": "toggle", "signal": "*",
@@ -140,9 +144,10 @@ def quick(sc, work):
     check(merged == union, "the merged database is the sum of the two runs (%d keys)" % len(union))
     s = json.load(open(os.path.join(out, "summary.json")))
     mods = {m["module"]: m for m in s["modules"]}
-    # By hand: module a: line 1 hit of 2 (1 waived; "dut.a" and "TOP.a" are one point) -> 1/1 = 100 %; branch 2/2; toggle tag[0] hit, tag[31] waived -> 1/1.
+    # By hand: module a: line 1 hit of 3 (2 waived: the default by source, fsize's line by function; "dut.a" and
+    # "TOP.a" are one point) -> 1/1 = 100 %; branch 2/2; toggle tag[0] hit, tag[31] waived -> 1/1.
     # Module b (two parameterisations, W8 and W4): toggle W8 q[0] 0, W8 q[1] 1, W4 q[0] 2 -> 2 of 3.
-    expect = {"a": {"line": (1, 2, 1, 100.0), "branch": (2, 2, 0, 100.0), "toggle": (1, 2, 1, 100.0)},
+    expect = {"a": {"line": (1, 3, 2, 100.0), "branch": (2, 2, 0, 100.0), "toggle": (1, 2, 1, 100.0)},
               "b": {"toggle": (2, 3, 0, 66.66)}}
     for m, kinds in expect.items():
         for k, (hit, tot, wv, pc) in kinds.items():
@@ -150,7 +155,7 @@ def quick(sc, work):
             check((got.get("hit"), got.get("total"), got.get("waived"), got.get("percent")) == (hit, tot, wv, pc),
                   "%s %s: hit %d, total %d, waived %d, %.2f %% (summary: %s)" % (m, k, hit, tot, wv, pc, got))
     check(s["totals"]["toggle"]["hit"] == 3 and s["totals"]["toggle"]["total"] == 5, "totals add the modules")
-    check([a["id"] for a in s["waivers"]["applied"]] == ["a-default", "a-tag-msb"] and
+    check([a["id"] for a in s["waivers"]["applied"]] == ["a-default", "a-elab-function", "a-tag-msb"] and
           s["waivers"]["not_applicable"] == ["zz-absent"], "applied and not-applicable waivers are listed")
     check(s["holes"].get("b") == ["toggle q[0] (rtl_a.v:1 a.u_b8)"], "the one hole of b is named: %s" % s["holes"].get("b"))
     hand = hand_summary(union)
