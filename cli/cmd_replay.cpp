@@ -9,7 +9,8 @@
 //
 // Into DIR (staged and committed together, docs/cli.md): cmodel.png (C model), exact.png (LightCore::eval_double
 // with exact cos^n), rtl.png (--rtl: bit-identical to cmodel.png, or the run fails), mesa.png and diff.png (--mesa:
-// glretrace's snapshot of the frame under xvfb-run; --reference PNG: the given image, and diff.png).
+// glretrace's snapshot of the frame under xvfb-run; --reference PNG: the given image, and diff.png), pair.png (exact
+// and the reference side by side, the footer naming the command, the machine and the date).
 // The comparison is gl-compare's (glref::compare) over the exact image: Mesa's snapshot has no object ids, so a
 // pixel of it is covered where it differs from the frame's clear colour (8-bit), and shows the object the exact
 // image shows there; the objects drawn with a capability the core lacks (texturing, blending, fog, …) are not
@@ -21,6 +22,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -105,6 +107,38 @@ Png mesa_snapshot(const std::string& trace, const std::string& api, uint64_t cal
   return p;
 }
 
+// "AMD EPYC 7B13, 2 cores" from /proc/cpuinfo (the figures' footers name the machine).
+std::string machine() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line, model;
+  int cpus = 0;
+  while (std::getline(in, line)) {
+    if (line.rfind("model name", 0) == 0 && model.empty()) model = line.substr(line.find(':') + 2);
+    if (line.rfind("processor", 0) == 0) ++cpus;
+  }
+  return (model.empty() ? std::string("unknown CPU") : model) + ", " + std::to_string(cpus) + " cores";
+}
+
+// exact.png and the reference side by side with their names and a footer naming the command, machine and date.
+canvas::Canvas pair_figure(int w, int h, const std::vector<uint8_t>& exact, const std::vector<uint8_t>& ref,
+                           const std::string& ref_name, const std::string& verdict) {
+  const int gap = 8, pad = 4, line = canvas::Canvas::kTextRows + 3;
+  const int W = 2 * w + gap;
+  std::vector<std::string> foot;
+  for (const std::string& t : {"shadecore replay: exact cos^n through the core's GL front end (left) and " + ref_name +
+                                   " (right); " + verdict,
+                               command_line(), machine() + ", " + utc_now()})
+    for (const auto& l : canvas::wrap_text(t, W - 2 * pad, 1)) foot.push_back(l);
+  canvas::Canvas cv(W, line + h + pad + static_cast<int>(foot.size()) * line + pad, 24);
+  cv.text(pad, 2, "exact (shadecore)", 230, 230, 230);
+  cv.text(w + gap + pad, 2, ref_name, 230, 230, 230);
+  cv.blit(0, line, w, h, exact);
+  cv.blit(w + gap, line, w, h, ref);
+  for (size_t i = 0; i < foot.size(); ++i)
+    cv.text(pad, line + h + pad + static_cast<int>(i) * line, foot[i], 200, 200, 200);
+  return cv;
+}
+
 json stats_json(const glref::DiffStats& s) {
   json j;
   j["pixels"] = s.pixels;
@@ -126,7 +160,7 @@ void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool jso
   io::OutputSet outs;
   std::vector<std::string> names = {"cmodel.png", "exact.png"};
   if (a.rtl) names.push_back("rtl.png");
-  if (a.mesa || ref_given) names.insert(names.end(), {"mesa.png", "diff.png"});
+  if (a.mesa || ref_given) names.insert(names.end(), {"mesa.png", "diff.png", "pair.png"});
   std::string json_member;
   if (json_given && !a.out_dir.empty()) {
     const fsys::path jp = fsys::absolute(a.json_path).lexically_normal(), dp = fsys::absolute(a.out_dir).lexically_normal();
@@ -328,6 +362,11 @@ void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool jso
            {{60, 50, 40}, "not compared: the exact image at 1/4"}},
           "exact vs the reference, 8-bit LSB, largest channel");
       files.emplace_back("diff.png", canvas::encode_png(d.width, d.height, d.rgb));
+      const canvas::Canvas pr = pair_figure(fr.width, fr.height, exact_rgb, ref.rgb,
+                                            a.mesa ? "Mesa (" + std::string(h.api == "egl" ? "eglretrace" : "glretrace") + ")"
+                                                   : "the reference",
+                                            verdict);
+      files.emplace_back("pair.png", canvas::encode_png(pr.width, pr.height, pr.rgb));
     }
   }
   if (json_given) {
@@ -399,7 +438,7 @@ void add_replay(CLI::App& app) {
   auto* call_opt = sub->add_option("--call", args->call, "the image after call N (the frame from the last swap before it)");
   sub->add_flag("--rtl", args->rtl, "also light every vertex with the Verilated core (bit-identical to the C model, or fail)");
   sub->add_flag("--full-core", args->full_core, "program the full core instead of the derived smallest one");
-  sub->add_option("--out", args->out_dir, "write cmodel.png, exact.png (rtl.png, mesa.png, diff.png) here")
+  sub->add_option("--out", args->out_dir, "write cmodel.png, exact.png (rtl.png, mesa.png, diff.png, pair.png) here")
       ->check(cliargs::NonEmpty("path"));
   auto* json_opt = sub->add_option("--json", args->json_path, "write a JSON report (atomically)")->check(cliargs::NonEmpty("path"));
   sub->add_flag("--mesa", args->mesa, "compare with Mesa: glretrace's snapshot of the frame under xvfb-run");
