@@ -397,8 +397,9 @@ TEST(ReplayFrontend, HandOverGroupsTrianglesAndRefusesMixedSmoothMaterials) {
   EXPECT_THROW((void)shadecore::glfront::hand_over(d.gl, "t"), ReplayError);
 }
 
-// A capture built byte by byte: `frames` frames of one triangle each (fake glViewport 32x32, glClear, glBegin…).
-std::string tiny_capture(int frames, bool core_profile = false) {
+// A capture's stream built byte by byte: `frames` frames of one triangle each (fake glViewport 32x32, glClear,
+// glBegin…); with `arrays` each frame also draws a quad from a vertex array, once directly and once from a list.
+std::string tiny_stream(int frames, bool core_profile = false, bool arrays = false) {
   using shadecore::test::Stream;
   Stream s;
   s.uint(6).uint(6).str("");
@@ -439,9 +440,25 @@ std::string tiny_capture(int frames, bool core_profile = false) {
     call("glVertex3f", {f(1), f(-1), f(-0.5)});
     call("glVertex3f", {f(0), f(1), f(-0.5)});
     call("glEnd", {});
+    if (arrays) {
+      const float q[12] = {-1, -1, -0.7f, 1, -1, -0.7f, 1, 1, -0.7f, -1, 1, -0.7f};
+      auto blob = [&q](Stream& t) {
+        t.byte(8).uint(sizeof q);
+        t.b.append(reinterpret_cast<const char*>(q), sizeof q);
+      };
+      call("glEnableClientState", {u(0x8074)});
+      call("glVertexPointer", {u(3), u(0x1406), u(0), blob});
+      call("glNewList", {u(1), u(0x1301)});
+      call("glDrawArrays", {u(7), u(0), u(4)});
+      call("glEndList", {});
+      call("glCallList", {u(1)});
+    }
     call("glXSwapBuffers", {u(1), u(2)});
   }
-  return shadecore::test::container(s.b);
+  return s.b;
+}
+std::string tiny_capture(int frames, bool core_profile = false) {
+  return shadecore::test::container(tiny_stream(frames, core_profile));
 }
 
 TEST(ReplayFrontend, FramesAreTheCallsBetweenSwaps) {
@@ -477,6 +494,65 @@ TEST(ReplayFrontend, FramesAreTheCallsBetweenSwaps) {
   } catch (const ReplayError& e) {
     EXPECT_NE(std::string(e.what()).find("core-profile"), std::string::npos) << e.what();
   }
+}
+
+TEST(ReplayFrontend, CallSnapshotsAndArrayFrames) {
+  const std::string cap = shadecore::test::container(tiny_stream(2, false, true));
+  shadecore::trace::Reader r(cap, "a.trace");
+  shadecore::glfront::ReplayOptions o;
+  o.frame = 2;
+  const auto h = shadecore::glfront::replay_frame(r, o, "a.trace");
+  EXPECT_EQ(h.stats.primitives, 3u);  // the triangle, the array quad (COMPILE_AND_EXECUTE) and the list's quad
+  EXPECT_EQ(h.stats.triangles, 5u);
+  // --call: the image after call N, the frame from the last swap before it (here: frame 2 up to its glEnd)
+  shadecore::trace::Reader r2(cap, "a.trace");
+  shadecore::glfront::ReplayOptions oc;
+  oc.call = h.first_call + 5;  // glClear, glBegin, 3 × glVertex3f, glEnd
+  const auto hc = shadecore::glfront::replay_frame(r2, oc, "a.trace");
+  EXPECT_EQ(hc.frame, 2u);
+  EXPECT_EQ(hc.snapshot_call, h.first_call + 5);
+  EXPECT_EQ(hc.stats.primitives, 1u);
+}
+
+// Mutated captures (bytes of the decompressed stream flipped, cut, duplicated; then recompressed): the reader and
+// the front end either replay or refuse with a TraceError / ReplayError, never anything else.
+TEST(ReplayFrontend, MutatedCapturesAreReplayedOrRefusedNeverCrash) {
+  const std::string base = tiny_stream(2, false, true);
+  uint64_t x = 0x9E3779B97F4A7C15ull;
+  auto rnd = [&x] {
+    x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+    return x;
+  };
+  int replayed = 0, refused = 0;
+  for (int it = 0; it < 3000; ++it) {
+    std::string m = base;
+    const int edits = 1 + static_cast<int>(rnd() % 4);
+    for (int e = 0; e < edits; ++e) {
+      const size_t at = rnd() % m.size();
+      switch (rnd() % 4) {
+        case 0: m[at] = static_cast<char>(rnd()); break;
+        case 1: m[at] = static_cast<char>(m[at] ^ (1 << (rnd() % 8))); break;
+        case 2: m.erase(at, 1 + rnd() % 8); break;
+        default: m.insert(at, m.substr(rnd() % m.size(), 1 + rnd() % 16)); break;
+      }
+      if (m.empty()) m = "x";
+    }
+    try {
+      shadecore::trace::Reader r(shadecore::test::container(m), "m.trace");
+      shadecore::glfront::ReplayOptions o;
+      o.frame = 1 + rnd() % 2;
+      (void)shadecore::glfront::replay_frame(r, o, "m.trace");
+      ++replayed;
+    } catch (const shadecore::trace::TraceError& e) {
+      ++refused;
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    } catch (const ReplayError& e) {
+      ++refused;
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    }
+  }
+  EXPECT_GT(refused, 100);
+  EXPECT_GT(replayed, 10);
 }
 
 }  // namespace

@@ -15,6 +15,8 @@ namespace shadecore::glfront {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr int64_t kMaxDrawVertices = int64_t{1} << 26;  // one array draw: at most 64 Mi vertices (a corrupt count)
+constexpr uint64_t kMaxExecuted = uint64_t{1} << 25;    // calls executed in one frame, display lists expanded
 
 // GL enumerants (OpenGL 2.1, gl.h)
 enum : uint32_t {
@@ -438,9 +440,15 @@ struct Gl::Impl {
 
   // ---- vertex arrays
   void set_array(Array& a, const trace::Call& c, int size_arg, int type_arg, int stride_arg, int ptr_arg, int fixed_size) {
-    a.size = size_arg >= 0 ? static_cast<int>(integer(c, size_arg)) : fixed_size;
+    const int64_t size = size_arg >= 0 ? integer(c, size_arg) : fixed_size;
+    const int64_t stride = integer(c, stride_arg);
+    if (size < 2 || size > 4 || stride < 0 || stride > (1 << 20)) {
+      note(c.name() + " with an invalid size or stride (GL_INVALID_VALUE, ignored)");
+      return;
+    }
+    a.size = static_cast<int>(size);
     a.type = static_cast<uint32_t>(integer(c, type_arg));
-    a.stride = static_cast<int>(integer(c, stride_arg));
+    a.stride = static_cast<int>(stride);
     const trace::Value& p = c.arg(ptr_arg);
     a.data.reset();
     a.from_buffer = false;
@@ -512,6 +520,9 @@ struct Gl::Impl {
     verts.clear();
   }
   std::vector<uint64_t> indices(const trace::Call& c, uint64_t count, uint32_t type, size_t arg) {
+    if (count > static_cast<uint64_t>(kMaxDrawVertices))
+      throw ReplayError("call " + std::to_string(c.no) + " " + c.name() + ": count " + std::to_string(count) +
+                        " (at most " + std::to_string(kMaxDrawVertices) + " vertices a draw)");
     const trace::Value& v = c.arg(arg);
     std::vector<uint64_t> out;
     if (v.kind == trace::Value::Kind::Array) {
@@ -584,7 +595,9 @@ struct Gl::Impl {
   void dispatch(const trace::Call& c);
 
   void execute(const trace::Call& c) {
-    ++g.stats_.calls_executed;
+    if (++g.stats_.calls_executed > kMaxExecuted)
+      throw ReplayError("call " + std::to_string(c.no) + ": the frame executes more than " + std::to_string(kMaxExecuted) +
+                        " calls (display lists calling lists)");
     if (starts(c.name(), "shadecore.immediate:")) {
       // a compiled array draw: restore the arrays it captured, run it, restore the current ones
       const Array keep[3] = {vertex, normal, colour};
@@ -866,6 +879,9 @@ void Gl::Impl::dispatch(const trace::Call& c) {
   }
   if (n == "glDrawArrays") {
     const int64_t first = integer(c, 1), count = integer(c, 2);
+    if (count < 0 || first < 0 || count > kMaxDrawVertices)
+      throw ReplayError("call " + std::to_string(c.no) + " glDrawArrays: first " + std::to_string(first) + ", count " +
+                        std::to_string(count) + " (at most " + std::to_string(kMaxDrawVertices) + " vertices a draw)");
     std::vector<uint64_t> idx;
     for (int64_t i = 0; i < count; ++i) idx.push_back(static_cast<uint64_t>(first + i));
     draw_arrays(u32(0), idx, c);
@@ -902,9 +918,12 @@ void Gl::Impl::dispatch(const trace::Call& c) {
     return;
   }
   if (n == "glDeleteLists") {
-    const uint32_t first = u32(0);
+    const uint64_t first = u32(0);
     const int64_t range = integer(c, 1);
-    for (int64_t i = 0; i < range; ++i) g.lists_.erase(first + static_cast<uint32_t>(i));
+    if (range > 0)
+      g.lists_.erase(g.lists_.lower_bound(static_cast<uint32_t>(first)),
+                     first + static_cast<uint64_t>(range) > 0xffffffffull ? g.lists_.end()
+                                                                         : g.lists_.lower_bound(static_cast<uint32_t>(first + range)));
     return;
   }
   if (n == "glListBase") { list_base = u32(0); return; }
@@ -1174,7 +1193,11 @@ Handover replay_frame(trace::Reader& reader, const ReplayOptions& o, const std::
       break;
     }
     ++in_frame;
-    gl.call(c);
+    try {
+      gl.call(c);
+    } catch (const trace::TraceError& e) {  // a malformed argument: name the call
+      throw ReplayError(name + ": call " + std::to_string(c.no) + " " + c.name() + ": " + e.what());
+    }
     prev = c.no;
     any = true;
     if (o.call && c.no == *o.call) {

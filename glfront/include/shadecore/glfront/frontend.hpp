@@ -103,6 +103,8 @@ struct FrontStats {
 class Gl {
  public:
   Gl();
+  Gl(const Gl&) = delete;  // the state machine's internals refer to it
+  Gl& operator=(const Gl&) = delete;
   void call(const trace::Call& c);
   // Geometry is assembled only while recording (the frame asked for); state changes always apply.
   void set_recording(bool on) { recording_ = on; }
