@@ -388,10 +388,25 @@ TEST(ReplayFrontend, HandOverGroupsTrianglesAndRefusesMixedSmoothMaterials) {
   ASSERT_EQ(h.scene.lights.size(), 1u);
   EXPECT_EQ(h.meshes[1].pos[0][2], -3);
   EXPECT_EQ(h.scene.flat_rule, shadecore::scene::FlatRule::ProvokingVertex);
-  // smooth shading with glMaterial between a triangle's vertices: refused (per-vertex material batches)
+  // smooth shading with glMaterial between a triangle's vertices changing one colour: that colour per vertex
+  // through colour material (GL lights each vertex with its own material)
   d("glBegin", {I(TRIANGLES)});
   d.v3(0, 0, -2);
   d("glMaterialfv", {I(FRONT_AND_BACK), I(DIFFUSE), A({0, 0, 1, 1})});
+  d.v3(1, 0, -2), d.v3(0, 1, -2);
+  d("glEnd");
+  h = shadecore::glfront::hand_over(d.gl, "t");
+  ASSERT_EQ(h.scene.objects.size(), 3u);
+  EXPECT_EQ(h.scene.objects[2].colour_material, shadecore::ColourMaterial::Diffuse);
+  ASSERT_EQ(h.meshes[2].col.size(), 3u);
+  EXPECT_EQ(h.meshes[2].col[0], (shadecore::scene::Vec3{0, 1, 0}));  // the first vertex's diffuse
+  EXPECT_EQ(h.meshes[2].col[1], (shadecore::scene::Vec3{0, 0, 1}));
+  EXPECT_TRUE(h.meshes[0].col.empty());  // no colour material: no vertex colours
+  // two colours changing between the vertices: refused (per-vertex material batches are not implemented)
+  d("glBegin", {I(TRIANGLES)});
+  d.v3(0, 0, -2);
+  d("glMaterialfv", {I(FRONT_AND_BACK), I(DIFFUSE), A({1, 0, 1, 1})});
+  d("glMaterialfv", {I(FRONT_AND_BACK), I(0x1202), A({1, 1, 1, 1})});
   d.v3(1, 0, -2), d.v3(0, 1, -2);
   d("glEnd");
   EXPECT_THROW((void)shadecore::glfront::hand_over(d.gl, "t"), ReplayError);

@@ -1078,12 +1078,49 @@ Handover hand_over(const Gl& gl, const std::string& name) {
   std::tuple<int, bool, int, std::vector<std::string>> cur_key;
   for (const auto& t : gl.triangles()) {
     const bool lit = t.lit;
-    const std::optional<ColourMaterial> cm = lit ? t.colour_material : std::optional<ColourMaterial>(ColourMaterial::Emission);
-    // the material of the triangle: flat → the provoking vertex's; smooth → all three must agree
-    uint32_t mid = t.v[2].material;
-    if (lit && !t.flat && (t.v[0].material != mid || t.v[1].material != mid))
-      throw ReplayError(name + ": glMaterial changes between the vertices of a smooth-shaded primitive (per-vertex "
-                               "material batches are not implemented)");
+    std::optional<ColourMaterial> cm = lit ? t.colour_material : std::optional<ColourMaterial>(ColourMaterial::Emission);
+    // the material of the triangle: flat → the provoking vertex's; smooth → all three agree, or they differ in one
+    // colour that the core's fragment colour input carries (colour material: the per-vertex value as the vertex's
+    // colour), as GL lights each vertex with the material in force at it
+    const uint32_t mid = t.v[2].material;
+    std::array<Vec4, 3> vertex_colour{t.v[0].colour, t.v[1].colour, t.v[2].colour};
+    if (lit && !t.flat && (t.v[0].material != mid || t.v[1].material != mid)) {
+      const auto& M = gl.materials();
+      const std::array<const MaterialState*, 3> f{&M[t.v[0].material][0], &M[t.v[1].material][0], &M[mid][0]};
+      const std::array<const MaterialState*, 3> b{&M[t.v[0].material][1], &M[t.v[1].material][1], &M[mid][1]};
+      auto same = [&](auto field) {
+        return field(*f[0]) == field(*f[2]) && field(*f[1]) == field(*f[2]) && (!L.two_side || (*b[0] == *b[2] && *b[1] == *b[2]));
+      };
+      auto rgb3 = [](const Vec4& c) { return std::array<double, 3>{c[0], c[1], c[2]}; };
+      const bool amb = same([&](const MaterialState& m) { return rgb3(m.ambient); });
+      const bool dif = same([&](const MaterialState& m) { return rgb3(m.diffuse); });
+      const bool spe = same([&](const MaterialState& m) { return rgb3(m.specular); });
+      const bool emi = same([&](const MaterialState& m) { return rgb3(m.emission); });
+      const bool shi = same([](const MaterialState& m) { return m.shininess; });
+      bool ad_equal = true;
+      for (const auto* m : f) ad_equal = ad_equal && rgb3(m->ambient) == rgb3(m->diffuse);
+      std::optional<ColourMaterial> via;
+      if (shi && !cm && (!L.two_side || (*b[0] == *b[2] && *b[1] == *b[2]))) {
+        if (!amb && dif && spe && emi) via = ColourMaterial::Ambient;
+        else if (amb && !dif && spe && emi) via = ColourMaterial::Diffuse;
+        else if (amb && dif && !spe && emi) via = ColourMaterial::Specular;
+        else if (amb && dif && spe && !emi) via = ColourMaterial::Emission;
+        else if (!amb && !dif && spe && emi && ad_equal) via = ColourMaterial::AmbientAndDiffuse;
+      }
+      if (!via)
+        throw ReplayError(name + ": glMaterial changes more than one colour (or the shininess) between the vertices of "
+                                 "a smooth-shaded primitive (per-vertex material batches are not implemented)");
+      cm = via;
+      for (int k = 0; k < 3; ++k) {
+        const MaterialState& m = *f[static_cast<size_t>(k)];
+        vertex_colour[static_cast<size_t>(k)] = *via == ColourMaterial::Ambient || *via == ColourMaterial::AmbientAndDiffuse
+                                                    ? m.ambient
+                                                : *via == ColourMaterial::Diffuse  ? m.diffuse
+                                                : *via == ColourMaterial::Specular ? m.specular
+                                                                                    : m.emission;
+      }
+      ++h.stats.notes["glMaterial between a smooth primitive's vertices carried as colour material"];
+    }
     const int mi = scene_material(mid, lit, cm);
     const auto key = std::make_tuple(mi, t.flat, cm ? static_cast<int>(*cm) : -1, t.excluded);
     if (cur < 0 || key != cur_key) {
@@ -1103,7 +1140,8 @@ Handover hand_over(const Gl& gl, const std::string& name) {
     }
     scene::Mesh& m = h.meshes[static_cast<size_t>(cur)];
     std::vector<int> face;
-    for (const auto& v : t.v) {
+    for (size_t k = 0; k < 3; ++k) {
+      const GlVertex& v = t.v[k];
       const double w = v.eye[3];
       if (w == 0) throw ReplayError(name + ": a vertex at infinity (w = 0) in eye space");
       m.pos.push_back({v.eye[0] / w, v.eye[1] / w, v.eye[2] / w});
@@ -1115,7 +1153,7 @@ Handover hand_over(const Gl& gl, const std::string& name) {
       }
       if (l == 0) nn = {0, 0, 1};
       m.nrm.push_back(nn);
-      m.col.push_back(rgb(v.colour));
+      m.col.push_back(rgb(vertex_colour[k]));
       face.push_back(static_cast<int>(m.pos.size()) - 1);
     }
     m.faces.push_back(face);
