@@ -612,6 +612,7 @@ void run_lighting(const Options& o) {
     b.synth = synth;
     b.signoff_mode = o.signoff;
     b.signoff_target = o.clock_target;
+    b.signoff_abc = "lean";
     b.synth_why = o.synth != "auto" ? "--synth " + o.synth
                   : synth == SynthMode::Skipped
                       ? fmt::format("{} lights: a flat synthesis takes too long for the handoff (use --synth hier or "

@@ -229,7 +229,8 @@ void report_signoff(BundleBase& b, const fs::path& dir, const std::function<void
   const fs::path root = root_dir();
   fs::create_directories(dir / "signoff");
   for (const char* f : {"signoff.py", "fastmul.py"}) fs::copy_file(root / "signoff" / f, dir / "signoff" / f);
-  const std::vector<std::string> cmd = {python, "signoff/signoff.py", ".", "--target", fmt::format("{}", b.signoff_target)};
+  const std::vector<std::string> cmd = {python, "signoff/signoff.py", ".", "--target", fmt::format("{}", b.signoff_target),
+                                        "--abc", b.signoff_abc};
   step("OSU 0.18 um sign-off: " + shell_join(cmd) + " (cell mapping, OpenSTA, gate-level simulation, power)");
   ProcOptions po;
   po.on_line = [&step](const std::string& line) {

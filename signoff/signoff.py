@@ -49,6 +49,11 @@ DRIVE_CELL = "INVX1"
 IO_FRACTION = 0.3
 DERATE = 1.15
 CLOCK = "clk_i"
+# ABC's lean script (--abc lean): Yosys 0.23's own for `abc -liberty -D` without its SAT sweeping (`&fraig -x`, `scorr`) and the
+# retiming commands (a no-op on the combinational logic Yosys hands over): `&fraig -x` alone ran over 20 minutes on
+# a lighting core's 310k AND nodes of multiplier trees (where SAT sweeping finds little); `dc2` + `&dch -f` still
+# restructure, `&nf` maps for delay, `buffer`/`upsize`/`dnsize` build and size the buffer trees. ({D}: the target.)
+ABC_LEAN = "+strash;dc2;strash;&get,-n;&dch,-f;&nf,{D};&put;buffer;upsize,{D};dnsize,{D};stime,-p"
 
 
 def die(msg, code=1):
@@ -154,15 +159,26 @@ def synth(a, sdir):
         fastmul.write_lcu_map(os.path.join(sdir, "lcu_map.v"))
     os.remove(os.path.join(sdir, "prep.json"))
     period_ps = int(round(a.target * 1000))
-    mapcmd = "techmap -map fastmul_map.v; opt_clean\n" if a.arith == "fast" else ""
-    if lib_files:
-        mapcmd = "techmap -autoproc -map mulreg_map.v; opt_clean\nselect -assert-none t:sc_mul_reg\n" + mapcmd
-    script = (f"read_liberty -lib {lib}\nread_rtlil prep.il\n" + mapcmd +
-              (f"synth -top {a.top} -run coarse:fine\n"  # every $alu's carries Kogge-Stone (fastmul.LCU_KS)
-               "techmap -map +/techmap.v -map lcu_map.v\nopt -fast\n"
-               f"synth -top {a.top} -run fine:\n" if a.arith == "fast" else f"synth -top {a.top} -run coarse:\n") +
+    mregcmd = "techmap -autoproc -map mulreg_map.v; opt_clean\nselect -assert-none t:sc_mul_reg\n" if lib_files else ""
+    if a.arith == "fast":
+        # The word-level passes (synth's coarse and fine optimisation) run with every $mul hidden as a black box
+        # (HIDDEN_MUL), so they never see the multipliers' bit heaps; then the Dadda trees (fastmul_map.v), every
+        # other cell to gates with Kogge-Stone carries (lcu_map.v), and straight to ABC: no gate-level `opt` pass
+        # (minutes each on a lighting core's ~300k gates; ABC optimises the logic itself).
+        with open(os.path.join(sdir, "hidden_mul.v"), "w") as f:
+            f.write(fastmul.HIDDEN_MUL)
+        flow = (f"read_liberty -lib {lib}\nread_verilog -lib hidden_mul.v\nread_rtlil prep.il\n" + mregcmd +
+                f"chtype -set {fastmul.HIDDEN_NAME} t:$mul\n"
+                f"synth -top {a.top} -run coarse:fine\nopt -fast -full\nmemory_map\nopt -full\n"
+                f"chtype -set $mul t:{fastmul.HIDDEN_NAME}\n"
+                "techmap -map fastmul_map.v\nopt_clean\n"
+                "techmap -map +/techmap.v -map lcu_map.v\nopt_clean\n")
+    else:
+        flow = f"read_liberty -lib {lib}\nread_rtlil prep.il\n" + mregcmd + f"synth -top {a.top} -run coarse:\n"
+    script = (flow +
               f"dfflibmap -liberty {lib}\n"
-              f"abc -liberty {lib} -D {period_ps} -constr abc.constr\n"
+              f"abc -liberty {lib} -D {period_ps} -constr abc.constr" +
+              (f" -script {ABC_LEAN}\n" if a.abc == "lean" else "\n") +
               "opt_clean -purge\nsetundef -zero\nsplitnets\nopt_clean -purge\n"
               "insbuf -buf BUFX2 A Y\n"
               "check -assert\n"
@@ -538,6 +554,9 @@ def main():
     ap.add_argument("--target", type=float, default=4.0, help="target clock period in ns (default 4.0)")
     ap.add_argument("--arith", choices=["fast", "yosys"], default="fast",
                     help="multipliers: fast = Dadda + Kogge-Stone (signoff/fastmul.py), yosys = Yosys's own")
+    ap.add_argument("--abc", choices=["full", "lean"], default="full",
+                    help="ABC script: full = Yosys's own for -liberty -D, lean = without SAT sweeping (ABC_LEAN; "
+                         "for the lighting cores, where the full script does not finish in hours)")
     ap.add_argument("--liberty", default=None, help=f"Liberty file (default {LIB_DIR}/{LIBERTY})")
     ap.add_argument("--cells", default=None, help=f"the library's Verilog cell models (default {LIB_DIR}/{CELLS})")
     ap.add_argument("--steps", default="synth,sta,gatesim,power",
