@@ -331,6 +331,29 @@ TEST(ReplayFrontend, LightsAreInEyeSpaceAtTheCall) {
   EXPECT_FALSE(d.gl.lighting().lights[1].enabled);
 }
 
+TEST(ReplayFrontend, InvalidValuesIgnoredAndClampsNoted) {
+  Driver d;
+  d.en(DEPTH_TEST);
+  d.en(LIGHTING);
+  d.en(LIGHT0);
+  d("glViewport", {I(0), I(0), I(16), I(16)});
+  d("glLightf", {I(LIGHT0), I(0x1206), F(120)});   // GL_SPOT_CUTOFF 120: GL_INVALID_VALUE, ignored
+  d("glLightf", {I(LIGHT0), I(0x1207), F(-1)});    // a negative GL_CONSTANT_ATTENUATION: ignored
+  d("glMaterialf", {I(FRONT), I(0x1601), F(200)});  // shininess above 128: ignored
+  d("glLightfv", {I(LIGHT0), I(DIFFUSE), A({2, 1, 1, 1})});  // GL keeps 2; the core's format cannot
+  EXPECT_EQ(d.gl.lighting().lights[0].spot_cutoff, 180);
+  EXPECT_EQ(d.gl.lighting().lights[0].kc, 1);
+  EXPECT_EQ(d.gl.material(false).shininess, 0);
+  EXPECT_EQ(d.gl.lighting().lights[0].diffuse[0], 2);
+  d("glBegin", {I(TRIANGLES)});
+  d.v3(0, 0, -2), d.v3(1, 0, -2), d.v3(0, 1, -2);
+  d("glEnd");
+  const auto h = shadecore::glfront::hand_over(d.gl, "t");
+  EXPECT_EQ(h.scene.lights.at(0).diffuse[0], 1);
+  EXPECT_EQ(h.stats.notes.count("a light colour outside [0, 1] clamped (the core's colour format; GL would not clamp)"), 1u);
+  EXPECT_EQ(h.stats.notes.count("glLight GL_SPOT_CUTOFF outside 0..90, 180 (GL_INVALID_VALUE, ignored)"), 1u);
+}
+
 TEST(ReplayFrontend, UnsupportedCallsAreCountedAndExcludedOrRefused) {
   Driver d;
   d.en(DEPTH_TEST);

@@ -246,11 +246,21 @@ struct Gl::Impl {
         L.spot_direction = {d[0], d[1], d[2]};
         break;
       }
-      case GL_SPOT_EXPONENT: need(1); L.spot_exponent = p[0]; break;
-      case GL_SPOT_CUTOFF: need(1); L.spot_cutoff = p[0]; break;
-      case GL_CONSTANT_ATTENUATION: need(1); L.kc = p[0]; break;
-      case GL_LINEAR_ATTENUATION: need(1); L.kl = p[0]; break;
-      case GL_QUADRATIC_ATTENUATION: need(1); L.kq = p[0]; break;
+      case GL_SPOT_EXPONENT:
+        need(1);
+        if (p[0] < 0 || p[0] > 128) { note("glLight GL_SPOT_EXPONENT outside 0..128 (GL_INVALID_VALUE, ignored)"); break; }
+        L.spot_exponent = p[0];
+        break;
+      case GL_SPOT_CUTOFF:
+        need(1);
+        if (!((p[0] >= 0 && p[0] <= 90) || p[0] == 180)) { note("glLight GL_SPOT_CUTOFF outside 0..90, 180 (GL_INVALID_VALUE, ignored)"); break; }
+        L.spot_cutoff = p[0];
+        break;
+      case GL_CONSTANT_ATTENUATION: case GL_LINEAR_ATTENUATION: case GL_QUADRATIC_ATTENUATION:
+        need(1);
+        if (p[0] < 0) { note("glLight with a negative attenuation (GL_INVALID_VALUE, ignored)"); break; }
+        (pname == GL_CONSTANT_ATTENUATION ? L.kc : pname == GL_LINEAR_ATTENUATION ? L.kl : L.kq) = p[0];
+        break;
       default: note("glLight with an unknown pname (GL_INVALID_ENUM, ignored)");
     }
   }
@@ -274,6 +284,7 @@ struct Gl::Impl {
   }
   std::optional<ColourMaterial> colour_material_mode() const {
     if (!on(GL_COLOR_MATERIAL)) return std::nullopt;
+    if (cm_face == GL_BACK && !g.light_.two_side) return std::nullopt;  // only the back material, which is unused
     switch (cm_mode) {
       case GL_EMISSION: return ColourMaterial::Emission;
       case GL_AMBIENT: return ColourMaterial::Ambient;
@@ -349,6 +360,8 @@ struct Gl::Impl {
             scissor[1] + scissor[3] >= v[1] + v[3]))
         refuse("GL_SCISSOR_TEST with a box smaller than the viewport");
     }
+    if (on(GL_LIGHTING) && on(GL_COLOR_MATERIAL) && cm_face != GL_FRONT_AND_BACK && g.light_.two_side)
+      refuse("glColorMaterial of one face under two-sided lighting (the core's colour material is GL_FRONT_AND_BACK)");
     // the frame's lighting state and projection: one per frame (the core's registers and the back end's camera)
     if (on(GL_LIGHTING)) {
       LightingState s = g.light_;
@@ -1012,7 +1025,17 @@ Handover hand_over(const Gl& gl, const std::string& name) {
   sc.flat_rule = scene::FlatRule::ProvokingVertex;
   sc.blinn = true;
   const LightingState L = gl.frame_lighting() ? *gl.frame_lighting() : LightingState{};
-  sc.global_ambient = rgb(L.model_ambient);
+  // GL does not clamp light and material colours (nor the model ambient); the core's format holds [0, 1]: each
+  // value clamped is noted
+  auto lit_rgb = [&h](const Vec4& c, const char* what) {
+    for (int i = 0; i < 3; ++i)
+      if (c[i] < 0 || c[i] > 1) {
+        ++h.stats.notes[std::string(what) + " outside [0, 1] clamped (the core's colour format; GL would not clamp)"];
+        break;
+      }
+    return rgb(c);
+  };
+  sc.global_ambient = lit_rgb(L.model_ambient, "GL_LIGHT_MODEL_AMBIENT");
   sc.local_viewer = L.local_viewer;
   sc.two_side = L.two_side;
   sc.separate_specular = L.separate_specular;
@@ -1020,15 +1043,13 @@ Handover hand_over(const Gl& gl, const std::string& name) {
     if (!l.enabled) continue;
     scene::Light s;
     s.position = l.position;
-    s.ambient = rgb(l.ambient), s.diffuse = rgb(l.diffuse), s.specular = rgb(l.specular);
+    s.ambient = lit_rgb(l.ambient, "a light colour"), s.diffuse = lit_rgb(l.diffuse, "a light colour"),
+    s.specular = lit_rgb(l.specular, "a light colour");
     s.kc = l.kc, s.kl = l.kl, s.kq = l.kq;
     s.spot_direction = l.spot_direction;
     s.spot_cutoff = l.spot_cutoff;
     s.spot_exponent = static_cast<int>(std::lround(l.spot_exponent));
     if (s.spot_exponent != l.spot_exponent) ++h.stats.notes["GL_SPOT_EXPONENT rounded to an integer"];
-    if (l.ambient[0] > 1 || l.diffuse[0] > 1 || l.specular[0] > 1 || l.ambient[1] > 1 || l.diffuse[1] > 1 ||
-        l.specular[1] > 1 || l.ambient[2] > 1 || l.diffuse[2] > 1 || l.specular[2] > 1)
-      ++h.stats.notes["a light colour above 1 clamped to 1 (the core's colour format)"];
     sc.lights.push_back(s);
   }
   // the projection: the frame's; the rasteriser's near plane from it (perspective: n = m23 / (m22 − 1))
@@ -1055,7 +1076,8 @@ Handover hand_over(const Gl& gl, const std::string& name) {
     if (lit) {
       const auto& pair = gl.materials()[id];
       auto fill = [&](const MaterialState& s, auto& dst) {
-        dst.emission = rgb(s.emission), dst.ambient = rgb(s.ambient), dst.diffuse = rgb(s.diffuse), dst.specular = rgb(s.specular);
+        dst.emission = lit_rgb(s.emission, "a material colour"), dst.ambient = lit_rgb(s.ambient, "a material colour");
+        dst.diffuse = lit_rgb(s.diffuse, "a material colour"), dst.specular = lit_rgb(s.specular, "a material colour");
         dst.shininess = static_cast<int>(std::lround(s.shininess));
         if (dst.shininess != s.shininess) ++h.stats.notes["GL_SHININESS rounded to an integer"];
       };
