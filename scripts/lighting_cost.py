@@ -178,7 +178,39 @@ def report_markdown(doc):
     if errs:
         L += ["", "Steps that failed or timed out (reported, not hidden):", ""] + errs
     L += ["", "![cells against fragments per clock](lighting_cost.png)", ""]
+    L += standard_cell_markdown()
     return "\n".join(L)
+
+
+def standard_cell_markdown(path=os.path.join(ROOT, "docs", "timing.json")):
+    """The sets' rows of docs/timing.json (scripts/timing_report.py: OSU 0.18 um cells, OpenSTA, gate-level energy):
+    clock, latency in ns, fragments per second, area and energy per fragment, beside the table above."""
+    if not os.path.exists(path):
+        return []
+    doc = json.load(open(path))
+    rows = [t for t in doc["rows"] if t["kind"] == "lighting"]
+    if not rows:
+        return []
+    L = ["In a standard-cell library (OSU 0.18 µm typical, pre-layout, cell delays ×"
+         f"{doc['derate_late']}; from docs/timing.json, `{doc['command']}`, {doc['machine']}, {doc['date']}; "
+         "docs/signoff.md). Latency: the largest over register states (every slot enabled, the slowest unit: "
+         "`LightCore::latency()`); fragments/s and energy from the gate-level run of the "
+         "bundle's random fragments (the set's lights as the generator enables them), energy = power × period × "
+         "cycles / fragments:", "",
+         f"| set | closes at (ns) | meets {doc['target_ns']} ns | latency (cycles / ns) | fragments/s | area (µm²) | "
+         "cells | energy (pJ/fragment) | gate-level sim | critical path |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for t in rows:
+        lat = f"{t['latency_cycles']} / {t['latency_ns']}" if t.get("latency_cycles") is not None else "—"
+        gs = (f"{t['gate_sim_vectors']} vectors, {t['gate_sim_mismatches']} mismatches"
+              if t.get("gate_sim_vectors") is not None else "—")
+        meets = "yes" if t["met"] else f"no (WNS {t['wns_ns']:+.3f})"
+        L.append(f"| {t['name']} | {t['period_ns']} | {meets} | {lat} | "
+                 f"{t['results_per_s']:,} | {t['area_um2']:,} | {t['cells']:,} | "
+                 f"{_fmt(t.get('energy_pj_per_result'), '.1f')} | {gs} | `{t['critical_path']}` |")
+    missing = [m for m in doc.get("not_measured", []) if m.startswith("lighting:")]
+    if missing:
+        L += ["", "Not measured in that run: " + ", ".join(m.split(":")[1] for m in missing) + "."]
+    return L + [""]
 
 
 def _label(r):
