@@ -175,6 +175,9 @@ def to_row(r, s):
                          f"{cp['start_reg']} -> {cp['end_reg']} ({cp['levels']} cells); closing it takes that stage "
                          f"cut into {math.ceil(st['fmax_period_ns'] / s['target_ns'] - 1e-9)} (Fmax period "
                          f"{st['fmax_period_ns']} ns / {s['target_ns']} ns), and every other stage that misses likewise")
+        if r["kind"] == "lighting":
+            out["reason"] += ("; the lighting core has no pipelining parameter yet (MREG, a register inside each "
+                              "product, exists in cs16 and schlick_div only)")
     if gs is None:
         out["reason_gate_sim"] = ("no gate-level run: the handoff bench cannot load a table RAM"
                                   if r["table"] else "not run")
