@@ -19,6 +19,7 @@
 
 #include "Vbare_cs16.h"
 #include "tb_coverage.hpp"
+#include "tb_func_cov.hpp"
 #include "shadecore/common/args.hpp"
 #include "shadecore/common/progress.hpp"
 #include "shadecore/configs.hpp"
@@ -81,6 +82,10 @@ int main(int argc, char** argv) {
 
   VerilatedContext ctx;
   Vbare_cs16 top{&ctx};
+  // Coverage builds with --coverage: the functional model samples every input (tb_func_cov.hpp).
+  shadecore::sim::UnitFuncCov fcov(unit);
+  const bool sampling = shadecore::sim::kCoverageBuild && !coverage.empty();
+  if (sampling) fcov.attach(&ctx);
   auto tick = [&]() {
     top.clk_i = 0;
     top.eval();
@@ -129,6 +134,7 @@ int main(int argc, char** argv) {
       top.in_cos_i = static_cast<uint32_t>(code) & mask;
       top.in_tag_i = static_cast<uint32_t>(sent);
       if (check) exp_ring[sent % kRing] = unit.eval(m, code);
+      if (sampling) fcov.sample(m, code);
       cyc_ring[sent % kRing] = cycles;
       step();
       ++sent;

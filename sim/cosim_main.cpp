@@ -38,6 +38,7 @@
 #include "sim_models.hpp"
 #include "tb_coverage.hpp"
 #include "tb_driver.hpp"
+#include "tb_func_cov.hpp"
 #include "tb_monitor.hpp"
 #include "tb_options.hpp"
 #include "tb_pins.hpp"
@@ -107,6 +108,14 @@ int run(const Options& o, const Unit& unit, const RunConfig& rc, std::string& ca
   M dut("dut");
   pins.bind(dut);
   Scoreboard sb(unit, o.show);
+  // Coverage builds with --coverage: the functional model samples every accepted transaction (tb_func_cov.hpp).
+  std::unique_ptr<UnitFuncCov> fcov;
+  if (kCoverageBuild && !rc.coverage_file.empty()) {
+    fcov = std::make_unique<UnitFuncCov>(unit);
+    fcov->attach(Verilated::threadContextp());
+    sb.model().sample = [](void* c, const UnitMaterial& m, int64_t code) { static_cast<UnitFuncCov*>(c)->sample(m, code); };
+    sb.model().sample_ctx = fcov.get();
+  }
   Stimulus stim(o, unit);
   // Stalls come from the driver's own generators, seeded per run: a shard starting at transaction `first`
   // gets its own streams (shard 0 / an unsharded run: the seed). Codes, materials and the reset point are

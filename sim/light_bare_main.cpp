@@ -21,6 +21,7 @@
 
 #include "Vlight_bare.h"
 #include "light_features.hpp"
+#include "tb_func_cov.hpp"
 #include "tb_light_logic.hpp"
 #include "tb_light_run.hpp"
 #include "tb_monitor_logic.hpp"
@@ -99,6 +100,12 @@ LightHarnessStats run_bare(const LightOptions& o, const LightCore& core, LightSt
   using Drv = LightDriveLogic<BarePins>;
   Drv drv(pins, stim, timing_seed, o.in_stall, o.out_stall, reset_local, o.reset_cycles, o.resend);
   MonitorLogic<BarePins, LightScoreboard, Drv> mon(pins, sb, drv, o.inject, o.inject_at);
+  LightFuncCov fcov(core);  // coverage builds with --coverage: the functional model (tb_func_cov.hpp)
+  if (kCoverageBuild && !o.coverage.empty()) {
+    fcov.attach(&ctx);
+    sb.model().sample = light_func_sample;
+    sb.model().sample_ctx = &fcov;
+  }
   top.eval();
   for (;;) {
     const bool stop = mon.on_edge();  // pre-edge values
@@ -112,6 +119,7 @@ LightHarnessStats run_bare(const LightOptions& o, const LightCore& core, LightSt
   }
   top.final();
   write_coverage(&ctx, o.coverage);  // while the model (its counters) lives
+  sb.model().sample = nullptr;
   return light_harness_stats(mon, drv);
 }
 

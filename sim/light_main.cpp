@@ -16,6 +16,7 @@
 
 #include "Vlight.h"
 #include "light_features.hpp"
+#include "tb_func_cov.hpp"
 #include "tb_light_driver.hpp"
 #include "tb_light_pins.hpp"
 #include "tb_light_run.hpp"
@@ -32,10 +33,17 @@ LightHarnessStats run_systemc(const LightOptions& o, const LightCore& core, Ligh
   pins.bind(dut);
   LightDriver drv("driver", pins, stim, timing_seed, o.in_stall, o.out_stall, reset_local, o.reset_cycles, o.resend);
   MonitorT<LightPins, LightScoreboard, LightDriver> mon("monitor", pins, sb, drv, o.inject, o.inject_at);
+  LightFuncCov fcov(core);  // coverage builds with --coverage: the functional model (tb_func_cov.hpp)
+  if (kCoverageBuild && !o.coverage.empty()) {
+    fcov.attach(Verilated::threadContextp());
+    sb.model().sample = light_func_sample;
+    sb.model().sample_ctx = &fcov;
+  }
   sc_core::sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
   sc_core::sc_start();
   dut.final();
   write_coverage(Verilated::threadContextp(), o.coverage);  // while the model (its counters) lives
+  sb.model().sample = nullptr;
   return light_harness_stats(mon, drv);
 }
 

@@ -47,7 +47,17 @@ struct LightModel {
   [[nodiscard]] bool ready() const { return written; }
   [[nodiscard]] int latency() const { return lat; }
   [[nodiscard]] int latency_min() const { return lat_min; }
-  [[nodiscard]] Out expected(const In& in) const { return core->eval(regs, in); }
+  // The functional coverage model's sampler (coverage builds, tb_func_cov.hpp; null otherwise): it gets the
+  // C model's trace of the fragment.
+  void (*sample)(void* ctx, const LightRegs& r, const Fragment& f, const LightCoreTrace& t) = nullptr;
+  void* sample_ctx = nullptr;
+  [[nodiscard]] Out expected(const In& in) const {
+    if (!sample) return core->eval(regs, in);
+    LightCoreTrace t;
+    const Out o = core->eval(regs, in, &t);
+    sample(sample_ctx, regs, in, t);
+    return o;
+  }
 };
 
 class LightScoreboard : public ScoreboardT<LightModel> {

@@ -221,7 +221,13 @@ struct UnitModel {
   [[nodiscard]] bool ready() const { return mat_valid && table_left == 0; }
   [[nodiscard]] int latency() const { return unit->latency(); }
   [[nodiscard]] int latency_min() const { return unit->latency_min(); }
-  [[nodiscard]] Out expected(const In& in) const { return unit->eval(mat, in.code); }
+  // The functional coverage model's sampler (coverage builds, tb_func_cov.hpp; null otherwise).
+  void (*sample)(void* ctx, const UnitMaterial& m, int64_t code) = nullptr;
+  void* sample_ctx = nullptr;
+  [[nodiscard]] Out expected(const In& in) const {
+    if (sample) sample(sample_ctx, mat, in.code);
+    return unit->eval(mat, in.code);
+  }
   [[nodiscard]] In input(int64_t code) const { return In{mat.n, code}; }
 };
 
