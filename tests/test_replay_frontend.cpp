@@ -130,7 +130,7 @@ std::vector<int> provoking(int64_t mode, int n) {
     d.colour(k / 100.0);
     // a convex fan of points on a circle, counter-clockwise (no triangle degenerates whatever the mode)
     const double a = 2 * 3.14159265358979 * k / (n + 1);
-    d.v3(std::cos(a), std::sin(a), -2);
+    d.v3(std::cos(a), std::sin(a), -0.5);
   }
   d("glEnd");
   std::vector<int> out;
@@ -158,8 +158,8 @@ TEST(ReplayFrontend, FacingFrontFaceAndCulling) {
     if (cull) d.en(CULL_FACE);
     d("glCullFace", {I(cull_face)});
     d("glBegin", {I(TRIANGLES)});
-    d.v3(0, 0, -2), d.v3(1, 0, -2), d.v3(0, 1, -2);  // counter-clockwise on screen
-    d.v3(0, 0, -2), d.v3(0, 1, -2), d.v3(1, 0, -2);  // clockwise
+    d.v3(0, 0, -0.5), d.v3(1, 0, -0.5), d.v3(0, 1, -0.5);  // counter-clockwise on screen
+    d.v3(0, 0, -0.5), d.v3(0, 1, -0.5), d.v3(1, 0, -0.5);  // clockwise
     d("glEnd");
     return std::make_pair(d.gl.triangles(), d.gl.stats().culled);
   };
@@ -192,7 +192,7 @@ std::array<double, 3> eye_normal(std::array<double, 3> s, std::array<double, 3> 
   d("glScalef", {F(s[0]), F(s[1]), F(s[2])});
   d("glNormal3f", {F(n[0]), F(n[1]), F(n[2])});
   d("glBegin", {I(TRIANGLES)});
-  d.v3(0, 0, -2), d.v3(1, 0, -2), d.v3(0, 1, -2);
+  d.v3(0, 0, -0.5), d.v3(1, 0, -0.5), d.v3(0, 1, -0.5);
   d("glEnd");
   EXPECT_EQ(d.gl.triangles().size(), 1u);
   return d.gl.triangles().at(0).v[0].normal;
@@ -287,11 +287,11 @@ TEST(ReplayFrontend, MaterialBetweenBeginAndEnd) {
   d("glShadeModel", {I(FLAT)});
   d("glBegin", {I(TRIANGLES)});
   d("glMaterialfv", {I(FRONT), I(DIFFUSE), A({1, 0, 0, 1})});
-  d.v3(0, 0, -2), d.v3(1, 0, -2), d.v3(0, 1, -2);
+  d.v3(0, 0, -0.5), d.v3(1, 0, -0.5), d.v3(0, 1, -0.5);
   d("glMaterialfv", {I(FRONT), I(DIFFUSE), A({0, 1, 0, 1})});
-  d.v3(0, 0, -2), d.v3(1, 0, -2);
+  d.v3(0, 0, -0.5), d.v3(1, 0, -0.5);
   d("glMaterialfv", {I(FRONT), I(DIFFUSE), A({0, 0, 1, 1})});
-  d.v3(0, 1, -2);
+  d.v3(0, 1, -0.5);
   d("glEnd");
   const auto& t = d.gl.triangles();
   ASSERT_EQ(t.size(), 2u);
@@ -346,12 +346,29 @@ TEST(ReplayFrontend, InvalidValuesIgnoredAndClampsNoted) {
   EXPECT_EQ(d.gl.material(false).shininess, 0);
   EXPECT_EQ(d.gl.lighting().lights[0].diffuse[0], 2);
   d("glBegin", {I(TRIANGLES)});
-  d.v3(0, 0, -2), d.v3(1, 0, -2), d.v3(0, 1, -2);
+  d.v3(0, 0, -0.5), d.v3(1, 0, -0.5), d.v3(0, 1, -0.5);
   d("glEnd");
   const auto h = shadecore::glfront::hand_over(d.gl, "t");
   EXPECT_EQ(h.scene.lights.at(0).diffuse[0], 1);
   EXPECT_EQ(h.stats.notes.count("a light colour outside [0, 1] clamped (the core's colour format; GL would not clamp)"), 1u);
   EXPECT_EQ(h.stats.notes.count("glLight GL_SPOT_CUTOFF outside 0..90, 180 (GL_INVALID_VALUE, ignored)"), 1u);
+}
+
+TEST(ReplayFrontend, GeometryGlClipsAtFarPlanesIsRefused) {
+  Driver d;
+  d("glMatrixMode", {I(PROJECTION)});
+  d("glFrustum", {F(-1), F(1), F(-1), F(1), F(1), F(10)});
+  d("glMatrixMode", {I(MODELVIEW)});
+  d.en(DEPTH_TEST);
+  d("glBegin", {I(TRIANGLES)});
+  d.v3(0, 0, -5), d.v3(1, 0, -5), d.v3(0, 1, -5);  // inside
+  d("glEnd");
+  EXPECT_TRUE(d.gl.refusals().empty());
+  d("glBegin", {I(TRIANGLES)});
+  d.v3(0, 0, -5), d.v3(1, 0, -5), d.v3(0, 1, -20);  // one vertex beyond the far plane (10)
+  d("glEnd");
+  ASSERT_EQ(d.gl.refusals().size(), 1u);
+  EXPECT_NE(d.gl.refusals()[0].find("far plane"), std::string::npos);
 }
 
 TEST(ReplayFrontend, UnsupportedCallsAreCountedAndExcludedOrRefused) {
@@ -364,7 +381,7 @@ TEST(ReplayFrontend, UnsupportedCallsAreCountedAndExcludedOrRefused) {
   d.en(TEXTURE_2D);
   d("glBegin", {I(TRIANGLES)});
   d("glTexCoord2f", {F(0), F(0)});
-  d.v3(0, 0, -2), d.v3(1, 0, -2), d.v3(0, 1, -2);
+  d.v3(0, 0, -0.5), d.v3(1, 0, -0.5), d.v3(0, 1, -0.5);
   d("glEnd");
   const auto& u = d.gl.stats().unsupported;
   EXPECT_EQ(u.at("glTexImage2D"), 2u);
@@ -379,7 +396,7 @@ TEST(ReplayFrontend, UnsupportedCallsAreCountedAndExcludedOrRefused) {
   EXPECT_EQ(h.object_excluded[0], std::vector<std::string>{"GL_TEXTURE_2D"});
   // lines: their pixels are unknown to the back end, the frame is refused with the reason
   d("glBegin", {I(LINES)});
-  d.v3(0, 0, -2), d.v3(1, 0, -2);
+  d.v3(0, 0, -0.5), d.v3(1, 0, -0.5);
   d("glEnd");
   ASSERT_EQ(d.gl.refusals().size(), 1u);
   try {
@@ -397,11 +414,11 @@ TEST(ReplayFrontend, HandOverGroupsTrianglesAndRefusesMixedSmoothMaterials) {
   d.en(LIGHT0);
   d("glViewport", {I(0), I(0), I(32), I(32)});
   d("glBegin", {I(TRIANGLES)});
-  d.v3(0, 0, -2), d.v3(1, 0, -2), d.v3(0, 1, -2);
+  d.v3(0, 0, -0.5), d.v3(1, 0, -0.5), d.v3(0, 1, -0.5);
   d("glEnd");
   d("glMaterialfv", {I(FRONT_AND_BACK), I(DIFFUSE), A({0, 1, 0, 1})});
   d("glBegin", {I(TRIANGLES)});
-  d.v3(0, 0, -3), d.v3(1, 0, -3), d.v3(0, 1, -3);
+  d.v3(0, 0, -0.75), d.v3(1, 0, -0.75), d.v3(0, 1, -0.75);
   d("glEnd");
   auto h = shadecore::glfront::hand_over(d.gl, "t");
   EXPECT_EQ(h.scene.width, 32);
@@ -409,14 +426,14 @@ TEST(ReplayFrontend, HandOverGroupsTrianglesAndRefusesMixedSmoothMaterials) {
   ASSERT_EQ(h.scene.materials.size(), 2u);
   EXPECT_EQ(h.scene.materials[1].diffuse[1], 1);
   ASSERT_EQ(h.scene.lights.size(), 1u);
-  EXPECT_EQ(h.meshes[1].pos[0][2], -3);
+  EXPECT_EQ(h.meshes[1].pos[0][2], -0.75);
   EXPECT_EQ(h.scene.flat_rule, shadecore::scene::FlatRule::ProvokingVertex);
   // smooth shading with glMaterial between a triangle's vertices changing one colour: that colour per vertex
   // through colour material (GL lights each vertex with its own material)
   d("glBegin", {I(TRIANGLES)});
-  d.v3(0, 0, -2);
+  d.v3(0, 0, -0.5);
   d("glMaterialfv", {I(FRONT_AND_BACK), I(DIFFUSE), A({0, 0, 1, 1})});
-  d.v3(1, 0, -2), d.v3(0, 1, -2);
+  d.v3(1, 0, -0.5), d.v3(0, 1, -0.5);
   d("glEnd");
   h = shadecore::glfront::hand_over(d.gl, "t");
   ASSERT_EQ(h.scene.objects.size(), 3u);
@@ -427,10 +444,10 @@ TEST(ReplayFrontend, HandOverGroupsTrianglesAndRefusesMixedSmoothMaterials) {
   EXPECT_TRUE(h.meshes[0].col.empty());  // no colour material: no vertex colours
   // two colours changing between the vertices: refused (per-vertex material batches are not implemented)
   d("glBegin", {I(TRIANGLES)});
-  d.v3(0, 0, -2);
+  d.v3(0, 0, -0.5);
   d("glMaterialfv", {I(FRONT_AND_BACK), I(DIFFUSE), A({1, 0, 1, 1})});
   d("glMaterialfv", {I(FRONT_AND_BACK), I(0x1202), A({1, 1, 1, 1})});
-  d.v3(1, 0, -2), d.v3(0, 1, -2);
+  d.v3(1, 0, -0.5), d.v3(0, 1, -0.5);
   d("glEnd");
   EXPECT_THROW((void)shadecore::glfront::hand_over(d.gl, "t"), ReplayError);
 }

@@ -393,6 +393,12 @@ struct Gl::Impl {
         ++g.stats_.culled;
         continue;
       }
+      // the back end clips at the near plane (and a guard band) only: a vertex beyond GL's far plane (z > w), or in
+      // front of an orthographic near plane (z < −w, w = 1), would be drawn where GL clips it
+      for (const auto& v : t.v)
+        if (v.clip[2] > v.clip[3] || (v.clip[3] == 1 && g.proj_.back()[15] == 1 && v.clip[2] < -v.clip[3]))
+          refuse("geometry beyond the depth range's far plane (or an orthographic near plane): the back end clips at "
+                 "the near plane only");
       t.flat = shade == GL_FLAT;
       t.lit = on(GL_LIGHTING);
       t.colour_material = colour_material_mode();
