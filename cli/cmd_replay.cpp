@@ -192,10 +192,10 @@ void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool jso
     if (frame_given) ro.frame = a.frame;
     else ro.call = a.call;
     h = glfront::replay_frame(reader, ro, a.trace);
-  } catch (const trace::TraceError& e) {
-    throw std::runtime_error(e.what());
+  } catch (const trace::TraceError& e) {  // names from the capture may hold any bytes: escaped, one line
+    throw std::runtime_error(scene::printable(e.what(), 0));
   } catch (const glfront::ReplayError& e) {
-    throw std::runtime_error(e.what());
+    throw std::runtime_error(scene::printable(e.what(), 0));
   }
   const double t_front = std::chrono::duration<double>(Clock::now() - t0).count();
 
@@ -231,9 +231,10 @@ void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool jso
              st.primitives, st.vertices, st.triangles, st.culled, h.scene.objects.size(), h.scene.materials.size(),
              h.scene.lights.size(), fr.width, fr.height);
   std::string unsup;
-  for (const auto& [n, k] : st.unsupported) unsup += fmt::format("{}{} ×{}", unsup.empty() ? "" : ", ", n, k);
+  for (const auto& [n, k] : st.unsupported)
+    unsup += fmt::format("{}{} ×{}", unsup.empty() ? "" : ", ", scene::printable(n, 0), k);
   fmt::print("unsupported calls: {}\n", unsup.empty() ? "none" : unsup);
-  for (const auto& [n, k] : st.notes) fmt::print("note: {} (×{})\n", n, k);
+  for (const auto& [n, k] : st.notes) fmt::print("note: {} (×{})\n", scene::printable(n, 0), k);
   if (h.non_unit_normals)
     fmt::print("note: {} vertices have normals of length ≠ 1 that GL uses as they are (no GL_NORMALIZE); the core "
                "normalises them (worst length {:.6f})\n", h.non_unit_normals, h.worst_normal_length);
@@ -409,8 +410,8 @@ void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool jso
     j["rtl"] = rtl_json;
     j["comparison"] = cmp_json;
     j["seconds"] = {{"front_end", t_front}, {"total", std::chrono::duration<double>(Clock::now() - t0).count()}};
-    if (json_out >= 0) outs.set(json_out, j.dump(2) + "\n");
-    else files.emplace_back(json_member, j.dump(2) + "\n");
+    if (json_out >= 0) outs.set(json_out, j.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
+    else files.emplace_back(json_member, j.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
   }
   if (dir_out >= 0) {
     const std::string stage = outs.stage(dir_out);

@@ -14,11 +14,16 @@
 //   * status 0: DIR/cmodel.png, exact.png, diff_exact.png and J exist.
 // Tessellation counts are clamped in tree mutations (slices, stacks, sides, rings, subdivisions ≤ 64, contact-sheet
 // cells ≤ 32) so that one render stays well under a second.
+// A share of the iterations (--capture-share, 0.2) fuzzes `shadecore replay` instead (issue 37, docs/replay.md): an
+// apitrace capture — the hand-built ones of tests/replay_capture.hpp, or the *.trace files of --captures DIR — has
+// its decompressed stream mutated byte by byte, is recompressed into Snappy chunks of a random size and runs as
+//     shadecore replay MUTATED.trace --frame K --out DIR --json J
+// under the same rules (status 0: DIR/cmodel.png, exact.png and J exist).
 // On a failure it prints the seed, the iteration and what failed, saves the input under --keep (default
 // ./fuzz_scene_failures/seed<S>_it<I>/) and exits 1 (with --keep-going: after the run, if any failed).
 //
 //   shadecore_fuzz_scene [--seconds 60] [--iterations N] [--seed 1] [--timeout 30] [--keep DIR] [--keep-going]
-//                        [--cli PATH] [--scenes DIR] [--verbose]
+//                        [--cli PATH] [--scenes DIR] [--captures DIR] [--capture-share F] [--verbose]
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -42,6 +47,8 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "replay_capture.hpp"
 
 #ifndef SHADECORE_CLI
 #error "SHADECORE_CLI must point at the shadecore executable"
@@ -332,6 +339,8 @@ int main(int argc, char** argv) {
   long long iterations = -1;
   unsigned long long seed = 1;
   std::string cli = SHADECORE_CLI, scenes = std::string(SHADECORE_SOURCE_DIR) + "/scenes", keep = "fuzz_scene_failures";
+  std::string captures_dir;
+  double capture_share = 0.2;
   bool keep_going = false, verbose = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -349,6 +358,8 @@ int main(int argc, char** argv) {
     else if (a == "--keep") keep = val();
     else if (a == "--cli") cli = val();
     else if (a == "--scenes") scenes = val();
+    else if (a == "--captures") captures_dir = val();
+    else if (a == "--capture-share") capture_share = std::stod(val());
     else if (a == "--keep-going") keep_going = true;
     else if (a == "--verbose") verbose = true;
     else {
@@ -367,6 +378,29 @@ int main(int argc, char** argv) {
     std::cerr << "shadecore_fuzz_scene: error: no scenes in " << scenes << "\n";
     return 2;
   }
+  // capture streams (decompressed): hand-built ones, and those of --captures DIR
+  std::vector<std::pair<std::string, std::string>> streams = {
+      {"tiny1", shadecore::test::tiny_stream(1)},
+      {"tiny3_arrays", shadecore::test::tiny_stream(3, false, true)},
+      {"core_profile", shadecore::test::tiny_stream(1, true)}};
+  if (!captures_dir.empty())
+    for (const auto& e : fs::directory_iterator(captures_dir))
+      if (e.path().extension() == ".trace") {
+        const std::string f = slurp(e.path());
+        std::string out;
+        bool ok = f.size() > 2 && f[0] == 'a' && f[1] == 't';
+        for (size_t at = 2; ok && at + 4 <= f.size();) {
+          const auto* b = reinterpret_cast<const unsigned char*>(f.data() + at);
+          const size_t n = size_t{b[0]} | size_t{b[1]} << 8 | size_t{b[2]} << 16 | size_t{b[3]} << 24;
+          std::string chunk;
+          ok = at + 4 + n <= f.size() && snappy::Uncompress(f.data() + at + 4, n, &chunk);
+          out += chunk;
+          at += 4 + n;
+        }
+        if (ok) streams.emplace_back(e.path().filename().string(), out);
+        else std::cerr << "shadecore_fuzz_scene: note: " << e.path().string() << " is not a Snappy capture, skipped\n";
+      }
+  long long replay_runs = 0;
   const fs::path work = fs::temp_directory_path() / ("shadecore_fuzz_" + std::to_string(::getpid()));
   fs::remove_all(work);
   Rng rng(seed);
@@ -384,6 +418,51 @@ int main(int argc, char** argv) {
     ::mkfifo((dir / "fifo").c_str(), 0600);
     fs::create_symlink("loop2", dir / "loop1");
     fs::create_symlink("loop1", dir / "loop2");
+    if (chance(rng, capture_share)) {  // a mutated capture through `shadecore replay`
+      ++replay_runs;
+      const auto& [cname, cstream] = streams[pick(rng, streams.size())];
+      std::string how = cname + ":";
+      const std::string mutated = byte_mutation(cstream, rng, how);
+      const std::string file = shadecore::test::container(mutated, 1 + pick(rng, 4096));
+      spit(dir / "in.trace", file);
+      const std::string frame = std::to_string(1 + pick(rng, 3));
+      const fs::path out = dir / "out", js = dir / "report.json";
+      const Run r = run({cli, "replay", (dir / "in.trace").string(), "--frame", frame, "--out", out.string(), "--json",
+                         js.string()},
+                        io, timeout_s);
+      std::string bad;
+      if (r.status == -1) bad = "hang: killed after " + std::to_string(timeout_s) + " s";
+      else if (r.status != 0 && r.status != 1) bad = "exit status " + std::to_string(r.status) + " (crash?)";
+      else if (r.status == 1) {
+        ++ok1;
+        const long nl = std::count(r.err.begin(), r.err.end(), '\n');
+        if (nl != 1 || r.err.back() != '\n') bad = "status 1 with " + std::to_string(nl) + " lines on stderr";
+        else if (r.err.rfind("shadecore: error: ", 0) != 0) bad = "the error line does not start with 'shadecore: error: '";
+        else if (std::any_of(r.err.begin(), r.err.end() - 1,
+                             [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+          bad = "control character in the error line";
+        else if (fs::exists(out) || fs::exists(js)) bad = "status 1 but an output exists";
+      } else {
+        ++ok0;
+        for (const char* f : {"cmodel.png", "exact.png"})
+          if (!fs::exists(out / f)) bad = std::string("status 0 but ") + f + " is missing";
+        if (!fs::exists(js)) bad = "status 0 but the JSON is missing";
+      }
+      if (bad.empty() && has_temp_left(dir)) bad = "a .shadecore.* temporary file was left";
+      if (verbose) std::cout << "it " << it << " replay status " << r.status << " " << how << "\n  " << r.err;
+      if (!bad.empty()) {
+        ++failures;
+        const fs::path k = fs::path(keep) / ("seed" + std::to_string(seed) + "_it" + std::to_string(it));
+        fs::create_directories(k);
+        spit(k / "in.trace", file);
+        spit(k / "stderr", r.err);
+        std::cout << "FAIL seed " << seed << " iteration " << it << ": " << bad << "\n  mutation: " << how
+                  << "\n  stderr: " << r.err.substr(0, 400) << "\n  input saved in " << k.string() << " (rerun: " << cli
+                  << " replay " << (k / "in.trace").string() << " --frame " << frame << ")\n";
+        if (!keep_going) break;
+      }
+      continue;
+    }
     const auto& [bname, btext] = bases[pick(rng, bases.size())];
     Mutated m;
     m.how = bname + ":";
@@ -448,7 +527,8 @@ int main(int argc, char** argv) {
   fs::remove_all(work);
   const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::cout << "shadecore_fuzz_scene: seed " << seed << ", " << it << " iterations in " << el << " s: " << ok0
-            << " rendered, " << ok1 << " rejected (one line), " << failures << " failures\n";
+            << " rendered, " << ok1 << " rejected (one line), " << failures << " failures; " << replay_runs
+            << " of the iterations were mutated captures through replay\n";
   if (verbose)
     for (const auto& [w, c] : first_words) std::cout << "  " << c << "  " << w << "\n";
   return failures ? 1 : 0;

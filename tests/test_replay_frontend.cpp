@@ -452,66 +452,8 @@ TEST(ReplayFrontend, HandOverGroupsTrianglesAndRefusesMixedSmoothMaterials) {
   EXPECT_THROW((void)shadecore::glfront::hand_over(d.gl, "t"), ReplayError);
 }
 
-// A capture's stream built byte by byte: `frames` frames of one triangle each (fake glViewport 32x32, glClear,
-// glBegin…); with `arrays` each frame also draws a quad from a vertex array, once directly and once from a list.
-std::string tiny_stream(int frames, bool core_profile = false, bool arrays = false) {
-  using shadecore::test::Stream;
-  Stream s;
-  s.uint(6).uint(6).str("");
-  uint64_t no = 0;
-  std::map<std::string, uint64_t> ids;
-  auto call = [&](const std::string& name, const std::vector<std::function<void(Stream&)>>& args, bool fake = false) {
-    s.byte(0).uint(0);
-    auto it = ids.find(name);
-    if (it == ids.end()) {
-      const uint64_t id = ids.size();
-      ids[name] = id;
-      s.uint(id).str(name).uint(args.size());
-      for (size_t k = 0; k < args.size(); ++k) s.str("a" + std::to_string(k));
-    } else {
-      s.uint(it->second);
-    }
-    for (size_t k = 0; k < args.size(); ++k) {
-      s.byte(1).uint(k);
-      args[k](s);
-    }
-    if (fake) s.byte(5).uint(1);
-    s.byte(0);
-    s.byte(1).uint(no++).byte(0);
-  };
-  auto u = [](uint64_t v) { return [v](Stream& t) { t.byte(4).uint(v); }; };
-  auto f = [](float v) { return [v](Stream& t) { t.byte(5).f32(v); }; };
-  if (core_profile)
-    call("glXCreateContextAttribsARB", {u(1), u(2), u(0), u(1), [](Stream& t) {
-           t.byte(0x0b).uint(6).byte(4).uint(0x2091).byte(4).uint(3).byte(4).uint(0x9126).byte(4).uint(1).byte(4).uint(0).byte(4).uint(0);
-         }});
-  call("glXMakeCurrent", {u(1), u(2), u(3)});
-  call("glViewport", {u(0), u(0), u(32), u(32)}, true);
-  call("glEnable", {u(0x0B71)});
-  for (int k = 0; k < frames; ++k) {
-    call("glClear", {u(0x4100)});
-    call("glBegin", {u(4)});
-    call("glVertex3f", {f(-1), f(-1), f(-0.5)});
-    call("glVertex3f", {f(1), f(-1), f(-0.5)});
-    call("glVertex3f", {f(0), f(1), f(-0.5)});
-    call("glEnd", {});
-    if (arrays) {
-      const float q[12] = {-1, -1, -0.7f, 1, -1, -0.7f, 1, 1, -0.7f, -1, 1, -0.7f};
-      auto blob = [&q](Stream& t) {
-        t.byte(8).uint(sizeof q);
-        t.b.append(reinterpret_cast<const char*>(q), sizeof q);
-      };
-      call("glEnableClientState", {u(0x8074)});
-      call("glVertexPointer", {u(3), u(0x1406), u(0), blob});
-      call("glNewList", {u(1), u(0x1301)});
-      call("glDrawArrays", {u(7), u(0), u(4)});
-      call("glEndList", {});
-      call("glCallList", {u(1)});
-    }
-    call("glXSwapBuffers", {u(1), u(2)});
-  }
-  return s.b;
-}
+using shadecore::test::tiny_stream;
+
 std::string tiny_capture(int frames, bool core_profile = false) {
   return shadecore::test::container(tiny_stream(frames, core_profile));
 }
