@@ -215,6 +215,17 @@ def full(sc, root, work):
             # a waived point counts neither as hit nor as a hole (and is never hit: that is an error)
             check(g.get("total") == tot and g.get("hit") == hit, "%s %s: total %d, hit %d by hand; summary %s" % (m, k, tot, hit, g))
     check(os.path.exists(os.path.join(out, "coverage", "html", "index.html")), "the HTML report is written")
+    # A stale waiver: the merge is refused, the report still written with the error named, exit 1.
+    bad = os.path.join(work, "stale.json")
+    with open(bad, "w") as f:
+        json.dump({"waivers": [{"id": "stale", "module": "sc_cs16", "kind": "line", "source": "no such RTL text",
+                                "reason": "a waiver whose code is gone"}]}, f)
+    r3 = run([sc, "regress", "--plan", plan, "--merge-only", "--coverage", "--waivers", bad, "--out", out, "--no-progress"])
+    m3 = json.load(open(os.path.join(out, "merged.json")))
+    check(r3.returncode == 1 and "waiver 'stale'" in r3.stderr and "waiver 'stale'" in m3.get("coverage", {}).get("error", ""),
+          "regress --coverage with a stale waiver: exit 1, the error in merged.json (%s)" % r3.stderr.strip()[-200:])
+    r4 = run([sc, "regress", "--plan", plan, "--merge-only", "--coverage", "--out", out, "--no-progress"])
+    check(r4.returncode == 0, "--merge-only --coverage with the project's waivers passes again")
     before = open(os.path.join(out, "merged.json")).read()
     r2 = run([sc, "regress", "--plan", plan, "--local", "-j", "2", "--coverage", "--out", out, "--no-progress"])
     check(r2.returncode == 0 and "to run" in r2.stdout and open(os.path.join(out, "merged.json")).read() == before,
