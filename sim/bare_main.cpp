@@ -108,6 +108,8 @@ int main(int argc, char** argv) {
   uint64_t sent = 0, got = 0, mismatches = 0, cycles = 0, late = 0;
   // One clock: take the output visible before the edge (out_ready_i is always 1), then the edge.
   auto step = [&]() {
+    if (sampling)  // always ready on both sides: the transfer and reset bins only
+      fcov.sample_edge({top.rst_ni != 0, top.in_valid_i != 0, true, top.out_valid_o != 0, true, sent - got});
     if (top.out_valid_o) {
       if (check && top.out_spec_o != exp_ring[got % kRing]) ++mismatches;
       if (cycles != cyc_ring[got % kRing] + static_cast<uint64_t>(L)) ++late;

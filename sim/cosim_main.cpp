@@ -125,6 +125,10 @@ int run(const Options& o, const Unit& unit, const RunConfig& rc, std::string& ca
   Driver drv("driver", pins, stim, unit, timing);
   Monitor mon("monitor", pins, sb, drv, o.inject, o.inject_at);
   mon.set_in_bits(unit.format().in_bits());
+  if (fcov) {
+    mon.logic().edge_sample = edge_func_sample<UnitFuncCov>;
+    mon.logic().edge_ctx = fcov.get();
+  }
   std::unique_ptr<io::Progress> bar;
   if (rc.progress_bar) bar = std::make_unique<io::Progress>(stim.planned(), true, "cosim");
   std::unique_ptr<ProgressProbe> probe;

@@ -105,6 +105,8 @@ LightHarnessStats run_bare(const LightOptions& o, const LightCore& core, LightSt
     fcov.attach(&ctx);
     sb.model().sample = light_func_sample;
     sb.model().sample_ctx = &fcov;
+    mon.edge_sample = edge_func_sample<LightFuncCov>;
+    mon.edge_ctx = &fcov;
   }
   top.eval();
   for (;;) {

@@ -38,6 +38,8 @@ LightHarnessStats run_systemc(const LightOptions& o, const LightCore& core, Ligh
     fcov.attach(Verilated::threadContextp());
     sb.model().sample = light_func_sample;
     sb.model().sample_ctx = &fcov;
+    mon.logic().edge_sample = edge_func_sample<LightFuncCov>;
+    mon.logic().edge_ctx = &fcov;
   }
   sc_core::sc_report_handler::set_actions("/OSCI/SystemC", sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
   sc_core::sc_start();

@@ -23,6 +23,7 @@
 #include "shadecore/light.hpp"
 #include "shadecore/unit.hpp"
 #include "tb_coverage.hpp"
+#include "tb_monitor_logic.hpp"
 
 namespace shadecore::sim {
 
@@ -61,6 +62,40 @@ class FuncCov {
   std::deque<uint32_t> counts_;  // stable addresses
 };
 
+// Handshake bins of a core's ports, sampled per clock edge by the monitor (EdgeState), in the core's group.
+class HandshakeBins {
+ public:
+  void declare(FuncCov& c) {
+    static const char* names[kBins] = {
+        "handshake input gap while the core is ready (in_valid low, in_ready high)",
+        "handshake input held by the core (in_valid high, in_ready low)",
+        "handshake output backpressure (out_valid high, out_ready low)",
+        "handshake input gap and output backpressure at one edge",
+        "handshake input held and output backpressure at one edge",
+        "handshake a transfer in and out at one edge",
+        "handshake reset with transactions in flight",
+        "handshake reset with nothing in flight"};
+    for (int i = 0; i < kBins; ++i) b_[i] = c.declare(names[i]);
+  }
+  void sample(FuncCov& c, const EdgeState& e) const {
+    if (!e.rst_n) {
+      c.hit(b_[e.in_flight > 0 ? 6 : 7]);
+      return;
+    }
+    const bool gap = !e.in_valid && e.in_ready, held = e.in_valid && !e.in_ready, bp = e.out_valid && !e.out_ready;
+    if (gap) c.hit(b_[0]);
+    if (held) c.hit(b_[1]);
+    if (bp) c.hit(b_[2]);
+    if (!e.in_valid && bp) c.hit(b_[3]);
+    if (held && bp) c.hit(b_[4]);
+    if (e.in_valid && e.in_ready && e.out_valid && e.out_ready) c.hit(b_[5]);
+  }
+
+ private:
+  static constexpr int kBins = 8;
+  int b_[kBins] = {};
+};
+
 // The specular unit: code class × n class.
 class UnitFuncCov {
  public:
@@ -73,8 +108,10 @@ class UnitFuncCov {
     for (const char* nc : {"n16", "n17..1023", "n1024"})
       for (const auto& c : codes) bins_.push_back(cov_.declare(std::string("code ") + c + " x " + nc));
     ncodes_ = static_cast<int>(codes.size());
+    hs_.declare(cov_);
   }
   void attach(VerilatedContext* ctx) { cov_.attach(ctx); }
+  void sample_edge(const EdgeState& e) { hs_.sample(cov_, e); }
   void sample(const UnitMaterial& m, int64_t code) {
     const int64_t one = int64_t{1} << unit_.format().frac;
     const int64_t t = static_cast<int64_t>(m.thr);
@@ -95,6 +132,7 @@ class UnitFuncCov {
 
  private:
   FuncCov cov_;
+  HandshakeBins hs_;
   const Unit& unit_;
   bool thr_ = false;
   int ncodes_ = 0;
@@ -156,8 +194,10 @@ class LightFuncCov {
     back_one_ = cov_.declare("back-facing, one-sided");
     if (fs.two_side) back_two_ = cov_.declare("back-facing, two-sided");
     none_on_ = cov_.declare("no light on (the scene term alone)");
+    hs_.declare(cov_);
   }
   void attach(VerilatedContext* ctx) { cov_.attach(ctx); }
+  void sample_edge(const EdgeState& e) { hs_.sample(cov_, e); }
 
   void sample(const LightRegs& r, const Fragment& fr, const LightCoreTrace& t) {
     const FeatureSet& fs = core_.features();
@@ -207,6 +247,7 @@ class LightFuncCov {
 
  private:
   FuncCov cov_;
+  HandshakeBins hs_;
   const LightCore& core_;
   int kind_[kMaxLights][kNumLightKinds][2] = {};
   int spot_[kMaxLights][3] = {};
@@ -217,6 +258,12 @@ class LightFuncCov {
   int n_zero_ = -1, n_tiny_ = -1, ndl_zero_ = -1, ndl_pm1_ = -1, ndl_neg_ = -1, sat_ = -1, back_one_ = -1, back_two_ = -1,
       none_on_ = -1;
 };
+
+// MonitorLogic::edge_sample for a UnitFuncCov / LightFuncCov.
+template <class Cov>
+void edge_func_sample(void* c, const EdgeState& e) {
+  static_cast<Cov*>(c)->sample_edge(e);
+}
 
 // LightModel::sample for a LightFuncCov.
 inline void light_func_sample(void* c, const LightRegs& r, const Fragment& f, const LightCoreTrace& t) {

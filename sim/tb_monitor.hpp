@@ -33,6 +33,7 @@ class MonitorT : public sc_core::sc_module {
   [[nodiscard]] uint64_t cycles() const { return logic_.cycles(); }
   [[nodiscard]] bool watchdog_fired() const { return logic_.watchdog_fired(); }
   void set_in_bits(int bits) { logic_.set_in_bits(bits); }
+  Logic& logic() { return logic_; }
 
  private:
   void on_clk() {

@@ -24,6 +24,12 @@
 
 namespace shadecore::sim {
 
+// The handshake state of one edge, for the functional coverage model (tb_func_cov.hpp).
+struct EdgeState {
+  bool rst_n, in_valid, in_ready, out_valid, out_ready;
+  uint64_t in_flight;
+};
+
 template <class PinsT, class SbT, class DrvT>
 class MonitorLogic {
  public:
@@ -45,6 +51,10 @@ class MonitorLogic {
 
   using Out = typename SbT::Out;
 
+  // The functional coverage model's per-edge sampler (coverage builds; null otherwise).
+  void (*edge_sample)(void* ctx, const EdgeState& e) = nullptr;
+  void* edge_ctx = nullptr;
+
   // One rising clock edge, on the pre-edge values of the pins. Returns true when the run is over (the
   // driver done, nothing in flight and kTail quiet cycles watched, or the watchdog fired).
   bool on_edge() {
@@ -56,6 +66,7 @@ class MonitorLogic {
     const bool irdy = pins_.in_ready.read();
     const uint32_t otag = pins_.out_tag.read();
     const Out opay = pins_.out_payload();
+    if (edge_sample) edge_sample(edge_ctx, EdgeState{rst_n, iv, irdy, ov, ordy, sb_.in_flight()});
 
     if (held_ && (!ov || otag != held_tag_ || opay != held_pay_))
       sb_.error("output changed while held back by out_ready_i low (valid " + std::to_string(ov) +
