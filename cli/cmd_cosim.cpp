@@ -184,7 +184,9 @@ void run_cosim(const CosimArgs& a) {
     coverage::check_output_dir(a.coverage_dir, "--coverage");
     sim = coverage::ensure_unit({a.variant, cfg, a.cutoff, a.norm}, /*bare=*/false, false).exe;
     cov_tmp = (std::filesystem::path(a.coverage_dir) / fmt::format(".shards.{}", ::getpid())).string();
-    std::filesystem::create_directories(cov_tmp);
+    std::error_code ec;
+    std::filesystem::create_directories(cov_tmp, ec);
+    if (ec) throw std::runtime_error("--coverage: cannot create " + cov_tmp + ": " + ec.message());
   }
   if (::access(sim.c_str(), X_OK) != 0)
     throw std::runtime_error("simulator " + sim + " not built (cmake --build <build dir>)");

@@ -218,7 +218,10 @@ std::string waivers_in_use() {
 
 void check_output_dir(const std::string& dir, const std::string& option) {
   std::error_code ec;
-  const fs::path p = fs::absolute(dir, ec);
+  const fs::path p = fs::absolute(dir, ec).lexically_normal();
+  for (const char* sys : {"/proc", "/sys", "/dev"})
+    if (p == sys || p.string().rfind(std::string(sys) + "/", 0) == 0)
+      throw std::invalid_argument(option + ": " + dir + " is under " + sys + ", not a place for a report");
   if (fs::exists(p, ec)) {
     if (!fs::is_directory(p, ec)) throw std::invalid_argument(option + ": " + dir + " exists and is not a directory");
     if (::access(p.c_str(), W_OK) != 0) throw std::invalid_argument(option + ": cannot write to " + dir);

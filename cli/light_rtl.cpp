@@ -299,7 +299,9 @@ int lighting_cosim(const LightCosimArgs& a) {
   const std::string cov_tmp =
       a.coverage_dir.empty() ? "" : (fs::path(a.coverage_dir) / fmt::format(".run.{}.dat", ::getpid())).string();
   if (!cov_tmp.empty()) {
-    fs::create_directories(a.coverage_dir);
+    std::error_code ec;
+    fs::create_directories(a.coverage_dir, ec);
+    if (ec) throw std::runtime_error("--coverage: cannot create " + a.coverage_dir + ": " + ec.message());
     argv.insert(argv.end(), {"--coverage", cov_tmp});
   }
   struct Cleanup {

@@ -8,7 +8,7 @@ cli/coverage.cpp.
   the merge sums the runs, the per-module hit / total / waived / percent equal the hand count, a waiver applies
   to what it names (by source text, file, signal glob); a waiver that matches nothing, a waived point that was
   hit, a malformed waiver file and a file that is no database are each a one-line error with exit 1 and nothing
-  written.
+  written; so is a report directory that is a file or under /proc or /sys (cosim --coverage, coverage --out).
 --run (ctest coverage.regress, label long: builds the coverage model of cs16 once, ~2 min, then cached):
   `shadecore regress --plan tests/data/coverage/tiny.json --local --coverage` — every co-simulation shard writes
   its database, the merge after the run equals the hand-made union of the shards' databases module by module,
@@ -184,6 +184,14 @@ def quick(sc, work):
     with open(bogus, "w") as f:
         f.write("hello\n")
     refused([], "is not a Verilator coverage database", "a file that is no database", dats=(d1, bogus))
+    # --coverage DIR / --out DIR that cannot be a report directory: one line, exit 1, before anything runs or builds.
+    for cmd, needle in (([sc, "cosim", "--mode", "directed", "--coverage", bogus], "exists and is not a directory"),
+                        ([sc, "cosim", "--mode", "directed", "--coverage", "/proc/h36/x"], "is under /proc"),
+                        ([sc, "coverage", d1, "--out", "/sys/x"], "is under /sys")):
+        r = run(cmd)
+        lines = [x for x in r.stderr.splitlines() if x.strip()]
+        check(r.returncode == 1 and len(lines) == 1 and needle in lines[0] and "building" not in r.stderr,
+              "%s: refused with one line (%r)" % (" ".join(cmd[1:3] + cmd[-2:]), lines[-1] if lines else ""))
 
 
 def full(sc, root, work):
