@@ -21,7 +21,7 @@ its results into BUNDLE/signoff/ (and BUNDLE/constraints.sdc with the measured c
            models (Icarus, zero-delay), every vector file: 0 mismatches and no X after reset.
   power    a second gate-level run without input gaps or output stalls dumps a VCD of the
            netlist's nets; per net toggles per clock and time-high fraction go to OpenSTA
-           (`set_power_activity -pins` on each net's driver, `-input_ports` on the inputs) and
+           (`sta::set_power_pin_activity` on each net's driver, `..._input_port_activity` on the inputs) and
            `report_power` at the closing period. energy per result = power x period x cycles /
            results. Typical corner, no wires, zero-delay simulation: glitches are not counted.
 
@@ -464,6 +464,36 @@ def parse_vcd(path):
     return ids, tog, high, t_end
 
 
+# Per-net activity into OpenSTA. Not `set_power_activity -pins`: in OpenSTA 2.0.17 (Debian 12) its -pins branch calls an
+# undefined `get_pins_error` (every such line fails; a flow that ignored the errors was left with OpenSTA's own
+# propagation from the input ports) and would keep input pins only. The command it means to call,
+# `sta::set_power_pin_activity` (activity in transitions per clock period, as -activity), is called directly, and
+# every name must resolve: the counts are checked. OpenSTA's first power computation clears the activities and
+# propagates them from the inputs, wiping any set before it: so power is computed once first (that number, OpenSTA's
+# own probabilistic estimate from the input ports' activity alone, is kept as `propagated_mw` for comparison), and
+# the gate-level activities of the nets are set after it (the input ports' before: they survive it).
+PROPAGATE_TCL = """set sc_prop [lindex [sta::design_power [sta::cmd_corner]] 3]
+puts "propagated $sc_prop"
+"""
+PIN_ACT_TCL = """set sc_set 0
+set sc_missing 0
+proc sc_pin_act {name act duty} {
+  global sc_set sc_missing
+  set p [get_pins -quiet $name]
+  if {[llength $p] != 1} { incr sc_missing; puts "activity: no pin $name"; return }
+  sta::set_power_pin_activity $p $act $duty
+  incr sc_set
+}
+proc sc_port_act {name act duty} {
+  global sc_set sc_missing
+  set p [get_ports -quiet $name]
+  if {[llength $p] != 1} { incr sc_missing; puts "activity: no port $name"; return }
+  sta::set_power_input_port_activity $p $act $duty
+  incr sc_set
+}
+"""
+
+
 def power(a, sdir, period):
     """Gate-level activity -> OpenSTA report_power; energy per result."""
     vcd = os.path.join(sdir, "activity.vcd")
@@ -512,20 +542,26 @@ def power(a, sdir, period):
             if root in ports:
                 if root == CLOCK:
                     continue
-                lines.append(f"set_power_activity -input_ports [get_ports {{{net}}}] -activity {act:.6g} -duty {duty:.6g}")
+                lines.append(f"sc_port_act {{{net}}} {act:.6g} {duty:.6g}")
                 annotated += 1
             elif norm_net(net) in driver:
                 inst, pin = driver[norm_net(net)]
                 inst = inst.lstrip("\\")
-                lines.append(f"set_power_activity -pins [get_pins {{{inst}/{pin}}}] -activity {act:.6g} -duty {duty:.6g}")
+                lines.append(f"sc_pin_act {{{inst}/{pin}}} {act:.6g} {duty:.6g}")
                 annotated += 1
     sdc = os.path.join(a.bundle, "constraints.sdc")
-    body = ("\n".join(lines) + "\nreport_power -digits 4\n"
+    ports_first = sorted(lines, key=lambda line: not line.startswith("sc_port_act"))
+    k = sum(1 for line in lines if line.startswith("sc_port_act"))
+    body = (PIN_ACT_TCL + "\n".join(ports_first[:k]) + "\n" + PROPAGATE_TCL + "\n".join(ports_first[k:]) + "\nputs \"annotated $sc_set missing $sc_missing\"\nreport_power -digits 4\n"
             "puts \"total_power [lindex [sta::design_power [sta::cmd_corner]] 3]\"\n")
     with open(os.path.join(sdir, "power.tcl"), "w") as f:
         f.write(sta_script(a, sdir, sdc, body))
     rc, out = run(["sta", "-no_splash", "-exit", "power.tcl"], sdir, os.path.join(sdir, "power.rpt"), a.timeout)
     tm = re.search(r"^Total\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)", out, re.M)
+    cnt = re.search(r"^annotated (\d+) missing (\d+)$", out, re.M)
+    if not cnt or int(cnt.group(1)) != annotated or int(cnt.group(2)) or re.search(r"^Error", out, re.M):
+        die(f"OpenSTA did not take every activity ({annotated} written, "
+            f"{'none' if not cnt else cnt.group(1) + ' taken, ' + cnt.group(2) + ' not found'}): {sdir}/power.rpt")
     if rc or not tm:
         die(f"OpenSTA report_power failed (exit {rc}): {sdir}/power.rpt")
     watts = float(tm.group(4))
@@ -535,7 +571,8 @@ def power(a, sdir, period):
     return {"power_mw": round(watts * 1e3, 4), "internal_mw": round(float(tm.group(1)) * 1e3, 4),
             "switching_mw": round(float(tm.group(2)) * 1e3, 4), "leakage_mw": round(float(tm.group(3)) * 1e3, 6),
             "results": results, "cycles": cycles, "nets_annotated": annotated,
-            "energy_pj_per_result": round(e_pj, 3)}
+            "energy_pj_per_result": round(e_pj, 3),
+            "propagated_mw": round(float(re.search(r"^propagated (\S+)", out, re.M).group(1)) * 1e3, 4)}
 
 
 def norm_net(expr):
