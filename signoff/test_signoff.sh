@@ -46,6 +46,11 @@ grep -q "set_timing_derate -late 1.15" "$b/constraints.sdc" || fail "constraints
 [ "$(jget "$j" "d['gatesim']['passed'] and d['gatesim']['mismatches'] == 0 and d['gatesim']['vectors'] > 0")" = True ] ||
   fail "the gate-level simulation did not pass: $(jget "$j" "d['gatesim']")"
 [ "$(jget "$j" "d['power']['energy_pj_per_result'] > 0")" = True ] || fail "no energy per result"
+# the netlist's own toggles reached OpenSTA: every net's activity taken, and the power differs from OpenSTA's
+# propagation from the input ports alone (what the flow reported while OpenSTA 2.0.17 rejected every -pins line)
+grep -q "^Error" "$b/signoff/power.rpt" && fail "OpenSTA reported errors in power.rpt: $(grep -m1 '^Error' "$b/signoff/power.rpt")"
+[ "$(jget "$j" "d['power']['nets_annotated'] > 100 and d['power']['power_mw'] != d['power']['propagated_mw']")" = True ] ||
+  fail "the gate-level activities did not change OpenSTA's power: $(jget "$j" "d['power']")"
 grep -q "OSU 0.18 µm sign-off" "$b/reports/summary.md" || fail "summary.md has no sign-off line"
 (cd "$b" && sha256sum -c --quiet MANIFEST.sha256) || fail "MANIFEST.sha256 does not cover the sign-off files"
 
