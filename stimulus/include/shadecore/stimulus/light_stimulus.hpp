@@ -5,7 +5,10 @@
 //             viewer, reflection, normalize —, a material with random n and a random unit of the core,
 //             every light slot with a random kind it can take, enabled or not, random colours, positions
 //             and attenuation), then
-//             `count` fragments: 45 % realistic (random eye-space positions, normals of random length),
+//             `count` fragments: 45 % realistic (random eye-space positions, normals of random length; on a
+//             core with a light slot that can be spot, a third of them, 15 % of all fragments, are instead
+//             aimed at the cone of an enabled spot light — 5 % inside, 5 % outside, 5 % at its edge, the
+//             cut-off ±1 code, see spot_fragment() — whenever one is on),
 //             20 % raw random codes over the whole input words, 35 % hard cases built on the current
 //             registers (see hard_fragment()). With probability `write_rate` per fragment a burst of
 //             register writes comes first: a new material, a new light, raw random data to any register
@@ -266,11 +269,12 @@ class LightStimulus {
     const uint64_t r = rng_.next();
     return {(r & 1) != 0, (r & 2) != 0, (r & 4) != 0, (r & 8) != 0, (r & 16) != 0};
   }
-  std::vector<RegWrite> random_light(int j) {
+  // force_spot: an enabled spot light with a cone (cutoff neither 0 nor 180: inside, outside and edge all exist)
+  std::vector<RegWrite> random_light(int j, bool force_spot = false) {
     LightParams lp;
-    const LightKind kind = slot_kind(j, rng_.next());
+    const LightKind kind = force_spot ? LightKind::Spot : slot_kind(j, rng_.next());
     lp.kind = kind;
-    lp.enabled = rng_.next() % 8 != 0;
+    lp.enabled = force_spot || rng_.next() % 8 != 0;
     if (kind == LightKind::Directional) {
       double d[3];
       do {
@@ -292,6 +296,7 @@ class LightStimulus {
     lp.kq = u01() < 0.5 ? 0.0 : u(0, 0.05);
     if (lp.kc < 0.01 && lp.kl == 0 && lp.kq == 0) lp.kc = 1;
     if (kind == LightKind::Spot) random_spot(lp);
+    if (force_spot && (lp.spot_cutoff == 180 || lp.spot_cutoff == 0)) lp.spot_cutoff = u(1, 89);
     return light_writes(core_, j, lp);
   }
   // A spot light: its direction points near the fragments' region (the origin) from its position, so that
@@ -318,6 +323,20 @@ class LightStimulus {
     // write that changes a slot's kind meets defined attenuation and spot registers
     for (int j = 0; j < core_.features().num_lights(); ++j) push(light_reset_writes(core_, j));
     for (int j = 0; j < core_.features().num_lights(); ++j) push(random_light(j));
+    // a core with spot hardware: a program whose draws gave no enabled spot light with a cone (seed 5 of `full`:
+    // none at all; its spot fragments then came from a raw mode write meeting GL's reset cutoff 180, all inside)
+    // gets one, on a slot that can be spot drawn uniformly, so the aimed fragments of spot_fragment() have a cone
+    std::vector<int> spot;
+    bool cone = false;
+    for (int j = 0; j < core_.features().num_lights(); ++j) {
+      if (!core_.features().slot_can(j, LightKind::Spot)) continue;
+      spot.push_back(j);
+      const auto& L = shadow_.light[static_cast<size_t>(j)];
+      const int64_t full = int64_t{1} << core_.unit_format().frac;
+      if ((L.mode & kModeEnable) && (L.mode >> 1) == static_cast<uint32_t>(LightKind::Spot) && L.scos > -full && L.scos < full)
+        cone = true;
+    }
+    if (!spot.empty() && !cone) push(random_light(spot[rng_.next() % spot.size()], true));
   }
   // Raw register data: every register of the map, random bits or an extreme of its width.
   void random_writes() {
@@ -365,6 +384,10 @@ class LightStimulus {
 
   Fragment random_fragment() {
     const uint64_t r = rng_.next() % 100;
+    if (r >= 30 && r < 45) {  // aimed at a spot light's cone (where one is on): r % 3 = 0 inside, 1 outside, 2 edge
+      Fragment f;
+      if (spot_fragment(r % 3, f)) return f;
+    }
     if (r < 45) {  // realistic
       double n[3], p[3];
       for (double& x : n) x = u(-1, 1);
@@ -384,6 +407,70 @@ class LightStimulus {
       return f;
     }
     return hard_fragment(rng_.next() % 10);
+  }
+
+  // A fragment placed against the cone of one of the enabled spot lights (a slot that can be spot, holding an
+  // enabled spot, drawn uniformly): cls 0 inside (−L̂·ŝ at least 2 codes above the spot cos register), 1 outside
+  // (at least 2 codes below), 2 at the edge (within one code of it: the cut-off boundary ±1). P = light position +
+  // d·(cos θ ŝ + sin θ u), d in [6, 30), u a random perpendicular, θ drawn on the class's side of the cut-off
+  // angle; the class is then checked on the C model's own −L̂·ŝ (LightCore::eval's trace, as the bench's
+  // functional bins read it) and P nudged by a code or two per axis until it holds (up to 64 tries). The normal
+  // faces the light, so the spot factor shows in the colour. False when no spot light is on (the caller draws a
+  // realistic fragment instead); a class the registers cannot give (cutoff 180 has no outside, a raw cos register
+  // beyond ±1.0 no inside or no outside) leaves the last try, whatever its class.
+  bool spot_fragment(uint64_t cls, Fragment& f) {
+    const FeatureSet& fs = core_.features();
+    const uint32_t on = core_.modes(shadow_).on;
+    int cand[kMaxLights], nc = 0;
+    for (int j = 0; j < fs.num_lights(); ++j) {
+      const auto& L = shadow_.light[static_cast<size_t>(j)];
+      if ((on >> j & 1u) && (L.mode >> 1) == static_cast<uint32_t>(LightKind::Spot) && fs.slot_can(j, LightKind::Spot))
+        cand[nc++] = j;
+    }
+    if (nc == 0) return false;
+    const int j = cand[rng_.next() % static_cast<uint64_t>(nc)];
+    const auto& L = shadow_.light[static_cast<size_t>(j)];
+    const int VF = core_.unit_format().frac;
+    const double one = std::ldexp(1.0, F_);
+    double s[3] = {static_cast<double>(L.sdir[0]), static_cast<double>(L.sdir[1]), static_cast<double>(L.sdir[2])};
+    const double sl = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    if (sl == 0) s[2] = 1;  // a raw zero direction: −L̂·ŝ is 0 wherever P is
+    for (double& x : s) x /= sl == 0 ? 1.0 : sl;
+    // −L̂·ŝ ≈ cos θ · |ŝ register| · 2^E in VF-bit codes: the cut-off angle of the cos register
+    const double full = (sl == 0 ? 1.0 : sl) * std::ldexp(1.0, VF - F_);
+    const double cc = std::clamp(static_cast<double>(L.scos) / full, -1.0, 1.0), thc = std::acos(cc);
+    const double margin = std::min(0.05, std::ldexp(8.0, -VF) / std::max(1e-3, std::sin(thc)));
+    // a perpendicular basis of ŝ
+    const double e[3] = {std::fabs(s[0]) < 0.6 ? 1.0 : 0.0, std::fabs(s[0]) < 0.6 ? 0.0 : 1.0, 0.0};
+    double u1[3] = {s[1] * e[2] - s[2] * e[1], s[2] * e[0] - s[0] * e[2], s[0] * e[1] - s[1] * e[0]};
+    const double ul = std::sqrt(u1[0] * u1[0] + u1[1] * u1[1] + u1[2] * u1[2]);
+    for (double& x : u1) x /= ul;
+    const double u2[3] = {s[1] * u1[2] - s[2] * u1[1], s[2] * u1[0] - s[0] * u1[2], s[0] * u1[1] - s[1] * u1[0]};
+    const double phi = u(0, 2 * std::acos(-1.0)), d = u(6, 30);
+    double th;
+    if (cls == 0) th = thc - margin <= 0 ? 0.0 : u(0, thc - margin);
+    else if (cls == 1) th = thc + margin >= std::acos(-1.0) ? std::acos(-1.0) : u(thc + margin, std::acos(-1.0));
+    else th = thc;
+    double dir[3];
+    for (int i = 0; i < 3; ++i)
+      dir[i] = std::cos(th) * s[i] + std::sin(th) * (std::cos(phi) * u1[i] + std::sin(phi) * u2[i]);
+    const int64_t plim = int64_t{1} << (F_ + kPosIntBits), nlim = int64_t{1} << (F_ + 1);
+    int64_t p0[3];
+    for (int i = 0; i < 3; ++i) {
+      p0[i] = std::clamp<int64_t>(L.pos[i] + std::llround(d * dir[i] * one), -plim, plim - 1);
+      f.n[i] = std::clamp<int64_t>(std::llround(-dir[i] * one), -nlim, nlim - 1);  // facing the light
+    }
+    auto in_class = [&](int64_t g) { return cls == 2 ? std::llabs(g) <= 1 : cls == 0 ? g >= 2 : g <= -2; };
+    for (int t = 0; t < 64; ++t) {
+      for (int i = 0; i < 3; ++i) {
+        const int64_t k = t == 0 ? 0 : static_cast<int64_t>(rng_.next() % 5) - 2;
+        f.p[i] = std::clamp<int64_t>(p0[i] + k, -plim, plim - 1);
+      }
+      LightCoreTrace tr;
+      (void)core_.eval(shadow_, f, &tr);
+      if (in_class(tr.light[static_cast<size_t>(j)].sdl - L.scos)) break;
+    }
+    return true;
   }
 
   // Hard cases on the current registers: N = 0, tiny N, P exactly at a light, P far from a light,
