@@ -124,6 +124,50 @@ TEST(RenderRaster, DepthTestNearestWinsFirstWinsTies) {
   EXPECT_EQ(s.tris()[s.at(8, 0)].source, 2);  // depth ≈ 850 for triangle 1
 }
 
+// set_unsnapped_depth (shadecore replay, docs/replay.md): the depth plane through the unsnapped window positions.
+// A flat triangle at window z = 0.5 drawn first, then sloped ones crossing it: wherever their exact depths at a
+// pixel centre (from the unsnapped positions, in double) differ by more than 1 LSB of 2^-24, the nearer one is
+// shown. The snapped plane (the default, scene files) gets some of those pixels wrong: vertex snapping to 1/256
+// pixel moves a sloped plane by many LSBs; both modes cover the same pixels.
+TEST(RenderRaster, UnsnappedDepthOrdersCrossingSurfacesToOneLsb) {
+  const int W = 48, H = 48;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> pos(-0.95, 0.95), dz(-0.02, 0.02);
+  int wrong[2] = {0, 0}, decided = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    std::array<ClipVertex, 3> b;
+    for (auto& v : b) v = ClipVertex{pos(rng), pos(rng), dz(rng), 1.0};  // orthographic: w = 1, window z = 0.5 + z/2
+    const std::array<ClipVertex, 3> a = {ClipVertex{-1, -1, 0, 1}, ClipVertex{1, -1, 0, 1}, ClipVertex{-1, 1, 0, 1}};
+    Rasterizer r[2] = {Rasterizer(W, H, 1.0), Rasterizer(W, H, 1.0)};
+    r[1].set_unsnapped_depth(true);
+    for (auto& ri : r) ri.draw(1, a), ri.draw(2, b);
+    EXPECT_EQ(r[0].coverage(), r[1].coverage());
+    // exact window depth of b at a pixel centre, from its unsnapped window positions
+    double wx[3], wy[3], wz[3];
+    for (int k = 0; k < 3; ++k)
+      wx[k] = (b[k].x * 0.5 + 0.5) * W, wy[k] = (0.5 - b[k].y * 0.5) * H, wz[k] = b[k].z * 0.5 + 0.5;
+    const double area = (wx[1] - wx[0]) * (wy[2] - wy[0]) - (wy[1] - wy[0]) * (wx[2] - wx[0]);
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) {
+        if (r[0].coverage()[y * W + x] < 2) continue;  // only a: no crossing here
+        const double px = x + 0.5, py = y + 0.5;
+        const double l0 = (wx[2] - wx[1]) * (py - wy[1]) - (wy[2] - wy[1]) * (px - wx[1]);
+        const double l1 = (wx[0] - wx[2]) * (py - wy[2]) - (wy[0] - wy[2]) * (px - wx[2]);
+        const double zb = (l0 * wz[0] + l1 * wz[1] + (area - l0 - l1) * wz[2]) / area;
+        const double sep = std::ldexp(zb - 0.5, 24);  // LSBs; > 0: a (drawn first) is nearer
+        if (std::fabs(sep) <= 1) continue;
+        ++decided;
+        for (int m = 0; m < 2; ++m) {
+          const int shown = r[m].tris()[static_cast<size_t>(r[m].at(x, y))].source;
+          if (shown != (sep > 0 ? 1 : 2)) ++wrong[m];
+        }
+      }
+  }
+  EXPECT_GT(decided, 100000);
+  EXPECT_EQ(wrong[1], 0) << "unsnapped depth plane";
+  EXPECT_GT(wrong[0], 0) << "the snapped plane was expected to misorder some pixel (else this test shows nothing)";
+}
+
 // Perspective-correct weights: Σ ω_k a_k / Σ ω_k equals the double formula Σ (λ_k/w_k) a_k / Σ (λ_k/w_k).
 TEST(RenderRaster, PerspectiveCorrectInterpolation) {
   Rasterizer r(64, 64, 1.0);

@@ -452,6 +452,43 @@ TEST(ReplayFrontend, HandOverGroupsTrianglesAndRefusesMixedSmoothMaterials) {
   EXPECT_THROW((void)shadecore::glfront::hand_over(d.gl, "t"), ReplayError);
 }
 
+// GL_COLOR_MATERIAL with a colour per vertex in a smooth-shaded primitive (glColor between glBegin and glEnd, a colour
+// array): GL tracks every colour into the material, so the vertices' materials differ in the tracked colour only;
+// handed over as one colour-material object with the colours per vertex. A glMaterial of an untracked colour between
+// the vertices still needs material batches: refused.
+TEST(ReplayFrontend, HandOverCarriesSmoothColoursUnderColourMaterial) {
+  Driver d;
+  d.en(DEPTH_TEST);
+  d.en(LIGHTING);
+  d.en(LIGHT0);
+  d("glViewport", {I(0), I(0), I(32), I(32)});
+  d("glColorMaterial", {I(FRONT_AND_BACK), I(DIFFUSE)});
+  d.en(COLOR_MATERIAL);
+  d("glBegin", {I(TRIANGLE_STRIP)});
+  d("glColor3f", {F(1), F(0), F(0)}), d.v3(0, 0, -0.5);
+  d("glColor3f", {F(0), F(1), F(0)}), d.v3(1, 0, -0.5);
+  d("glColor3f", {F(0), F(0), F(1)}), d.v3(0, 1, -0.5);
+  d("glColor3f", {F(1), F(1), F(0)}), d.v3(1, 1, -0.5);
+  d("glEnd");
+  ASSERT_EQ(d.gl.triangles().size(), 2u);
+  EXPECT_NE(d.gl.triangles()[0].v[0].material, d.gl.triangles()[0].v[2].material);  // GL tracked each colour
+  auto h = shadecore::glfront::hand_over(d.gl, "t");
+  ASSERT_EQ(h.scene.objects.size(), 2u);  // the provoking vertices' materials differ (in the tracked colour only)
+  EXPECT_EQ(h.scene.objects[0].colour_material, shadecore::ColourMaterial::Diffuse);
+  ASSERT_EQ(h.meshes[0].col.size(), 3u);
+  EXPECT_EQ(h.meshes[0].col[0], (shadecore::scene::Vec3{1, 0, 0}));
+  EXPECT_EQ(h.meshes[0].col[1], (shadecore::scene::Vec3{0, 1, 0}));
+  EXPECT_EQ(h.meshes[0].col[2], (shadecore::scene::Vec3{0, 0, 1}));
+  EXPECT_EQ(h.stats.notes.count("glMaterial between a smooth primitive's vertices carried as colour material"), 0u);
+  // an untracked colour (GL_AMBIENT) changing between the vertices: refused
+  d("glBegin", {I(TRIANGLES)});
+  d.v3(0, 0, -0.5);
+  d("glMaterialfv", {I(FRONT_AND_BACK), I(AMBIENT), A({0.5, 0.5, 0.5, 1})});
+  d("glColor3f", {F(0), F(1), F(1)}), d.v3(1, 0, -0.5), d.v3(0, 1, -0.5);
+  d("glEnd");
+  EXPECT_THROW((void)shadecore::glfront::hand_over(d.gl, "t"), ReplayError);
+}
+
 using shadecore::test::tiny_stream;
 
 std::string tiny_capture(int frames, bool core_profile = false) {

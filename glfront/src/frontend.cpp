@@ -1069,6 +1069,7 @@ Handover hand_over(const Gl& gl, const std::string& name) {
   h.settings.camera = cam;
   h.settings.view = std::array<double, 16>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
   h.settings.projection = P;
+  h.settings.unsnapped_depth = true;  // the depth plane as GL (and llvmpipe) computes it: docs/replay.md
 
   // materials by value; objects = runs of triangles with one (material, shading, colour material, lit, excluded)
   std::map<std::tuple<uint32_t, bool, int>, int> material_index;  // (GL material pair, lit, colour material) → scene
@@ -1127,27 +1128,48 @@ Handover hand_over(const Gl& gl, const std::string& name) {
       const bool shi = same([](const MaterialState& m) { return m.shininess; });
       bool ad_equal = true;
       for (const auto* m : f) ad_equal = ad_equal && rgb3(m->ambient) == rgb3(m->diffuse);
-      std::optional<ColourMaterial> via;
-      if (shi && !cm && (!L.two_side || (*b[0] == *b[2] && *b[1] == *b[2]))) {
-        if (!amb && dif && spe && emi) via = ColourMaterial::Ambient;
-        else if (amb && !dif && spe && emi) via = ColourMaterial::Diffuse;
-        else if (amb && dif && !spe && emi) via = ColourMaterial::Specular;
-        else if (amb && dif && spe && !emi) via = ColourMaterial::Emission;
-        else if (!amb && !dif && spe && emi && ad_equal) via = ColourMaterial::AmbientAndDiffuse;
+      if (cm) {
+        // GL_COLOR_MATERIAL on: every glColor (a colour array's too) is tracked into the material (GL 2.1 §2.14.3), so
+        // the vertices' materials differ in the tracked colour(s); those reach the core per vertex through its
+        // colour-material input (the vertex colours). Any other term or the shininess changing is refused.
+        auto same_fb = [&](auto field) {
+          return field(*f[0]) == field(*f[2]) && field(*f[1]) == field(*f[2]) &&
+                 (!L.two_side || (field(*b[0]) == field(*b[2]) && field(*b[1]) == field(*b[2])));
+        };
+        const bool ta = *cm == ColourMaterial::Ambient || *cm == ColourMaterial::AmbientAndDiffuse;
+        const bool td = *cm == ColourMaterial::Diffuse || *cm == ColourMaterial::AmbientAndDiffuse;
+        const bool ts = *cm == ColourMaterial::Specular, te = *cm == ColourMaterial::Emission;
+        if (!((ta || same_fb([&](const MaterialState& m) { return rgb3(m.ambient); })) &&
+              (td || same_fb([&](const MaterialState& m) { return rgb3(m.diffuse); })) &&
+              (ts || same_fb([&](const MaterialState& m) { return rgb3(m.specular); })) &&
+              (te || same_fb([&](const MaterialState& m) { return rgb3(m.emission); })) &&
+              same_fb([](const MaterialState& m) { return m.shininess; })))
+          throw ReplayError(name + ": glMaterial changes a colour that GL_COLOR_MATERIAL does not track (or the shininess) "
+                                   "between the vertices of a smooth-shaded primitive (per-vertex material batches are not "
+                                   "implemented)");
+      } else {
+        std::optional<ColourMaterial> via;
+        if (shi && (!L.two_side || (*b[0] == *b[2] && *b[1] == *b[2]))) {
+          if (!amb && dif && spe && emi) via = ColourMaterial::Ambient;
+          else if (amb && !dif && spe && emi) via = ColourMaterial::Diffuse;
+          else if (amb && dif && !spe && emi) via = ColourMaterial::Specular;
+          else if (amb && dif && spe && !emi) via = ColourMaterial::Emission;
+          else if (!amb && !dif && spe && emi && ad_equal) via = ColourMaterial::AmbientAndDiffuse;
+        }
+        if (!via)
+          throw ReplayError(name + ": glMaterial changes more than one colour (or the shininess) between the vertices of "
+                                   "a smooth-shaded primitive (per-vertex material batches are not implemented)");
+        cm = via;
+        for (int k = 0; k < 3; ++k) {
+          const MaterialState& m = *f[static_cast<size_t>(k)];
+          vertex_colour[static_cast<size_t>(k)] = *via == ColourMaterial::Ambient || *via == ColourMaterial::AmbientAndDiffuse
+                                                      ? m.ambient
+                                                  : *via == ColourMaterial::Diffuse  ? m.diffuse
+                                                  : *via == ColourMaterial::Specular ? m.specular
+                                                                                      : m.emission;
+        }
+        ++h.stats.notes["glMaterial between a smooth primitive's vertices carried as colour material"];
       }
-      if (!via)
-        throw ReplayError(name + ": glMaterial changes more than one colour (or the shininess) between the vertices of "
-                                 "a smooth-shaded primitive (per-vertex material batches are not implemented)");
-      cm = via;
-      for (int k = 0; k < 3; ++k) {
-        const MaterialState& m = *f[static_cast<size_t>(k)];
-        vertex_colour[static_cast<size_t>(k)] = *via == ColourMaterial::Ambient || *via == ColourMaterial::AmbientAndDiffuse
-                                                    ? m.ambient
-                                                : *via == ColourMaterial::Diffuse  ? m.diffuse
-                                                : *via == ColourMaterial::Specular ? m.specular
-                                                                                    : m.emission;
-      }
-      ++h.stats.notes["glMaterial between a smooth primitive's vertices carried as colour material"];
     }
     const int mi = scene_material(mid, lit, cm);
     const auto key = std::make_tuple(mi, t.flat, cm ? static_cast<int>(*cm) : -1, t.excluded);

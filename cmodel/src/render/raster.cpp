@@ -80,6 +80,11 @@ inline int64_t edge(const ScreenVertex& a, const ScreenVertex& b, int64_t px, in
   return (b.X - a.X) * (py - a.Y) - (b.Y - a.Y) * (px - a.X);
 }
 
+// The same over the unsnapped positions (2^−kFineBits pixel; up to 2^31 inside the guard band: 128-bit products).
+inline i128 fine_edge(const ScreenVertex& a, const ScreenVertex& b, int64_t px, int64_t py) {
+  return static_cast<i128>(b.fx - a.fx) * (py - a.fy) - static_cast<i128>(b.fy - a.fy) * (px - a.fx);
+}
+
 }  // namespace
 
 void Rasterizer::draw(int source, const std::array<ClipVertex, 3>& v) {
@@ -109,9 +114,16 @@ void Rasterizer::draw(int source, const std::array<ClipVertex, 3>& v) {
     ScreenVertex s;
     s.b = cv.b;
     const double iw = 1.0 / cv.c.w;
-    s.X = std::llround(std::ldexp((cv.c.x * iw * 0.5 + 0.5) * w_, kSubBits));
-    s.Y = std::llround(std::ldexp((0.5 - cv.c.y * iw * 0.5) * h_, kSubBits));
-    s.z = std::llround(std::ldexp(cv.c.z * iw * 0.5 + 0.5, kDepthBits));
+    const double wx = (cv.c.x * iw * 0.5 + 0.5) * w_, wy = (0.5 - cv.c.y * iw * 0.5) * h_, wz = cv.c.z * iw * 0.5 + 0.5;
+    s.X = std::llround(std::ldexp(wx, kSubBits));
+    s.Y = std::llround(std::ldexp(wy, kSubBits));
+    s.z = std::llround(std::ldexp(wz, kDepthBits));
+    if (unsnapped_depth_) {
+      s.fx = std::llround(std::ldexp(wx, kFineBits));
+      s.fy = std::llround(std::ldexp(wy, kFineBits));
+      s.fz = std::llround(std::ldexp(wz, kDepthBits + kFineBits));
+      s.fine = true;
+    }
     s.q = std::llround(std::ldexp(near_ * iw, 32));
     if (s.q < 1) s.q = 1;
     sv.push_back(s);
@@ -151,6 +163,12 @@ int Rasterizer::raster(const ScreenTri& t, int index) {
   const int64_t y0 = std::max<int64_t>(0, lo(minY)), y1 = std::min<int64_t>(h_ - 1, hi(maxY));
   // Bias: a pixel centre exactly on an edge counts only for top and left edges.
   const int64_t bias0 = top_left(b, c) ? 0 : -1, bias1 = top_left(c, a) ? 0 : -1, bias2 = top_left(a, b) ? 0 : -1;
+  // The depth plane through the unsnapped vertices (the snapped ones' when they are not given, or when snapping
+  // made a sliver of the other winding or of no area): z = ⌊Σ λ'_k fz_k / (A' · 2^kFineBits)⌋.
+  const int64_t fhalf = int64_t{1} << (kFineBits - 1), fone = int64_t{1} << kFineBits;
+  const i128 farea = a.fine && b.fine && c.fine ? fine_edge(a, b, c.fx, c.fy) : 0;
+  const bool fine = farea > 0;
+  const i128 fden = farea * fone;
   int covered = 0;
   for (int64_t y = y0; y <= y1; ++y) {
     const int64_t py = y * one + half;
@@ -161,8 +179,15 @@ int Rasterizer::raster(const ScreenTri& t, int index) {
       const size_t pix = static_cast<size_t>(y) * w_ + x;
       ++cover_[pix];
       ++covered;
-      const i128 zn = static_cast<i128>(l0) * a.z + static_cast<i128>(l1) * b.z + static_cast<i128>(l2) * c.z;
-      const int64_t z = static_cast<int64_t>(floor_div(zn, t.area));
+      int64_t z;
+      if (fine) {
+        const int64_t fx = x * fone + fhalf, fy = y * fone + fhalf;
+        const i128 zn = fine_edge(b, c, fx, fy) * a.fz + fine_edge(c, a, fx, fy) * b.fz + fine_edge(a, b, fx, fy) * c.fz;
+        z = static_cast<int64_t>(floor_div(zn, fden));
+      } else {
+        const i128 zn = static_cast<i128>(l0) * a.z + static_cast<i128>(l1) * b.z + static_cast<i128>(l2) * c.z;
+        z = static_cast<int64_t>(floor_div(zn, t.area));
+      }
       if (z < 0 || z >= depth_[pix]) continue;  // in front of the near plane (rounding), GL_LESS
       depth_[pix] = z;
       id_[pix] = index;

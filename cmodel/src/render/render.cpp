@@ -446,6 +446,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
   std::vector<bool> needs_normalize(sc.materials.size(), false);
   std::vector<ObjectColours> object_colours(no);
   fr.raster = raster::Rasterizer(fr.width, fr.height, cam.near);
+  fr.raster.set_unsnapped_depth(s.unsnapped_depth);
   const size_t compact_at = std::max<size_t>(size_t{1} << 16, 4 * static_cast<size_t>(fr.width) * fr.height);
   const double build0 = meshes.build_seconds();
   const auto t_geom = std::chrono::steady_clock::now();

@@ -12,7 +12,13 @@
 //   * coverage by integer edge functions at pixel centres with the top-left fill rule (a pixel centre on an
 //     edge belongs to the triangle whose edge is a top or a left edge), so pixels on a shared edge are
 //     drawn exactly once;
-//   * z-buffer: screen-linear depth, GL_LESS (the first triangle drawn wins ties), cleared to the far plane;
+//   * z-buffer: screen-linear depth, GL_LESS (the first triangle drawn wins ties), cleared to the far plane; the
+//     depth plane through the snapped vertices (X, Y, z), or with set_unsnapped_depth(true) (`shadecore replay`)
+//     through the unsnapped window positions (x, y with kFineBits fraction bits, z with kDepthBits + kFineBits),
+//     as GL interpolates window z (OpenGL 2.1 §3.5.1) and llvmpipe does (its plane from the float vertices,
+//     coverage from the snapped ones), quantised to kDepthBits per pixel (floor): two surfaces crossing at a pixel
+//     are then ordered by their depths there to within 2^−24, not by depths the snapping moved by up to a few
+//     LSBs (scenes keep the snapped plane: their images stay as they were);
 //   * perspective-correct interpolation in integers: weights ω_k = λ_k·q_k (λ_k the edge functions), each
 //     attribute Σ ω_k a_k / Σ ω_k rounded half up (exact 128-bit arithmetic, no floating point per pixel).
 #pragma once
@@ -30,6 +36,7 @@ inline constexpr int kSubBits = 8;
 inline constexpr int kDepthBits = 24;
 inline constexpr int64_t kDepthMax = int64_t{1} << kDepthBits;  // the far plane (window z = 1)
 inline constexpr double kGuard = 8.0;
+inline constexpr int kFineBits = 16;  // extra fraction bits of the depth plane's vertices (draw())
 
 struct ClipVertex {
   double x = 0, y = 0, z = 0, w = 1;  // clip coordinates (after the projection matrix)
@@ -42,6 +49,10 @@ struct ScreenVertex {
   int64_t X = 0, Y = 0;  // 1/256 pixel, y down (row 0 at the top)
   int64_t z = 0;         // window depth × 2^24
   int64_t q = 0;         // 2^32 · near / w
+  // The unsnapped window position the depth plane is computed from (draw() after set_unsnapped_depth(true)): x, y
+  // in 2^−kFineBits pixel, z in 2^−(kDepthBits + kFineBits). fine = false: the plane through (X, Y, z).
+  int64_t fx = 0, fy = 0, fz = 0;
+  bool fine = false;
 };
 
 struct ScreenTri {
@@ -73,6 +84,9 @@ class Rasterizer {
   // The screen triangle visible at pixel (x, y), or −1.
   [[nodiscard]] int32_t at(int x, int y) const { return id_[static_cast<size_t>(y) * w_ + x]; }
   [[nodiscard]] int64_t depth(int x, int y) const { return depth_[static_cast<size_t>(y) * w_ + x]; }
+  // The depth plane of the triangles draw() gets from now on: through the unsnapped window positions (true) or
+  // the snapped vertices (false, the default).
+  void set_unsnapped_depth(bool on) { unsnapped_depth_ = on; }
   // How many times draw() covered each pixel before the depth test (for tests of the fill rule).
   [[nodiscard]] const std::vector<uint32_t>& coverage() const { return cover_; }
 
@@ -98,6 +112,7 @@ class Rasterizer {
   int raster(const ScreenTri& t, int index);
   int w_, h_;
   double near_;
+  bool unsnapped_depth_ = false;
   std::vector<int32_t> id_;
   std::vector<int64_t> depth_;
   std::vector<uint32_t> cover_;

@@ -76,6 +76,9 @@ struct Settings {
   // stays the rasteriser's near plane): `shadecore replay` gives vertices and lights in eye space (view = identity)
   // and the program's own projection (glFrustum, glOrtho, glLoadMatrix…).
   std::optional<std::array<double, 16>> view, projection;
+  // The depth plane through the unsnapped window positions (raster::Rasterizer::set_unsnapped_depth): `shadecore
+  // replay`, whose reference (Mesa's llvmpipe) computes it so; scene files keep the snapped one.
+  bool unsnapped_depth = false;
 };
 
 // The colours an object sends to the core under colour material (objects[i].color_material): per channel the
