@@ -239,6 +239,10 @@ void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool jso
   if (h.non_unit_normals)
     fmt::print("note: {} vertices have normals of length ≠ 1 that GL uses as they are (no GL_NORMALIZE); the core "
                "normalises them (worst length {:.6f})\n", h.non_unit_normals, h.worst_normal_length);
+  if (h.eye_scale != 1)
+    fmt::print("note: {} triangle vertices outside the core's eye-space range [-128, 128) (worst |coordinate| {:.6g}): "
+               "the frame's eye space scaled by {} (clip coordinates unchanged, attenuation scaled to match)\n",
+               h.eye_out_of_range, h.eye_worst, h.eye_scale);
   for (const auto& g : fr.groups)
     fmt::print("core {}: {} register writes, {} vertex fragments  [key {}]\n", g.fs.summary(), g.writes, g.vertices, g.fs.key());
   fmt::print("C model vs exact cos^n: max {:.2f} LSB over {} px\n", err_exact.max_lsb, err_exact.pixels);
@@ -430,6 +434,8 @@ void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool jso
     j["ignored_calls"] = st.ignored;
     j["notes"] = st.notes;
     j["non_unit_normals"] = {{"count", h.non_unit_normals}, {"worst_length", h.worst_normal_length}};
+    j["eye_space_out_of_range"] = {{"count", h.eye_out_of_range}, {"worst_coordinate", h.eye_worst},
+                                   {"scale", h.eye_scale}};
     json objs = json::array();
     for (size_t o = 0; o < h.scene.objects.size(); ++o)
       objs.push_back({{"name", h.scene.objects[o].name}, {"where", h.scene.objects[o].where},

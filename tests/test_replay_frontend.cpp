@@ -489,6 +489,53 @@ TEST(ReplayFrontend, HandOverCarriesSmoothColoursUnderColourMaterial) {
   EXPECT_THROW((void)shadecore::glfront::hand_over(d.gl, "t"), ReplayError);
 }
 
+// Eye-space positions outside the core's range [−128, 128): counted with the worst coordinate, and the frame's eye
+// space scaled by a power of two (positions, point lights, their attenuation, the projection's first three columns)
+// so the back end draws it: clip coordinates unchanged, never wrapped.
+TEST(ReplayFrontend, EyeSpaceOutOfRangeIsScaledAndReported) {
+  Driver d;
+  d.en(DEPTH_TEST);
+  d.en(LIGHTING);
+  d.en(LIGHT0);
+  d("glViewport", {I(0), I(0), I(32), I(32)});
+  d("glMatrixMode", {I(PROJECTION)});
+  d("glFrustum", {F(-1), F(1), F(-1), F(1), F(1), F(1000)});
+  d("glMatrixMode", {I(MODELVIEW)});
+  d("glLightfv", {I(LIGHT0), I(POSITION), A({0, 0, -250, 1})});
+  d("glLightf", {I(LIGHT0), I(0x1208), F(0.1)});  // GL_LINEAR_ATTENUATION
+  d("glBegin", {I(TRIANGLES)});
+  d.v3(-100, -100, -300), d.v3(100, -100, -300), d.v3(0, 100, -300);
+  d("glEnd");
+  const Mat4 P = d.gl.projection();
+  auto h = shadecore::glfront::hand_over(d.gl, "t");
+  EXPECT_EQ(h.eye_out_of_range, 3u);
+  EXPECT_EQ(h.eye_worst, 300);
+  EXPECT_EQ(h.eye_scale, 0.25);  // 300 / 2 = 150 is still out, 300 / 4 = 75 is in
+  ASSERT_EQ(h.meshes.size(), 1u);
+  EXPECT_EQ(h.meshes[0].pos[0][2], -75);
+  ASSERT_EQ(h.scene.lights.size(), 1u);
+  EXPECT_EQ(h.scene.lights[0].position[2], -62.5);
+  EXPECT_DOUBLE_EQ(h.scene.lights[0].kl, 0.4);
+  const auto& Ps = *h.settings.projection;
+  for (int r = 0; r < 4; ++r) {
+    double clip = 0, clip_scaled = 0;  // the first vertex's clip coordinate r, both ways
+    const double e[4] = {-100, -100, -300, 1}, es[4] = {-25, -25, -75, 1};
+    for (int c = 0; c < 4; ++c) clip += P[4 * r + c] * e[c], clip_scaled += Ps[4 * r + c] * es[c];
+    EXPECT_EQ(clip, clip_scaled) << "row " << r;
+  }
+  EXPECT_NO_THROW((void)shadecore::render::prepare(h.scene, h.meshes, h.settings));  // in range for the back end now
+  // in range: nothing scaled, nothing counted
+  Driver e;
+  e.en(DEPTH_TEST);
+  e("glViewport", {I(0), I(0), I(32), I(32)});
+  e("glBegin", {I(TRIANGLES)});
+  e.v3(0, 0, -0.5), e.v3(1, 0, -0.5), e.v3(0, 1, -0.5);
+  e("glEnd");
+  h = shadecore::glfront::hand_over(e.gl, "t");
+  EXPECT_EQ(h.eye_out_of_range, 0u);
+  EXPECT_EQ(h.eye_scale, 1);
+}
+
 using shadecore::test::tiny_stream;
 
 std::string tiny_capture(int frames, bool core_profile = false) {

@@ -1211,6 +1211,47 @@ Handover hand_over(const Gl& gl, const std::string& name) {
   // objects without colour material: no vertex colours (the mesh's colour list stays empty)
   for (size_t i = 0; i < sc.objects.size(); ++i)
     if (!sc.objects[i].colour_material) h.meshes[i].col.clear();
+  // Eye-space positions outside the core's range [−128, 128) (GL has no such limit): counted with the worst coordinate,
+  // and the frame's eye space scaled by the power of two 2^−k that brings every vertex and point light inside. Exact
+  // in double: the projection's first three columns × 2^k give the same clip coordinates (the rasterisation and the
+  // near plane are unchanged); directions are scale-free and each point light's attenuation keeps its value at every
+  // vertex (kl × 2^k, kq × 4^k). Never wrapped.
+  double worst = 0;
+  auto out_of_range = [&](double x, double y, double z) {
+    bool out = false;
+    for (double c : {x, y, z}) {
+      if (!(c >= -128.0 && c < 128.0)) out = true;
+      worst = std::max(worst, std::fabs(c));
+    }
+    return out;
+  };
+  bool lights_out = false;
+  for (const auto& m : h.meshes)
+    for (const auto& p : m.pos)
+      if (out_of_range(p[0], p[1], p[2])) ++h.eye_out_of_range;
+  for (const auto& l : sc.lights)
+    if (l.position[3] != 0 && out_of_range(l.position[0] / l.position[3], l.position[1] / l.position[3], l.position[2] / l.position[3]))
+      lights_out = true;
+  if (h.eye_out_of_range > 0 || lights_out) {
+    if (!std::isfinite(worst)) throw ReplayError(name + ": an eye-space position that is not finite");
+    int k = 0;
+    while (std::ldexp(worst, -k) >= 128.0) ++k;
+    const double f = std::ldexp(1.0, -k);
+    for (auto& m : h.meshes)
+      for (auto& p : m.pos)
+        for (double& c : p) c *= f;
+    for (auto& l : sc.lights)
+      if (l.position[3] != 0) {
+        for (int i = 0; i < 3; ++i) l.position[i] *= f;
+        l.kl /= f, l.kq /= f * f;
+      }
+    Mat4 Ps = *h.settings.projection;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 3; ++c) Ps[static_cast<size_t>(4 * r + c)] /= f;
+    h.settings.projection = Ps;
+    h.eye_worst = worst;
+    h.eye_scale = f;
+  }
   return h;
 }
 

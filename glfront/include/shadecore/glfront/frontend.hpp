@@ -177,6 +177,10 @@ struct Handover {
   FrontStats stats;
   uint64_t non_unit_normals = 0;  // normals GL uses with |n| ≠ 1 (no GL_NORMALIZE): the core normalises them
   double worst_normal_length = 1;
+  // Triangle vertices outside the core's eye-space range [−128, 128), the largest |coordinate| (vertices and point
+  // lights), and the power of two the frame's eye space was scaled by to bring them inside (1: none out of range).
+  uint64_t eye_out_of_range = 0;
+  double eye_worst = 0, eye_scale = 1;
 };
 
 // Reads the capture up to the frame (or call) asked for, runs the front end over it and builds the hand-over.
