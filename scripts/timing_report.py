@@ -40,23 +40,31 @@ FIELDS = ["name", "kind", "width", "contract", "latency_cycles", "period_ns", "w
           "gate_sim_mismatches", "critical_path"]
 
 
-# What decides a row's numbers (with the shadecore binary, the target and the vector count): the cache key.
+# What decides a row's numbers (with the target and the vector count): the cache key. The shadecore binary enters
+# through the sources that write a bundle (the C model, the stimulus, the handoff command and its templates), not
+# through its own bytes: a rebuild for an unrelated change (the replay, coverage) keeps the cache. A binary older
+# than one of those sources is refused (rebuild first), so the key never describes sources the binary lacks.
 DECIDING = ["rtl/*.v", "rtl/*.vh", "config/configs.json", "signoff/signoff.py", "signoff/fastmul.py", "handoff"]
+BINARY_SOURCES = ["cmodel", "stimulus", "common", "cli/handoff_*", "cli/cmd_handoff.cpp", "cli/unit_spec.hpp",
+                  "cli/output.*", "cli/text_template.*", "cli/templates"]
 
 
 class Failure(Exception):
     pass
 
 
-def sha_tree(paths):
-    h = hashlib.sha256()
+def files_of(paths):
     for base in paths:
         full = os.path.join(ROOT, base)
-        files = sorted(glob.glob(full)) if "*" in base else [full] if os.path.isfile(full) else sorted(
+        yield from sorted(glob.glob(full)) if "*" in base else [full] if os.path.isfile(full) else sorted(
             os.path.join(d, f) for d, _, fs in os.walk(full) for f in fs if not f.endswith(".pyc"))
-        for p in files:
-            h.update(os.path.relpath(p, ROOT).encode())
-            h.update(hashlib.sha256(open(p, "rb").read()).digest())
+
+
+def sha_tree(paths):
+    h = hashlib.sha256()
+    for p in files_of(paths):
+        h.update(os.path.relpath(p, ROOT).encode())
+        h.update(hashlib.sha256(open(p, "rb").read()).digest())
     return h.hexdigest()
 
 
@@ -143,6 +151,12 @@ def measure(a, r):
         elif r["table"]:
             lat = None
         s["latency_cycles"] = lat
+        if a.keep:  # the signed-off bundle, for a reader who wants its netlist and reports (a handoff bundle as is)
+            dest = os.path.join(a.keep, row_id(r).replace(":", "_"))
+            if os.path.lexists(dest):
+                raise Failure(f"--keep: {dest} exists (choose an empty directory)")
+            os.makedirs(a.keep, exist_ok=True)
+            shutil.copytree(d, dest, symlinks=True)
         return s
 
 
@@ -295,6 +309,8 @@ def main():
     ap.add_argument("--light-count", type=int, default=200, help="random fragments per lighting bundle (default 200)")
     ap.add_argument("--timeout", type=int, default=10800, help="seconds per tool run (default 10800)")
     ap.add_argument("--cache", default=None, help="cache file (default OUT/timing.cache.json)")
+    ap.add_argument("--keep", default=None,
+                    help="copy each measured row's signed-off bundle to KEEP/<kind>_<name>_<width> (not cached rows)")
     ap.add_argument("--dry-run", action="store_true", help="list the rows and whether each is cached")
     ap.add_argument("--cached-only", action="store_true",
                     help="write the report from the cached rows only; list the others as not measured")
@@ -306,14 +322,23 @@ def main():
     rows = rows_of(cfg, [o for o in a.only.split(",") if o], a.configs.split(","))
     cache_path = a.cache or os.path.join(a.out, "timing.cache.json")
     cache = json.load(open(cache_path)) if os.path.exists(cache_path) else {"entries": {}}
+    newer = [p for p in files_of(BINARY_SOURCES) if os.path.getmtime(p) > os.path.getmtime(a.shadecore)]
+    if newer and not a.dry_run and not a.cached_only:
+        raise Failure(f"{a.shadecore} is older than {os.path.relpath(newer[0], ROOT)} "
+                      f"(and {len(newer) - 1} more): rebuild first (scripts/build.sh)")
     common = sha_tree(DECIDING)
-    binh = hashlib.sha256(open(a.shadecore, "rb").read()).hexdigest()
+    srch = sha_tree(BINARY_SOURCES)
+    binh = hashlib.sha256(open(a.shadecore, "rb").read()).hexdigest()  # the key before 2026-12-06 (upgraded below)
     out_rows, meta, missing = [], None, []
     for i, r in enumerate(rows):
-        key = hashlib.sha256(f"{row_id(r)}|{common}|{binh}|{a.target}|{count_of(a, r)}".encode()).hexdigest()[:24]
+        key = hashlib.sha256(f"{row_id(r)}|{common}|src:{srch}|{a.target}|{count_of(a, r)}".encode()).hexdigest()[:24]
+        old = hashlib.sha256(f"{row_id(r)}|{common}|{binh}|{a.target}|{count_of(a, r)}".encode()).hexdigest()[:24]
         if os.path.exists(cache_path):  # another run may have added rows since this one started
             cache = json.load(open(cache_path))
         hit = cache["entries"].get(row_id(r))
+        if hit is not None and hit["key"] == old and not newer:  # made by this very binary: the same sources
+            hit = dict(hit, key=key)
+            store(cache_path, row_id(r), hit)
         cached = hit is not None and hit["key"] == key
         if a.dry_run:
             print(f"{row_id(r)}: {'cached' if cached else 'to run'}")
