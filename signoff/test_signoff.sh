@@ -11,6 +11,8 @@
 #    signoff.json reports;
 # 3. the same netlist with a chain of 40 buffers spliced in front of the critical path's end register
 #    misses the target (`--steps sta`: met false, WNS more than 1 ns worse);
+#    signoff/stages.py on it: the spliced register needs more pieces than the bundle's worst register, and on the bundle itself its
+#    worst endpoint is the WNS signoff.json reports (no register misses exactly when the target is met);
 # 4. the same netlist with one XOR cell of the datapath turned into an XNOR fails the gate-level
 #    simulation (`--steps gatesim`: exit 2, passed false, mismatches > 0).
 # Exit 77 (ctest: skipped) with a note when yosys, sta, iverilog or qflow-tech-osu018 are missing.
@@ -25,6 +27,7 @@ done
 [ -f /usr/share/qflow/tech/osu018/osu018_stdcells.lib ] ||
   { echo "test_signoff: SKIP: qflow-tech-osu018 not installed (scripts/setup.sh installs it)"; exit 77; }
 py=/usr/bin/python3
+here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work" && mkdir -p "$work" || fail "cannot create $work"
 b="$work/bundle"
 jget() { "$py" -c "import json,sys; d=json.load(open(sys.argv[1])); print(eval(sys.argv[2], {'d': d}))" "$1" "$2"; }
@@ -80,6 +83,17 @@ EOF
 cat "$work/slow.log"
 [ "$(jget "$s/signoff/signoff.json" "(not d['sta']['met']) and d['sta']['wns_ns'] < $(jget "$j" "d['sta']['wns_ns']") - 1.0")" = True ] ||
   fail "the slow path did not miss the target: $(jget "$s/signoff/signoff.json" "d['sta']['wns_ns']")"
+
+# 3b. what closing would take (signoff/stages.py): every endpoint's slack, grouped into RTL registers
+st=$("$py" "$here/stages.py" "$b") || fail "stages.py failed: $st"
+echo "$st" | head -3
+[ "$(jget "$b/signoff/stages.json" "abs(min([r['worst_slack_ns'] for r in d['missing']] or [$(jget "$j" "d['sta']['wns_ns']")]) - $(jget "$j" "d['sta']['wns_ns']")) < 0.002 and (d['missing_registers'] == 0) == $(jget "$j" "d['sta']['met']")")" = True ] ||
+  fail "stages.json disagrees with signoff.json's WNS $(jget "$j" "d['sta']['wns_ns']") at the target"
+"$py" "$here/stages.py" "$s" >/dev/null || fail "stages.py on the slow netlist failed"
+slowreg=$(jget "$s/signoff/stages.json" "d['missing'][0]['register']")
+[ "$(jget "$s/signoff/stages.json" "d['missing'][0]['pieces'] > max(1, $(jget "$b/signoff/stages.json" "d['max_pieces']")) and d['missing_endpoints'] > 0")" = True ] ||
+  fail "stages.py did not find the slow register needing more pieces than the bundle's worst: $(jget "$s/signoff/stages.json" "d['missing'][:1]")"
+echo "stages on the slow netlist: worst register $slowreg"
 
 # 4. a wrong cell in the netlist fails the gate-level simulation
 m="$work/mutant"; cp -r "$b" "$m"
