@@ -42,11 +42,12 @@ FIELDS = ["name", "kind", "width", "contract", "latency_cycles", "period_ns", "w
 
 # What decides a row's numbers (with the target and the vector count): the cache key. The shadecore binary enters
 # through the sources that write a bundle (the C model, the stimulus, the handoff command and its templates), not
-# through its own bytes: a rebuild for an unrelated change (the replay, coverage) keeps the cache. A binary older
+# through its own bytes: a rebuild for an unrelated change (the renderer, the replay, coverage) keeps the cache. A binary older
 # than one of those sources is refused (rebuild first), so the key never describes sources the binary lacks.
 DECIDING = ["rtl/*.v", "rtl/*.vh", "config/configs.json", "signoff/signoff.py", "signoff/fastmul.py", "handoff"]
-BINARY_SOURCES = ["cmodel", "stimulus", "common", "cli/handoff_*", "cli/cmd_handoff.cpp", "cli/unit_spec.hpp",
-                  "cli/output.*", "cli/text_template.*", "cli/templates"]
+BINARY_SOURCES = ["cmodel/include/shadecore/*.hpp", "cmodel/include/shadecore/units", "cmodel/include/shadecore/analysis",
+                  "cmodel/src/units", "cmodel/src/analysis", "stimulus", "common", "cli/handoff_*",
+                  "cli/cmd_handoff.cpp", "cli/unit_spec.hpp", "cli/output.*", "cli/text_template.*", "cli/templates"]
 
 
 class Failure(Exception):
@@ -151,6 +152,7 @@ def measure(a, r):
         elif r["table"]:
             lat = None
         s["latency_cycles"] = lat
+        s["stages"] = stages_of(d, r)
         if a.keep:  # the signed-off bundle, for a reader who wants its netlist and reports (a handoff bundle as is)
             dest = os.path.join(a.keep, row_id(r).replace(":", "_"))
             if os.path.lexists(dest):
@@ -158,6 +160,51 @@ def measure(a, r):
             os.makedirs(a.keep, exist_ok=True)
             shutil.copytree(d, dest, symlinks=True)
         return s
+
+
+STAGES = os.path.join(ROOT, "signoff", "stages.py")
+
+
+def stages_of(d, r):
+    """signoff/stages.py on a signed-off bundle: the registers that miss the target and the pieces each needs
+    (summary kept in the cache; None for a table unit, which has no bundle)."""
+    if r["table"] or not os.path.isfile(os.path.join(d, "signoff", "netlist.v")):
+        return None
+    p = subprocess.run(["/usr/bin/python3", STAGES, d, "--show", "0"], capture_output=True, text=True)
+    if p.returncode:
+        raise Failure(f"stages.py on {row_id(r)} failed: {(p.stderr or p.stdout).strip().splitlines()[-1:]}")
+    j = json.load(open(os.path.join(d, "signoff", "stages.json")))
+    keep = ["endpoints", "missing_endpoints", "registers", "missing_registers", "max_pieces", "extra_flops_estimate",
+            "pieces_histogram"]
+    out = {k: j[k] for k in keep}
+    out["worst_instances"] = [{k: i[k] for k in ("instance", "registers", "missing_bits", "worst_slack_ns", "max_pieces")}
+                              for i in j["by_instance"][:6]]
+    return out
+
+
+def add_stages(a, r, hit):
+    """A cached row without the stage analysis: the bundle again (handoff --signoff off), synthesis and STA only
+    (the same ABC script the handoff chooses), the WNS checked against the cached one, then stages.py."""
+    with tempfile.TemporaryDirectory(prefix="shadecore_stages.") as tmp:
+        d = os.path.join(tmp, "b")
+        cmd = [a.shadecore, "handoff", "--out", d, "--no-ice40", "--synth", "skip", "--signoff", "off",
+               "--seed", "1", "--count", str(count_of(a, r))]
+        cmd += (["--variant", r["variant"]["name"], "--config", r["config"]["name"]] +
+                (["--mreg", str(r["mreg"])] if r.get("mreg") else [])) if r["kind"] == "unit" else \
+            ["--core", "lighting", "--features", r["name"]]
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=a.timeout)
+        if p.returncode:
+            raise Failure(f"{' '.join(cmd)} failed: {(p.stderr or p.stdout).strip().splitlines()[-1:]}")
+        p = subprocess.run(["/usr/bin/python3", SIGNOFF, d, "--target", str(a.target), "--timeout", str(a.timeout),
+                            "--steps", "synth,sta", "--abc", "lean" if r["kind"] == "lighting" else "full"],
+                           capture_output=True, text=True)
+        if p.returncode:
+            raise Failure(f"signoff of {row_id(r)} failed: {(p.stderr or p.stdout).strip().splitlines()[-1:]}")
+        again = json.load(open(os.path.join(d, "signoff", "signoff.json")))["sta"]["wns_ns"]
+        if abs(again - hit["signoff"]["sta"]["wns_ns"]) > 0.0005:
+            raise Failure(f"{row_id(r)}: synthesis again gives WNS {again}, the cache has "
+                          f"{hit['signoff']['sta']['wns_ns']}: the flow is not reproducible, rerun the row")
+        return stages_of(d, r)
 
 
 def to_row(r, s):
@@ -189,6 +236,16 @@ def to_row(r, s):
                          f"{cp['start_reg']} -> {cp['end_reg']} ({cp['levels']} cells); closing it takes that stage "
                          f"cut into {math.ceil(st['fmax_period_ns'] / s['target_ns'] - 1e-9)} (Fmax period "
                          f"{st['fmax_period_ns']} ns / {s['target_ns']} ns), and every other stage that misses likewise")
+        sg = s.get("stages")
+        if sg:
+            hist = ", ".join(f"{n} into {k}" for k, n in sorted(sg["pieces_histogram"].items(), key=lambda x: int(x[0])))
+            worst = "; ".join(f"{i['instance']} {i['registers']} ({i['worst_slack_ns']:+.2f} ns, {i['max_pieces']} pieces)"
+                              for i in sg["worst_instances"][:3])
+            out["reason"] += (f". signoff/stages.py: {sg['missing_registers']} of {sg['registers']} registers "
+                              f"({sg['missing_endpoints']:,} of {sg['endpoints']:,} endpoints) miss; their cones cut "
+                              f"{hist} at least, about {sg['extra_flops_estimate']:,} flip-flops more (to "
+                              f"{out['flops'] + sg['extra_flops_estimate']:,}); the worst instances: {worst}")
+            out["stages"] = sg
         if r["kind"] == "lighting":
             out["reason"] += ("; the lighting core has no pipelining parameter yet (MREG, a register inside each "
                               "product, exists in cs16 and schlick_div only)")
@@ -311,6 +368,9 @@ def main():
     ap.add_argument("--cache", default=None, help="cache file (default OUT/timing.cache.json)")
     ap.add_argument("--keep", default=None,
                     help="copy each measured row's signed-off bundle to KEEP/<kind>_<name>_<width> (not cached rows)")
+    ap.add_argument("--add-stages", action="store_true",
+                    help="for cached rows without it, add signoff/stages.py's analysis (synthesis and STA again, "
+                         "checked to give the cached WNS); measured rows always get it")
     ap.add_argument("--dry-run", action="store_true", help="list the rows and whether each is cached")
     ap.add_argument("--cached-only", action="store_true",
                     help="write the report from the cached rows only; list the others as not measured")
@@ -351,6 +411,10 @@ def main():
             s = measure(a, r)
             hit = {"key": key, "signoff": s}
             cache["entries"][row_id(r)] = hit
+            store(cache_path, row_id(r), hit)
+        if a.add_stages and "stages" not in hit["signoff"] and not r["table"] and not hit["signoff"]["sta"]["met"]:
+            print(f"timing_report: [{i + 1}/{len(rows)}] {row_id(r)}: adding the stage analysis ...", flush=True)
+            hit = dict(hit, signoff=dict(hit["signoff"], stages=add_stages(a, r, hit)))
             store(cache_path, row_id(r), hit)
         s = hit["signoff"]
         row = to_row(r, s)
