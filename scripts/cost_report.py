@@ -646,6 +646,21 @@ def check_out_dir(out):
         raise Failure(f"cannot write to {d}")
 
 
+def refresh_sections(md, rows):
+    """tradeoffs.md with its standard-cell and lighting sections rewritten from docs/timing.json and
+    docs/lighting_cost.json as they are now (inserted before the Pareto plot where an older report lacks them);
+    the rest of the report, measured by this script, is kept as it was."""
+    head, sep, tail = md.partition("## Pareto plot")
+    if not sep:
+        raise Failure("tradeoffs.md has no '## Pareto plot' section: rerun the report")
+    for title in ("## In a standard-cell library", "## Lighting core: cost against throughput"):
+        i = head.find(title)
+        if i >= 0:
+            j = head.find("\n## ", i + 1)
+            head = head[:i] + (head[j + 1:] if j >= 0 else "")
+    return head + "\n".join(standard_cell_rows(rows) + lighting_rows()) + sep + tail
+
+
 def lighting_rows():
     """The lighting core's rows (docs/lighting_cost.json, measured by scripts/lighting_cost.py): the same table
     as docs/lighting.md §8.1, from the same function."""
@@ -678,7 +693,7 @@ def standard_cell_rows(rows):
         if t["kind"] != "unit":
             continue
         cfg = t["width"].split(" ")[0]
-        e = err.get((t["name"], cfg))
+        e = err.get((t["name"].split("+")[0], cfg))  # +mreg: the same outputs as the unit without it
         L.append(f"| {t['name']} | {cfg} | {t['contract']} | {'—' if e is None else f'{e:.3g}'} | {t['period_ns']} | "
                  f"{'yes' if t['met'] else 'no'} | {t.get('latency_ns', '—')} | {t['results_per_s']:,} | "
                  f"{t['area_um2']:,} | {'—' if t.get('energy_pj_per_result') is None else t['energy_pj_per_result']} |")
@@ -931,7 +946,8 @@ def main():
     ap.add_argument("--dry-run", action="store_true", help="list the jobs and which are cached; run nothing")
     ap.add_argument("--cached-only", action="store_true",
                     help="write the report from the cache alone (what is missing shows as not run)")
-    ap.add_argument("--replot", action="store_true", help="only redraw OUT/tradeoffs.png from OUT/tradeoffs.json")
+    ap.add_argument("--replot", action="store_true", help="only redraw OUT/tradeoffs.png from OUT/tradeoffs.json and refresh tradeoffs.md's sections "
+                         "read from docs/timing.json and docs/lighting_cost.json")
     a = ap.parse_args()
     log = lambda s: print(f"{PROG}: {s}", file=sys.stderr, flush=True)  # noqa: E731
     figures.require("matplotlib")
@@ -953,6 +969,12 @@ def main():
         else:
             footer = figures.footer(m.group(1) if m else "scripts/cost_report.py")
         plot(rows, tmp, footer)
+        if md:  # the sections read from other reports (docs/timing.json, docs/lighting_cost.json) are refreshed too
+            refreshed = refresh_sections(md, rows)
+            mtmp = os.path.join(a.out, f".tradeoffs.md.tmp.{os.getpid()}")
+            with open(mtmp, "w") as f:
+                f.write(refreshed)
+            os.replace(mtmp, os.path.join(a.out, "tradeoffs.md"))
         os.replace(tmp, os.path.join(a.out, "tradeoffs.png"))
         return 0
     cfgs = json.load(open(os.path.join(ROOT, "config", "configs.json")))

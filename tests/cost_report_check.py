@@ -100,6 +100,20 @@ class Pure(unittest.TestCase):
         self.assertEqual(cr.fmt(None), "—")
         self.assertEqual(cr.fmt(True), "yes")
 
+    def test_refresh_sections_replaces_the_read_sections_once(self):
+        md = ("# Cost report\n\n## FPGA\n\nkept\n\n## In a standard-cell library: clock, latency, energy (old)\n\n"
+              "stale row\n\n## Pareto plot\n\nplot\n")
+        rows = [{"variant": "cs16", "config": "default", "total_abs_max": 0.017}]
+        out = cr.refresh_sections(md, rows)
+        self.assertIn("## FPGA\n\nkept", out)
+        self.assertNotIn("stale row", out)
+        self.assertLessEqual(out.count("## In a standard-cell library"), 1)
+        self.assertEqual(out.count("## Pareto plot"), 1)
+        self.assertTrue(out.endswith("## Pareto plot\n\nplot\n"))
+        self.assertEqual(cr.refresh_sections(out, rows), out)  # idempotent
+        with self.assertRaises(cr.Failure):
+            cr.refresh_sections("# no plot section\n", rows)
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=1)
