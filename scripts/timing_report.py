@@ -10,9 +10,10 @@ Per row (a unit of config/configs.json "variants" at a width, or a lighting feat
      (gate-level, Icarus) and takes the energy per result from the netlist's own activity.
 The table units have no handoff bundle (the plain-Verilog bench cannot load the table RAM): their rows are
 synthesised and timed from the RTL (sc_specular with VARIANT set) without a gate-level run, and say so.
-Rows are cached in OUT/timing.cache.json by the SHA-256 of what decides them (the Verilog of rtl/, config/configs.json,
-signoff/signoff.py and fastmul.py, handoff/, the shadecore binary, the target, the vector count): a rerun
-computes only what changed.
+Rows are cached in OUT/timing.cache.json by the SHA-256 of what decides them (the row's own RTL files — a unit's,
+or all of rtl/ for a lighting set —, config/configs.json, signoff/signoff.py and fastmul.py, handoff/, the sources
+that write a bundle, the target, the vector count): a rerun computes only what changed. Each measured row also
+gets signoff/stages.py's analysis (what closing the target would take); --add-stages adds it to cached rows.
 Long (hours from an empty cache on 2 cores; a lighting set with 8 lights takes the longest); run by hand.
 """
 import argparse
@@ -44,7 +45,9 @@ FIELDS = ["name", "kind", "width", "contract", "latency_cycles", "period_ns", "w
 # through the sources that write a bundle (the C model, the stimulus, the handoff command and its templates), not
 # through its own bytes: a rebuild for an unrelated change (the renderer, the replay, coverage) keeps the cache. A binary older
 # than one of those sources is refused (rebuild first), so the key never describes sources the binary lacks.
-DECIDING = ["rtl/*.v", "rtl/*.vh", "config/configs.json", "signoff/signoff.py", "signoff/fastmul.py", "handoff"]
+# The RTL enters per row (rtl_of): a unit's row takes its own files, so work on the lighting core keeps the units' rows.
+DECIDING = ["config/configs.json", "signoff/signoff.py", "signoff/fastmul.py", "handoff"]
+LEGACY_DECIDING = ["rtl/*.v", "rtl/*.vh"] + DECIDING  # the key until 2026-12-06 (rows upgraded when it still matches)
 BINARY_SOURCES = ["cmodel/include/shadecore/*.hpp", "cmodel/include/shadecore/units", "cmodel/include/shadecore/analysis",
                   "cmodel/src/units", "cmodel/src/analysis", "stimulus", "common", "cli/handoff_*",
                   "cli/cmd_handoff.cpp", "cli/unit_spec.hpp", "cli/output.*", "cli/text_template.*", "cli/templates"]
@@ -67,6 +70,16 @@ def sha_tree(paths):
         h.update(os.path.relpath(p, ROOT).encode())
         h.update(hashlib.sha256(open(p, "rb").read()).digest())
     return h.hexdigest()
+
+
+def rtl_of(cfg, r):
+    """The RTL files a row's bundle is made of (config/configs.json "rtl", the one list): a unit's sc_specular
+    files, includes, energy files and its variant's files; a lighting set, every file of rtl/."""
+    if r["kind"] != "unit":
+        return ["rtl/*.v", "rtl/*.vh"]
+    top = cfg["rtl"]["sc_specular"]
+    names = top["files"] + top["includes"] + top.get("energy", []) + r["variant"]["rtl"]
+    return [os.path.join("rtl", n) for n in sorted(set(names))]
 
 
 def rows_of(cfg, only, configs):
@@ -387,16 +400,17 @@ def main():
         raise Failure(f"{a.shadecore} is older than {os.path.relpath(newer[0], ROOT)} "
                       f"(and {len(newer) - 1} more): rebuild first (scripts/build.sh)")
     common = sha_tree(DECIDING)
+    legacy = sha_tree(LEGACY_DECIDING)
     srch = sha_tree(BINARY_SOURCES)
-    binh = hashlib.sha256(open(a.shadecore, "rb").read()).hexdigest()  # the key before 2026-12-06 (upgraded below)
     out_rows, meta, missing = [], None, []
     for i, r in enumerate(rows):
-        key = hashlib.sha256(f"{row_id(r)}|{common}|src:{srch}|{a.target}|{count_of(a, r)}".encode()).hexdigest()[:24]
-        old = hashlib.sha256(f"{row_id(r)}|{common}|{binh}|{a.target}|{count_of(a, r)}".encode()).hexdigest()[:24]
+        tail = f"src:{srch}|{a.target}|{count_of(a, r)}"
+        key = hashlib.sha256(f"{row_id(r)}|{common}|rtl:{sha_tree(rtl_of(cfg, r))}|{tail}".encode()).hexdigest()[:24]
+        old = hashlib.sha256(f"{row_id(r)}|{legacy}|{tail}".encode()).hexdigest()[:24]
         if os.path.exists(cache_path):  # another run may have added rows since this one started
             cache = json.load(open(cache_path))
         hit = cache["entries"].get(row_id(r))
-        if hit is not None and hit["key"] == old and not newer:  # made by this very binary: the same sources
+        if hit is not None and hit["key"] == old:  # the older key over the same files: the same row
             hit = dict(hit, key=key)
             store(cache_path, row_id(r), hit)
         cached = hit is not None and hit["key"] == key
