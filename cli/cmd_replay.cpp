@@ -210,13 +210,15 @@ void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool jso
   }
   std::vector<std::vector<Colour>> cm;
   std::vector<std::vector<render::RefColour>> ex;
-  uint64_t writes = 0, vertex_frags = 0, face_frags = 0, pixel_frags = 0;
+  uint64_t writes = 0, vertex_frags = 0, face_frags = 0, pixel_frags = 0, state_changes = 0, state_writes = 0;
   json cores = json::array();
   for (const auto& g : fr.groups) {
     cm.push_back(render::run_cmodel(g));
     ex.push_back(render::run_reference(g, LightCore::SpecRef::Exact));
     writes += g.writes, vertex_frags += g.vertices, face_frags += g.faces, pixel_frags += g.pixels;
+    state_changes += g.state_changes, state_writes += g.state_writes;
     cores.push_back({{"key", g.fs.key()}, {"summary", g.fs.summary()}, {"register_writes", g.writes},
+                     {"lighting_state_changes", g.state_changes}, {"state_change_register_writes", g.state_writes},
                      {"fragments", g.dests.size()}});
   }
   const render::Image img = render::resolve(fr, cm);
@@ -243,6 +245,10 @@ void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool jso
     fmt::print("note: {} triangle vertices outside the core's eye-space range [-128, 128) (worst |coordinate| {:.6g}): "
                "the frame's eye space scaled by {} (clip coordinates unchanged, attenuation scaled to match)\n",
                h.eye_out_of_range, h.eye_worst, h.eye_scale);
+  const size_t n_states = h.scene.lighting_states().size();
+  if (n_states > 1)
+    fmt::print("lighting: {} states in drawing order; the core reprogrammed {} times between batches ({} register writes)\n",
+               n_states, state_changes, state_writes);
   for (const auto& g : fr.groups)
     fmt::print("core {}: {} register writes, {} vertex fragments  [key {}]\n", g.fs.summary(), g.writes, g.vertices, g.fs.key());
   fmt::print("C model vs exact cos^n: max {:.2f} LSB over {} px\n", err_exact.max_lsb, err_exact.pixels);
@@ -425,6 +431,9 @@ void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool jso
     j["vertices_lit"] = vertex_frags;
     j["faces_lit"] = face_frags;
     j["register_writes"] = writes;
+    j["lighting_states"] = n_states;                // runs of draws with one lighting state, in drawing order
+    j["lighting_state_changes"] = state_changes;    // reprogrammings of the core between batches (all cores)
+    j["state_change_register_writes"] = state_writes;  // their writes (of register_writes): changed registers only
     j["core_cycles"] = a.rtl ? rtl_json["cycles"] : json(nullptr);
     json keys = json::array();
     for (const auto& g : fr.groups) keys.push_back(g.fs.key());

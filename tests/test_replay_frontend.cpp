@@ -536,6 +536,111 @@ TEST(ReplayFrontend, EyeSpaceOutOfRangeIsScaledAndReported) {
   EXPECT_EQ(h.eye_scale, 1);
 }
 
+// The lights changing between draws (the split at the driver's command stream): the hand-over carries the frame's
+// lighting states in drawing order and each object's; the back end derives one core whose light slots take every
+// state's kinds, programs the first state in full and each later one by the writes of the registers whose value
+// changes (counted apart), and lights each batch with the core programmed for it.
+TEST(ReplayFrontend, LightsChangingBetweenDrawsAreProgrammedBetweenBatches) {
+  using shadecore::render::CoreCmd;
+  Driver d;
+  d.en(DEPTH_TEST);
+  d.en(LIGHTING);
+  d("glViewport", {I(0), I(0), I(32), I(32)});
+  constexpr int64_t LIGHT1 = 0x4001;
+  d("glLightfv", {I(LIGHT0), I(DIFFUSE), A({1, 0, 0, 1})});
+  d("glLightfv", {I(LIGHT1), I(DIFFUSE), A({0, 1, 0, 1})});
+  d("glLightfv", {I(LIGHT1), I(POSITION), A({0, 0, 1, 0})});
+  d("glLightfv", {I(LIGHT1), I(0x1202), A({1, 1, 1, 1})});  // GL_SPECULAR as light 0's default
+  d("glNormal3f", {F(0), F(0), F(1)});
+  auto tri = [&d](double x0) {
+    d("glBegin", {I(TRIANGLES)});
+    d.v3(x0, -0.8, -0.5), d.v3(x0 + 0.5, -0.8, -0.5), d.v3(x0, 0.8, -0.5);
+    d("glEnd");
+  };
+  d.en(LIGHT0);
+  tri(-0.95);  // lit by light 0 alone (red)
+  d("glDisable", {I(LIGHT0)});
+  d.en(LIGHT1);
+  tri(-0.3);  // lit by light 1 alone (green)
+  ASSERT_EQ(d.gl.frame_lightings().size(), 2u);
+  auto h = shadecore::glfront::hand_over(d.gl, "t");
+  ASSERT_EQ(h.scene.lighting_sets.size(), 2u);
+  ASSERT_EQ(h.scene.objects.size(), 2u);
+  EXPECT_EQ(h.scene.objects[0].lighting, 0);
+  EXPECT_EQ(h.scene.objects[1].lighting, 1);
+  ASSERT_EQ(h.scene.lighting_sets[0].lights.size(), 1u);
+  ASSERT_EQ(h.scene.lighting_sets[1].lights.size(), 1u);
+  EXPECT_EQ(h.scene.lighting_sets[0].lights[0].diffuse, (shadecore::scene::Vec3{1, 0, 0}));
+  EXPECT_EQ(h.scene.lighting_sets[1].lights[0].diffuse, (shadecore::scene::Vec3{0, 1, 0}));
+
+  auto check = [](const shadecore::render::Frame& fr, const std::vector<std::array<double, 3>>& want_per_state,
+                  const shadecore::scene::Scene& sc) {
+    ASSERT_EQ(fr.groups.size(), 1u);
+    const auto& g = fr.groups[0];
+    const auto cols = shadecore::render::run_cmodel(g);
+    ASSERT_EQ(cols.size(), g.dests.size());
+    std::vector<int> seen(want_per_state.size(), 0);
+    for (size_t i = 0; i < cols.size(); ++i) {
+      ASSERT_EQ(g.dests[i].kind, shadecore::render::DestKind::Vertex);
+      const int st = sc.objects[static_cast<size_t>(fr.vertex_object[g.dests[i].index])].lighting;
+      ++seen[static_cast<size_t>(st)];
+      for (int c = 0; c < 3; ++c)  // each batch lit with its own state (2^-16 codes; the core's rounding)
+        EXPECT_NEAR(cols[i].c[c], want_per_state[static_cast<size_t>(st)][static_cast<size_t>(c)] * 65536, 8)
+            << "fragment " << i << " state " << st << " channel " << c;
+    }
+    for (int n : seen) EXPECT_EQ(n, 3);  // three vertices per state
+  };
+  auto fr = shadecore::render::prepare(h.scene, h.meshes, h.settings);
+  // ambient 0.2 · 0.2 = 0.04; diffuse 0.8 · the light's colour (N = L = +z)
+  check(fr, {{0.84, 0.04, 0.04}, {0.04, 0.84, 0.04}}, h.scene);
+  {
+    const auto& g = fr.groups[0];
+    EXPECT_EQ(g.fs.num_lights(), 1);  // one slot, reprogrammed between the batches
+    EXPECT_EQ(g.state_changes, 1u);
+    EXPECT_EQ(g.state_writes, 2u);  // the slot's diffuse red and green: the only registers whose value changes
+    // in the stream: the first batch's three fragments, then exactly those two writes, then the second batch's
+    std::vector<size_t> frag_at;
+    for (size_t i = 0; i < g.cmds.size(); ++i)
+      if (!g.cmds[i].is_write) frag_at.push_back(i);
+    ASSERT_EQ(frag_at.size(), 6u);
+    EXPECT_EQ(frag_at[3] - frag_at[2] - 1, 2u);
+    for (size_t i = frag_at[2] + 1; i < frag_at[3]; ++i) {
+      const uint32_t a = g.cmds[i].w.addr;
+      EXPECT_TRUE(a == shadecore::kReg_light_diffuse || a == shadecore::kReg_light_diffuse + 1) << a;
+    }
+    EXPECT_EQ(frag_at[2] - frag_at[1], 1u);
+    EXPECT_EQ(frag_at[5] - frag_at[4], 1u);
+  }
+  // a third draw under light 1 made a point light: three states, the slot takes both kinds (the union)
+  d("glLightfv", {I(LIGHT1), I(POSITION), A({0, 0, 2, 1})});
+  tri(0.35);
+  h = shadecore::glfront::hand_over(d.gl, "t");
+  ASSERT_EQ(h.scene.lighting_sets.size(), 3u);
+  fr = shadecore::render::prepare(h.scene, h.meshes, h.settings);
+  const auto& g = fr.groups[0];
+  EXPECT_EQ(g.fs.num_lights(), 1);
+  EXPECT_TRUE(g.fs.slot_can(0, shadecore::LightKind::Directional));
+  EXPECT_TRUE(g.fs.slot_can(0, shadecore::LightKind::Point));
+  EXPECT_EQ(g.state_changes, 2u);
+  const auto cols = shadecore::render::run_cmodel(g);
+  for (size_t i = 0; i < cols.size(); ++i)
+    if (h.scene.objects[static_cast<size_t>(fr.vertex_object[g.dests[i].index])].lighting == 2) {
+      EXPECT_NEAR(cols[i].c[0], 0.04 * 65536, 8);  // green only: N·L < 1 towards (0, 0, 2)
+      EXPECT_GT(cols[i].c[1], 0.5 * 65536);
+      EXPECT_LT(cols[i].c[1], 0.84 * 65536);
+    }
+  // a frame with one lighting state hands over none (the scene's own fields), as before
+  Driver e;
+  e.en(DEPTH_TEST);
+  e.en(LIGHTING);
+  e.en(LIGHT0);
+  e("glViewport", {I(0), I(0), I(32), I(32)});
+  e("glBegin", {I(TRIANGLES)});
+  e.v3(0, 0, -0.5), e.v3(1, 0, -0.5), e.v3(0, 1, -0.5);
+  e("glEnd");
+  EXPECT_TRUE(shadecore::glfront::hand_over(e.gl, "t").scene.lighting_sets.empty());
+}
+
 using shadecore::test::tiny_stream;
 
 std::string tiny_capture(int frames, bool core_profile = false) {

@@ -362,12 +362,19 @@ struct Gl::Impl {
     }
     if (on(GL_LIGHTING) && on(GL_COLOR_MATERIAL) && cm_face != GL_FRONT_AND_BACK && g.light_.two_side)
       refuse("glColorMaterial of one face under two-sided lighting (the core's colour material is GL_FRONT_AND_BACK)");
-    // the frame's lighting state and projection: one per frame (the core's registers and the back end's camera)
+    // the frame's lighting states: a new one whenever the lights or the light model differ from the last lit draw's
+    // (the back end reprograms the core's registers between the batches); two-sided lighting decides how the back end
+    // resolves back faces for the whole frame: refused if it changes. The projection: one per frame (the camera).
     if (on(GL_LIGHTING)) {
       LightingState s = g.light_;
       s.lighting = true;
       if (!g.frame_light_) g.frame_light_ = s;
-      else if (*g.frame_light_ != s) refuse("the lights or the light model change between the frame's lit draws");
+      if (g.frame_lights_.empty() || g.frame_lights_.back() != s) {
+        if (!g.frame_lights_.empty() && g.frame_lights_.front().two_side != s.two_side)
+          refuse("GL_LIGHT_MODEL_TWO_SIDE changes between the frame's lit draws (the back end resolves back faces once per "
+                 "frame)");
+        g.frame_lights_.push_back(s);
+      }
     }
     if (!g.frame_proj_) g.frame_proj_ = g.proj_.back();
     else if (*g.frame_proj_ != g.proj_.back()) refuse("the projection matrix changes between the frame's draws");
@@ -405,6 +412,7 @@ struct Gl::Impl {
       for (const auto& [cap, nm] : excluding_caps())
         if (on(cap)) t.excluded.push_back(nm);
       t.primitive = primitive_no;
+      t.lighting = g.frame_lights_.empty() ? 0u : static_cast<uint32_t>(g.frame_lights_.size() - 1);
       g.tris_.push_back(std::move(t));
       ++g.stats_.triangles;
     }
@@ -993,6 +1001,7 @@ void Gl::clear_frame() {
   refusals_.clear();
   cleared_ = false;
   frame_light_.reset();
+  frame_lights_.clear();
   frame_proj_.reset();
   impl_->primitive_no = 0;
 }
@@ -1041,23 +1050,38 @@ Handover hand_over(const Gl& gl, const std::string& name) {
       }
     return rgb(c);
   };
-  sc.global_ambient = lit_rgb(L.model_ambient, "GL_LIGHT_MODEL_AMBIENT");
-  sc.local_viewer = L.local_viewer;
-  sc.two_side = L.two_side;
-  sc.separate_specular = L.separate_specular;
-  for (const auto& l : L.lights) {
-    if (!l.enabled) continue;
-    scene::Light s;
-    s.position = l.position;
-    s.ambient = lit_rgb(l.ambient, "a light colour"), s.diffuse = lit_rgb(l.diffuse, "a light colour"),
-    s.specular = lit_rgb(l.specular, "a light colour");
-    s.kc = l.kc, s.kl = l.kl, s.kq = l.kq;
-    s.spot_direction = l.spot_direction;
-    s.spot_cutoff = l.spot_cutoff;
-    s.spot_exponent = static_cast<int>(std::lround(l.spot_exponent));
-    if (s.spot_exponent != l.spot_exponent) ++h.stats.notes["GL_SPOT_EXPONENT rounded to an integer"];
-    sc.lights.push_back(s);
+  // one lighting state (the global and light registers) as the back end takes it
+  auto lighting_set = [&](const LightingState& Ls) {
+    scene::LightingSet set;
+    set.global_ambient = lit_rgb(Ls.model_ambient, "GL_LIGHT_MODEL_AMBIENT");
+    set.local_viewer = Ls.local_viewer;
+    set.separate_specular = Ls.separate_specular;
+    for (const auto& l : Ls.lights) {
+      if (!l.enabled) continue;
+      scene::Light s;
+      s.position = l.position;
+      s.ambient = lit_rgb(l.ambient, "a light colour"), s.diffuse = lit_rgb(l.diffuse, "a light colour"),
+      s.specular = lit_rgb(l.specular, "a light colour");
+      s.kc = l.kc, s.kl = l.kl, s.kq = l.kq;
+      s.spot_direction = l.spot_direction;
+      s.spot_cutoff = l.spot_cutoff;
+      s.spot_exponent = static_cast<int>(std::lround(l.spot_exponent));
+      if (s.spot_exponent != l.spot_exponent) ++h.stats.notes["GL_SPOT_EXPONENT rounded to an integer"];
+      set.lights.push_back(s);
+    }
+    return set;
+  };
+  {
+    const scene::LightingSet first = lighting_set(L);
+    sc.global_ambient = first.global_ambient;
+    sc.local_viewer = first.local_viewer;
+    sc.separate_specular = first.separate_specular;
+    sc.lights = first.lights;
   }
+  sc.two_side = L.two_side;  // the same in every state (else refused)
+  // several lighting states in the frame: the stream's, in drawing order (objects[i].lighting picks one)
+  if (gl.frame_lightings().size() > 1)
+    for (const auto& Ls : gl.frame_lightings()) sc.lighting_sets.push_back(lighting_set(Ls));
   // the projection: the frame's; the rasteriser's near plane from it (perspective: n = m23 / (m22 − 1))
   const Mat4 P = gl.frame_projection() ? *gl.frame_projection() : gl.projection();
   scene::Camera cam;
@@ -1070,6 +1094,7 @@ Handover hand_over(const Gl& gl, const std::string& name) {
   h.settings.view = std::array<double, 16>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
   h.settings.projection = P;
   h.settings.unsnapped_depth = true;  // the depth plane as GL (and llvmpipe) computes it: docs/replay.md
+  h.settings.changed_registers_only = true;  // a driver writes a register when its value changes
 
   // materials by value; objects = runs of triangles with one (material, shading, colour material, lit, excluded)
   std::map<std::tuple<uint32_t, bool, int>, int> material_index;  // (GL material pair, lit, colour material) → scene
@@ -1104,7 +1129,7 @@ Handover hand_over(const Gl& gl, const std::string& name) {
     return idx;
   };
   int cur = -1;
-  std::tuple<int, bool, int, std::vector<std::string>> cur_key;
+  std::tuple<int, bool, int, std::vector<std::string>, int> cur_key;
   for (const auto& t : gl.triangles()) {
     const bool lit = t.lit;
     std::optional<ColourMaterial> cm = lit ? t.colour_material : std::optional<ColourMaterial>(ColourMaterial::Emission);
@@ -1172,7 +1197,8 @@ Handover hand_over(const Gl& gl, const std::string& name) {
       }
     }
     const int mi = scene_material(mid, lit, cm);
-    const auto key = std::make_tuple(mi, t.flat, cm ? static_cast<int>(*cm) : -1, t.excluded);
+    const int lighting = sc.lighting_sets.empty() ? 0 : static_cast<int>(t.lighting);
+    const auto key = std::make_tuple(mi, t.flat, cm ? static_cast<int>(*cm) : -1, t.excluded, lighting);
     if (cur < 0 || key != cur_key) {
       scene::Object o;
       o.name = "draw" + std::to_string(sc.objects.size());
@@ -1180,6 +1206,7 @@ Handover hand_over(const Gl& gl, const std::string& name) {
       o.material = mi;
       o.shading = t.flat ? scene::Shading::Flat : scene::Shading::Gouraud;
       o.colour_material = cm;
+      o.lighting = lighting;
       o.where = "primitive " + std::to_string(t.primitive);
       o.scene_file = name;
       sc.objects.push_back(o);
@@ -1229,9 +1256,16 @@ Handover hand_over(const Gl& gl, const std::string& name) {
   for (const auto& m : h.meshes)
     for (const auto& p : m.pos)
       if (out_of_range(p[0], p[1], p[2])) ++h.eye_out_of_range;
-  for (const auto& l : sc.lights)
+  // every light of every lighting state (sc.lights is the first state's)
+  auto each_light = [&sc](auto fn) {
+    for (auto& l : sc.lights) fn(l);
+    for (auto& set : sc.lighting_sets)
+      for (auto& l : set.lights) fn(l);
+  };
+  each_light([&](const scene::Light& l) {
     if (l.position[3] != 0 && out_of_range(l.position[0] / l.position[3], l.position[1] / l.position[3], l.position[2] / l.position[3]))
       lights_out = true;
+  });
   if (h.eye_out_of_range > 0 || lights_out) {
     if (!std::isfinite(worst)) throw ReplayError(name + ": an eye-space position that is not finite");
     int k = 0;
@@ -1240,11 +1274,12 @@ Handover hand_over(const Gl& gl, const std::string& name) {
     for (auto& m : h.meshes)
       for (auto& p : m.pos)
         for (double& c : p) c *= f;
-    for (auto& l : sc.lights)
+    each_light([f](scene::Light& l) {
       if (l.position[3] != 0) {
         for (int i = 0; i < 3; ++i) l.position[i] *= f;
         l.kl /= f, l.kq /= f * f;
       }
+    });
     Mat4 Ps = *h.settings.projection;
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 3; ++c) Ps[static_cast<size_t>(4 * r + c)] /= f;

@@ -133,6 +133,15 @@ bool pos_in_range(const Vec3& p) {
   return true;
 }
 
+// The kind of slot a light needs: directional (w = 0), spot (a cone), point (no attenuation at the core's width) or
+// point_att.
+LightKind light_kind(int F, const scene::Light& L) {
+  if (L.position[3] == 0.0) return LightKind::Directional;
+  if (L.is_spot()) return LightKind::Spot;
+  if (attc_code(F, L.kc) == (1u << F) && attc_code(F, L.kl) == 0 && attc_code(F, L.kq) == 0) return LightKind::Point;
+  return LightKind::PointAtt;
+}
+
 }  // namespace
 
 std::array<double, 16> view_matrix(const Camera& c) { return look_at(c); }
@@ -197,13 +206,22 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
                            const std::vector<ObjectColours>& object_colours) {
   const int F = config_named(sc.config).format.frac;
   const size_t nm = sc.materials.size();
+  // The lighting states (one for a scene file) and which materials each lights (through the objects drawn in it).
+  const std::vector<scene::LightingSet> sets = sc.lighting_states();
+  const size_t ns = sets.size();
+  auto set_of = [ns](const scene::Object& O) { return static_cast<size_t>(std::clamp<int>(O.lighting, 0, static_cast<int>(ns) - 1)); };
   std::vector<bool> used(nm, false);
-  for (int o : objects_used) used[sc.objects[o].material] = true;
+  std::vector<std::vector<bool>> in_set(ns, std::vector<bool>(nm, false));
+  for (int o : objects_used) {
+    used[sc.objects[o].material] = true;
+    in_set[set_of(sc.objects[o])][static_cast<size_t>(sc.objects[o].material)] = true;
+  }
 
   auto nz = [F](const Vec3& c, int ch) { return colour_code(F, c[ch]) != 0; };
   auto light_spec = [&](int ch) {
-    for (const auto& l : sc.lights)
-      if (nz(l.specular, ch)) return true;
+    for (const auto& st : sets)
+      for (const auto& l : st.lights)
+        if (nz(l.specular, ch)) return true;
     return false;
   };
   auto is_grey = [F](const Vec3& c) {
@@ -277,48 +295,72 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
     fs.config = sc.config;
     const bool has_unit = g.unit_label != "none";
     const int m0 = g.materials.front();
-    auto any_mat = [&](auto pred) {
+    // over the group's materials drawn in lighting state st
+    auto any_mat_in = [&](size_t st, auto pred) {
       for (int m : g.materials)
-        for (const auto& S : sides[m])
-          for (int ch = 0; ch < 3; ++ch)
-            if (pred(S, ch)) return true;
+        if (in_set[st][static_cast<size_t>(m)])
+          for (const auto& S : sides[m])
+            for (int ch = 0; ch < 3; ++ch)
+              if (pred(S, ch)) return true;
       return false;
     };
-    // Which lights contribute to any material of this core.
+    auto set_used = [&](size_t st) {
+      for (int m : g.materials)
+        if (in_set[st][static_cast<size_t>(m)]) return true;
+      return false;
+    };
+    // Which lights contribute to any material of this core, per lighting state: the k-th contributing light of each
+    // state goes to slot k, whose kinds are the union over the states (a driver reprograms the slot between them).
     fs.slots.clear();
     g.light_slot.clear();
-    for (size_t j = 0; j < sc.lights.size(); ++j) {
-      const auto& L = sc.lights[j];
-      const bool contributes = any_mat([&](const scene::Material& M, int ch) {
-        return (nz(M.ambient, ch) && nz(L.ambient, ch)) || (nz(M.diffuse, ch) && nz(L.diffuse, ch)) ||
-               (has_unit && nz(M.specular, ch) && nz(L.specular, ch));
-      });
-      if (!contributes) continue;
-      LightKind k = LightKind::PointAtt;
-      if (L.position[3] == 0.0) k = LightKind::Directional;
-      else if (L.is_spot()) k = LightKind::Spot;
-      else if (attc_code(F, L.kc) == (1u << F) && attc_code(F, L.kl) == 0 && attc_code(F, L.kq) == 0)
-        k = LightKind::Point;
-      fs.slots.push_back(kind_bit(k));
-      g.light_slot.push_back(static_cast<int>(j));
+    g.set_light_slot.assign(ns, {});
+    bool first_set = true;
+    for (size_t st = 0; st < ns; ++st) {
+      if (!set_used(st)) continue;
+      std::vector<int>& ls = g.set_light_slot[st];
+      for (size_t j = 0; j < sets[st].lights.size(); ++j) {
+        const auto& L = sets[st].lights[j];
+        const bool contributes = any_mat_in(st, [&](const scene::Material& M, int ch) {
+          return (nz(M.ambient, ch) && nz(L.ambient, ch)) || (nz(M.diffuse, ch) && nz(L.diffuse, ch)) ||
+                 (has_unit && nz(M.specular, ch) && nz(L.specular, ch));
+        });
+        if (!contributes) continue;
+        const LightKind k = light_kind(F, L);
+        if (ls.size() < fs.slots.size()) fs.slots[ls.size()] |= kind_bit(k);
+        else fs.slots.push_back(kind_bit(k));
+        ls.push_back(static_cast<int>(j));
+      }
+      if (first_set) g.light_slot = ls;
+      first_set = false;
     }
-    fs.ambient = any_mat([&](const scene::Material& M, int ch) {
-      if (nz(M.emission, ch)) return true;
-      if (!nz(M.ambient, ch)) return false;
-      if (nz(sc.global_ambient, ch)) return true;
-      for (int j : g.light_slot)
-        if (nz(sc.lights[j].ambient, ch)) return true;
+    // contributing lights of state st (the scene's light indices)
+    auto each_light = [&](size_t st, auto pred) {
+      for (int j : g.set_light_slot[st])
+        if (pred(sets[st].lights[static_cast<size_t>(j)])) return true;
       return false;
+    };
+    auto any_state = [&](auto pred) {
+      for (size_t st = 0; st < ns; ++st)
+        if (set_used(st) && pred(st)) return true;
+      return false;
+    };
+    fs.ambient = any_state([&](size_t st) {
+      return any_mat_in(st, [&](const scene::Material& M, int ch) {
+        if (nz(M.emission, ch)) return true;
+        if (!nz(M.ambient, ch)) return false;
+        if (nz(sets[st].global_ambient, ch)) return true;
+        return each_light(st, [&](const scene::Light& L) { return nz(L.ambient, ch); });
+      });
     });
-    fs.diffuse = any_mat([&](const scene::Material& M, int ch) {
-      for (int j : g.light_slot)
-        if (nz(M.diffuse, ch) && nz(sc.lights[j].diffuse, ch)) return true;
-      return false;
+    fs.diffuse = any_state([&](size_t st) {
+      return any_mat_in(st, [&](const scene::Material& M, int ch) {
+        return nz(M.diffuse, ch) && each_light(st, [&](const scene::Light& L) { return nz(L.diffuse, ch); });
+      });
     });
-    fs.specular = has_unit && any_mat([&](const scene::Material& M, int ch) {
-      for (int j : g.light_slot)
-        if (nz(M.specular, ch) && nz(sc.lights[j].specular, ch)) return true;
-      return false;
+    fs.specular = has_unit && any_state([&](size_t st) {
+      return any_mat_in(st, [&](const scene::Material& M, int ch) {
+        return nz(M.specular, ch) && each_light(st, [&](const scene::Light& L) { return nz(L.specular, ch); });
+      });
     });
     if (fs.slots.empty()) {  // nothing lit by any light: one directional light with zero colours
       fs.slots.push_back(kind_bit(LightKind::Directional));
@@ -332,8 +374,9 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
       for (int m : g.materials) fs.norm = fs.norm || sc.materials[m].normalization.has_value();
     fs.blinn = fs.specular ? sc.blinn : true;
     fs.phong = !fs.blinn;
-    fs.local_viewer = fs.specular && sc.local_viewer;
-    fs.separate_specular = fs.specular && sc.separate_specular;  // GL_SEPARATE_SPECULAR_COLOR
+    fs.local_viewer = fs.specular && any_state([&](size_t st) { return sets[st].local_viewer; });
+    // GL_SEPARATE_SPECULAR_COLOR
+    fs.separate_specular = fs.specular && any_state([&](size_t st) { return sets[st].separate_specular; });
     // a shininess below the units' range (GL's 0..15): the exact chain beside the unit
     fs.low_shininess = false;
     // (with two_side the back's too: its own unit material, written between the facing batches)
@@ -351,14 +394,19 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
     for (int m : g.materials) fs.colour_material = fs.colour_material || colour_material[m];
     // Mono when every colour that reaches the core is grey.
     bool grey = true;
-    if (fs.ambient) grey = grey && is_grey(sc.global_ambient);
+    if (fs.ambient)
+      for (size_t st = 0; st < ns; ++st)
+        if (set_used(st)) grey = grey && is_grey(sets[st].global_ambient);
     for (int m : g.materials) {
       grey = grey && colours_grey[m];
       for (const auto& M : sides[m])
         grey = grey && is_grey(M.emission) && is_grey(M.ambient) && is_grey(M.diffuse) && is_grey(M.specular);
     }
-    for (int j : g.light_slot)
-      if (j >= 0) grey = grey && is_grey(sc.lights[j].ambient) && is_grey(sc.lights[j].diffuse) && is_grey(sc.lights[j].specular);
+    for (size_t st = 0; st < ns; ++st)
+      for (int j : g.set_light_slot[st]) {
+        const auto& L = sets[st].lights[static_cast<size_t>(j)];
+        grey = grey && is_grey(L.ambient) && is_grey(L.diffuse) && is_grey(L.specular);
+      }
     fs.channels = grey ? 1 : 3;
     if (!fs.specular) g.unit_label = "none";
     fs.lanes = std::clamp(lanes, 1, fs.num_lights());
@@ -613,17 +661,21 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
   fr.rasterise_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_geom).count() - fr.tessellate_seconds;
 
-  // Lights in eye space (glLight with the view matrix on the modelview stack).
-  for (size_t j = 0; j < sc.lights.size(); ++j) {
-    const auto& L = sc.lights[j];
-    if (L.position[3] != 0.0) {
-      const auto pe = apply(view, L.position);
-      const Vec3 p{pe[0] / pe[3], pe[1] / pe[3], pe[2] / pe[3]};
-      if (!pos_in_range(p))
-        throw SceneError(sc.file + ": lights[" + std::to_string(j) + "].position: eye-space position " + fmt3(p) +
-                         " is outside the core's position range [-128, 128)");
+  // Lights in eye space (glLight with the view matrix on the modelview stack), of every lighting state.
+  const std::vector<scene::LightingSet> sets = sc.lighting_states();
+  const size_t nsets = sets.size();
+  for (size_t st = 0; st < nsets; ++st)
+    for (size_t j = 0; j < sets[st].lights.size(); ++j) {
+      const auto& L = sets[st].lights[j];
+      if (L.position[3] != 0.0) {
+        const auto pe = apply(view, L.position);
+        const Vec3 p{pe[0] / pe[3], pe[1] / pe[3], pe[2] / pe[3]};
+        if (!pos_in_range(p))
+          throw SceneError(sc.file + ": " + (nsets > 1 ? "lighting state " + std::to_string(st) + ": " : std::string()) +
+                           "lights[" + std::to_string(j) + "].position: eye-space position " + fmt3(p) +
+                           " is outside the core's position range [-128, 128)");
+      }
     }
-  }
 
   const Derivation d =
       derive_features(sc, drawn, needs_normalize, s.full_core, s.unit, s.lanes, s.share, object_colours);
@@ -638,17 +690,22 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
     uint32_t index;
     bool back;
   };
-  // Fragments go to the core per material and, within it, per colour material mode (`none` first, then the
-  // ColourMaterial order): the bucket of object oi. A core with the colour_material register gets it written
-  // before each bucket's fragments; a scene without colour material has only the `none` buckets.
+  // Fragments go to the core per lighting state (in the stream's order; a scene file has one), within it per
+  // material and within that per colour material mode (`none` first, then the ColourMaterial order): the bucket of
+  // object oi. A core with the colour_material register gets it written before each bucket's fragments; a scene
+  // without colour material has only the `none` buckets.
   constexpr size_t kCmBuckets = 6;
   const size_t nmat = sc.materials.size();
+  auto set_of = [nsets](const scene::Object& O) {
+    return static_cast<size_t>(std::clamp<int>(O.lighting, 0, static_cast<int>(nsets) - 1));
+  };
   auto bucket = [&](int oi) {
     const auto& cmo = sc.objects[oi].colour_material;
-    return static_cast<size_t>(sc.objects[oi].material) * kCmBuckets + (cmo ? 1 + static_cast<size_t>(*cmo) : 0);
+    return (set_of(sc.objects[oi]) * nmat + static_cast<size_t>(sc.objects[oi].material)) * kCmBuckets +
+           (cmo ? 1 + static_cast<size_t>(*cmo) : 0);
   };
-  std::vector<std::vector<Item>> mat_faces(nmat * kCmBuckets), mat_verts(nmat * kCmBuckets);
-  std::vector<std::vector<uint32_t>> mat_pixels(nmat * kCmBuckets);
+  std::vector<std::vector<Item>> mat_faces(nsets * nmat * kCmBuckets), mat_verts(nsets * nmat * kCmBuckets);
+  std::vector<std::vector<uint32_t>> mat_pixels(nsets * nmat * kCmBuckets);
   std::vector<uint8_t> face_vis(fr.face_frag.size(), 0), vert_need(fr.vertex_frag.size(), 0);
   for (int y = 0; y < fr.height; ++y)
     for (int x = 0; x < fr.width; ++x) {
@@ -682,11 +739,19 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
       if (vert_need[v] & (1u << b))
         mat_verts[bucket(fr.vertex_object[v])].push_back({static_cast<uint32_t>(v), b != 0});
 
-  // Command streams.
+  // Command streams: per lighting state (in the stream's order) the global and light registers, then per material
+  // its registers and its fragments. The first state is programmed in full; each later one by the writes whose
+  // register value changes (the core drains before a write: the RTL's cycles count it); with
+  // Settings::changed_registers_only every write after the first programming is left out when the register already
+  // holds its value (materials, colour material).
   for (auto& g : fr.groups) {
     const LightCore core(g.fs);
-    auto add_writes = [&g](const std::vector<RegWrite>& ws) {
+    std::map<uint32_t, uint32_t> shadow;  // the value each register was last written
+    auto add_writes = [&g, &shadow](const std::vector<RegWrite>& ws, bool changed_only = false) {
       for (const auto& w : ws) {
+        const auto it = shadow.find(w.addr);
+        if (changed_only && it != shadow.end() && it->second == w.data) continue;
+        shadow[w.addr] = w.data;
         CoreCmd c;
         c.is_write = true;
         c.w = w;
@@ -694,22 +759,27 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
         ++g.writes;
       }
     };
-    // the modes of the specialised set, programmed (the same words on the full core)
     const FeatureSet& sp = g.specialised;
-    const ModeParams modes{sp.specular && sp.local_viewer, sp.specular && !sp.blinn, sp.normalize, sp.separate_specular,
-                           sp.two_side};
-    add_writes(global_writes(core, sc.global_ambient.data(), modes));
+    // the global and light registers of lighting state st
+    auto program_state = [&](size_t st, bool changed_only) {
+      const scene::LightingSet& S = sets[st];
+      // the modes of the specialised set, programmed (the same words on the full core)
+      const ModeParams modes{sp.specular && sp.local_viewer && S.local_viewer, sp.specular && !sp.blinn, sp.normalize,
+                             sp.separate_specular && S.separate_specular, sp.two_side};
+      add_writes(global_writes(core, S.global_ambient.data(), modes), changed_only);
+      const std::vector<int>& slot_light = g.set_light_slot[st];
     for (int j = 0; j < g.fs.num_lights(); ++j) {
       if (j >= sp.num_lights()) {  // a slot of the full core the scene does not use: off
-        add_writes(light_off_writes(j));
+        add_writes(light_off_writes(j), changed_only);
         continue;
       }
       LightParams lp;
-      const int sj = j < static_cast<int>(g.light_slot.size()) ? g.light_slot[j] : -1;
-      const LightKind kind = sp.slot_kind(j);
+      const int sj = j < static_cast<int>(slot_light.size()) ? slot_light[j] : -1;
+      LightKind kind = sp.slot_kind(j);
+      if (sj >= 0) kind = light_kind(F, S.lights[static_cast<size_t>(sj)]);
       lp.kind = slot_kind_for(g.fs, j, kind);
       if (sj >= 0) {
-        const auto& L = sc.lights[sj];
+        const auto& L = S.lights[static_cast<size_t>(sj)];
         const auto pe = apply(view, L.position);
         for (int i = 0; i < 4; ++i) lp.position[i] = pe[i];
         if (L.position[3] != 0.0) {
@@ -736,14 +806,37 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
         for (int c = 0; c < 3; ++c) lp.ambient[c] = lp.diffuse[c] = lp.specular[c] = 0;
         lp.kc = 1, lp.kl = 0, lp.kq = 0;
       }
-      add_writes(light_writes(core, j, lp));
+      add_writes(light_writes(core, j, lp), changed_only);
     }
-    for (int m : g.materials) {
-      const size_t b0 = static_cast<size_t>(m) * kCmBuckets;
-      bool any = false;
+    };
+    // the states with fragments in this group (a group with none is programmed with its first state, as before)
+    auto has_fragments = [&](size_t st, int m) {
+      const size_t b0 = (st * nmat + static_cast<size_t>(m)) * kCmBuckets;
       for (size_t b = b0; b < b0 + kCmBuckets; ++b)
-        any = any || !mat_faces[b].empty() || !mat_verts[b].empty() || !mat_pixels[b].empty();
-      if (!any) continue;
+        if (!mat_faces[b].empty() || !mat_verts[b].empty() || !mat_pixels[b].empty()) return true;
+      return false;
+    };
+    std::vector<size_t> states;
+    for (size_t st = 0; st < nsets; ++st)
+      for (int m : g.materials)
+        if (has_fragments(st, m)) {
+          states.push_back(st);
+          break;
+        }
+    if (states.empty())
+      for (size_t st = 0; st < nsets; ++st)
+        if (!g.set_light_slot[st].empty() || st + 1 == nsets) {
+          states.push_back(st);
+          break;
+        }
+    for (size_t si = 0; si < states.size(); ++si) {
+    const size_t cur_state = states[si];
+    const uint64_t writes_before = g.writes;
+    program_state(cur_state, si > 0);
+    if (si > 0) ++g.state_changes, g.state_writes += g.writes - writes_before;
+    for (int m : g.materials) {
+      const size_t b0 = (cur_state * nmat + static_cast<size_t>(m)) * kCmBuckets;
+      if (!has_fragments(cur_state, m)) continue;
       const auto& M = sc.materials[m];
       // a scene material's (or its back's) colours and shininess into the host's MaterialParams
       auto take = [](MaterialParams& p, const auto& src) {
@@ -764,12 +857,12 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
         mp.norm_model = -1;  // with the norm hardware: coefficient 1.0, sc_energy passes spec unchanged
       }
       if (sp.specular) mp.unit = sp.variant;
-      add_writes(material_writes(core, mp));
+      add_writes(material_writes(core, mp), s.changed_registers_only);
       // glMaterial(GL_BACK, ...): the back colour bank (the front's when the scene gives none)
       const scene::BackMaterial B = M.back_or_front();
       MaterialParams bp = mp;
       take(bp, B);
-      if (sp.two_side) add_writes(back_material_writes(core, bp));
+      if (sp.two_side) add_writes(back_material_writes(core, bp), s.changed_registers_only);
       // The core holds one unit material (mat_unit, mat_n, mat_thr, mat_coef). A back face with a shininess of its
       // own: the front-facing fragments first, then the back's unit material and the back-facing ones (the next
       // material's writes replace it). Otherwise one batch, in the order below.
@@ -786,7 +879,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
       };
       for (int batch = 0; batch < (split ? 2 : 1); ++batch) {
         auto in_batch = [&](bool back) { return !split || back == (batch == 1); };
-        if (batch == 1) add_writes(unit_material_writes(core, bp));
+        if (batch == 1) add_writes(unit_material_writes(core, bp), s.changed_registers_only);
         for (size_t b = b0; b < b0 + kCmBuckets; ++b) {
           bool any_here = false;
           for (const Item& f : mat_faces[b]) any_here = any_here || in_batch(f.back);
@@ -795,7 +888,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
           if (!any_here) continue;
           if (g.fs.colour_material)  // glColorMaterial(GL_FRONT_AND_BACK, mode) / glDisable(GL_COLOR_MATERIAL)
             add_writes(colour_material_writes(b == b0 ? std::nullopt
-                                                      : std::optional<ColourMaterial>(static_cast<ColourMaterial>(b - b0 - 1))));
+                                                      : std::optional<ColourMaterial>(static_cast<ColourMaterial>(b - b0 - 1))), s.changed_registers_only);
           for (const Item& f : mat_faces[b])
             if (in_batch(f.back)) frag(fr.face_frag[f.index], DestKind::Face, f.index, f.back), ++g.faces;
           for (const Item& v : mat_verts[b])
@@ -829,6 +922,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
           }
         }
       }
+    }
     }
   }
   return fr;

@@ -55,7 +55,14 @@ struct CoreGroup {
   FeatureSet specialised;               // the derived smallest set (== fs unless the full core is used)
   std::vector<std::string> full_substitutions;  // full core: what is not 'full' (only a config)
   std::vector<int> materials;           // scene material indices
-  std::vector<int> light_slot;          // scene light index per core light slot (−1 = unused slot)
+  std::vector<int> light_slot;          // scene light index per core light slot (−1 = unused slot): of the first
+                                        // lighting state the group uses
+  // Per lighting state of the scene (Scene::lighting_states()): its light index per core slot (−1 unused; empty for
+  // a state none of the group's objects uses). The slots' kinds are the union over the states (one core for all).
+  std::vector<std::vector<int>> set_light_slot;
+  // Lighting-state changes in the command stream after the first programming, and the register writes they took
+  // (only the registers whose value changes; the core drains before a write). Scene files: 0.
+  uint64_t state_changes = 0, state_writes = 0;
   std::string unit_label;               // "cs16/theta_cr", "schlick_nr", "none"
   std::vector<CoreCmd> cmds;
   std::vector<Dest> dests;              // one per fragment command, in order
@@ -79,6 +86,10 @@ struct Settings {
   // The depth plane through the unsnapped window positions (raster::Rasterizer::set_unsnapped_depth): `shadecore
   // replay`, whose reference (Mesa's llvmpipe) computes it so; scene files keep the snapped one.
   bool unsnapped_depth = false;
+  // Leave out a register write when the register already holds the value (what a driver shadowing the core's
+  // registers writes): `shadecore replay`. Scene files write every material's registers in full, as before. Writes
+  // for a change of lighting state (Scene::lighting_sets) are always the changed registers only.
+  bool changed_registers_only = false;
 };
 
 // The colours an object sends to the core under colour material (objects[i].color_material): per channel the

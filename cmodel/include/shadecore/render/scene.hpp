@@ -143,6 +143,18 @@ struct Object {
   Vec3 colour{1, 1, 1};
   std::string where;       // "objects[i]" for messages
   std::string scene_file;  // the scene file it comes from (messages)
+  int lighting = 0;        // its lighting state: an index into Scene::lighting_sets (0 when the scene has none)
+};
+
+// One lighting state of a stream: what the core holds in its global and light registers while a batch is lit. A
+// scene file has one (its own global_ambient, local_viewer, separate_specular and lights); a GL front end hands over
+// one per run of draws with the same state, in drawing order (the same state may come back), and the back end
+// programs each by the register writes that differ from the state before it (render::prepare).
+struct LightingSet {
+  Vec3 global_ambient{0.2, 0.2, 0.2};
+  bool local_viewer = false;
+  bool separate_specular = false;
+  std::vector<Light> lights;
 };
 
 struct ContactSheet {
@@ -170,6 +182,14 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Object> objects;
   std::optional<ContactSheet> contact_sheet;
+  // More than one lighting state (objects[i].lighting picks one): global_ambient, local_viewer, separate_specular
+  // and lights above are then unused by the back end. Empty (scene files): the one state above.
+  std::vector<LightingSet> lighting_sets;
+  // The lighting states the back end uses: lighting_sets, or the one of the fields above.
+  [[nodiscard]] std::vector<LightingSet> lighting_states() const {
+    if (!lighting_sets.empty()) return lighting_sets;
+    return {LightingSet{global_ambient, local_viewer, separate_specular, lights}};
+  }
 };
 
 // Limits of the input (docs/scenes.md "Limits").

@@ -4,15 +4,16 @@
 // polygon primitive, vertex arrays, display lists (COMPILE and COMPILE_AND_EXECUTE, glCallList(s), glListBase),
 // glLight*/glLightModel*/glMaterial* (also between glBegin and glEnd)/glColorMaterial, normals (inverse transpose;
 // GL_RESCALE_NORMAL; GL_NORMALIZE), glShadeModel with each primitive type's provoking vertex, glFrontFace,
-// glCullFace, depth, scissor and clear state — and hands one frame to the renderer's back end as what the scene
-// loader would give it: eye-space triangles grouped into objects by their lighting state (render::prepare with
-// view = identity and the program's projection; the core programmed from that state, every vertex lit by it).
+// glCullFace, depth, scissor and clear state — and hands one frame to the renderer's back end as a stream: eye-space
+// triangles grouped into objects, each with the lighting state it was drawn in (scene::LightingSet, one per run of
+// draws with the same lights and light model, in drawing order), for render::prepare with view = identity and the
+// program's projection; the back end programs the core for each state by register writes and lights its batch.
 //
 // Every call that changes what is drawn and is not handled is counted by name (`unsupported`). A primitive drawn
 // with a capability the core lacks enabled (texturing, blending, fog, alpha test, …) is still drawn, so its
 // coverage and occlusion are known, but its object is marked not comparable; a frame whose pixels cannot be
-// known (lines, points, glBitmap/glDrawPixels, stencil or colour masks, depth test off, lighting state changing
-// between draws, …) is refused: ReplayError with a one-line reason.
+// known (lines, points, glBitmap/glDrawPixels, stencil or colour masks, depth test off, the projection or two-sided
+// lighting changing between draws, …) is refused: ReplayError with a one-line reason.
 #pragma once
 
 #include <array>
@@ -85,6 +86,7 @@ struct GlTriangle {
   std::optional<ColourMaterial> colour_material;       // GL_COLOR_MATERIAL on (its mode)
   std::vector<std::string> excluded;                   // capabilities the core lacks that were on (not comparable)
   uint32_t primitive = 0;                              // glBegin / draw index within the frame
+  uint32_t lighting = 0;                               // the lighting state it was drawn in: Gl::frame_lightings()
 };
 
 struct FrontStats {
@@ -129,8 +131,11 @@ class Gl {
   [[nodiscard]] bool cleared() const { return cleared_; }
   [[nodiscard]] const std::vector<std::string>& refusals() const { return refusals_; }
   [[nodiscard]] bool list_defined(uint32_t id) const { return lists_.count(id) != 0; }
-  // The lighting state of the frame's lit triangles (the first one's), and the projection they were drawn with.
+  // The lighting state of the frame's first lit triangles, and the projection they were drawn with.
   [[nodiscard]] const std::optional<LightingState>& frame_lighting() const { return frame_light_; }
+  // The frame's lighting states in drawing order, one per run of lit draws with the same state (a state may come
+  // back); GlTriangle::lighting indexes it.
+  [[nodiscard]] const std::vector<LightingState>& frame_lightings() const { return frame_lights_; }
   [[nodiscard]] const std::optional<Mat4>& frame_projection() const { return frame_proj_; }
 
  private:
@@ -154,6 +159,7 @@ class Gl {
   std::vector<std::string> refusals_;
   std::map<uint32_t, std::shared_ptr<std::vector<trace::Call>>> lists_;
   std::optional<LightingState> frame_light_;
+  std::vector<LightingState> frame_lights_;
   std::optional<Mat4> frame_proj_;
 };
 
@@ -163,7 +169,8 @@ struct ReplayOptions {
 };
 
 // A frame handed to the back end: a scene in eye space (view = identity, the program's projection) whose objects
-// are runs of triangles with one lighting state, and their meshes.
+// are runs of triangles with one material and lighting state (scene.lighting_sets: the frame's states in drawing
+// order; objects[i].lighting), and their meshes.
 struct Handover {
   scene::Scene scene;
   std::vector<scene::Mesh> meshes;
