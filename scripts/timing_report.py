@@ -14,6 +14,9 @@ Rows are cached in OUT/timing.cache.json by the SHA-256 of what decides them (th
 or all of rtl/ for a lighting set —, config/configs.json, signoff/signoff.py and fastmul.py, handoff/, the sources
 that write a bundle, the target, the vector count): a rerun computes only what changed. Each measured row also
 gets signoff/stages.py's analysis (what closing the target would take); --add-stages adds it to cached rows.
+A row also records what of its bundle decided it (rtl/, tb/, vectors/, the I/O constraints: inputs_sha) and the
+flow's hash; --revalidate rewrites the bundle of a row whose key changed and keeps the row when that bundle is
+the one it was measured on (a source that does not change bundles, a new field in configs.json).
 Long (hours from an empty cache on 2 cores; a lighting set with 8 lights takes the longest); run by hand.
 """
 import argparse
@@ -108,8 +111,9 @@ def row_id(r):
     return f"{r['kind']}:{r['name']}:{r['config']['name']}"  # name carries +mreg
 
 
-def bundle(a, r, d):
-    """Write the handoff bundle of a row into d (or, for a table unit, a synthesis-only directory)."""
+def bundle(a, r, d, signoff="on"):
+    """Write the handoff bundle of a row into d (or, for a table unit, a synthesis-only directory); signoff="off"
+    writes it without signing it off (what decides the sign-off, for inputs_sha)."""
     if r["table"]:
         os.makedirs(d)
         gen = os.path.join(a.build, "generated", "rtl")
@@ -122,7 +126,7 @@ def bundle(a, r, d):
                                                   "GUARD": r["config"]["guard"]}}
     # The handoff signs its own bundle off (--signoff on: the same signoff/signoff.py), so the report's numbers are
     # the bundle's: its constraints.sdc, reports and signoff.json.
-    cmd = [a.shadecore, "handoff", "--out", d, "--no-ice40", "--synth", "skip", "--signoff", "on",
+    cmd = [a.shadecore, "handoff", "--out", d, "--no-ice40", "--synth", "skip", "--signoff", signoff,
            "--clock-target", str(a.target), "--seed", "1", "--count", str(count_of(a, r))]
     if r["kind"] == "unit":
         cmd += ["--variant", r["variant"]["name"], "--config", r["config"]["name"]]
@@ -166,6 +170,7 @@ def measure(a, r):
             lat = None
         s["latency_cycles"] = lat
         s["stages"] = stages_of(d, r)
+        s["inputs"] = None if r["table"] else inputs_of(a, r, d)
         if a.keep:  # the signed-off bundle, for a reader who wants its netlist and reports (a handoff bundle as is)
             dest = os.path.join(a.keep, row_id(r).replace(":", "_"))
             if os.path.lexists(dest):
@@ -200,14 +205,7 @@ def add_stages(a, r, hit):
     (the same ABC script the handoff chooses), the WNS checked against the cached one, then stages.py."""
     with tempfile.TemporaryDirectory(prefix="shadecore_stages.") as tmp:
         d = os.path.join(tmp, "b")
-        cmd = [a.shadecore, "handoff", "--out", d, "--no-ice40", "--synth", "skip", "--signoff", "off",
-               "--seed", "1", "--count", str(count_of(a, r))]
-        cmd += (["--variant", r["variant"]["name"], "--config", r["config"]["name"]] +
-                (["--mreg", str(r["mreg"])] if r.get("mreg") else [])) if r["kind"] == "unit" else \
-            ["--core", "lighting", "--features", r["name"]]
-        p = subprocess.run(cmd, capture_output=True, text=True, timeout=a.timeout)
-        if p.returncode:
-            raise Failure(f"{' '.join(cmd)} failed: {(p.stderr or p.stdout).strip().splitlines()[-1:]}")
+        bundle(a, r, d, signoff="off")
         p = subprocess.run(["/usr/bin/python3", SIGNOFF, d, "--target", str(a.target), "--timeout", str(a.timeout),
                             "--steps", "synth,sta", "--abc", "lean" if r["kind"] == "lighting" else "full"],
                            capture_output=True, text=True)
@@ -218,6 +216,51 @@ def add_stages(a, r, hit):
             raise Failure(f"{row_id(r)}: synthesis again gives WNS {again}, the cache has "
                           f"{hit['signoff']['sta']['wns_ns']}: the flow is not reproducible, rerun the row")
         return stages_of(d, r)
+
+
+FLOW = ["signoff/signoff.py", "signoff/fastmul.py"]
+
+
+def inputs_sha(d):
+    """What of a bundle decides its sign-off: rtl/, tb/, vectors/, filelist.f and the SDC's I/O assumptions (its
+    period is the sign-off's own output), with the bundle's own path (in the files' "made by" lines) left out."""
+    h = hashlib.sha256()
+    for sub in ("rtl", "tb", "vectors", "filelist.f"):
+        p = os.path.join(d, sub)
+        files = [p] if os.path.isfile(p) else sorted(os.path.join(x, f) for x, _, fs in os.walk(p) for f in fs)
+        for f in files:
+            h.update(os.path.relpath(f, d).encode())
+            h.update(hashlib.sha256(open(f, "rb").read().replace(os.path.abspath(d).encode(), b"")).digest())
+    sdc = os.path.join(d, "constraints.sdc")
+    if os.path.exists(sdc):
+        h.update("".join(x for x in open(sdc) if re.match(r"\s*(set IO_FRACTION|set_input_delay|set_output_delay)", x))
+                 .encode())
+    return h.hexdigest()
+
+
+def inputs_of(a, r, d):
+    return {"bundle": inputs_sha(d), "flow": sha_tree(FLOW), "target": a.target}
+
+
+def revalidate(a, r, hit):
+    """A row whose key no longer matches (a source of the binary, config/configs.json, the RTL changed): the bundle
+    again without the sign-off; if it is the one the row was measured on (inputs_sha) under the same flow and
+    target, the row still holds. Returns the entry's "inputs" when it does, else None."""
+    if r["table"] or not hit["signoff"].get("inputs"):
+        return None
+    with tempfile.TemporaryDirectory(prefix="shadecore_revalidate.") as tmp:
+        d = os.path.join(tmp, "b")
+        bundle(a, r, d, signoff="off")
+        now = inputs_of(a, r, d)
+    return now if now == hit["signoff"]["inputs"] else None
+
+
+def backfill_inputs(a, r):
+    """The inputs of a row cached under the current key (so made from these very sources): its bundle again."""
+    with tempfile.TemporaryDirectory(prefix="shadecore_revalidate.") as tmp:
+        d = os.path.join(tmp, "b")
+        bundle(a, r, d, signoff="off")
+        return inputs_of(a, r, d)
 
 
 def to_row(r, s):
@@ -384,6 +427,10 @@ def main():
     ap.add_argument("--add-stages", action="store_true",
                     help="for cached rows without it, add signoff/stages.py's analysis (synthesis and STA again, "
                          "checked to give the cached WNS); measured rows always get it")
+    ap.add_argument("--revalidate", action="store_true",
+                    help="rows whose key changed: write the bundle again (no sign-off) and keep the row when it is the "
+                         "bundle it was measured on (rtl, tb, vectors, I/O constraints) under the same flow; cached "
+                         "rows get that record if they lack it")
     ap.add_argument("--dry-run", action="store_true", help="list the rows and whether each is cached")
     ap.add_argument("--cached-only", action="store_true",
                     help="write the report from the cached rows only; list the others as not measured")
@@ -414,6 +461,17 @@ def main():
             hit = dict(hit, key=key)
             store(cache_path, row_id(r), hit)
         cached = hit is not None and hit["key"] == key
+        if a.revalidate and hit is not None and not r["table"]:
+            if not cached:
+                inp = revalidate(a, r, hit)
+                if inp:
+                    hit, cached = dict(hit, key=key), True
+                    store(cache_path, row_id(r), hit)
+                print(f"timing_report: {row_id(r)}: " + ("the same bundle: re-validated" if inp else
+                      "not re-validated (its bundle changed, or it has no recorded inputs)"), flush=True)
+            elif not hit["signoff"].get("inputs"):
+                hit = dict(hit, signoff=dict(hit["signoff"], inputs=backfill_inputs(a, r)))
+                store(cache_path, row_id(r), hit)
         if a.dry_run:
             print(f"{row_id(r)}: {'cached' if cached else 'to run'}")
             continue
