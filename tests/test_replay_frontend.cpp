@@ -473,12 +473,26 @@ TEST(ReplayFrontend, HandOverCarriesSmoothColoursUnderColourMaterial) {
   ASSERT_EQ(d.gl.triangles().size(), 2u);
   EXPECT_NE(d.gl.triangles()[0].v[0].material, d.gl.triangles()[0].v[2].material);  // GL tracked each colour
   auto h = shadecore::glfront::hand_over(d.gl, "t");
-  ASSERT_EQ(h.scene.objects.size(), 2u);  // the provoking vertices' materials differ (in the tracked colour only)
+  // one object and one material: the materials differ in the tracked colour only, which reaches the core per vertex
+  // through its fragment colour input (no material register writes of its own)
+  ASSERT_EQ(h.scene.objects.size(), 1u);
+  ASSERT_EQ(h.scene.materials.size(), 1u);
   EXPECT_EQ(h.scene.objects[0].colour_material, shadecore::ColourMaterial::Diffuse);
-  ASSERT_EQ(h.meshes[0].col.size(), 3u);
+  ASSERT_EQ(h.meshes[0].col.size(), 6u);
   EXPECT_EQ(h.meshes[0].col[0], (shadecore::scene::Vec3{1, 0, 0}));
   EXPECT_EQ(h.meshes[0].col[1], (shadecore::scene::Vec3{0, 1, 0}));
   EXPECT_EQ(h.meshes[0].col[2], (shadecore::scene::Vec3{0, 0, 1}));
+  EXPECT_EQ(h.meshes[0].col[3], (shadecore::scene::Vec3{0, 0, 1}));  // the strip's second triangle (2, 1, 3)
+  EXPECT_EQ(h.meshes[0].col[5], (shadecore::scene::Vec3{1, 1, 0}));
+  {
+    const auto fr = shadecore::render::prepare(h.scene, h.meshes, h.settings);
+    ASSERT_EQ(fr.groups.size(), 1u);
+    uint64_t material_writes = 0;  // the diffuse colour registers: written once (the material's), never per colour
+    for (const auto& c : fr.groups[0].cmds)
+      if (c.is_write && c.w.addr >= shadecore::kReg_mat_diffuse && c.w.addr < shadecore::kReg_mat_diffuse + 3) ++material_writes;
+    EXPECT_LE(material_writes, 3u);
+    EXPECT_EQ(fr.groups[0].vertices, 6u);
+  }
   EXPECT_EQ(h.stats.notes.count("glMaterial between a smooth primitive's vertices carried as colour material"), 0u);
   // an untracked colour (GL_AMBIENT) changing between the vertices: refused
   d("glBegin", {I(TRIANGLES)});

@@ -1096,17 +1096,39 @@ Handover hand_over(const Gl& gl, const std::string& name) {
   h.settings.unsnapped_depth = true;  // the depth plane as GL (and llvmpipe) computes it: docs/replay.md
   h.settings.changed_registers_only = true;  // a driver writes a register when its value changes
 
-  // materials by value; objects = runs of triangles with one (material, shading, colour material, lit, excluded)
-  std::map<std::tuple<uint32_t, bool, int>, int> material_index;  // (GL material pair, lit, colour material) → scene
+  // Materials by value; objects = runs of triangles with one (material, shading, colour material, lit, excluded,
+  // lighting state). Under colour material the term(s) it replaces come per vertex through the core's fragment colour
+  // input, not from the material registers: they are left out of the material's identity (set to 0), so the colours
+  // GL tracked into the material (every glColor under GL_COLOR_MATERIAL, a glMaterial per vertex carried as colour
+  // material) make one material and no material register writes of their own.
+  auto canonical = [&gl](uint32_t id, std::optional<ColourMaterial> cm) {
+    std::array<MaterialState, 2> pair = gl.materials()[id];
+    if (cm)
+      for (auto& m : pair) {
+        const Vec4 none{0, 0, 0, 1};
+        if (*cm == ColourMaterial::Ambient || *cm == ColourMaterial::AmbientAndDiffuse) m.ambient = none;
+        if (*cm == ColourMaterial::Diffuse || *cm == ColourMaterial::AmbientAndDiffuse) m.diffuse = none;
+        if (*cm == ColourMaterial::Specular) m.specular = none;
+        if (*cm == ColourMaterial::Emission) m.emission = none;
+      }
+    return pair;
+  };
+  std::map<std::tuple<bool, int, std::vector<double>>, int> material_index;  // (lit, colour material, values) → scene
   auto scene_material = [&](uint32_t id, bool lit, std::optional<ColourMaterial> cm) {
     const int cmk = cm ? static_cast<int>(*cm) : -1;
-    const auto key = std::make_tuple(lit ? id : ~0u, lit, cmk);
+    const std::array<MaterialState, 2> pair = lit ? canonical(id, cm) : std::array<MaterialState, 2>{};
+    std::vector<double> values;
+    if (lit)
+      for (const auto& m : pair) {
+        for (const Vec4* c : {&m.ambient, &m.diffuse, &m.specular, &m.emission}) values.insert(values.end(), c->begin(), c->end());
+        values.push_back(m.shininess);
+      }
+    const auto key = std::make_tuple(lit, cmk, std::move(values));
     auto it = material_index.find(key);
     if (it != material_index.end()) return it->second;
     scene::Material m;
     m.name = "gl" + std::to_string(sc.materials.size());
     if (lit) {
-      const auto& pair = gl.materials()[id];
       auto fill = [&](const MaterialState& s, auto& dst) {
         dst.emission = lit_rgb(s.emission, "a material colour"), dst.ambient = lit_rgb(s.ambient, "a material colour");
         dst.diffuse = lit_rgb(s.diffuse, "a material colour"), dst.specular = lit_rgb(s.specular, "a material colour");

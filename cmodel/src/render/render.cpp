@@ -209,7 +209,9 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
   // The lighting states (one for a scene file) and which materials each lights (through the objects drawn in it).
   const std::vector<scene::LightingSet> sets = sc.lighting_states();
   const size_t ns = sets.size();
-  auto set_of = [ns](const scene::Object& O) { return static_cast<size_t>(std::clamp<int>(O.lighting, 0, static_cast<int>(ns) - 1)); };
+  auto set_of = [ns](const scene::Object& O) {
+    return static_cast<size_t>(std::clamp<int>(O.lighting, 0, static_cast<int>(ns) - 1));
+  };
   std::vector<bool> used(nm, false);
   std::vector<std::vector<bool>> in_set(ns, std::vector<bool>(nm, false));
   for (int o : objects_used) {
@@ -768,46 +770,46 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
                              sp.separate_specular && S.separate_specular, sp.two_side};
       add_writes(global_writes(core, S.global_ambient.data(), modes), changed_only);
       const std::vector<int>& slot_light = g.set_light_slot[st];
-    for (int j = 0; j < g.fs.num_lights(); ++j) {
-      if (j >= sp.num_lights()) {  // a slot of the full core the scene does not use: off
-        add_writes(light_off_writes(j), changed_only);
-        continue;
+      for (int j = 0; j < g.fs.num_lights(); ++j) {
+        if (j >= sp.num_lights()) {  // a slot of the full core the scene does not use: off
+          add_writes(light_off_writes(j), changed_only);
+          continue;
+        }
+        LightParams lp;
+        const int sj = j < static_cast<int>(slot_light.size()) ? slot_light[j] : -1;
+        LightKind kind = sp.slot_kind(j);
+        if (sj >= 0) kind = light_kind(F, S.lights[static_cast<size_t>(sj)]);
+        lp.kind = slot_kind_for(g.fs, j, kind);
+        if (sj >= 0) {
+          const auto& L = S.lights[static_cast<size_t>(sj)];
+          const auto pe = apply(view, L.position);
+          for (int i = 0; i < 4; ++i) lp.position[i] = pe[i];
+          if (L.position[3] != 0.0) {
+            for (int i = 0; i < 3; ++i) lp.position[i] = pe[i] / pe[3];
+            lp.position[3] = 1.0;
+          }
+          for (int c = 0; c < 3; ++c) {
+            lp.ambient[c] = L.ambient[c];
+            lp.diffuse[c] = L.diffuse[c];
+            lp.specular[c] = L.specular[c];
+          }
+          lp.kc = L.kc, lp.kl = L.kl, lp.kq = L.kq;
+          if (L.is_spot()) {  // GL_SPOT_DIRECTION is transformed by the modelview's upper 3×3 (w = 0)
+            const auto de = apply(view, {L.spot_direction[0], L.spot_direction[1], L.spot_direction[2], 0.0});
+            for (int i = 0; i < 3; ++i) lp.spot_direction[i] = de[i];
+            lp.spot_cutoff = L.spot_cutoff;
+            lp.spot_exponent = L.spot_exponent;
+          }
+        } else {  // a slot the scene does not use: zero colours contribute exactly 0
+          lp.position[0] = lp.position[1] = 0;
+          lp.position[2] = 1;
+          lp.position[3] = kind == LightKind::Directional ? 0.0 : 1.0;
+          if (kind != LightKind::Directional) lp.position[2] = 0;
+          for (int c = 0; c < 3; ++c) lp.ambient[c] = lp.diffuse[c] = lp.specular[c] = 0;
+          lp.kc = 1, lp.kl = 0, lp.kq = 0;
+        }
+        add_writes(light_writes(core, j, lp), changed_only);
       }
-      LightParams lp;
-      const int sj = j < static_cast<int>(slot_light.size()) ? slot_light[j] : -1;
-      LightKind kind = sp.slot_kind(j);
-      if (sj >= 0) kind = light_kind(F, S.lights[static_cast<size_t>(sj)]);
-      lp.kind = slot_kind_for(g.fs, j, kind);
-      if (sj >= 0) {
-        const auto& L = S.lights[static_cast<size_t>(sj)];
-        const auto pe = apply(view, L.position);
-        for (int i = 0; i < 4; ++i) lp.position[i] = pe[i];
-        if (L.position[3] != 0.0) {
-          for (int i = 0; i < 3; ++i) lp.position[i] = pe[i] / pe[3];
-          lp.position[3] = 1.0;
-        }
-        for (int c = 0; c < 3; ++c) {
-          lp.ambient[c] = L.ambient[c];
-          lp.diffuse[c] = L.diffuse[c];
-          lp.specular[c] = L.specular[c];
-        }
-        lp.kc = L.kc, lp.kl = L.kl, lp.kq = L.kq;
-        if (L.is_spot()) {  // GL_SPOT_DIRECTION is transformed by the modelview's upper 3×3 (w = 0)
-          const auto de = apply(view, {L.spot_direction[0], L.spot_direction[1], L.spot_direction[2], 0.0});
-          for (int i = 0; i < 3; ++i) lp.spot_direction[i] = de[i];
-          lp.spot_cutoff = L.spot_cutoff;
-          lp.spot_exponent = L.spot_exponent;
-        }
-      } else {  // a slot the scene does not use: zero colours contribute exactly 0
-        lp.position[0] = lp.position[1] = 0;
-        lp.position[2] = 1;
-        lp.position[3] = kind == LightKind::Directional ? 0.0 : 1.0;
-        if (kind != LightKind::Directional) lp.position[2] = 0;
-        for (int c = 0; c < 3; ++c) lp.ambient[c] = lp.diffuse[c] = lp.specular[c] = 0;
-        lp.kc = 1, lp.kl = 0, lp.kq = 0;
-      }
-      add_writes(light_writes(core, j, lp), changed_only);
-    }
     };
     // the states with fragments in this group (a group with none is programmed with its first state, as before)
     auto has_fragments = [&](size_t st, int m) {
@@ -830,98 +832,99 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
           break;
         }
     for (size_t si = 0; si < states.size(); ++si) {
-    const size_t cur_state = states[si];
-    const uint64_t writes_before = g.writes;
-    program_state(cur_state, si > 0);
-    if (si > 0) ++g.state_changes, g.state_writes += g.writes - writes_before;
-    for (int m : g.materials) {
-      const size_t b0 = (cur_state * nmat + static_cast<size_t>(m)) * kCmBuckets;
-      if (!has_fragments(cur_state, m)) continue;
-      const auto& M = sc.materials[m];
-      // a scene material's (or its back's) colours and shininess into the host's MaterialParams
-      auto take = [](MaterialParams& p, const auto& src) {
-        for (int c = 0; c < 3; ++c) {
-          p.emission[c] = src.emission[c];
-          p.ambient[c] = src.ambient[c];
-          p.diffuse[c] = src.diffuse[c];
-          p.specular[c] = src.specular[c];
+      const size_t cur_state = states[si];
+      const uint64_t writes_before = g.writes;
+      program_state(cur_state, si > 0);
+      if (si > 0) ++g.state_changes, g.state_writes += g.writes - writes_before;
+      for (int m : g.materials) {
+        const size_t b0 = (cur_state * nmat + static_cast<size_t>(m)) * kCmBuckets;
+        if (!has_fragments(cur_state, m)) continue;
+        const auto& M = sc.materials[m];
+        // a scene material's (or its back's) colours and shininess into the host's MaterialParams
+        auto take = [](MaterialParams& p, const auto& src) {
+          for (int c = 0; c < 3; ++c) {
+            p.emission[c] = src.emission[c];
+            p.ambient[c] = src.ambient[c];
+            p.diffuse[c] = src.diffuse[c];
+            p.specular[c] = src.specular[c];
+          }
+          p.shininess = src.shininess;
+        };
+        MaterialParams mp;
+        take(mp, M);
+        if (M.normalization && sp.specular) {
+          mp.norm_model = static_cast<int>(M.normalization->model);
+          mp.norm_kind = M.normalization->kind;
+        } else {
+          mp.norm_model = -1;  // with the norm hardware: coefficient 1.0, sc_energy passes spec unchanged
         }
-        p.shininess = src.shininess;
-      };
-      MaterialParams mp;
-      take(mp, M);
-      if (M.normalization && sp.specular) {
-        mp.norm_model = static_cast<int>(M.normalization->model);
-        mp.norm_kind = M.normalization->kind;
-      } else {
-        mp.norm_model = -1;  // with the norm hardware: coefficient 1.0, sc_energy passes spec unchanged
-      }
-      if (sp.specular) mp.unit = sp.variant;
-      add_writes(material_writes(core, mp), s.changed_registers_only);
-      // glMaterial(GL_BACK, ...): the back colour bank (the front's when the scene gives none)
-      const scene::BackMaterial B = M.back_or_front();
-      MaterialParams bp = mp;
-      take(bp, B);
-      if (sp.two_side) add_writes(back_material_writes(core, bp), s.changed_registers_only);
-      // The core holds one unit material (mat_unit, mat_n, mat_thr, mat_coef). A back face with a shininess of its
-      // own: the front-facing fragments first, then the back's unit material and the back-facing ones (the next
-      // material's writes replace it). Otherwise one batch, in the order below.
-      const bool split = sp.two_side && sp.specular && bp.shininess != mp.shininess;
-      auto pixel_back = [&fr](uint32_t p) {
-        return fr.two_side && fr.raster.tris()[fr.raster.at(static_cast<int>(p % fr.width), static_cast<int>(p / fr.width))].back;
-      };
-      auto frag = [&g](const Fragment& f, DestKind k, uint32_t idx, bool back) {
-        CoreCmd c;
-        c.f = f;
-        c.f.back = back;
-        g.cmds.push_back(c);
-        g.dests.push_back({k, idx, back});
-      };
-      for (int batch = 0; batch < (split ? 2 : 1); ++batch) {
-        auto in_batch = [&](bool back) { return !split || back == (batch == 1); };
-        if (batch == 1) add_writes(unit_material_writes(core, bp), s.changed_registers_only);
-        for (size_t b = b0; b < b0 + kCmBuckets; ++b) {
-          bool any_here = false;
-          for (const Item& f : mat_faces[b]) any_here = any_here || in_batch(f.back);
-          for (const Item& v : mat_verts[b]) any_here = any_here || in_batch(v.back);
-          for (uint32_t p : mat_pixels[b]) any_here = any_here || in_batch(pixel_back(p));
-          if (!any_here) continue;
-          if (g.fs.colour_material)  // glColorMaterial(GL_FRONT_AND_BACK, mode) / glDisable(GL_COLOR_MATERIAL)
-            add_writes(colour_material_writes(b == b0 ? std::nullopt
-                                                      : std::optional<ColourMaterial>(static_cast<ColourMaterial>(b - b0 - 1))), s.changed_registers_only);
-          for (const Item& f : mat_faces[b])
-            if (in_batch(f.back)) frag(fr.face_frag[f.index], DestKind::Face, f.index, f.back), ++g.faces;
-          for (const Item& v : mat_verts[b])
-            if (in_batch(v.back)) frag(fr.vertex_frag[v.index], DestKind::Vertex, v.index, v.back), ++g.vertices;
-          for (uint32_t p : mat_pixels[b]) {
-            if (!in_batch(pixel_back(p))) continue;
-            const int x = static_cast<int>(p % fr.width), y = static_cast<int>(p / fr.width);
-            const int32_t id = fr.raster.at(x, y);
-            const auto& st = fr.raster.tris()[id];
-            const auto& tv = fr.tri_vertices[st.source];
-            const raster::Weights w = fr.raster.weights(id, x, y);
-            // the normal, the position and the colour (0 without colour material) interpolated alike: each
-            // screen vertex's value from its weights over the triangle's vertices, then perspective-correct
-            auto interp = [&](auto attr) {
-              std::array<int64_t, 3> a{};
-              for (int k = 0; k < 3; ++k) {
-                double sa = 0;
-                for (int q = 0; q < 3; ++q) sa += st.v[k].b[q] * static_cast<double>(attr(fr.vertex_frag[tv[q]]));
-                a[k] = std::llround(sa);
+        if (sp.specular) mp.unit = sp.variant;
+        add_writes(material_writes(core, mp), s.changed_registers_only);
+        // glMaterial(GL_BACK, ...): the back colour bank (the front's when the scene gives none)
+        const scene::BackMaterial B = M.back_or_front();
+        MaterialParams bp = mp;
+        take(bp, B);
+        if (sp.two_side) add_writes(back_material_writes(core, bp), s.changed_registers_only);
+        // The core holds one unit material (mat_unit, mat_n, mat_thr, mat_coef). A back face with a shininess of its
+        // own: the front-facing fragments first, then the back's unit material and the back-facing ones (the next
+        // material's writes replace it). Otherwise one batch, in the order below.
+        const bool split = sp.two_side && sp.specular && bp.shininess != mp.shininess;
+        auto pixel_back = [&fr](uint32_t p) {
+          return fr.two_side && fr.raster.tris()[fr.raster.at(static_cast<int>(p % fr.width), static_cast<int>(p / fr.width))].back;
+        };
+        auto frag = [&g](const Fragment& f, DestKind k, uint32_t idx, bool back) {
+          CoreCmd c;
+          c.f = f;
+          c.f.back = back;
+          g.cmds.push_back(c);
+          g.dests.push_back({k, idx, back});
+        };
+        for (int batch = 0; batch < (split ? 2 : 1); ++batch) {
+          auto in_batch = [&](bool back) { return !split || back == (batch == 1); };
+          if (batch == 1) add_writes(unit_material_writes(core, bp), s.changed_registers_only);
+          for (size_t b = b0; b < b0 + kCmBuckets; ++b) {
+            bool any_here = false;
+            for (const Item& f : mat_faces[b]) any_here = any_here || in_batch(f.back);
+            for (const Item& v : mat_verts[b]) any_here = any_here || in_batch(v.back);
+            for (uint32_t p : mat_pixels[b]) any_here = any_here || in_batch(pixel_back(p));
+            if (!any_here) continue;
+            if (g.fs.colour_material)  // glColorMaterial(GL_FRONT_AND_BACK, mode) / glDisable(GL_COLOR_MATERIAL)
+              add_writes(colour_material_writes(b == b0 ? std::nullopt
+                                                        : std::optional<ColourMaterial>(static_cast<ColourMaterial>(b - b0 - 1))),
+                         s.changed_registers_only);
+            for (const Item& f : mat_faces[b])
+              if (in_batch(f.back)) frag(fr.face_frag[f.index], DestKind::Face, f.index, f.back), ++g.faces;
+            for (const Item& v : mat_verts[b])
+              if (in_batch(v.back)) frag(fr.vertex_frag[v.index], DestKind::Vertex, v.index, v.back), ++g.vertices;
+            for (uint32_t p : mat_pixels[b]) {
+              if (!in_batch(pixel_back(p))) continue;
+              const int x = static_cast<int>(p % fr.width), y = static_cast<int>(p / fr.width);
+              const int32_t id = fr.raster.at(x, y);
+              const auto& st = fr.raster.tris()[id];
+              const auto& tv = fr.tri_vertices[st.source];
+              const raster::Weights w = fr.raster.weights(id, x, y);
+              // the normal, the position and the colour (0 without colour material) interpolated alike: each
+              // screen vertex's value from its weights over the triangle's vertices, then perspective-correct
+              auto interp = [&](auto attr) {
+                std::array<int64_t, 3> a{};
+                for (int k = 0; k < 3; ++k) {
+                  double sa = 0;
+                  for (int q = 0; q < 3; ++q) sa += st.v[k].b[q] * static_cast<double>(attr(fr.vertex_frag[tv[q]]));
+                  a[k] = std::llround(sa);
+                }
+                return raster::interpolate(w, a);
+              };
+              Fragment f;
+              for (int i = 0; i < 3; ++i) {
+                f.n[i] = interp([i](const Fragment& v) { return v.n[i]; });
+                f.p[i] = interp([i](const Fragment& v) { return v.p[i]; });
+                f.col[i] = static_cast<uint32_t>(interp([i](const Fragment& v) { return v.col[i]; }));
               }
-              return raster::interpolate(w, a);
-            };
-            Fragment f;
-            for (int i = 0; i < 3; ++i) {
-              f.n[i] = interp([i](const Fragment& v) { return v.n[i]; });
-              f.p[i] = interp([i](const Fragment& v) { return v.p[i]; });
-              f.col[i] = static_cast<uint32_t>(interp([i](const Fragment& v) { return v.col[i]; }));
+              frag(f, DestKind::Pixel, p, fr.two_side && st.back);
+              ++g.pixels;
             }
-            frag(f, DestKind::Pixel, p, fr.two_side && st.back);
-            ++g.pixels;
           }
         }
-      }
     }
     }
   }
