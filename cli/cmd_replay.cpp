@@ -31,6 +31,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "handoff_bundle.hpp"
 #include "light_rtl.hpp"
 #include "output.hpp"
 #include "render_rtl.hpp"
@@ -138,6 +139,82 @@ canvas::Canvas pair_figure(int w, int h, const std::vector<uint8_t>& exact, cons
   for (size_t i = 0; i < foot.size(); ++i)
     cv.text(pad, line + h + pad + static_cast<int>(i) * line, foot[i], 200, 200, 200);
   return cv;
+}
+
+// ---- the measured clock (docs/timing.json) --------------------------------------------------------------------
+
+// How two feature sets differ, one short item per capability (empty: the same core).
+std::vector<std::string> fs_differences(const FeatureSet& a, const FeatureSet& b) {
+  std::vector<std::string> d;
+  if (a.slots.size() != b.slots.size())
+    d.push_back(fmt::format("{} light slots vs {}", a.slots.size(), b.slots.size()));
+  for (size_t j = 0; j < std::min(a.slots.size(), b.slots.size()); ++j)
+    if (a.slots[j] != b.slots[j])
+      d.push_back(fmt::format("slot {} {} vs {}", j, kinds_name(a.slots[j]), kinds_name(b.slots[j])));
+  auto flag = [&d](bool x, bool y, const char* what) {
+    if (x != y) d.push_back(std::string(x ? "with " : "without ") + what);
+  };
+  flag(a.ambient, b.ambient, "ambient");
+  flag(a.diffuse, b.diffuse, "diffuse");
+  flag(a.specular, b.specular, "specular");
+  if (a.specular && b.specular && a.units() != b.units())
+    d.push_back(fmt::format("unit {} vs {}", variant_name(a.variant), variant_name(b.variant)));
+  if (a.specular && b.specular && a.cutoff != b.cutoff) d.push_back("another cut-off");
+  flag(a.norm, b.norm, "energy normalisation");
+  flag(a.blinn, b.blinn, "Blinn");
+  flag(a.phong, b.phong, "Phong");
+  flag(a.local_viewer, b.local_viewer, "local viewer");
+  flag(a.normalize, b.normalize, "normalize");
+  flag(a.low_shininess, b.low_shininess, "low shininess");
+  flag(a.two_side, b.two_side, "two-sided");
+  flag(a.separate_specular, b.separate_specular, "separate specular");
+  flag(a.colour_material, b.colour_material, "colour material");
+  if (a.channels != b.channels) d.push_back(a.channels == 1 ? "mono vs RGB" : "RGB vs mono");
+  if (a.lanes != b.lanes) d.push_back(fmt::format("{} lanes vs {}", a.lanes, b.lanes));
+  if (a.share != b.share) d.push_back(fmt::format("share {} vs {}", a.share, b.share));
+  if (a.config != b.config) d.push_back("config " + a.config + " vs " + b.config);
+  if (a.spec_guard != b.spec_guard) d.push_back("another spec_guard");
+  return d;
+}
+
+// The lighting sets docs/timing.json measured (rows of kind "lighting" with a closing period), read at run time;
+// empty with `why` set when the file is absent or unreadable (never an error: the report says "no measured clock").
+struct MeasuredSet {
+  std::string name;
+  FeatureSet fs;
+  double period_ns = 0, fmax_mhz = 0;
+  bool met = false;
+};
+std::vector<MeasuredSet> measured_sets(std::string& path, std::string& why) {
+  path = (fsys::path(handoff::root_dir()) / "docs" / "timing.json").string();
+  std::vector<MeasuredSet> out;
+  std::ifstream in(path);
+  if (!in) {
+    why = "no measured clock (" + path + " not found)";
+    return out;
+  }
+  try {
+    const json t = json::parse(in);
+    for (const auto& r : t.at("rows")) {
+      if (r.value("kind", "") != "lighting" || !r.contains("period_ns") || !r["period_ns"].is_number()) continue;
+      MeasuredSet m;
+      m.name = r.at("name").get<std::string>();
+      m.period_ns = r["period_ns"].get<double>();
+      m.fmax_mhz = r.value("fmax_mhz", 0.0);
+      m.met = r.value("met", false);
+      try {
+        m.fs = feature_set_named_or_file(m.name);
+      } catch (const std::exception&) {
+        continue;  // a row naming no feature set of config/configs.json
+      }
+      if (m.period_ns > 0) out.push_back(std::move(m));
+    }
+  } catch (const std::exception& e) {
+    why = std::string("no measured clock (") + path + " unreadable: " + scene::printable(e.what(), 80) + ")";
+    return {};
+  }
+  if (out.empty()) why = "no measured clock (" + path + " has no measured lighting set)";
+  return out;
 }
 
 json stats_json(const glref::DiffStats& s) {
@@ -296,6 +373,56 @@ void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool jso
                 {"cores", tot.cores}};
   }
 
+  // The frame's time at the measured clock: per core the lighting set of docs/timing.json it is (or the nearest one:
+  // the same specular unit (or none) first — the unit is the longest path —, then the fewest differing capabilities,
+  // then the longer period), its closing period × the core's cycles (--rtl).
+  json clock_json;
+  {
+    std::string path, why;
+    const std::vector<MeasuredSet> ms = measured_sets(path, why);
+    if (ms.empty()) {
+      clock_json = {{"measured", false}, {"why", why}};
+      fmt::print("clock: {}\n", why);
+    } else {
+      json cj = json::array();
+      double total_us = 0;
+      bool all_cycles = a.rtl;
+      for (size_t gi = 0; gi < fr.groups.size(); ++gi) {
+        const FeatureSet& fs = fr.groups[gi].fs;
+        const MeasuredSet* best = nullptr;
+        std::vector<std::string> best_d;
+        auto unit_differs = [&fs](const FeatureSet& m) { return fs.specular != m.specular || fs.units() != m.units(); };
+        for (const auto& m : ms) {
+          const auto dd = fs_differences(fs, m.fs);
+          const auto score = std::make_tuple(unit_differs(m.fs), dd.size(), -m.period_ns);
+          if (!best || score < std::make_tuple(unit_differs(best->fs), best_d.size(), -best->period_ns))
+            best = &m, best_d = dd;
+        }
+        json c = {{"key", fs.key()}, {"measured_set", best->name}, {"exact", best_d.empty()},
+                  {"differences", best_d}, {"period_ns", best->period_ns}, {"fmax_mhz", best->fmax_mhz},
+                  {"met", best->met}};
+        if (a.rtl && gi < rtl_json["cores"].size()) {
+          const uint64_t cyc = rtl_json["cores"][gi]["cycles"].get<uint64_t>();
+          const double us = static_cast<double>(cyc) * best->period_ns / 1000.0;
+          c["cycles"] = cyc;
+          c["time_us"] = us;
+          total_us += us;
+        } else {
+          all_cycles = false;
+        }
+        std::string diffs;
+        for (const auto& x : best_d) diffs += (diffs.empty() ? "" : ", ") + x;
+        fmt::print("clock: core {} is {} {} (closes at {} ns){}\n", gi,
+                   best_d.empty() ? "the measured lighting set" : "nearest the measured lighting set", best->name,
+                   best->period_ns, diffs.empty() ? std::string() : "; it differs: " + diffs);
+        cj.push_back(c);
+      }
+      clock_json = {{"measured", true}, {"source", path}, {"cores", cj},
+                    {"frame_time_us", all_cycles ? json(total_us) : json(nullptr)}};
+      if (all_cycles) fmt::print("frame time at the measured clock: {:.2f} µs (core cycles × the period)\n", total_us);
+    }
+  }
+
   // The reference: Mesa's snapshot of the same frame, or a given image.
   json cmp_json = nullptr;
   bool cmp_pass = true;
@@ -435,6 +562,8 @@ void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool jso
     j["lighting_state_changes"] = state_changes;    // reprogrammings of the core between batches (all cores)
     j["state_change_register_writes"] = state_writes;  // their writes (of register_writes): changed registers only
     j["core_cycles"] = a.rtl ? rtl_json["cycles"] : json(nullptr);
+    // the frame's time at the measured closing clock of its lighting set (docs/timing.json), or "no measured clock"
+    j["clock"] = clock_json;
     json keys = json::array();
     for (const auto& g : fr.groups) keys.push_back(g.fs.key());
     j["feature_set_keys"] = keys;

@@ -99,6 +99,24 @@ TEST(ReplayCli, ReplaysAHandBuiltCaptureAgainstItsOwnExactImage) {
   EXPECT_EQ(j["triangles"], 1);
   EXPECT_GT(j["register_writes"].get<int>(), 0);
   EXPECT_EQ(j["feature_set_keys"].size(), 1u);
+  // the frame's clock: the measured lighting set nearest its core (docs/timing.json, read at run time); no time
+  // without --rtl (no core cycles)
+  ASSERT_TRUE(j["clock"].is_object());
+  if (j["clock"]["measured"].get<bool>()) {
+    ASSERT_EQ(j["clock"]["cores"].size(), 1u);
+    EXPECT_FALSE(j["clock"]["cores"][0]["measured_set"].get<std::string>().empty());
+    EXPECT_GT(j["clock"]["cores"][0]["period_ns"].get<double>(), 0);
+    EXPECT_TRUE(j["clock"]["frame_time_us"].is_null());
+  }
+  {  // without docs/timing.json: "no measured clock", never a failure
+    TempDir root;
+    const CliRun n = shadecore::testing::run_shell("SHADECORE_ROOT=" + root.path().string() + " " + SHADECORE_CLI +
+                                                   " replay " + (t / "in.trace") + " --frame 1 --json " + (t / "n.json"));
+    ASSERT_EQ(n.status, 0) << n.err;
+    const auto jn = nlohmann::json::parse(shadecore::testing::slurp(t / "n.json"));
+    EXPECT_FALSE(jn["clock"]["measured"].get<bool>());
+    EXPECT_NE(jn["clock"]["why"].get<std::string>().find("no measured clock"), std::string::npos);
+  }
   // its own exact image as the reference: identical, same coverage
   r = run_cli("replay " + (t / "in.trace") + " --frame 1 --reference " + (t / "out/exact.png") + " --out " + (t / "out2"));
   ASSERT_EQ(r.status, 0) << r.err;
