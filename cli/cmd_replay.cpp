@@ -157,8 +157,14 @@ std::vector<std::string> fs_differences(const FeatureSet& a, const FeatureSet& b
   flag(a.ambient, b.ambient, "ambient");
   flag(a.diffuse, b.diffuse, "diffuse");
   flag(a.specular, b.specular, "specular");
-  if (a.specular && b.specular && a.units() != b.units())
-    d.push_back(fmt::format("unit {} vs {}", variant_name(a.variant), variant_name(b.variant)));
+  if (a.specular && b.specular && a.units() != b.units()) {
+    auto names = [](const FeatureSet& f) {
+      std::string u;
+      for (auto v : f.units()) u += (u.empty() ? "" : "|") + std::string(variant_name(v));
+      return u;
+    };
+    d.push_back("units " + names(a) + " vs " + names(b));
+  }
   if (a.specular && b.specular && a.cutoff != b.cutoff) d.push_back("another cut-off");
   flag(a.norm, b.norm, "energy normalisation");
   flag(a.blinn, b.blinn, "Blinn");
@@ -307,9 +313,10 @@ void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool jso
   fmt::print("capture {}: trace version {}, {} chunks; {} calls read, frame {} = calls {}..{} ({} calls, {} executed with display lists)\n",
              scene::printable(a.trace, 0), version, chunks, st.calls_read, h.frame, h.first_call, h.snapshot_call,
              st.calls_in_frame, st.calls_executed);
-  fmt::print("front end: {} primitives, {} vertices, {} triangles ({} culled); {} objects, {} materials, {} lights; {}x{}\n",
+  fmt::print("front end: {} primitives, {} vertices, {} triangles ({} culled); {} objects, {} materials, {} lights{}; {}x{}\n",
              st.primitives, st.vertices, st.triangles, st.culled, h.scene.objects.size(), h.scene.materials.size(),
-             h.scene.lights.size(), fr.width, fr.height);
+             h.scene.lights.size(), h.scene.lighting_sets.empty() ? "" : " in the first lighting state", fr.width,
+             fr.height);
   std::string unsup;
   for (const auto& [n, k] : st.unsupported)
     unsup += fmt::format("{}{} ×{}", unsup.empty() ? "" : ", ", scene::printable(n, 0), k);

@@ -643,6 +643,16 @@ TEST(ReplayFrontend, LightsChangingBetweenDrawsAreProgrammedBetweenBatches) {
       EXPECT_GT(cols[i].c[1], 0.5 * 65536);
       EXPECT_LT(cols[i].c[1], 0.84 * 65536);
     }
+  {  // the full core (every slot every kind) programmed for the same states: the same image
+    auto hs = h.settings;
+    hs.full_core = true;
+    const auto ff = shadecore::render::prepare(h.scene, h.meshes, hs);
+    ASSERT_EQ(ff.groups.size(), 1u);
+    EXPECT_EQ(ff.groups[0].state_changes, 2u);
+    const auto a = shadecore::render::resolve(fr, {cols});
+    const auto b = shadecore::render::resolve(ff, {shadecore::render::run_cmodel(ff.groups[0])});
+    EXPECT_EQ(shadecore::render::mismatching_pixels(a, b), 0u);
+  }
   // a frame with one lighting state hands over none (the scene's own fields), as before
   Driver e;
   e.en(DEPTH_TEST);

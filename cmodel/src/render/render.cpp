@@ -168,12 +168,14 @@ FeatureSet full_core_for(const FeatureSet& spec, std::vector<std::string>& subs)
   need(!spec.specular || f.specular, "a specular unit");
   need(!spec.norm || f.norm, "energy normalisation");
   need(spec.channels <= f.channels, "RGB");
-  for (int j = 0; j < spec.num_lights(); ++j) {
-    const LightKind s = spec.slot_kind(j);
-    // A point light (kc = 1, kl = kq = 0) on a point_att slot: q = 1, att = recip_att(2^F) = 2^F exactly.
-    need(f.slot_can(j, s) || (s == LightKind::Point && f.slot_can(j, LightKind::PointAtt)),
-         "light slot " + std::to_string(j) + " of kind " + to_string(s));
-  }
+  for (int j = 0; j < spec.num_lights(); ++j)
+    for (int k = 0; k < kNumLightKinds; ++k) {  // every kind of the slot (several when lighting states differ)
+      const auto s = static_cast<LightKind>(k);
+      if (!spec.slot_can(j, s)) continue;
+      // A point light (kc = 1, kl = kq = 0) on a point_att slot: q = 1, att = recip_att(2^F) = 2^F exactly.
+      need(f.slot_can(j, s) || (s == LightKind::Point && f.slot_can(j, LightKind::PointAtt)),
+           "light slot " + std::to_string(j) + " of kind " + to_string(s));
+    }
   need(!spec.normalize || f.normalize, "the normal normaliser (normalize)");
   need(!spec.two_side || f.two_side, "two-sided lighting (two_side)");
   need(!spec.colour_material || f.colour_material, "colour material (colour_material)");
