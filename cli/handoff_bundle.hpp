@@ -103,8 +103,9 @@ struct BundleBase {
   // OSU 0.18 um sign-off (signoff/signoff.py, docs/signoff.md): mode auto | on | off, the target period (ns)
   std::string signoff_mode = "auto";
   double signoff_target = 4.0;
-  // ABC's script (signoff.py --abc): full for the units; lean for the lighting cores (no SAT sweeping: the
-  // full script does not finish on their multiplier trees in hours; docs/signoff.md)
+  // ABC's script (signoff.py --abc): full for the units unless config/configs.json variants[].signoff_abc says lean
+  // (schlick_nr); lean for the lighting cores (no SAT sweeping: the full script does not finish on their multiplier
+  // trees in hours; docs/signoff.md)
   std::string signoff_abc = "full";
   std::string signoff_status = "not run";
 };

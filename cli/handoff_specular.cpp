@@ -364,6 +364,8 @@ void run_specular(const Options& a, const UnitSpec& spec) {
     b.synth = synth;
     b.signoff_mode = a.signoff;
     b.signoff_target = a.clock_target;
+    for (const auto& v : kVariants)  // config/configs.json variants[].signoff_abc (schlick_nr: lean)
+      if (v.id == spec.variant) b.signoff_abc = std::string(v.signoff_abc);
     b.synth_why = synth == SynthMode::Skipped ? "--synth skip" : synth == SynthMode::Hierarchical ? "--synth hier" : "";
     b.ports = concrete_ports(load_ports(), spec, a.tagw);
     const Unit unit = spec.unit();

@@ -132,6 +132,15 @@ foreach(i RANGE ${_lastv})
   if(_nomreg)
     set(_vmreg 0)
   endif()
+  # "signoff_abc": the ABC script of the OSU 0.18 um sign-off (signoff/signoff.py --abc): full (default) or lean,
+  # for a unit whose delay-driven mapping with SAT sweeping does not finish in hours (schlick_nr; docs/signoff.md)
+  string(JSON _vabc ERROR_VARIABLE _noabc GET "${_cfg_json}" variants ${i} signoff_abc)
+  if(_noabc)
+    set(_vabc "full")
+  endif()
+  if(NOT _vabc STREQUAL "full" AND NOT _vabc STREQUAL "lean")
+    message(FATAL_ERROR "config/configs.json: variant ${_vname}: signoff_abc must be \"full\" or \"lean\", not \"${_vabc}\"")
+  endif()
   list(APPEND SHADECORE_VARIANT_NAMES "${_vname}")
   set(SHADECORE_VARIANT_${_vname}_ID "${_vid}")
   set(SHADECORE_VARIANT_${_vname}_CONTRACT "${_vcontract}")
@@ -139,7 +148,7 @@ foreach(i RANGE ${_lastv})
   set(SHADECORE_VARIANT_${_vname}_MREG_STAGES "${_vmreg}")
   string(TOUPPER "${_vname}" _vupper)
   string(APPEND _venum "  ${_vname} = ${_vid},\n")
-  string(APPEND _ventries "    NamedVariant{\"${_vname}\", VariantId::${_vname}, \"${_vcontract}\", ${_ventries_n}, ${_vmreg}},\n")
+  string(APPEND _ventries "    NamedVariant{\"${_vname}\", VariantId::${_vname}, \"${_vcontract}\", ${_ventries_n}, ${_vmreg}, \"${_vabc}\"},\n")
   string(APPEND _vvh "localparam integer VARIANT_${_vupper} = ${_vid};\n")
   if(NOT _ventries_n EQUAL 0)
     string(APPEND _vvh "localparam integer VARIANT_${_vupper}_ENTRIES = ${_ventries_n};\n")
@@ -202,8 +211,10 @@ enum class VariantId : int {
 ${_venum}};
 // contract: the variant's kind / error contract from configs.json (\"table\" for the per-material table
 // units, \"\" when not given); entries: table size of a \"table\" variant (0 otherwise); mreg_stages: the cycles the
-// pipelining parameter MREG = 1 adds (a register inside each product, rtl/sc_mul_reg.v; 0: the unit has no MREG).
-struct NamedVariant { std::string_view name; VariantId id; std::string_view contract; int entries; int mreg_stages; };
+// pipelining parameter MREG = 1 adds (a register inside each product, rtl/sc_mul_reg.v; 0: the unit has no MREG);
+// signoff_abc: the ABC script of its OSU 0.18 um sign-off (signoff/signoff.py --abc: full or lean).
+struct NamedVariant { std::string_view name; VariantId id; std::string_view contract; int entries; int mreg_stages;
+                      std::string_view signoff_abc; };
 inline constexpr std::array<NamedVariant, ${_nv}> kVariants{{
 ${_ventries}}};
 // cs16 forms with folded truncated squarers (\"squarer\" in configs.json; docs/spec.md §3.4).

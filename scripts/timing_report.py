@@ -207,7 +207,8 @@ def add_stages(a, r, hit):
         d = os.path.join(tmp, "b")
         bundle(a, r, d, signoff="off")
         p = subprocess.run(["/usr/bin/python3", SIGNOFF, d, "--target", str(a.target), "--timeout", str(a.timeout),
-                            "--steps", "synth,sta", "--abc", "lean" if r["kind"] == "lighting" else "full"],
+                            "--steps", "synth,sta", "--abc",
+                            "lean" if r["kind"] == "lighting" else r["variant"].get("signoff_abc", "full")],
                            capture_output=True, text=True)
         if p.returncode:
             raise Failure(f"signoff of {row_id(r)} failed: {(p.stderr or p.stdout).strip().splitlines()[-1:]}")
@@ -502,6 +503,7 @@ def main():
             "library": meta["library"], "tools": meta["tools"], "target_ns": a.target, "fo4_ns": meta["fo4_ns"],
             "derate_late": meta["derate_late"], "io_fraction": meta["io_fraction"], "drive_cell": meta["drive_cell"]}
     doc = dict(info, rows=out_rows, not_measured=missing)
+    os.makedirs(a.out, exist_ok=True)
     jp = os.path.join(a.out, "timing.json")
     with open(jp + ".tmp", "w") as f:
         json.dump(doc, f, indent=1)
