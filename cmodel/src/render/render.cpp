@@ -215,10 +215,14 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
     return static_cast<size_t>(std::clamp<int>(O.lighting, 0, static_cast<int>(ns) - 1));
   };
   std::vector<bool> used(nm, false);
-  std::vector<std::vector<bool>> in_set(ns, std::vector<bool>(nm, false));
+  std::vector<std::vector<int>> mats_in_set(ns);  // per state the materials drawn in it (ascending, once)
   for (int o : objects_used) {
     used[sc.objects[o].material] = true;
-    in_set[set_of(sc.objects[o])][static_cast<size_t>(sc.objects[o].material)] = true;
+    mats_in_set[set_of(sc.objects[o])].push_back(sc.objects[o].material);
+  }
+  for (auto& v : mats_in_set) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
   }
 
   auto nz = [F](const Vec3& c, int ch) { return colour_code(F, c[ch]) != 0; };
@@ -293,26 +297,26 @@ Derivation derive_features(const Scene& sc, const std::vector<int>& objects_used
   }
   if (!d.groups.empty()) std::sort(d.groups[0].materials.begin(), d.groups[0].materials.end());
 
-  for (auto& g : d.groups) {
+  for (size_t gi = 0; gi < d.groups.size(); ++gi) {
+    CoreGroup& g = d.groups[gi];
     FeatureSet fs;
     fs.name = "scene";
     fs.config = sc.config;
     const bool has_unit = g.unit_label != "none";
     const int m0 = g.materials.front();
-    // over the group's materials drawn in lighting state st
+    // per lighting state the group's materials drawn in it
+    std::vector<std::vector<int>> group_mats(ns);
+    for (size_t st = 0; st < ns; ++st)
+      for (int m : mats_in_set[st])
+        if (d.group_of_material[static_cast<size_t>(m)] == static_cast<int>(gi)) group_mats[st].push_back(m);
     auto any_mat_in = [&](size_t st, auto pred) {
-      for (int m : g.materials)
-        if (in_set[st][static_cast<size_t>(m)])
-          for (const auto& S : sides[m])
-            for (int ch = 0; ch < 3; ++ch)
-              if (pred(S, ch)) return true;
+      for (int m : group_mats[st])
+        for (const auto& S : sides[m])
+          for (int ch = 0; ch < 3; ++ch)
+            if (pred(S, ch)) return true;
       return false;
     };
-    auto set_used = [&](size_t st) {
-      for (int m : g.materials)
-        if (in_set[st][static_cast<size_t>(m)]) return true;
-      return false;
-    };
+    auto set_used = [&](size_t st) { return !group_mats[st].empty(); };
     // Which lights contribute to any material of this core, per lighting state: the k-th contributing light of each
     // state goes to slot k, whose kinds are the union over the states (a driver reprograms the slot between them).
     fs.slots.clear();
@@ -699,17 +703,24 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
   // object oi. A core with the colour_material register gets it written before each bucket's fragments; a scene
   // without colour material has only the `none` buckets.
   constexpr size_t kCmBuckets = 6;
-  const size_t nmat = sc.materials.size();
   auto set_of = [nsets](const scene::Object& O) {
     return static_cast<size_t>(std::clamp<int>(O.lighting, 0, static_cast<int>(nsets) - 1));
   };
+  // the (lighting state, material) pairs drawn, numbered in that order: kCmBuckets buckets each
+  std::map<std::pair<size_t, int>, size_t> pair_index;
+  for (int oi : drawn) pair_index.emplace(std::make_pair(set_of(sc.objects[oi]), sc.objects[oi].material), 0);
+  {
+    size_t k = 0;
+    for (auto& kv : pair_index) kv.second = k++;
+  }
   auto bucket = [&](int oi) {
     const auto& cmo = sc.objects[oi].colour_material;
-    return (set_of(sc.objects[oi]) * nmat + static_cast<size_t>(sc.objects[oi].material)) * kCmBuckets +
+    return pair_index.at({set_of(sc.objects[oi]), sc.objects[oi].material}) * kCmBuckets +
            (cmo ? 1 + static_cast<size_t>(*cmo) : 0);
   };
-  std::vector<std::vector<Item>> mat_faces(nsets * nmat * kCmBuckets), mat_verts(nsets * nmat * kCmBuckets);
-  std::vector<std::vector<uint32_t>> mat_pixels(nsets * nmat * kCmBuckets);
+  const size_t nbuckets = pair_index.size() * kCmBuckets;
+  std::vector<std::vector<Item>> mat_faces(nbuckets), mat_verts(nbuckets);
+  std::vector<std::vector<uint32_t>> mat_pixels(nbuckets);
   std::vector<uint8_t> face_vis(fr.face_frag.size(), 0), vert_need(fr.vertex_frag.size(), 0);
   for (int y = 0; y < fr.height; ++y)
     for (int x = 0; x < fr.width; ++x) {
@@ -814,19 +825,17 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
       }
     };
     // the states with fragments in this group (a group with none is programmed with its first state, as before)
-    auto has_fragments = [&](size_t st, int m) {
-      const size_t b0 = (st * nmat + static_cast<size_t>(m)) * kCmBuckets;
+    const int gi = static_cast<int>(&g - fr.groups.data());
+    auto has_fragments = [&](size_t b0) {
       for (size_t b = b0; b < b0 + kCmBuckets; ++b)
         if (!mat_faces[b].empty() || !mat_verts[b].empty() || !mat_pixels[b].empty()) return true;
       return false;
     };
     std::vector<size_t> states;
-    for (size_t st = 0; st < nsets; ++st)
-      for (int m : g.materials)
-        if (has_fragments(st, m)) {
-          states.push_back(st);
-          break;
-        }
+    for (const auto& kv : pair_index)
+      if (d.group_of_material[static_cast<size_t>(kv.first.second)] == gi && has_fragments(kv.second * kCmBuckets) &&
+          (states.empty() || states.back() != kv.first.first))
+        states.push_back(kv.first.first);
     if (states.empty())
       for (size_t st = 0; st < nsets; ++st)
         if (!g.set_light_slot[st].empty() || st + 1 == nsets) {
@@ -838,9 +847,12 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
       const uint64_t writes_before = g.writes;
       program_state(cur_state, si > 0);
       if (si > 0) ++g.state_changes, g.state_writes += g.writes - writes_before;
-      for (int m : g.materials) {
-        const size_t b0 = (cur_state * nmat + static_cast<size_t>(m)) * kCmBuckets;
-        if (!has_fragments(cur_state, m)) continue;
+      // this state's materials of the group, ascending (the order of g.materials)
+      for (auto it = pair_index.lower_bound({cur_state, std::numeric_limits<int>::min()});
+           it != pair_index.end() && it->first.first == cur_state; ++it) {
+        const int m = it->first.second;
+        const size_t b0 = it->second * kCmBuckets;
+        if (d.group_of_material[static_cast<size_t>(m)] != gi || !has_fragments(b0)) continue;
         const auto& M = sc.materials[m];
         // a scene material's (or its back's) colours and shininess into the host's MaterialParams
         auto take = [](MaterialParams& p, const auto& src) {
