@@ -224,14 +224,15 @@ FLOW = ["signoff/signoff.py", "signoff/fastmul.py"]
 
 def inputs_sha(d):
     """What of a bundle decides its sign-off: rtl/, tb/, vectors/, filelist.f and the SDC's I/O assumptions (its
-    period is the sign-off's own output), with the bundle's own path (in the files' "made by" lines) left out."""
+    period is the sign-off's own output), without the files' "made by" comment lines (the command that wrote the
+    bundle: its path and options such as --signoff)."""
     h = hashlib.sha256()
     for sub in ("rtl", "tb", "vectors", "filelist.f"):
         p = os.path.join(d, sub)
         files = [p] if os.path.isfile(p) else sorted(os.path.join(x, f) for x, _, fs in os.walk(p) for f in fs)
         for f in files:
             h.update(os.path.relpath(f, d).encode())
-            h.update(hashlib.sha256(open(f, "rb").read().replace(os.path.abspath(d).encode(), b"")).digest())
+            h.update(hashlib.sha256(re.sub(rb"(?im)^.*made by.*$", b"", open(f, "rb").read())).digest())
     sdc = os.path.join(d, "constraints.sdc")
     if os.path.exists(sdc):
         h.update("".join(x for x in open(sdc) if re.match(r"\s*(set IO_FRACTION|set_input_delay|set_output_delay)", x))
