@@ -194,13 +194,13 @@ struct MeasuredSet {
 std::vector<MeasuredSet> measured_sets(std::string& path, std::string& why) {
   path = (fsys::path(handoff::root_dir()) / "docs" / "timing.json").string();
   std::vector<MeasuredSet> out;
-  std::ifstream in(path);
-  if (!in) {
-    why = "no measured clock (" + path + " not found)";
+  std::string text, fail;
+  if (!scene::read_regular_file(path, std::uint64_t{16} << 20, text, fail)) {  // never blocks (a FIFO is refused)
+    why = "no measured clock (" + path + ": " + fail + ")";
     return out;
   }
   try {
-    const json t = json::parse(in);
+    const json t = json::parse(text);
     for (const auto& r : t.at("rows")) {
       if (r.value("kind", "") != "lighting" || !r.contains("period_ns") || !r["period_ns"].is_number()) continue;
       MeasuredSet m;

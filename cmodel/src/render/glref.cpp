@@ -299,8 +299,10 @@ GlImage render_gl(const Scene& sc, render::MeshSource& meshes, const GlSettings&
 
 std::vector<ObjectCheck> check_objects(const Scene& sc, const std::vector<Shading>& shading) {
   std::vector<ObjectCheck> out(sc.objects.size());
-  bool any_light_spec = false;
-  for (const auto& L : sc.lights) any_light_spec = any_light_spec || nonzero(L.specular);
+  bool any_light_spec = false;  // over every lighting state (a scene file has one)
+  const std::vector<scene::LightingSet> states = sc.lighting_states();
+  for (const auto& st : states)
+    for (const auto& L : st.lights) any_light_spec = any_light_spec || nonzero(L.specular);
   for (size_t oi = 0; oi < sc.objects.size(); ++oi) {
     auto& c = out[oi];
     const auto& o = sc.objects[oi];
@@ -335,10 +337,14 @@ std::vector<ObjectCheck> check_objects(const Scene& sc, const std::vector<Shadin
     } else if (sh == Shading::Flat) {
       // shadecore lights the face's centroid, GL the provoking vertex (here v0 of the face): equal only when
       // the lighting does not depend on the position (directional lights; a local viewer only without specular).
-      bool positional = false;
-      for (const auto& L : sc.lights)
-        positional = positional || (L.position[3] != 0.0 && (nonzero(L.ambient) || nonzero(L.diffuse) || (spec && nonzero(L.specular))));
-      const bool viewer = spec && sc.local_viewer;
+      bool positional = false, local_viewer = false;
+      for (const auto& st : states) {
+        local_viewer = local_viewer || st.local_viewer;
+        for (const auto& L : st.lights)
+          positional = positional ||
+                       (L.position[3] != 0.0 && (nonzero(L.ambient) || nonzero(L.diffuse) || (spec && nonzero(L.specular))));
+      }
+      const bool viewer = spec && local_viewer;
       if (positional || viewer)
         no(std::string("flat: shadecore lights the face centroid, GL the provoking vertex, and the lighting depends on the position (") +
            (positional ? "a positional light" : "") + (positional && viewer ? ", " : "") + (viewer ? "local viewer" : "") +
