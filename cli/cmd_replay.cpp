@@ -469,20 +469,10 @@ void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool jso
     const std::vector<int32_t> exact_obj = glref::object_map(fr);
     glref::GlImage gl;
     gl.width = ref.width, gl.height = ref.height, gl.rgb = ref.rgb;
-    gl.object.assign(static_cast<size_t>(ref.width) * ref.height, -1);
     std::array<uint8_t, 3> bg{};
     for (int c = 0; c < 3; ++c) bg[c] = static_cast<uint8_t>(std::lround(h.scene.background[c] * 255));
-    // Geometry the exact image shows in exactly the clear colour (8-bit), where Mesa's snapshot shows the clear colour
-    // too, cannot be told from the background in the snapshot: taken as covered there by the same object (the two
-    // images agree on the pixel) and counted apart, not as a coverage difference.
-    uint64_t covered_in_clear_colour = 0;
-    for (size_t p = 0; p < gl.object.size(); ++p) {
-      const bool covered = ref.rgb[3 * p] != bg[0] || ref.rgb[3 * p + 1] != bg[1] || ref.rgb[3 * p + 2] != bg[2];
-      const bool exact_clear = exact_obj[p] >= 0 && exact_rgb[3 * p] == bg[0] && exact_rgb[3 * p + 1] == bg[1] &&
-                               exact_rgb[3 * p + 2] == bg[2];
-      if (covered) gl.object[p] = exact_obj[p] >= 0 ? exact_obj[p] : 0;
-      else if (exact_clear) gl.object[p] = exact_obj[p], ++covered_in_clear_colour;
-    }
+    uint64_t covered_in_clear_colour = 0;  // geometry lit to exactly the clear colour in both images (glref.hpp)
+    gl.object = glref::snapshot_objects(ref.rgb, bg, exact_obj, exact_rgb, covered_in_clear_colour);
     auto checks = glref::check_objects(h.scene, fr.object_shading);
     for (size_t o = 0; o < checks.size(); ++o)
       if (!h.object_excluded[o].empty()) {

@@ -15,6 +15,7 @@
 
 #include <unistd.h>
 
+#include "shadecore/render/glref.hpp"
 #include "shadecore/render/mesh.hpp"
 #include "shadecore/render/render.hpp"
 #include "shadecore/render/scene.hpp"
@@ -958,3 +959,21 @@ TEST(RenderImage, SizeOverrideAndCoverage) {
 }
 
 }  // namespace
+
+// shadecore replay --mesa: which pixels of a colour-only snapshot are covered (glref::snapshot_objects).
+TEST(GlrefSnapshot, ClearColouredGeometryCountsAsCoveredOnlyWhereBothImagesShowTheClearColour) {
+  const std::array<uint8_t, 3> bg{10, 20, 30};
+  // pixel 0: the snapshot draws something there, the exact image object 3 -> covered by 3
+  // pixel 1: both show the clear colour, the exact image's object 5 lit to exactly it -> covered by 5, counted
+  // pixel 2: the snapshot shows the clear colour, the exact image object 5 in another colour -> not covered (a
+  //          coverage difference stays one)
+  // pixel 3: the snapshot draws something, the exact image nothing -> covered by "0" (a coverage difference)
+  // pixel 4: background in both -> not covered
+  const std::vector<uint8_t> snap{1, 2, 3, 10, 20, 30, 10, 20, 30, 9, 9, 9, 10, 20, 30};
+  const std::vector<uint8_t> exact{1, 2, 3, 10, 20, 30, 10, 20, 31, 10, 20, 30, 10, 20, 30};
+  const std::vector<int32_t> obj{3, 5, 5, -1, -1};
+  uint64_t clear = 99;
+  const std::vector<int32_t> got = glref::snapshot_objects(snap, bg, obj, exact, clear);
+  EXPECT_EQ(got, (std::vector<int32_t>{3, 5, -1, 0, -1}));
+  EXPECT_EQ(clear, 1u);
+}

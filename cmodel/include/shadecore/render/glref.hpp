@@ -57,6 +57,27 @@ std::vector<ObjectCheck> check_objects(const scene::Scene& sc, const std::vector
 // The scene object each pixel of a prepared frame shows (−1 background), row-major from the top.
 std::vector<int32_t> object_map(const render::Frame& fr);
 
+// The objects of a snapshot of which only the colours are known (a GL program's framebuffer, as `shadecore replay
+// --mesa` reads it): a pixel is covered where it differs from the clear colour `bg`, by the object the exact image
+// shows there (0 where it shows none: a coverage difference). Geometry the exact image shows in exactly the clear
+// colour where the snapshot shows the clear colour too cannot be told from the background in the snapshot: it is
+// taken as covered by that object (the two images agree on the pixel) and counted in `covered_in_clear_colour`, not
+// as a coverage difference. Images are 8-bit RGB of exact_obj.size() pixels.
+inline std::vector<int32_t> snapshot_objects(const std::vector<uint8_t>& snap_rgb, const std::array<uint8_t, 3>& bg,
+                                             const std::vector<int32_t>& exact_obj,
+                                             const std::vector<uint8_t>& exact_rgb, uint64_t& covered_in_clear_colour) {
+  std::vector<int32_t> obj(exact_obj.size(), -1);
+  covered_in_clear_colour = 0;
+  const auto is_bg = [&bg](const std::vector<uint8_t>& rgb, size_t p) {
+    return rgb[3 * p] == bg[0] && rgb[3 * p + 1] == bg[1] && rgb[3 * p + 2] == bg[2];
+  };
+  for (size_t p = 0; p < obj.size(); ++p) {
+    if (!is_bg(snap_rgb, p)) obj[p] = exact_obj[p] >= 0 ? exact_obj[p] : 0;
+    else if (exact_obj[p] >= 0 && is_bg(exact_rgb, p)) obj[p] = exact_obj[p], ++covered_in_clear_colour;
+  }
+  return obj;
+}
+
 // Per-pixel difference: max over R, G, B of |a − b| in 8-bit LSBs; percentiles by nearest rank.
 struct DiffStats {
   uint64_t pixels = 0;
