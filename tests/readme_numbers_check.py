@@ -16,7 +16,7 @@
 | the nightly run's vectors | docs/performance.md (the recorded run) |
 | the tool versions | the installed tools (a tool that is not installed is skipped) |
 
-The Timing and energy section is docs/timing.md's summary and is checked there (ctest -L timing), not here.
+| the Timing and energy section's closing periods (`name` after or "name closes at") | docs/timing.json (rows) |
 Exit 0 when every number agrees, 1 otherwise (one line per disagreement, naming the README's text and the source)."""
 import argparse
 import json
@@ -86,6 +86,24 @@ def main():
         expect("nightly run: shards", int(num(m.group(2))), shards, "regress/plans/nightly.json (sum of shards)")
         perf = open(os.path.join(ROOT, "docs", "performance.md"), encoding="utf-8").read()
         expect("nightly run: vectors", m.group(3) in perf, True, "docs/performance.md (the recorded run)")
+
+    # the Timing and energy section: every closing period it names against docs/timing.json's row of that name
+    sec = re.search(r"## Timing and energy.*?(?=\n## )", readme, re.S)
+    tj = os.path.join(ROOT, "docs", "timing.json")
+    if sec and os.path.exists(tj):
+        rows = {r["name"]: r for r in json.load(open(tj))["rows"]}
+        text = " ".join(sec.group(0).split())
+        said = re.findall(r"([\d.]+)(?: ns)? \(`([\w+]+)`", text) + \
+            [(v, n) for n, v in re.findall(r"\b([a-z][\w+]*) closes at ([\d.]+) ns", text)]
+        cfg = json.load(open(os.path.join(ROOT, "config", "configs.json")))
+        known = {v["name"] for v in cfg["variants"]} | {v["name"] + "+mreg" for v in cfg["variants"]} | \
+            {f["name"] for f in cfg["feature_sets"]}
+        for value, name in said:
+            if name in known:  # a unit or lighting set (other words before "closes at" are not rows)
+                expect(f"timing: {name} closes at", float(value), rows[name]["period_ns"] if name in rows else None,
+                       "docs/timing.json")
+        if not said:
+            failures.append("README's Timing and energy section names no closing period (the check's patterns)")
 
     # the suite's size
     m = find(flat, r"`ctest -LE long`: ([\d,]+) tests", "suite size")
