@@ -124,6 +124,40 @@ TEST(RenderRaster, DepthTestNearestWinsFirstWinsTies) {
   EXPECT_EQ(s.tris()[s.at(8, 0)].source, 2);  // depth ≈ 850 for triangle 1
 }
 
+// GL's depth state per draw (set_depth_state): GL_DEPTH_TEST off writes the pixels in drawing order whatever their depth
+// and leaves the depth buffer alone (OpenGL 2.1 §4.1.5); glDepthMask(GL_FALSE) tests without writing.
+TEST(RenderRaster, DepthTestOffAndDepthMaskFollowDrawingOrder) {
+  const auto tri = [](int64_t z) { return std::array<ScreenVertex, 3>{sv(0, 0, z), sv(2560, 0, z), sv(0, 2560, z)}; };
+  {
+    Rasterizer r(10, 10, 1.0);
+    r.draw_screen(1, tri(100));  // near, test and write
+    r.set_depth_state(false, false);
+    r.draw_screen(2, tri(300));  // farther, test off: drawn over
+    EXPECT_EQ(r.tris()[r.at(1, 1)].source, 2);
+    EXPECT_EQ(r.depth(1, 1), 100);  // not written
+    r.set_depth_state(true, true);
+    r.draw_screen(3, tri(200));  // fails against 100 (had 2 written 300, it would pass)
+    EXPECT_EQ(r.tris()[r.at(1, 1)].source, 2);
+    r.draw_screen(4, tri(50));  // passes
+    EXPECT_EQ(r.tris()[r.at(1, 1)].source, 4);
+    EXPECT_EQ(r.depth(1, 1), 50);
+  }
+  {
+    Rasterizer r(10, 10, 1.0);
+    r.set_depth_state(true, false);
+    r.draw_screen(1, tri(100));  // near, tested against the cleared buffer, depth not written
+    EXPECT_EQ(r.tris()[r.at(1, 1)].source, 1);
+    EXPECT_EQ(r.depth(1, 1), shadecore::raster::kDepthMax);
+    r.set_depth_state(true, true);
+    r.draw_screen(2, tri(300));  // farther, but the buffer is still at the far plane: drawn over
+    EXPECT_EQ(r.tris()[r.at(1, 1)].source, 2);
+    EXPECT_EQ(r.depth(1, 1), 300);
+    r.set_depth_state(true, false);
+    r.draw_screen(3, tri(400));  // the mask off still tests: fails against 300
+    EXPECT_EQ(r.tris()[r.at(1, 1)].source, 2);
+  }
+}
+
 // set_unsnapped_depth (shadecore replay, docs/replay.md): the depth plane through the unsnapped window positions.
 // A flat triangle at window z = 0.5 drawn first, then sloped ones crossing it: wherever their exact depths at a
 // pixel centre (from the unsnapped positions, in double) differ by more than 1 LSB of 2^-24, the nearer one is

@@ -665,6 +665,119 @@ TEST(ReplayFrontend, LightsChangingBetweenDrawsAreProgrammedBetweenBatches) {
   EXPECT_TRUE(shadecore::glfront::hand_over(e.gl, "t").scene.lighting_sets.empty());
 }
 
+// GL_DEPTH_TEST off and glDepthMask(GL_FALSE) while drawing (GL 2.1 §4.1.5): with the test off a primitive's fragments
+// are written whatever their depth, in drawing order, and do not update the depth buffer; with the mask off the test
+// applies and depth is not written. Unlit triangles (the colour itself) overlapping at the window's centre, drawn
+// through the back end and the C model: the colour at the centre says which one shows.
+namespace depth_state {
+
+// the centre pixel's colour channel that is lit (0 red, 1 green, 2 blue; −1 background or a mix)
+int centre(const Gl& gl) {
+  const auto h = shadecore::glfront::hand_over(gl, "t");
+  const auto fr = shadecore::render::prepare(h.scene, h.meshes, h.settings);
+  std::vector<std::vector<shadecore::Colour>> cols;
+  for (const auto& g : fr.groups) cols.push_back(shadecore::render::run_cmodel(g));
+  const auto img = shadecore::render::resolve(fr, cols);
+  const size_t p = static_cast<size_t>(img.height / 2) * img.width + img.width / 2;
+  if (!img.covered[p]) return -1;
+  int lit = -1;
+  for (int c = 0; c < 3; ++c)
+    if (img.code[p * 3 + c] > (1u << img.F) / 2) {
+      if (lit >= 0) return -1;
+      lit = c;
+    }
+  return lit;
+}
+
+// glOrtho(-1, 1, -1, 1, 0, 2): eye z −0.5 is window z 0.25, −1 is 0.5, −1.5 is 0.75
+void setup(Driver& d) {
+  d("glViewport", {I(0), I(0), I(16), I(16)});
+  d("glMatrixMode", {I(PROJECTION)});
+  d("glOrtho", {F(-1), F(1), F(-1), F(1), F(0), F(2)});
+  d("glMatrixMode", {I(MODELVIEW)});
+}
+void tri(Driver& d, int channel, double z) {
+  d("glColor3f", {F(channel == 0), F(channel == 1), F(channel == 2)});
+  d("glBegin", {I(TRIANGLES)});
+  d.v3(-0.9, -0.9, z), d.v3(0.9, -0.9, z), d.v3(0, 0.9, z);
+  d("glEnd");
+}
+
+}  // namespace depth_state
+
+TEST(ReplayFrontend, DepthTestOffDrawsInDrawingOrderWithoutWritingDepth) {
+  using namespace depth_state;
+  Driver d;
+  setup(d);
+  d.en(DEPTH_TEST);
+  tri(d, 0, -0.5);  // red, near
+  EXPECT_EQ(centre(d.gl), 0);
+  d("glDisable", {I(DEPTH_TEST)});
+  tri(d, 1, -1.5);  // green, farther, depth test off: the later one shows
+  EXPECT_TRUE(d.gl.refusals().empty());
+  ASSERT_EQ(d.gl.triangles().size(), 2u);
+  EXPECT_FALSE(d.gl.triangles()[1].depth_test);
+  EXPECT_FALSE(d.gl.triangles()[1].depth_write);  // with the test off the depth buffer is not updated
+  EXPECT_EQ(centre(d.gl), 1);
+  {
+    const auto h = shadecore::glfront::hand_over(d.gl, "t");
+    ASSERT_EQ(h.scene.objects.size(), 2u);  // the same material: two runs by their depth state
+    EXPECT_TRUE(h.scene.objects[0].depth_test);
+    EXPECT_FALSE(h.scene.objects[1].depth_test);
+  }
+  d.en(DEPTH_TEST);
+  tri(d, 2, -1.0);  // blue between them, test on: fails against red's depth (green wrote none)
+  EXPECT_EQ(centre(d.gl), 1);
+  tri(d, 2, -0.25);  // blue nearer than red: passes
+  EXPECT_EQ(centre(d.gl), 2);
+  // the same frame with the test on throughout: red stays
+  Driver e;
+  setup(e);
+  e.en(DEPTH_TEST);
+  tri(e, 0, -0.5);
+  tri(e, 1, -1.5);
+  EXPECT_EQ(centre(e.gl), 0);
+  // depth test off for everything: plain drawing order (glDepthFunc is not consulted)
+  Driver f;
+  setup(f);
+  f("glDepthFunc", {I(0x0207)});  // GL_ALWAYS: refused only while the test is on
+  tri(f, 1, -1.5);
+  tri(f, 0, -0.5);
+  tri(f, 2, -1.9);
+  EXPECT_TRUE(f.gl.refusals().empty());
+  EXPECT_EQ(centre(f.gl), 2);
+}
+
+TEST(ReplayFrontend, DepthMaskFalseTestsWithoutWritingDepth) {
+  using namespace depth_state;
+  // the near triangle drawn with glDepthMask(GL_FALSE) writes no depth: a later farther one draws over it
+  Driver d;
+  setup(d);
+  d.en(DEPTH_TEST);
+  d("glDepthMask", {I(0)});
+  tri(d, 0, -0.5);  // red, near
+  d("glDepthMask", {I(1)});
+  tri(d, 1, -1.5);  // green, farther
+  EXPECT_TRUE(d.gl.refusals().empty());
+  ASSERT_EQ(d.gl.triangles().size(), 2u);
+  EXPECT_TRUE(d.gl.triangles()[0].depth_test);
+  EXPECT_FALSE(d.gl.triangles()[0].depth_write);
+  EXPECT_EQ(centre(d.gl), 1);
+  // the test still applies with the mask off: a farther triangle fails against green's depth
+  d("glDepthMask", {I(0)});
+  tri(d, 2, -1.75);
+  EXPECT_EQ(centre(d.gl), 1);
+  tri(d, 2, -1.25);  // nearer than green: passes (and writes no depth)
+  EXPECT_EQ(centre(d.gl), 2);
+  // with the mask on, the near one stays
+  Driver e;
+  setup(e);
+  e.en(DEPTH_TEST);
+  tri(e, 0, -0.5);
+  tri(e, 1, -1.5);
+  EXPECT_EQ(centre(e.gl), 0);
+}
+
 using shadecore::test::tiny_stream;
 
 std::string tiny_capture(int frames, bool core_profile = false) {

@@ -347,10 +347,12 @@ struct Gl::Impl {
   void check_draw_state() {
     for (const auto& [cap, nm] : refusing_caps())
       if (on(cap)) refuse(nm + " on while drawing");
-    if (!on(GL_DEPTH_TEST)) refuse("GL_DEPTH_TEST off while drawing (the back end's rasteriser always depth-tests)");
-    else if (depth_func != GL_LESS && depth_func != GL_LEQUAL) refuse("glDepthFunc other than GL_LESS / GL_LEQUAL");
-    if (depth_func == GL_LEQUAL) note("GL_LEQUAL drawn as GL_LESS (only exact depth ties differ)");
-    if (!depth_mask) refuse("glDepthMask(GL_FALSE) while drawing");
+    // GL_DEPTH_TEST off (drawn over what is there, depth not written) and glDepthMask(GL_FALSE) (tested, not written)
+    // go with each triangle to the rasteriser (GlTriangle::depth_test, depth_write); the function matters only when on
+    if (on(GL_DEPTH_TEST)) {
+      if (depth_func != GL_LESS && depth_func != GL_LEQUAL) refuse("glDepthFunc other than GL_LESS / GL_LEQUAL");
+      if (depth_func == GL_LEQUAL) note("GL_LEQUAL drawn as GL_LESS (only exact depth ties differ)");
+    }
     if (!(colour_mask[0] && colour_mask[1] && colour_mask[2])) refuse("glColorMask off for a colour channel while drawing");
     if (depth_range[0] != 0 || depth_range[1] != 1) refuse("glDepthRange other than (0, 1)");
     if (polygon_mode[0] != GL_FILL || polygon_mode[1] != GL_FILL) refuse("glPolygonMode other than GL_FILL (lines, points)");
@@ -412,6 +414,8 @@ struct Gl::Impl {
       for (const auto& [cap, nm] : excluding_caps())
         if (on(cap)) t.excluded.push_back(nm);
       t.primitive = primitive_no;
+      t.depth_test = on(GL_DEPTH_TEST);
+      t.depth_write = t.depth_test && depth_mask;  // with the test off the depth buffer is not updated (GL 2.1 §4.1.5)
       t.lighting = g.frame_lights_.empty() ? 0u : static_cast<uint32_t>(g.frame_lights_.size() - 1);
       g.tris_.push_back(std::move(t));
       ++g.stats_.triangles;
@@ -1097,8 +1101,9 @@ Handover hand_over(const Gl& gl, const std::string& name) {
   h.settings.changed_registers_only = true;  // a driver writes a register when its value changes
 
   // Materials by value; objects = runs of triangles with one (material, shading, colour material, lit, excluded,
-  // lighting state). Under colour material the term(s) it replaces come per vertex through the core's fragment colour
-  // input, not from the material registers: they are left out of the material's identity (set to 0), so the colours
+  // lighting state, depth test and depth mask), in drawing order (the back end rasterises them in that order). Under
+  // colour material the term(s) it replaces come per vertex through the core's fragment colour input, not from the
+  // material registers: they are left out of the material's identity (set to 0), so the colours
   // GL tracked into the material (every glColor under GL_COLOR_MATERIAL, a glMaterial per vertex carried as colour
   // material) make one material and no material register writes of their own.
   auto canonical = [&gl](uint32_t id, std::optional<ColourMaterial> cm) {
@@ -1151,7 +1156,7 @@ Handover hand_over(const Gl& gl, const std::string& name) {
     return idx;
   };
   int cur = -1;
-  std::tuple<int, bool, int, std::vector<std::string>, int> cur_key;
+  std::tuple<int, bool, int, std::vector<std::string>, int, bool, bool> cur_key;
   for (const auto& t : gl.triangles()) {
     const bool lit = t.lit;
     std::optional<ColourMaterial> cm = lit ? t.colour_material : std::optional<ColourMaterial>(ColourMaterial::Emission);
@@ -1220,7 +1225,8 @@ Handover hand_over(const Gl& gl, const std::string& name) {
     }
     const int mi = scene_material(mid, lit, cm);
     const int lighting = sc.lighting_sets.empty() ? 0 : static_cast<int>(t.lighting);
-    const auto key = std::make_tuple(mi, t.flat, cm ? static_cast<int>(*cm) : -1, t.excluded, lighting);
+    const auto key = std::make_tuple(mi, t.flat, cm ? static_cast<int>(*cm) : -1, t.excluded, lighting, t.depth_test,
+                                     t.depth_write);
     if (cur < 0 || key != cur_key) {
       scene::Object o;
       o.name = "draw" + std::to_string(sc.objects.size());
@@ -1229,6 +1235,8 @@ Handover hand_over(const Gl& gl, const std::string& name) {
       o.shading = t.flat ? scene::Shading::Flat : scene::Shading::Gouraud;
       o.colour_material = cm;
       o.lighting = lighting;
+      o.depth_test = t.depth_test;
+      o.depth_write = t.depth_write;
       o.where = "primitive " + std::to_string(t.primitive);
       o.scene_file = name;
       sc.objects.push_back(o);

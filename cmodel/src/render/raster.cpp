@@ -188,8 +188,12 @@ int Rasterizer::raster(const ScreenTri& t, int index) {
         const i128 zn = static_cast<i128>(l0) * a.z + static_cast<i128>(l1) * b.z + static_cast<i128>(l2) * c.z;
         z = static_cast<int64_t>(floor_div(zn, t.area));
       }
-      if (z < 0 || z >= depth_[pix]) continue;  // in front of the near plane (rounding), GL_LESS
-      depth_[pix] = z;
+      if (depth_test_) {
+        if (z < 0 || z >= depth_[pix]) continue;  // in front of the near plane (rounding), GL_LESS
+        if (depth_write_) depth_[pix] = z;        // glDepthMask(GL_FALSE): tested, not written
+      }
+      // depth test off: the fragment is written whatever its depth, and the depth buffer is not updated (OpenGL 2.1
+      // §4.1.5); a later triangle overwrites it (drawing order)
       id_[pix] = index;
     }
   }

@@ -574,6 +574,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
     }
     const uint32_t src_base = static_cast<uint32_t>(fr.tri_object.size());
     pending.clear();
+    fr.raster.set_depth_state(o.depth_test, o.depth_write);  // objects are drawn in the stream's order
     for (size_t fi = 0; fi < mesh.faces.size(); ++fi) {
       const auto& face = mesh.faces[fi];
       (void)face_fragment(fi);

@@ -12,7 +12,8 @@
 //   * coverage by integer edge functions at pixel centres with the top-left fill rule (a pixel centre on an
 //     edge belongs to the triangle whose edge is a top or a left edge), so pixels on a shared edge are
 //     drawn exactly once;
-//   * z-buffer: screen-linear depth, GL_LESS (the first triangle drawn wins ties), cleared to the far plane; the
+//   * z-buffer: screen-linear depth, GL_LESS (the first triangle drawn wins ties), cleared to the far plane (per
+//     draw: set_depth_state, GL_DEPTH_TEST off or glDepthMask(GL_FALSE), in drawing order); the
 //     depth plane through the snapped vertices (X, Y, z), or with set_unsnapped_depth(true) (`shadecore replay`)
 //     through the unsnapped window positions (x, y with kFineBits fraction bits, z with kDepthBits + kFineBits),
 //     as GL interpolates window z (OpenGL 2.1 §3.5.1) and llvmpipe does (its plane from the float vertices,
@@ -87,6 +88,11 @@ class Rasterizer {
   // The depth plane of the triangles draw() gets from now on: through the unsnapped window positions (true) or
   // the snapped vertices (false, the default).
   void set_unsnapped_depth(bool on) { unsnapped_depth_ = on; }
+  // The depth state of the triangles draw() and draw_screen() get from now on (GL's, per primitive): test = false
+  // (GL_DEPTH_TEST off) writes every covered pixel in drawing order and leaves the depth buffer as it is (OpenGL 2.1
+  // §4.1.5); test = true, write = false (glDepthMask(GL_FALSE)) tests against the depth buffer without updating it.
+  // The default (test and write, GL_LESS) is what scene files always draw with.
+  void set_depth_state(bool test, bool write) { depth_test_ = test, depth_write_ = write; }
   // How many times draw() covered each pixel before the depth test (for tests of the fill rule).
   [[nodiscard]] const std::vector<uint32_t>& coverage() const { return cover_; }
 
@@ -113,6 +119,7 @@ class Rasterizer {
   int w_, h_;
   double near_;
   bool unsnapped_depth_ = false;
+  bool depth_test_ = true, depth_write_ = true;
   std::vector<int32_t> id_;
   std::vector<int64_t> depth_;
   std::vector<uint32_t> cover_;

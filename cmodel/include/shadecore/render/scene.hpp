@@ -144,6 +144,10 @@ struct Object {
   std::string where;       // "objects[i]" for messages
   std::string scene_file;  // the scene file it comes from (messages)
   int lighting = 0;        // its lighting state: an index into Scene::lighting_sets (0 when the scene has none)
+  // GL's depth state it is drawn with (a GL front end's; scene files: always on): depth_test = false (GL_DEPTH_TEST
+  // off) draws its pixels over what is there in drawing order without writing depth; depth_write = false
+  // (glDepthMask(GL_FALSE)) depth-tests without writing depth
+  bool depth_test = true, depth_write = true;
 };
 
 // One lighting state of a stream: what the core holds in its global and light registers while a batch is lit. A

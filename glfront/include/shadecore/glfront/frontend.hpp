@@ -12,8 +12,9 @@
 // Every call that changes what is drawn and is not handled is counted by name (`unsupported`). A primitive drawn
 // with a capability the core lacks enabled (texturing, blending, fog, alpha test, …) is still drawn, so its
 // coverage and occlusion are known, but its object is marked not comparable; a frame whose pixels cannot be
-// known (lines, points, glBitmap/glDrawPixels, stencil or colour masks, depth test off, the projection or two-sided
-// lighting changing between draws, …) is refused: ReplayError with a one-line reason.
+// known (lines, points, glBitmap/glDrawPixels, stencil or colour masks, the projection or two-sided lighting changing
+// between draws, …) is refused: ReplayError with a one-line reason. GL_DEPTH_TEST off and glDepthMask(GL_FALSE) go
+// with each triangle (GlTriangle::depth_test, depth_write) to the back end's rasteriser, which draws in GL's order.
 #pragma once
 
 #include <array>
@@ -87,6 +88,8 @@ struct GlTriangle {
   std::vector<std::string> excluded;                   // capabilities the core lacks that were on (not comparable)
   uint32_t primitive = 0;                              // glBegin / draw index within the frame
   uint32_t lighting = 0;                               // the lighting state it was drawn in: Gl::frame_lightings()
+  bool depth_test = true;                              // GL_DEPTH_TEST on (off: drawn over, depth not written)
+  bool depth_write = true;                             // glDepthMask(GL_TRUE) with the test on
 };
 
 struct FrontStats {
