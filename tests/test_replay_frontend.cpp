@@ -442,20 +442,30 @@ TEST(ReplayFrontend, HandOverGroupsTrianglesAndRefusesMixedSmoothMaterials) {
   EXPECT_EQ(h.meshes[2].col[0], (shadecore::scene::Vec3{0, 1, 0}));  // the first vertex's diffuse
   EXPECT_EQ(h.meshes[2].col[1], (shadecore::scene::Vec3{0, 0, 1}));
   EXPECT_TRUE(h.meshes[0].col.empty());  // no colour material: no vertex colours
-  // two colours changing between the vertices: refused (per-vertex material batches are not implemented)
+  // two colours changing between the vertices: material batches (each vertex lit under its own material;
+  // ReplayFrontend.MaterialChangingBetweenVerticesIsLitInMaterialBatches)
   d("glBegin", {I(TRIANGLES)});
   d.v3(0, 0, -0.5);
   d("glMaterialfv", {I(FRONT_AND_BACK), I(DIFFUSE), A({1, 0, 1, 1})});
   d("glMaterialfv", {I(FRONT_AND_BACK), I(0x1202), A({1, 1, 1, 1})});
   d.v3(1, 0, -0.5), d.v3(0, 1, -0.5);
   d("glEnd");
-  EXPECT_THROW((void)shadecore::glfront::hand_over(d.gl, "t"), ReplayError);
+  h = shadecore::glfront::hand_over(d.gl, "t");
+  ASSERT_EQ(h.scene.objects.size(), 5u);  // the triangle's run (its provoking vertex's material) and a batch object
+  ASSERT_EQ(h.meshes[3].vertex_object.size(), 3u);
+  EXPECT_EQ(h.meshes[3].vertex_object[0], 4);  // the first vertex: the material before the two glMaterial calls
+  EXPECT_EQ(h.meshes[3].vertex_object[1], 3);
+  EXPECT_TRUE(h.meshes[4].pos.empty());
+  // the first vertex's material: the diffuse (0, 0, 1) the third triangle's last vertices had, no colour material
+  EXPECT_EQ(h.scene.materials[static_cast<size_t>(h.scene.objects[4].material)].diffuse, (shadecore::scene::Vec3{0, 0, 1}));
+  EXPECT_FALSE(h.scene.objects[4].colour_material.has_value());
+  EXPECT_NO_THROW((void)shadecore::render::prepare(h.scene, h.meshes, h.settings));
 }
 
 // GL_COLOR_MATERIAL with a colour per vertex in a smooth-shaded primitive (glColor between glBegin and glEnd, a colour
 // array): GL tracks every colour into the material, so the vertices' materials differ in the tracked colour only;
 // handed over as one colour-material object with the colours per vertex. A glMaterial of an untracked colour between
-// the vertices still needs material batches: refused.
+// the vertices is lit in material batches.
 TEST(ReplayFrontend, HandOverCarriesSmoothColoursUnderColourMaterial) {
   Driver d;
   d.en(DEPTH_TEST);
@@ -494,13 +504,21 @@ TEST(ReplayFrontend, HandOverCarriesSmoothColoursUnderColourMaterial) {
     EXPECT_EQ(fr.groups[0].vertices, 6u);
   }
   EXPECT_EQ(h.stats.notes.count("glMaterial between a smooth primitive's vertices carried as colour material"), 0u);
-  // an untracked colour (GL_AMBIENT) changing between the vertices: refused
+  // an untracked colour (GL_AMBIENT) changing between the vertices: material batches, the tracked colour still per
+  // vertex through colour material (the batch object's mesh lists the colours of the vertices it lights)
   d("glBegin", {I(TRIANGLES)});
   d.v3(0, 0, -0.5);
   d("glMaterialfv", {I(FRONT_AND_BACK), I(AMBIENT), A({0.5, 0.5, 0.5, 1})});
   d("glColor3f", {F(0), F(1), F(1)}), d.v3(1, 0, -0.5), d.v3(0, 1, -0.5);
   d("glEnd");
-  EXPECT_THROW((void)shadecore::glfront::hand_over(d.gl, "t"), ReplayError);
+  h = shadecore::glfront::hand_over(d.gl, "t");
+  ASSERT_EQ(h.scene.objects.size(), 3u);
+  EXPECT_EQ(h.scene.objects[2].colour_material, shadecore::ColourMaterial::Diffuse);
+  ASSERT_EQ(h.meshes[1].vertex_object.size(), 3u);
+  EXPECT_EQ(h.meshes[1].vertex_object[0], 2);
+  ASSERT_EQ(h.meshes[2].col.size(), 1u);
+  EXPECT_EQ(h.meshes[2].col[0], (shadecore::scene::Vec3{1, 1, 0}));  // the colour current at the first vertex
+  EXPECT_NO_THROW((void)shadecore::render::prepare(h.scene, h.meshes, h.settings));
 }
 
 // Eye-space positions outside the core's range [−128, 128): counted with the worst coordinate, and the frame's eye
@@ -663,6 +681,68 @@ TEST(ReplayFrontend, LightsChangingBetweenDrawsAreProgrammedBetweenBatches) {
   e.v3(0, 0, -0.5), e.v3(1, 0, -0.5), e.v3(0, 1, -0.5);
   e("glEnd");
   EXPECT_TRUE(shadecore::glfront::hand_over(e.gl, "t").scene.lighting_sets.empty());
+}
+
+// glMaterial changing more than one colour (or the shininess) between the vertices of a smooth-shaded primitive: GL
+// lights each vertex with the material current at it (GL 2.1 §2.14.3). The hand-over names, for each vertex whose
+// material differs from the provoking vertex's, an object of its material (Mesh::vertex_object); the back end lights
+// that vertex in its material's batch, with that material's register writes, and the triangle interpolates the
+// colours.
+TEST(ReplayFrontend, MaterialChangingBetweenVerticesIsLitInMaterialBatches) {
+  Driver d;
+  d.en(DEPTH_TEST);
+  d.en(LIGHTING);
+  d.en(LIGHT0);  // GL's default light 0: directional along +z, white diffuse and specular
+  d("glViewport", {I(0), I(0), I(32), I(32)});
+  d("glLightModelfv", {I(0x0B53), A({0.5, 0.5, 0.5, 1})});  // GL_LIGHT_MODEL_AMBIENT
+  d("glNormal3f", {F(0), F(0), F(1)});
+  d("glBegin", {I(TRIANGLES)});
+  d("glMaterialfv", {I(FRONT_AND_BACK), I(DIFFUSE), A({1, 0, 0, 1})});
+  d("glMaterialfv", {I(FRONT_AND_BACK), I(AMBIENT), A({0, 0, 0, 1})});
+  d.v3(-0.8, -0.8, -0.5);
+  d("glMaterialfv", {I(FRONT_AND_BACK), I(DIFFUSE), A({0, 1, 0, 1})});  // two colours change: diffuse and ambient
+  d("glMaterialfv", {I(FRONT_AND_BACK), I(AMBIENT), A({0, 0, 1, 1})});
+  d.v3(0.8, -0.8, -0.5), d.v3(0, 0.8, -0.5);
+  d("glEnd");
+  const auto h = shadecore::glfront::hand_over(d.gl, "t");
+  ASSERT_EQ(h.scene.objects.size(), 2u);
+  ASSERT_EQ(h.meshes[0].vertex_object.size(), 3u);
+  EXPECT_EQ(h.meshes[0].vertex_object, (std::vector<int>{1, 0, 0}));
+  EXPECT_EQ(h.scene.materials[static_cast<size_t>(h.scene.objects[1].material)].diffuse, (shadecore::scene::Vec3{1, 0, 0}));
+  EXPECT_EQ(h.stats.notes.at("glMaterial between a smooth primitive's vertices: vertices lit under their own material "
+                             "(material batches)"),
+            1u);
+  const auto fr = shadecore::render::prepare(h.scene, h.meshes, h.settings);
+  ASSERT_EQ(fr.groups.size(), 1u);
+  const auto& g = fr.groups[0];
+  const auto cols = shadecore::render::run_cmodel(g);
+  ASSERT_EQ(cols.size(), 3u);
+  int first = 0, others = 0;
+  for (size_t i = 0; i < cols.size(); ++i) {
+    const int o = fr.vertex_object[g.dests[i].index];
+    // the first vertex: diffuse red, ambient 0 → (1, 0, 0); the others: diffuse green + 0.5 · ambient blue
+    const std::array<double, 3> want = o == 1 ? std::array<double, 3>{1, 0, 0} : std::array<double, 3>{0, 1, 0.5};
+    (o == 1 ? first : others)++;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(cols[i].c[c], want[static_cast<size_t>(c)] * 65535, 8) << "fragment " << i << " channel " << c;
+  }
+  EXPECT_EQ(first, 1);
+  EXPECT_EQ(others, 2);
+  // the two materials' batches with a material register write between them
+  std::vector<size_t> frag_at;
+  for (size_t i = 0; i < g.cmds.size(); ++i)
+    if (!g.cmds[i].is_write) frag_at.push_back(i);
+  ASSERT_EQ(frag_at.size(), 3u);
+  size_t between = 0;
+  for (size_t i = frag_at[0] + 1; i < frag_at[2]; ++i)
+    if (g.cmds[i].is_write && g.cmds[i].w.addr >= shadecore::kReg_mat_diffuse && g.cmds[i].w.addr < shadecore::kReg_mat_diffuse + 3) ++between;
+  EXPECT_GE(between, 2u);  // the diffuse colour from red to green (or back): two channels change
+  // the image: the triangle interpolates the vertices' colours (red at the first vertex, green towards the others)
+  const auto img = shadecore::render::resolve(fr, {cols});
+  const size_t near_first = static_cast<size_t>(32 - 1 - 4) * 32 + 4;  // window (4, 4) from the bottom-left
+  const size_t near_third = static_cast<size_t>(32 - 1 - 26) * 32 + 16;
+  ASSERT_TRUE(img.covered[near_first] && img.covered[near_third]);
+  EXPECT_GT(img.code[near_first * 3], img.code[near_first * 3 + 1]);
+  EXPECT_LT(img.code[near_third * 3], img.code[near_third * 3 + 1]);
 }
 
 // GL_DEPTH_TEST off and glDepthMask(GL_FALSE) while drawing (GL 2.1 §4.1.5): with the test off a primitive's fragments

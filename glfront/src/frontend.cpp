@@ -1157,7 +1157,34 @@ Handover hand_over(const Gl& gl, const std::string& name) {
   };
   int cur = -1;
   std::tuple<int, bool, int, std::vector<std::string>, int, bool, bool> cur_key;
+  // Material batches: a smooth primitive whose vertices' materials differ in more than the core's colour-material
+  // input can carry. Each such vertex is lit under its own material: it names an object of that material (same
+  // lighting state, colour material, depth state; no faces of its own: Mesh::vertex_object), so the back end lights
+  // it in that material's batch, with that material's register writes.
+  std::map<std::tuple<int, int, std::vector<std::string>, int>, int> batch_objects;
+  uint64_t batched_vertices = 0;
+  auto batch_object = [&](int mk, std::optional<ColourMaterial> cmk, const GlTriangle& t, int lighting) {
+    const auto key = std::make_tuple(mk, cmk ? static_cast<int>(*cmk) : -1, t.excluded, lighting);
+    auto it = batch_objects.find(key);
+    if (it != batch_objects.end()) return it->second;
+    scene::Object o;
+    o.name = "draw" + std::to_string(sc.objects.size());
+    o.type = scene::ObjectType::Mesh;
+    o.material = mk;
+    o.shading = scene::Shading::Gouraud;
+    o.colour_material = cmk;
+    o.lighting = lighting;
+    o.where = "material batch (first at primitive " + std::to_string(t.primitive) + ")";
+    o.scene_file = name;
+    sc.objects.push_back(o);
+    h.meshes.emplace_back();
+    h.object_excluded.push_back(t.excluded);
+    const int idx = static_cast<int>(sc.objects.size()) - 1;
+    batch_objects[key] = idx;
+    return idx;
+  };
   for (const auto& t : gl.triangles()) {
+    bool batches = false;  // the vertices lit under their own materials (material batches)
     const bool lit = t.lit;
     std::optional<ColourMaterial> cm = lit ? t.colour_material : std::optional<ColourMaterial>(ColourMaterial::Emission);
     // the material of the triangle: flat → the provoking vertex's; smooth → all three agree, or they differ in one
@@ -1196,9 +1223,7 @@ Handover hand_over(const Gl& gl, const std::string& name) {
               (ts || same_fb([&](const MaterialState& m) { return rgb3(m.specular); })) &&
               (te || same_fb([&](const MaterialState& m) { return rgb3(m.emission); })) &&
               same_fb([](const MaterialState& m) { return m.shininess; })))
-          throw ReplayError(name + ": glMaterial changes a colour that GL_COLOR_MATERIAL does not track (or the shininess) "
-                                   "between the vertices of a smooth-shaded primitive (per-vertex material batches are not "
-                                   "implemented)");
+          batches = true;  // an untracked term or the shininess changes: each vertex under its own material
       } else {
         std::optional<ColourMaterial> via;
         if (shi && (!L.two_side || (*b[0] == *b[2] && *b[1] == *b[2]))) {
@@ -1208,19 +1233,20 @@ Handover hand_over(const Gl& gl, const std::string& name) {
           else if (amb && dif && spe && !emi) via = ColourMaterial::Emission;
           else if (!amb && !dif && spe && emi && ad_equal) via = ColourMaterial::AmbientAndDiffuse;
         }
-        if (!via)
-          throw ReplayError(name + ": glMaterial changes more than one colour (or the shininess) between the vertices of "
-                                   "a smooth-shaded primitive (per-vertex material batches are not implemented)");
-        cm = via;
-        for (int k = 0; k < 3; ++k) {
-          const MaterialState& m = *f[static_cast<size_t>(k)];
-          vertex_colour[static_cast<size_t>(k)] = *via == ColourMaterial::Ambient || *via == ColourMaterial::AmbientAndDiffuse
-                                                      ? m.ambient
-                                                  : *via == ColourMaterial::Diffuse  ? m.diffuse
-                                                  : *via == ColourMaterial::Specular ? m.specular
-                                                                                      : m.emission;
+        if (!via) {
+          batches = true;  // more than one colour or the shininess: each vertex under its own material
+        } else {
+          cm = via;
+          for (int k = 0; k < 3; ++k) {
+            const MaterialState& m = *f[static_cast<size_t>(k)];
+            vertex_colour[static_cast<size_t>(k)] = *via == ColourMaterial::Ambient || *via == ColourMaterial::AmbientAndDiffuse
+                                                        ? m.ambient
+                                                    : *via == ColourMaterial::Diffuse  ? m.diffuse
+                                                    : *via == ColourMaterial::Specular ? m.specular
+                                                                                        : m.emission;
+          }
+          ++h.stats.notes["glMaterial between a smooth primitive's vertices carried as colour material"];
         }
-        ++h.stats.notes["glMaterial between a smooth primitive's vertices carried as colour material"];
       }
     }
     const int mi = scene_material(mid, lit, cm);
@@ -1245,7 +1271,21 @@ Handover hand_over(const Gl& gl, const std::string& name) {
       cur = static_cast<int>(sc.objects.size()) - 1;
       cur_key = key;
     }
+    std::array<int, 3> vertex_object{-1, -1, -1};  // material batches: the object lighting each vertex (−1: the run's)
+    if (batches)
+      for (size_t k = 0; k < 2; ++k) {
+        const int mk = scene_material(t.v[k].material, lit, cm);
+        if (mk != mi) {
+          vertex_object[k] = batch_object(mk, cm, t, lighting);
+          ++batched_vertices;
+        }
+      }
+    for (size_t k = 0; k < 3; ++k)  // a batch object's mesh lists the colours of the vertices it lights (derivation)
+      if (vertex_object[k] >= 0) h.meshes[static_cast<size_t>(vertex_object[k])].col.push_back(rgb(vertex_colour[k]));
     scene::Mesh& m = h.meshes[static_cast<size_t>(cur)];
+    if (batches && m.vertex_object.empty()) m.vertex_object.assign(m.pos.size(), cur);
+    if (batches || !m.vertex_object.empty())
+      for (size_t k = 0; k < 3; ++k) m.vertex_object.push_back(vertex_object[k] >= 0 ? vertex_object[k] : cur);
     std::vector<int> face;
     for (size_t k = 0; k < 3; ++k) {
       const GlVertex& v = t.v[k];
@@ -1268,6 +1308,9 @@ Handover hand_over(const Gl& gl, const std::string& name) {
   // objects without colour material: no vertex colours (the mesh's colour list stays empty)
   for (size_t i = 0; i < sc.objects.size(); ++i)
     if (!sc.objects[i].colour_material) h.meshes[i].col.clear();
+  if (batched_vertices > 0)
+    h.stats.notes["glMaterial between a smooth primitive's vertices: vertices lit under their own material (material "
+                  "batches)"] += batched_vertices;
   // Eye-space positions outside the core's range [−128, 128) (GL has no such limit): counted with the worst coordinate,
   // and the frame's eye space scaled by the power of two 2^−k that brings every vertex and point light inside. Exact
   // in double: the projection's first three columns × 2^k give the same clip coordinates (the rasterisation and the

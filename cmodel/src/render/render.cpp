@@ -591,7 +591,10 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
     fr.drawn_triangles += pending.size();
     // Phong interpolates normals (not unit between vertices); a host normal that is not a fixed point of
     // the normaliser (never seen, but checked) also keeps GL_NORMALIZE on, so the full core agrees.
-    if (fr.object_shading[oi] == Shading::Phong || !fixed) needs_normalize[o.material] = true;
+    if (fr.object_shading[oi] == Shading::Phong || !fixed) {
+      needs_normalize[o.material] = true;
+      for (int vo : mesh.vertex_object) needs_normalize[sc.objects[static_cast<size_t>(vo)].material] = true;
+    }
 
     // Keep what some pixel shows: triangles (earlier objects' and this one's), then their vertices and faces.
     fr.raster.compact();
@@ -635,7 +638,7 @@ Frame prepare(const Scene& sc, MeshSource& meshes, const Settings& s) {
       if (new_vert_live[v]) {
         nvmap[v] = static_cast<uint32_t>(fr.vertex_frag.size());
         fr.vertex_frag.push_back(vertex_fragment(v));
-        fr.vertex_object.push_back(oi);
+        fr.vertex_object.push_back(mesh.vertex_object.empty() ? oi : mesh.vertex_object[v]);  // material batches
       }
     for (size_t fi = 0; fi < mesh.faces.size(); ++fi)
       if (new_face_live[fi]) {

@@ -15,6 +15,11 @@ struct Mesh {
   std::vector<std::vector<int>> faces;   // polygons, counter-clockwise seen from outside (front faces)
   std::vector<Vec3> col;                 // per-vertex colours in [0, 1] (OBJ `v x y z r g b`); empty: none (the
                                          // object's `color` everywhere)
+  // Material batches (a GL front end's; scene files: empty): per vertex the scene object whose material, lighting
+  // state and colour material light it (GL lights each vertex with the material in force at it), empty: this mesh's
+  // own object. Such an object has no faces of its own; its mesh's `col` lists the colours of the vertices it lights
+  // (for the derivation of the core's colour inputs).
+  std::vector<int> vertex_object;
 };
 
 // Builds the geometry of `o`. Throws SceneError (one line) for a missing or malformed OBJ file,
