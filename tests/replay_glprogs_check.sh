@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
 # Issue 37's programs of our own (ctest replay.glprogs_rtl, labels long and sim; docs/replay.md): lamp.c,
-# twinlights.c, relight.c and depthstate.c (tests/data/glprogs/) built with cc against libGL and libX11, captured with apitrace
+# twinlights.c, relight.c, depthstate.c and matbatch.c (tests/data/glprogs/) built with cc against libGL and libX11, captured with apitrace
 # under xvfb-run, frame 10 replayed through the GL front end, the C model and the Verilated core against Mesa's
 # snapshot: rtl.png = cmodel.png bit for bit, the exact image within 2 LSB at p99 and max <= 4 with identical
 # coverage, the frame lit by attenuated point lights; lamp and twinlights with glMaterial between glBegin and glEnd
 # carried per vertex, relight with the lights and the light model changing between its draws (three lighting
 # states, the core reprogrammed between the batches); depthstate.c (a directional light) with glDepthMask(GL_FALSE)
-# and GL_DEPTH_TEST off between its draws (docs/replay.md "Depth test off and glDepthMask").
+# and GL_DEPTH_TEST off between its draws (docs/replay.md "Depth test off and glDepthMask"); matbatch.c with
+# glMaterial changing the diffuse and specular colours and the shininess between the vertices of its strips (each
+# vertex lit under its own material: material batches).
 # Skipped (exit 77) without a C compiler, the GL/X11 headers, apitrace, glretrace or xvfb-run.
 set -euo pipefail
 shadecore="$1"
@@ -21,7 +23,7 @@ for h in /usr/include/GL/gl.h /usr/include/GL/glx.h /usr/include/X11/Xlib.h; do
 done
 rm -rf "$work"
 mkdir -p "$work"
-for p in lamp twinlights relight depthstate; do
+for p in lamp twinlights relight depthstate matbatch; do
   cc -O2 -Wall -Wextra -Werror -std=c99 -o "$work/$p" "$src/$p.c" -lGL -lX11 -lm
   LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 640x480x24" \
     apitrace trace -o "$work/$p.trace" "$work/$p" >"$work/$p.capture.log" 2>&1
@@ -39,9 +41,12 @@ assert j["unsupported_calls"] == {}, j["unsupported_calls"]
 # lighting state changing between draws
 if sys.argv[2] == "depthstate":
     assert j["objects"] and len(j["objects"]) == 5, j["objects"]  # one run per ball: five depth states and materials
+elif sys.argv[2] == "matbatch":
+    assert j["notes"].get("glMaterial between a smooth primitive's vertices: vertices lit under their own material "
+                          "(material batches)", 0) > 0, j["notes"]
 else:
     assert all("point_att" in core["summary"] for core in j["cores"]), j["cores"]
-if sys.argv[2] == "depthstate":
+if sys.argv[2] in ("depthstate", "matbatch"):
     pass
 elif sys.argv[2] == "relight":
     assert j["lighting_states"] == 3 and j["lighting_state_changes"] == 2, j["lighting_states"]
