@@ -6,9 +6,7 @@
  * libX11), a fixed number of frames:
  *   cc -O2 -o twinlights twinlights.c -lGL -lX11 -lm
  *   LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 640x480x24" apitrace trace -o twinlights.trace ./twinlights */
-#include <GL/gl.h>
-#include <GL/glx.h>
-#include <X11/Xlib.h>
+#include "glprog_window.h"
 #include <math.h>
 #include <stdio.h>
 
@@ -102,20 +100,8 @@ static void draw(int frame) {
 }
 
 int main(void) {
-  Display* dpy = XOpenDisplay(NULL);
-  if (!dpy) { fprintf(stderr, "twinlights: cannot open the X display\n"); return 1; }
-  int attrs[] = {GLX_RGBA, GLX_DOUBLEBUFFER, GLX_RED_SIZE, 8, GLX_GREEN_SIZE, 8, GLX_BLUE_SIZE, 8, GLX_DEPTH_SIZE, 24, None};
-  XVisualInfo* vi = glXChooseVisual(dpy, DefaultScreen(dpy), attrs);
-  if (!vi) { fprintf(stderr, "twinlights: no RGBA double-buffered visual with a 24-bit depth buffer\n"); return 1; }
-  XSetWindowAttributes swa = {0};
-  swa.colormap = XCreateColormap(dpy, RootWindow(dpy, vi->screen), vi->visual, AllocNone);
-  swa.event_mask = StructureNotifyMask;
-  Window win = XCreateWindow(dpy, RootWindow(dpy, vi->screen), 0, 0, W, H, 0, vi->depth, InputOutput, vi->visual,
-                             CWColormap | CWEventMask, &swa);
-  XMapWindow(dpy, win);
-  for (XEvent e;;) { XNextEvent(dpy, &e); if (e.type == MapNotify) break; }
-  GLXContext ctx = glXCreateContext(dpy, vi, NULL, True);
-  glXMakeCurrent(dpy, win, ctx);
+  struct glprog g;
+  if (glprog_open(&g, "twinlights", W, H)) return 1;
 
   build_torus();
   glViewport(0, 0, W, H);
@@ -144,11 +130,8 @@ int main(void) {
 
   for (int f = 0; f < FRAMES; ++f) {
     draw(f);
-    glXSwapBuffers(dpy, win);
+    glXSwapBuffers(g.dpy, g.win);
   }
-  glXMakeCurrent(dpy, None, NULL);
-  glXDestroyContext(dpy, ctx);
-  XDestroyWindow(dpy, win);
-  XCloseDisplay(dpy);
+  glprog_close(&g);
   return 0;
 }
