@@ -29,6 +29,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "dir_with_json.hpp"
 #include "output.hpp"
 #include "shadecore/common/args.hpp"
 #include "shadecore/common/legend.hpp"
@@ -92,22 +93,9 @@ void run_gl_compare(const GlCompareArgs& a, bool json_given, bool size_given, bo
 
   // Outputs: checked now, written together at the end (io::OutputSet). --json may lie inside --out-dir.
   io::OutputSet outs;
-  std::string json_member;
-  if (json_given && !a.out_dir.empty()) {
-    const fsys::path jp = fsys::absolute(a.json_path).lexically_normal(), dp = fsys::absolute(a.out_dir).lexically_normal();
-    if (jp.parent_path() == dp) {
-      json_member = jp.filename().string();
-      if (std::find(kNames.begin(), kNames.end(), json_member) != kNames.end())
-        throw std::invalid_argument("--json " + a.json_path + " is one of the images written to --out-dir");
-    }
-  }
-  int dir_out = -1;
-  if (!a.out_dir.empty()) {
-    std::vector<std::string> names = kNames;
-    if (!json_member.empty()) names.push_back(json_member);
-    dir_out = outs.dir("--out-dir", a.out_dir, names);
-  }
-  const int json_out = !json_given || !json_member.empty() ? -1 : outs.file("--json", a.json_path);
+  const DirWithJson plan = plan_dir_with_json(outs, "--out-dir", a.out_dir, kNames, json_given, a.json_path);
+  const int dir_out = plan.dir, json_out = plan.json;
+  const std::string& json_member = plan.json_member;
   outs.check_input(a.scene, "the scene file");
   for (const auto& o : sc.objects)
     if (o.type == scene::ObjectType::Mesh) outs.check_input(o.file_path, "the OBJ file of " + o.where);

@@ -31,6 +31,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "dir_with_json.hpp"
 #include "handoff_bundle.hpp"
 #include "light_rtl.hpp"
 #include "output.hpp"
@@ -245,22 +246,9 @@ void run_replay(const ReplayArgs& a, bool frame_given, bool call_given, bool jso
   std::vector<std::string> names = {"cmodel.png", "exact.png"};
   if (a.rtl) names.push_back("rtl.png");
   if (a.mesa || ref_given) names.insert(names.end(), {"mesa.png", "diff.png", "pair.png"});
-  std::string json_member;
-  if (json_given && !a.out_dir.empty()) {
-    const fsys::path jp = fsys::absolute(a.json_path).lexically_normal(), dp = fsys::absolute(a.out_dir).lexically_normal();
-    if (jp.parent_path() == dp) {
-      json_member = jp.filename().string();
-      if (std::find(names.begin(), names.end(), json_member) != names.end())
-        throw std::invalid_argument("--json " + a.json_path + " is one of the images written to --out");
-    }
-  }
-  int dir_out = -1;
-  if (!a.out_dir.empty()) {
-    std::vector<std::string> all = names;
-    if (!json_member.empty()) all.push_back(json_member);
-    dir_out = outs.dir("--out", a.out_dir, all);
-  }
-  const int json_out = !json_given || !json_member.empty() ? -1 : outs.file("--json", a.json_path);
+  const DirWithJson plan = plan_dir_with_json(outs, "--out", a.out_dir, names, json_given, a.json_path);
+  const int dir_out = plan.dir, json_out = plan.json;
+  const std::string& json_member = plan.json_member;
   outs.check_input(a.trace, "the capture");
   if (ref_given) outs.check_input(a.reference, "the reference image");
 
