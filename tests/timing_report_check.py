@@ -1,0 +1,73 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
+"""ctest scripts.timing_report_cache: the cache rules of scripts/timing_report.py on hand-made bundles (nothing is
+synthesised): what of a bundle decides its row (inputs_sha), which RTL files key a unit's row and a lighting set's."""
+import json
+import os
+import sys
+import tempfile
+import types
+import unittest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import timing_report as tr  # noqa: E402
+
+
+def bundle(d, top_comment, vec="0001\n", sdc_period="20.0", tb="module tb; endmodule\n"):
+    for sub in ("rtl", "tb", "vectors"):
+        os.makedirs(os.path.join(d, sub), exist_ok=True)
+    open(os.path.join(d, "rtl", "top.v"), "w").write(f"// Made by  : {top_comment}\nmodule top; endmodule\n")
+    open(os.path.join(d, "tb", "tb.v"), "w").write(tb)
+    open(os.path.join(d, "vectors", "hard.hex"), "w").write(f"// made by: {top_comment}\n{vec}")
+    open(os.path.join(d, "filelist.f"), "w").write("rtl/top.v\n")
+    open(os.path.join(d, "constraints.sdc"), "w").write(
+        f"set CLK_PERIOD {sdc_period}\nset IO_FRACTION 0.3\nset_input_delay -clock clk 1 [get_ports {{a}}]\n"
+        "set_output_delay -clock clk 1 [get_ports {y}]\n")
+
+
+class InputsSha(unittest.TestCase):
+    def test_the_writing_command_and_the_period_do_not_count(self):
+        with tempfile.TemporaryDirectory() as t:
+            a, b = os.path.join(t, "a"), os.path.join(t, "b")
+            bundle(a, "shadecore handoff --out /x/a --signoff on", sdc_period="20.0")
+            bundle(b, "shadecore handoff --out /y/b --signoff off", sdc_period="14.450")
+            self.assertEqual(tr.inputs_sha(a), tr.inputs_sha(b))
+
+    def test_vectors_bench_and_io_constraints_count(self):
+        with tempfile.TemporaryDirectory() as t:
+            base = os.path.join(t, "base")
+            bundle(base, "c")
+            for name, kw in (("vec", {"vec": "0002\n"}), ("tb", {"tb": "module tb2; endmodule\n"})):
+                d = os.path.join(t, name)
+                bundle(d, "c", **kw)
+                self.assertNotEqual(tr.inputs_sha(base), tr.inputs_sha(d), name)
+            d = os.path.join(t, "io")
+            bundle(d, "c")
+            open(os.path.join(d, "constraints.sdc"), "a").write("set IO_FRACTION 0.2\n")
+            self.assertNotEqual(tr.inputs_sha(base), tr.inputs_sha(d))
+
+
+class RtlOf(unittest.TestCase):
+    def test_a_unit_row_takes_its_own_files_a_lighting_row_all(self):
+        cfg = json.load(open(os.path.join(ROOT, "config", "configs.json")))
+        rows = {r["name"]: r for r in tr.rows_of(cfg, [], ["default"])}
+        cs16 = tr.rtl_of(cfg, rows["cs16"])
+        self.assertIn("rtl/sc_cs16.v", cs16)
+        self.assertIn("rtl/sc_specular.v", cs16)
+        self.assertNotIn("rtl/sc_normalize.v", cs16)   # a lighting-core file: work on it keeps the unit's row
+        self.assertNotIn("rtl/sc_schlick_nr.v", cs16)
+        self.assertEqual(tr.rtl_of(cfg, rows["gl_default"]), ["rtl/*.v", "rtl/*.vh"])
+        for f in cs16:
+            self.assertTrue(os.path.isfile(os.path.join(ROOT, f)), f)
+
+
+class Revalidate(unittest.TestCase):
+    def test_a_row_without_recorded_inputs_or_a_table_row_is_not_revalidated(self):
+        a = types.SimpleNamespace()
+        self.assertIsNone(tr.revalidate(a, {"table": True}, {"signoff": {"inputs": {"bundle": "x"}}}))
+        self.assertIsNone(tr.revalidate(a, {"table": False}, {"signoff": {}}))
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=1)
