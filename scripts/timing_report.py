@@ -365,12 +365,14 @@ def plot(path, rows, footer):
         if t is None or t.get("total_abs_max") is None:
             continue
         pts.append((r, t["total_abs_max"]))
+    # one colour per row in both panels (the default cycle would give a row another colour in each)
+    colour = {r["name"]: plt.get_cmap("tab10")(i % 10) for i, (r, _) in enumerate(pts)}
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
     for ax, key, label in ((axes[0], "energy_pj_per_result", "energy per result (pJ, gate-level activity)"),
                            (axes[1], "ns_um2", "period × area (ns·µm²)")):
         placed = sorted(((r.get(key), err, r) for r, err in pts if r.get(key) is not None), key=lambda p: p[0])
         for x, err, r in placed:
-            ax.scatter([x], [err], s=36, marker="o" if r["met"] else "x")
+            ax.scatter([x], [err], s=36, marker="o" if r["met"] else "x", color=colour[r["name"]])
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.autoscale_view()
