@@ -4,7 +4,9 @@
 // mesa-utils (glxgears) and xvfb (xvfb-run), as the Slurm tests skip without slurm-wlm.
 #pragma once
 
+#include <fcntl.h>
 #include <snappy.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -164,6 +166,18 @@ inline Capture glxgears_capture(int seconds = 3) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   c.path = (dir / "glxgears.trace").string();
+  // ctest runs the tests that use it at once: one of them captures, the others wait for it (a capture replaced
+  // between `shadecore replay` and glretrace reading it made them compare two different frames)
+  const int lock = ::open((dir / "capture.lock").c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
+  if (lock < 0 || ::flock(lock, LOCK_EX) != 0) {
+    if (lock >= 0) ::close(lock);
+    c.note = "cannot lock " + (dir / "capture.lock").string();
+    return c;
+  }
+  struct Unlock {
+    int fd;
+    ~Unlock() { ::close(fd); }
+  } unlock{lock};
   if (fs::exists(c.path) && fs::file_size(c.path) > 0) {
     c.ok = true;
     return c;

@@ -1443,12 +1443,14 @@ Handover replay_frame(trace::Reader& reader, const ReplayOptions& o, const std::
     }
   }
   if (!done) {
+    const trace::Reader::Cut cut = reader.cut();
+    const std::string why = cut.cut ? ", its stream cut inside call " + std::to_string(cut.call) : "";
     if (o.frame)
       throw ReplayError(name + ": frame " + std::to_string(K) + " is past the end: the capture has " +
                         std::to_string(swaps) + " complete frame" + (swaps == 1 ? "" : "s") + " (" +
-                        std::to_string(swaps) + " swap" + (swaps == 1 ? "" : "s") + ")");
+                        std::to_string(swaps) + " swap" + (swaps == 1 ? "" : "s") + why + ")");
     throw ReplayError(name + ": call " + std::to_string(*o.call) + " is past the end of the capture (" +
-                      std::to_string(read) + " calls)");
+                      std::to_string(read) + " calls" + why + ")");
   }
   if (!any) throw ReplayError(name + ": the capture has no GL calls before the frame's end");
   Handover h = hand_over(gl, name);

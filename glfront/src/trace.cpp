@@ -186,7 +186,14 @@ struct Reader::Impl {
     if (current != ~0ull) where = "call " + std::to_string(current) + ", " + where;
     throw TraceError(name + ": " + what + " (" + where + ")");
   }
-  [[noreturn]] void truncated() const { fail("truncated: the stream ends inside an event"); }
+  // Thrown by truncated() while an event is being read; next() turns it into the end of the capture.
+  struct EventCut {};
+  bool in_event = false;
+  Reader::Cut cut;
+  [[noreturn]] void truncated() const {
+    if (in_event) throw EventCut{};
+    fail("truncated: the stream ends inside an event");
+  }
 
   uint8_t byte() {
     if (pos >= s.size()) truncated();
@@ -410,31 +417,21 @@ struct Reader::Impl {
         ended = true;
         break;
       }
-      const uint8_t e = byte();
-      if (e == kEnter) {
-        Call c;
-        c.no = next_no++;
-        current = c.no;
-        if (version >= 4) c.thread = uint();
-        c.sig = function_sig();
-        details(c);
-        open.push_back(std::move(c));
-      } else if (e == kLeave) {
-        const uint64_t no = uint();
-        current = no;
-        auto it = open.begin();
-        while (it != open.end() && it->no != no) ++it;
-        if (it == open.end()) fail("corrupt: leave of call " + std::to_string(no) + ", which is not open");
-        Call c = std::move(*it);
-        open.erase(it);
-        details(c);
-        current = ~0ull;
-        out = std::move(c);
-        return true;
-      } else {
-        pos -= 1;
-        fail("corrupt: unknown event " + hex(e));
+      const size_t event_at = pos;
+      const uint64_t next_before = next_no;
+      in_event = true;
+      try {
+        if (event(out)) {
+          in_event = false;
+          return true;
+        }
+      } catch (const EventCut&) {
+        // the last event is cut: drop it (an enter's call number is not used), end the capture there
+        cut = {true, current, event_at};
+        next_no = next_before;
+        ended = true;
       }
+      in_event = false;
       current = ~0ull;
     }
     if (open.empty()) return false;
@@ -442,6 +439,34 @@ struct Reader::Impl {
     open.pop_front();
     out.incomplete = true;
     return true;
+  }
+
+  // One event: true with `out` set for a leave, false for an enter (the call stays open).
+  bool event(Call& out) {
+    const uint8_t e = byte();
+    if (e == kEnter) {
+      Call c;
+      c.no = next_no++;
+      current = c.no;
+      if (version >= 4) c.thread = uint();
+      c.sig = function_sig();
+      details(c);
+      open.push_back(std::move(c));
+      return false;
+    }
+    if (e == kLeave) {
+      const uint64_t no = uint();
+      current = no;
+      auto it = open.begin();
+      while (it != open.end() && it->no != no) ++it;
+      if (it == open.end()) fail("corrupt: leave of call " + std::to_string(no) + ", which is not open");
+      details(*it);  // a cut here leaves the call open: it is returned incomplete
+      out = std::move(*it);
+      open.erase(it);
+      return true;
+    }
+    pos -= 1;
+    fail("corrupt: unknown event " + hex(e));
   }
 };
 
@@ -486,5 +511,7 @@ void Reader::open(std::string_view file_bytes) {
 }
 
 bool Reader::next(Call& call) { return impl_->next(call); }
+
+Reader::Cut Reader::cut() const { return impl_->cut; }
 
 }  // namespace shadecore::trace

@@ -15,8 +15,11 @@
 // version 7 and later, an unknown event, detail or value tag, a length past the end of the data, a signature id
 // used before it was defined, values nested deeper than kMaxNesting, a chunk that does not decompress or one cut
 // short. Each is a TraceError with a one-line message "FILE: what (where)". A stream that ends between events is a
-// complete capture (a program killed while tracing ends so); calls entered but not left are returned last with
-// `incomplete` set, as apitrace does.
+// complete capture; calls entered but not left are returned last with `incomplete` set, as apitrace does. A stream
+// whose chunks are all whole but whose last event is cut (the traced program was killed while apitrace had an
+// event half written, or before it wrote the chunk the event continues in: `timeout PROGRAM` leaves such files)
+// is read up to that event, which is dropped, as glretrace does; cut() then says where. A cut inside the header
+// is still an error.
 #pragma once
 
 #include <cstdint>
@@ -89,6 +92,14 @@ class Reader {
   [[nodiscard]] const std::map<std::string, std::string>& properties() const { return properties_; }
   [[nodiscard]] uint64_t chunks() const { return chunks_; }
   [[nodiscard]] uint64_t stream_bytes() const { return stream_.size(); }
+  // After next() returned false: whether the stream ended inside an event (dropped), the call that event belonged
+  // to (~0 for a leave cut before its call number) and the stream byte where the event began.
+  struct Cut {
+    bool cut = false;
+    uint64_t call = ~0ull;
+    uint64_t event_byte = 0;
+  };
+  [[nodiscard]] Cut cut() const;
 
   // The next call left (in leave order; calls still open at the end of the stream follow, incomplete). False at
   // the end. Throws TraceError on anything malformed.
