@@ -16,7 +16,9 @@ that write a bundle, the target, the vector count): a rerun computes only what c
 gets signoff/stages.py's analysis (what closing the target would take); --add-stages adds it to cached rows.
 A row also records what of its bundle decided it (rtl/, tb/, vectors/, the I/O constraints: inputs_sha) and the
 flow's hash; --revalidate rewrites the bundle of a row whose key changed and keeps the row when that bundle is
-the one it was measured on (a source that does not change bundles, a new field in configs.json).
+the one it was measured on (a source that does not change bundles, a new field in configs.json). --from-bundle
+takes a row from a bundle signed off outside the report (an interrupted run resumed step by step), on the same
+condition.
 Long (hours from an empty cache on 2 cores; a lighting set with 8 lights takes the longest); run by hand.
 """
 import argparse
@@ -142,6 +144,43 @@ def bundle(a, r, d, signoff="on"):
 
 def count_of(a, r):
     return a.count if r["kind"] == "unit" else a.light_count
+
+
+def from_bundle(a, r, d):
+    """A row from a bundle already signed off (a kept or resumed run: `signoff.py BUNDLE --steps gatesim,power` after
+    an interrupted one). Taken only when a bundle written now from these sources is that bundle (inputs_sha), its
+    sign-off ran this flow (signoff.py and fastmul.py byte for byte) at this target, and every step has a result."""
+    jp = os.path.join(d, "signoff", "signoff.json")
+    if r["table"] or not os.path.isfile(jp):
+        raise Failure(f"--from-bundle: {jp} does not exist (a signed-off handoff bundle is needed)")
+    s = json.load(open(jp))
+    for step in ("synth", "sta", "gatesim", "power"):
+        if not s.get(step):
+            raise Failure(f"--from-bundle: {d} has no {step} result (signoff/signoff.py {d} --steps {step} first)")
+    if not s["gatesim"].get("passed"):
+        raise Failure(f"--from-bundle: {d}: its gate-level simulation failed; a failed row is measured, not taken")
+    if s["target_ns"] != a.target:
+        raise Failure(f"--from-bundle: {d} was signed off at {s['target_ns']} ns, not --target {a.target}")
+    for f in FLOW:
+        own = os.path.join(d, "signoff", os.path.basename(f))
+        if not (os.path.isfile(own) and open(own, "rb").read() == open(os.path.join(ROOT, f), "rb").read()):
+            raise Failure(f"--from-bundle: {d} was signed off by another {f} than this checkout's")
+    now = None
+    with tempfile.TemporaryDirectory(prefix="shadecore_revalidate.") as tmp:
+        fresh = os.path.join(tmp, "b")
+        bundle(a, r, fresh, signoff="off")
+        now = inputs_of(a, r, fresh)
+    if inputs_sha(d) != now["bundle"]:
+        raise Failure(f"--from-bundle: {d} is not the bundle these sources write for {row_id(r)} "
+                      "(rtl/, tb/, vectors/ or the I/O constraints differ): measure the row instead")
+    tbc = os.path.join(d, "tb", "tb_config.vh")
+    m = re.search(r"localparam integer LATENCY\s*=\s*(\d+)", open(tbc).read()) if os.path.exists(tbc) else None
+    s["latency_cycles"] = int(m.group(1)) if m else None
+    s["seconds"] = None  # the interrupted run's time is not known
+    s["log"] = f"taken from the signed-off bundle {d} (--from-bundle)"
+    s["stages"] = stages_of(d, r)
+    s["inputs"] = now
+    return s
 
 
 def measure(a, r):
@@ -435,6 +474,9 @@ def main():
                     help="rows whose key changed: write the bundle again (no sign-off) and keep the row when it is the "
                          "bundle it was measured on (rtl, tb, vectors, I/O constraints) under the same flow; cached "
                          "rows get that record if they lack it")
+    ap.add_argument("--from-bundle", default=None, metavar="DIR",
+                    help="take the one --only row from DIR, a bundle signed off to the end (e.g. resumed with "
+                         "signoff/signoff.py DIR --steps gatesim,power), when these sources write that very bundle")
     ap.add_argument("--dry-run", action="store_true", help="list the rows and whether each is cached")
     ap.add_argument("--cached-only", action="store_true",
                     help="write the report from the cached rows only; list the others as not measured")
@@ -444,6 +486,8 @@ def main():
     if not os.access(a.shadecore, os.X_OK):
         raise Failure(f"no shadecore binary at {a.shadecore}: build first (scripts/build.sh)")
     rows = rows_of(cfg, [o for o in a.only.split(",") if o], a.configs.split(","))
+    if a.from_bundle and (len(rows) != 1 or a.cached_only or a.dry_run):
+        raise Failure("--from-bundle takes one row (--only NAME) and measures, so not with --cached-only or --dry-run")
     cache_path = a.cache or os.path.join(a.out, "timing.cache.json")
     cache = json.load(open(cache_path)) if os.path.exists(cache_path) else {"entries": {}}
     newer = [p for p in files_of(BINARY_SOURCES) if os.path.getmtime(p) > os.path.getmtime(a.shadecore)]
@@ -482,7 +526,13 @@ def main():
         if a.cached_only and not cached:
             missing.append(row_id(r))
             continue
-        if not cached:
+        if a.from_bundle:
+            print(f"timing_report: {row_id(r)}: from {a.from_bundle} ...", flush=True)
+            s = from_bundle(a, r, a.from_bundle)
+            hit = {"key": key, "signoff": s}
+            store(cache_path, row_id(r), hit)
+            cached = False
+        elif not cached:
             print(f"timing_report: [{i + 1}/{len(rows)}] {row_id(r)} ...", flush=True)
             s = measure(a, r)
             hit = {"key": key, "signoff": s}

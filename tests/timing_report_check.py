@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: Apache-2.0
 """ctest scripts.timing_report_cache: the cache rules of scripts/timing_report.py on hand-made bundles (nothing is
-synthesised): what of a bundle decides its row (inputs_sha), which RTL files key a unit's row and a lighting set's."""
+synthesised): what of a bundle decides its row (inputs_sha), which RTL files key a unit's row and a lighting set's,
+and when --from-bundle takes a row from a bundle signed off outside the report."""
 import json
 import os
 import sys
@@ -67,6 +68,71 @@ class Revalidate(unittest.TestCase):
         a = types.SimpleNamespace()
         self.assertIsNone(tr.revalidate(a, {"table": True}, {"signoff": {"inputs": {"bundle": "x"}}}))
         self.assertIsNone(tr.revalidate(a, {"table": False}, {"signoff": {}}))
+
+
+class FromBundle(unittest.TestCase):
+    """--from-bundle takes a row only from the bundle these sources write, signed off to the end by this flow."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.addCleanup(self.tmp.cleanup)
+        self.d = os.path.join(self.tmp.name, "kept")
+        bundle(self.d, "shadecore handoff --out /kept --signoff on", sdc_period="14.450")
+        open(os.path.join(self.d, "tb", "tb_config.vh"), "w").write("localparam integer LATENCY = 37;\n")
+        os.makedirs(os.path.join(self.d, "signoff"))
+        for f in tr.FLOW:
+            open(os.path.join(self.d, "signoff", os.path.basename(f)), "wb").write(open(os.path.join(ROOT, f), "rb").read())
+        self.s = {"target_ns": 4.0, "synth": {"cells": 1}, "sta": {"wns_ns": -1.0}, "gatesim": {"passed": True},
+                  "power": {"power_mw": 1.0}}
+        self.write()
+        self.vec = "0001\n"
+        # the bundle "these sources" write: the hand-made one again (what `shadecore handoff --signoff off` would)
+        self.patch("bundle", lambda a, r, d, signoff="on": bundle(d, "shadecore handoff --signoff off", vec=self.vec,
+                                                                   tb="module tb; endmodule\n")
+                   or open(os.path.join(d, "tb", "tb_config.vh"), "w").write("localparam integer LATENCY = 37;\n"))
+        self.patch("stages_of", lambda d, r: None)
+        self.a = types.SimpleNamespace(target=4.0)
+        self.r = {"table": False, "kind": "lighting", "name": "x", "config": {"name": "default"}}
+
+    def patch(self, name, f):
+        old = getattr(tr, name)
+        setattr(tr, name, f)
+        self.addCleanup(setattr, tr, name, old)
+
+    def write(self):
+        json.dump(self.s, open(os.path.join(self.d, "signoff", "signoff.json"), "w"))
+
+    def refused(self, part):
+        with self.assertRaises(tr.Failure) as e:
+            tr.from_bundle(self.a, self.r, self.d)
+        self.assertIn(part, str(e.exception))
+
+    def test_the_same_bundle_signed_off_to_the_end_is_taken(self):
+        s = tr.from_bundle(self.a, self.r, self.d)
+        self.assertEqual(s["latency_cycles"], 37)
+        self.assertEqual(s["inputs"]["bundle"], tr.inputs_sha(self.d))
+        self.assertEqual(s["inputs"]["target"], 4.0)
+        self.assertIn("--from-bundle", s["log"])
+
+    def test_another_bundle_a_missing_or_failed_step_another_flow_or_target_are_refused(self):
+        self.vec = "0002\n"
+        self.refused("is not the bundle these sources write")
+        self.vec = "0001\n"
+        del self.s["power"]
+        self.write()
+        self.refused("has no power result")
+        self.s["power"] = {"power_mw": 1.0}
+        self.s["gatesim"] = {"passed": False}
+        self.write()
+        self.refused("gate-level simulation failed")
+        self.s["gatesim"] = {"passed": True}
+        self.s["target_ns"] = 5.0
+        self.write()
+        self.refused("not --target 4.0")
+        self.s["target_ns"] = 4.0
+        self.write()
+        open(os.path.join(self.d, "signoff", "fastmul.py"), "a").write("# changed\n")
+        self.refused("another signoff/fastmul.py")
 
 
 if __name__ == "__main__":
