@@ -544,8 +544,89 @@ struct RegressArgs {
   bool coverage = false;     // --coverage: coverage builds, per-shard databases, merged after the run
   std::string waivers;       // --waivers FILE (default: config/coverage_waivers.json)
   bool waivers_given = false;
+  bool until_coverage = false;  // --until-coverage: closure rounds of new random shards until the targets are met
+  std::string targets = "line=100,branch=100,toggle=95,functional=100";  // --coverage-target
+  int max_rounds = 8;           // --max-rounds: closure rounds at most
+  double budget_s = 0;          // --budget: wall seconds for the closure rounds (0: no limit)
   ProgressFlags progress;
 };
+
+// ------------------------------------------------------------------------------------------ coverage closure
+// regress --until-coverage (docs/coverage.md "Closure"): after the plan's shards, while some module is below its
+// target, a closure round adds one shard's worth of every random job of the plan under a new seed — job J (seed S,
+// count C in K shards) gains the job "J-cR" of round R: seed S + R·1000003, C/K transactions (at least 1), one
+// shard, the same options — runs them, merges everything again and compares. The rounds are recorded in
+// DIR/closure.json, so a rerun of the same --out resumes them like any shard.
+struct Targets {
+  std::map<std::string, double> pc = {{"line", 100}, {"branch", 100}, {"toggle", 95}, {"functional", 100}};
+};
+
+Targets parse_targets(const std::string& text) {
+  Targets t;
+  size_t at = 0;
+  while (at <= text.size()) {
+    const size_t end = std::min(text.find(',', at), text.size());
+    const std::string item = text.substr(at, end - at);
+    const size_t eq = item.find('=');
+    const std::string kind = item.substr(0, eq);
+    if (eq == std::string::npos || !t.pc.count(kind))
+      throw std::invalid_argument("--coverage-target: '" + item + "' is not KIND=PERCENT with KIND one of line, branch, toggle, functional");
+    double v = 0;
+    try {
+      size_t used = 0;
+      v = std::stod(item.substr(eq + 1), &used);
+      if (used != item.size() - eq - 1) throw std::invalid_argument("");
+    } catch (const std::exception&) {
+      throw std::invalid_argument("--coverage-target: '" + item + "': the percent is not a number");
+    }
+    if (!(v >= 0 && v <= 100)) throw std::invalid_argument("--coverage-target: '" + item + "': the percent must be in 0..100");
+    t.pc[kind] = v;
+    at = end + 1;
+  }
+  return t;
+}
+
+// The modules below their targets: "module kind hit/(total - waived) = P % < T %", one per module and kind.
+std::vector<std::string> below_targets(const json& modules, const Targets& t) {
+  std::vector<std::string> out;
+  for (const auto& row : modules)
+    for (const auto& [kind, target] : t.pc) {
+      if (!row.contains(kind)) continue;
+      const auto& x = row[kind];
+      const uint64_t den = x["total"].get<uint64_t>() - x["waived"].get<uint64_t>();
+      if (den == 0) continue;
+      const double pc = 100.0 * static_cast<double>(x["hit"].get<uint64_t>()) / static_cast<double>(den);
+      if (pc + 1e-9 < target)
+        out.push_back(fmt::format("{} {} {}/{} = {:.2f} % < {} %", row["module"].get<std::string>(), kind,
+                                  x["hit"].get<uint64_t>(), den, pc, target));
+    }
+  return out;
+}
+
+// The jobs closure round `round` adds to `plan`: one shard's worth of every random job under a new seed.
+json closure_jobs(const json& plan, int round) {
+  json jobs = json::array();
+  for (const auto& j : plan["jobs"]) {
+    const std::string kind = j.value("kind", std::string());
+    const std::string mode = j.value("mode", std::string(kind == "cosim_lighting" ? "random" : "directed"));
+    if ((kind != "cosim" && kind != "cosim_lighting") || mode != "random") continue;
+    const std::string name = j["name"].get<std::string>() + "-c" + std::to_string(round);
+    if (name.size() > 64) throw std::invalid_argument("--until-coverage: job name '" + name + "' is longer than 64");
+    json c = j;
+    const uint64_t seed = j.value("seed", uint64_t{1});
+    const uint64_t count = j.value("count", static_cast<uint64_t>(kind == "cosim" ? 100000 : 10000));
+    const uint64_t shards = std::max<uint64_t>(1, j.value("shards", uint64_t{1}));
+    c["name"] = name;
+    c["seed"] = (seed + static_cast<uint64_t>(round) * 1000003ull) & 0x7fffffffffffffffull;
+    if (c["seed"].get<uint64_t>() == 0) c["seed"] = 1;
+    c["count"] = std::max<uint64_t>(1, count / shards);
+    c["shards"] = 1;
+    c.erase("reset_at");  // the new stimulus's own default reset index
+    c["note"] = fmt::format("coverage closure round {} of job {}", round, j["name"].get<std::string>());
+    jobs.push_back(c);
+  }
+  return jobs;
+}
 
 struct ShardState {
   const ShardSpec* spec = nullptr;
@@ -797,23 +878,42 @@ int run_regress(const RegressArgs& a) {
   if (a.local && (!a.partition.empty() || !a.time_limit.empty() || !a.account.empty() || !a.sbatch_args.empty() || a.max_running))
     throw std::invalid_argument("--partition, --time, --account, --sbatch-arg and --max-running apply to --slurm only");
   if (a.slurm && a.jobs) throw std::invalid_argument("-j applies to --local only (Slurm places the shards)");
+  if (a.until_coverage && !a.coverage) throw std::invalid_argument("--until-coverage needs --coverage");
+  if (a.until_coverage && a.merge_only) throw std::invalid_argument("--until-coverage runs shards: not with --merge-only");
+  const Targets targets = parse_targets(a.targets);
   std::string plan_file;
   json plan = load_plan(a.plan, plan_file);
   if (a.waivers_given && !a.coverage) throw std::invalid_argument("--waivers applies with --coverage only");
   if (a.coverage && a.waivers_given) coverage::read_waivers(a.waivers);  // a malformed file fails before the run
-  const std::vector<ShardSpec> specs = expand(plan, a.coverage);
+  if (a.until_coverage && closure_jobs(plan, 1).empty())
+    throw std::invalid_argument("--until-coverage: the plan has no random cosim or cosim_lighting job to add seeds of");
   const std::string plan_name = plan.value("name", fs::path(plan_file).stem().string());
-  const json sj = shards_json(specs);
 
-  // ---- the run directory: new, or the same plan again (resume)
+  // ---- the run directory: new, or the same plan again (resume), with the closure rounds it already added
   const fs::path dir = fs::absolute(a.out);
   std::error_code ec;
+  json closure = json::object();
+  if (fs::exists(dir / "plan.json", ec) && fs::exists(dir / "closure.json", ec)) {
+    closure = json::parse(read_file(dir / "closure.json"), nullptr, false);
+    if (!closure.is_object() || !closure.contains("rounds") || !closure["rounds"].is_array())
+      throw std::invalid_argument("--out " + a.out + ": closure.json is not a closure record");
+  }
+  if (!closure.contains("rounds")) closure["rounds"] = json::array();
+  auto extended = [&] {  // the plan with the closure rounds' jobs
+    json p = plan;
+    for (const auto& r : closure["rounds"])
+      for (const auto& j : r["jobs"]) p["jobs"].push_back(j);
+    return p;
+  };
+  std::vector<ShardSpec> specs = expand(extended(), a.coverage);
   bool resume = false;
   if (fs::exists(dir / "plan.json", ec)) {
     const json old = json::parse(read_file(dir / "plan.json"), nullptr, false);
     const json old_sj = fs::exists(dir / "shards.json") ? json::parse(read_file(dir / "shards.json"), nullptr, false) : json();
-    if (old != plan || old_sj != sj)
+    if (old != plan || old_sj != shards_json(specs))
       throw std::invalid_argument("--out " + a.out + " holds a run of another plan (or another build); give a new directory");
+    if (!closure["rounds"].empty() && !a.until_coverage)
+      throw std::invalid_argument("--out " + a.out + " holds a coverage closure (closure.json): resume it with --coverage --until-coverage");
     resume = true;
   } else if (a.merge_only) {
     throw std::invalid_argument("--merge-only: " + a.out + " holds no run of this plan (no plan.json)");
@@ -826,16 +926,21 @@ int run_regress(const RegressArgs& a) {
   }
   if (::access(dir.c_str(), W_OK) != 0) throw std::runtime_error("cannot write to " + dir.string());
   if (!resume) {
-    write_atomic(dir / "shards.json", sj.dump(2) + "\n");
+    write_atomic(dir / "shards.json", shards_json(specs).dump(2) + "\n");
     write_atomic(dir / "plan.json", plan.dump(2) + "\n");  // last: it marks a complete run directory
   }
 
-  std::vector<ShardState> st(specs.size());
+  std::vector<ShardState> st;
   size_t done = 0;
-  for (size_t i = 0; i < specs.size(); ++i) {
-    st[i].spec = &specs[i];
-    if (load_result(dir, st[i]) && st[i].done) ++done;
-  }
+  auto load_states = [&] {
+    st.assign(specs.size(), ShardState{});
+    done = 0;
+    for (size_t i = 0; i < specs.size(); ++i) {
+      st[i].spec = &specs[i];
+      if (load_result(dir, st[i]) && st[i].done) ++done;
+    }
+  };
+  load_states();
   const std::string self = self_exe();
   fmt::print("regress: plan {} ({}): {} job(s), {} shard(s); {} backend; run directory {}\n", plan_name, plan_file,
              plan["jobs"].size(), specs.size(),
@@ -843,83 +948,141 @@ int run_regress(const RegressArgs& a) {
                           : a.local ? fmt::format("local, {} at once", cliargs::resolve_parallel(a.jobs)) : std::string("Slurm"),
              dir.string());
   if (resume)
-    fmt::print("regress: {}: {} of {} shard(s) already done, {} {}\n", a.merge_only ? "merge only" : "resume", done, specs.size(),
-               specs.size() - done, a.merge_only ? "missing" : "to run");
+    fmt::print("regress: {}: {} of {} shard(s) already done, {} {}{}\n", a.merge_only ? "merge only" : "resume", done, specs.size(),
+               specs.size() - done, a.merge_only ? "missing" : "to run",
+               closure["rounds"].empty() ? "" : fmt::format(" ({} closure round(s) recorded)", closure["rounds"].size()));
   std::fflush(stdout);
 
   proc::InterruptScope scope;
-  io::Progress bar(specs.size(), a.progress.enabled() && !a.merge_only, "regress");
-  bar.set(done);
-  std::unique_ptr<Backend> be;
-  if (a.merge_only)
-    ;  // the report of what is there
-  else if (a.local) be = std::make_unique<LocalBackend>(dir, self, cliargs::resolve_parallel(a.jobs), bar, done);
-  else be = std::make_unique<SlurmBackend>(dir, self, a, plan_name, bar, done);
-
   json runlog = fs::exists(dir / "run.json") ? json::parse(read_file(dir / "run.json"), nullptr, false) : json::object();
   if (!runlog.is_object()) runlog = json::object();
   if (!runlog.contains("invocations")) runlog["invocations"] = json::array();
   json inv = {{"started", now_utc()}, {"backend", a.merge_only ? "none (--merge-only)" : a.local ? "local" : "slurm"}, {"host", host_name()}, {"command", command_line()}};
   const auto t0 = std::chrono::steady_clock::now();
   json ran = json::array(), retried = json::array();
-  for (int round = 1; round <= (a.merge_only ? 0 : 2); ++round) {
-    std::vector<ShardState*> todo;
-    for (auto& s : st)
-      if (!s.done) todo.push_back(&s);
-    if (todo.empty()) break;
-    if (round == 2) {
-      std::string names;
-      for (auto* s : todo) names += (names.empty() ? "" : ", ") + s->spec->id, retried.push_back(s->spec->id);
-      fmt::print("regress: retrying {} shard(s) once (lost or failed to run): {}\n", todo.size(), names);
-      std::fflush(stdout);
+  json merged;
+  std::string cov_error;
+  json history = json::array();  // --until-coverage: per pass, what was below target
+  std::vector<std::string> below;
+  std::string stop_reason;
+  for (;;) {
+    {
+      io::Progress bar(specs.size(), a.progress.enabled() && !a.merge_only, "regress");
+      bar.set(done);
+      std::unique_ptr<Backend> be;
+      if (a.merge_only)
+        ;  // the report of what is there
+      else if (a.local) be = std::make_unique<LocalBackend>(dir, self, cliargs::resolve_parallel(a.jobs), bar, done);
+      else be = std::make_unique<SlurmBackend>(dir, self, a, plan_name, bar, done);
+      for (int round = 1; round <= (a.merge_only ? 0 : 2); ++round) {
+        std::vector<ShardState*> todo;
+        for (auto& s : st)
+          if (!s.done) todo.push_back(&s);
+        if (todo.empty()) break;
+        if (round == 2) {
+          std::string names;
+          for (auto* s : todo) names += (names.empty() ? "" : ", ") + s->spec->id, retried.push_back(s->spec->id);
+          fmt::print("regress: retrying {} shard(s) once (lost or failed to run): {}\n", todo.size(), names);
+          std::fflush(stdout);
+        }
+        for (auto* s : todo) ran.push_back(s->spec->id);
+        // Slurm names its arrays by round: a closure round's arrays get their own names
+        be->run(todo, round + 2 * static_cast<int>(closure["rounds"].size()));
+      }
+      bar.stop();
     }
-    for (auto* s : todo) ran.push_back(s->spec->id);
-    be->run(todo, round);
+
+    // ---- merge and report
+    merged = merge(extended(), specs, st);
+    // ---- coverage: the databases of the completed shards, merged (DIR/coverage/merged.dat, summary.json, html/)
+    cov_error.clear();
+    if (a.coverage) {
+      std::vector<std::string> dats;
+      size_t want = 0;
+      for (const auto& s : st) {
+        const fs::path d = dir / "coverage" / "shards" / s.spec->id / "coverage.dat";
+        bool uses = false;
+        for (const auto& x : s.spec->argv) uses = uses || x.find("{cov}") != std::string::npos;
+        if (!uses) continue;
+        ++want;
+        if (s.done && fs::exists(d, ec)) dats.push_back(d.string());
+      }
+      json cj = {{"databases", dats.size()}, {"shards_with_coverage", want}};
+      if (dats.empty()) {
+        cov_error = "no shard wrote a coverage database";
+      } else {
+        try {
+          const std::string wf = a.waivers_given ? a.waivers : coverage::waivers_in_use();
+          const auto sum = coverage::report(dats, (dir / "coverage").string(), wf, /*html=*/true, /*quiet=*/true);
+          fs::rename(dir / "coverage" / "coverage.dat", dir / "coverage" / "merged.dat", ec);
+          cj["database"] = "coverage/merged.dat";
+          cj["html"] = "coverage/html/index.html";
+          cj["waivers"] = wf.empty() ? json() : json(fs::path(wf).filename().string());
+          cj["waivers_applied"] = sum["waivers"]["applied"].size();
+          cj["modules"] = json::parse(sum["modules"].dump());
+          cj["totals"] = json::parse(sum["totals"].dump());
+        } catch (const std::exception& e) {
+          cov_error = e.what();
+        }
+      }
+      if (!cov_error.empty()) cj["error"] = cov_error;
+      if (dats.size() < want) cj["partial"] = true;
+      merged["coverage"] = cj;
+    }
+    if (!a.until_coverage || !cov_error.empty() || !merged["coverage"].contains("modules")) break;
+    bool all_done = true;
+    for (const auto& s : st) all_done = all_done && s.done;
+    below = below_targets(merged["coverage"]["modules"], targets);
+    const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    history.push_back({{"round", closure["rounds"].size()}, {"shards", specs.size()}, {"wall_s", spent},
+                       {"totals", merged["coverage"]["totals"]}, {"below_target", below.size()}});
+    fmt::print("regress: coverage after {} closure round(s): {} module/kind pair(s) below target{}\n", closure["rounds"].size(),
+               below.size(), below.empty() ? " — targets met" : "");
+    std::fflush(stdout);
+    if (below.empty()) break;
+    if (!all_done) {
+      stop_reason = "shards did not complete";
+      break;
+    }
+    if (static_cast<int>(closure["rounds"].size()) >= a.max_rounds) {
+      stop_reason = fmt::format("--max-rounds {} reached", a.max_rounds);
+      break;
+    }
+    if (a.budget_s > 0 && spent >= a.budget_s) {
+      stop_reason = fmt::format("--budget {} s spent ({:.0f} s)", a.budget_s, spent);
+      break;
+    }
+    // ---- one more closure round: new seeds for the random jobs, recorded before they run (resumable)
+    const int round = static_cast<int>(closure["rounds"].size()) + 1;
+    const json jobs = closure_jobs(plan, round);
+    closure["rounds"].push_back({{"round", round}, {"added", now_utc()}, {"below_target", below}, {"jobs", jobs}});
+    closure["targets"] = targets.pc;
+    specs = expand(extended(), a.coverage);
+    write_atomic(dir / "shards.json", shards_json(specs).dump(2) + "\n");
+    write_atomic(dir / "closure.json", closure.dump(2) + "\n");
+    load_states();
+    fmt::print("regress: closure round {}: {} random shard(s) with new seeds ({} below target, first: {})\n", round, jobs.size(),
+               below.size(), below.front());
+    std::fflush(stdout);
   }
-  bar.stop();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   inv["ran"] = ran;
   inv["retried"] = retried;
   inv["wall_s"] = wall;
   runlog["invocations"].push_back(inv);
   write_atomic(dir / "run.json", runlog.dump(2) + "\n");
-
-  // ---- merge and report
-  json merged = merge(plan, specs, st);
-  // ---- coverage: the databases of the completed shards, merged (DIR/coverage/merged.dat, summary.json, html/)
-  std::string cov_error;
-  if (a.coverage) {
-    std::vector<std::string> dats;
-    size_t want = 0;
-    for (const auto& s : st) {
-      const fs::path d = dir / "coverage" / "shards" / s.spec->id / "coverage.dat";
-      bool uses = false;
-      for (const auto& x : s.spec->argv) uses = uses || x.find("{cov}") != std::string::npos;
-      if (!uses) continue;
-      ++want;
-      if (s.done && fs::exists(d, ec)) dats.push_back(d.string());
-    }
-    json cj = {{"databases", dats.size()}, {"shards_with_coverage", want}};
-    if (dats.empty()) {
-      cov_error = "no shard wrote a coverage database";
-    } else {
-      try {
-        const std::string wf = a.waivers_given ? a.waivers : coverage::waivers_in_use();
-        const auto sum = coverage::report(dats, (dir / "coverage").string(), wf, /*html=*/true, /*quiet=*/true);
-        fs::rename(dir / "coverage" / "coverage.dat", dir / "coverage" / "merged.dat", ec);
-        cj["database"] = "coverage/merged.dat";
-        cj["html"] = "coverage/html/index.html";
-        cj["waivers"] = wf.empty() ? json() : json(fs::path(wf).filename().string());
-        cj["waivers_applied"] = sum["waivers"]["applied"].size();
-        cj["modules"] = json::parse(sum["modules"].dump());
-        cj["totals"] = json::parse(sum["totals"].dump());
-      } catch (const std::exception& e) {
-        cov_error = e.what();
-      }
-    }
-    if (!cov_error.empty()) cj["error"] = cov_error;
-    if (dats.size() < want) cj["partial"] = true;
-    merged["coverage"] = cj;
+  if (a.until_coverage && merged.contains("coverage") && merged["coverage"].contains("modules")) {
+    // the holes still open, by name, of the kinds below target (coverage/summary.json has every hole)
+    json holes = json::object();
+    const json sum = json::parse(read_file(dir / "coverage" / "summary.json"), nullptr, false);
+    std::set<std::string> short_modules;
+    for (const auto& b : below) short_modules.insert(b.substr(0, b.find(' ')));
+    if (sum.is_object() && sum.contains("holes"))
+      for (const auto& [m, list] : sum["holes"].items())
+        if (short_modules.count(m)) holes[m] = list;
+    merged["closure"] = {{"targets", targets.pc}, {"met", below.empty()}, {"rounds", closure["rounds"].size()},
+                         {"below_target", below}, {"history", history}, {"holes", holes}};
+    if (!stop_reason.empty()) merged["closure"]["stopped"] = stop_reason;
   }
   write_atomic(dir / "merged.json", merged.dump(2) + "\n");
   const std::string desc = plan.value("description", std::string());
@@ -983,6 +1146,20 @@ int run_regress(const RegressArgs& a) {
       md += fmt::format("| **all** | {} | {} | {} | {} |\n", cell(t, "line"), cell(t, "branch"), cell(t, "toggle"), cell(t, "functional"));
     }
   }
+  if (merged.contains("closure")) {
+    const auto& c = merged["closure"];
+    std::string t;
+    for (const auto& [k, v] : c["targets"].items()) t += fmt::format("{}{} {} %", t.empty() ? "" : ", ", k, v.get<double>());
+    md += fmt::format("\n## Coverage closure (--until-coverage)\n\nTargets per module: {}. {} closure round(s) of new random seeds "
+                      "(closure.json); {}.\n",
+                      t, c["rounds"].get<size_t>(),
+                      c["met"].get<bool>() ? "every target met"
+                                           : fmt::format("**not met** ({})", c.value("stopped", std::string("stopped"))));
+    for (const auto& b : c["below_target"]) md += "- below target: " + b.get<std::string>() + "\n";
+    size_t n = 0;
+    for (const auto& [m, list] : c["holes"].items()) n += list.size();
+    if (n) md += fmt::format("\n{} hole(s) in those modules, by name, in merged.json \"closure\".\"holes\" (and coverage/summary.json).\n", n);
+  }
   write_atomic(dir / "summary.md", md);
   for (const auto& j : merged["jobs"])
     fmt::print("regress: {:<28} {:>4} shard(s) {:>16} vectors {:>8} mismatches  {}\n", j["name"].get<std::string>(),
@@ -1002,9 +1179,31 @@ int run_regress(const RegressArgs& a) {
                dir.string(), dir.string());
     std::fflush(stdout);
   }
+  if (merged.contains("closure")) {
+    const auto& c = merged["closure"];
+    size_t shown = 0;
+    for (const auto& b : c["below_target"]) {
+      if (shown++ == 12) {
+        fmt::print("regress: ... and {} more below target (merged.json \"closure\")\n", c["below_target"].size() - 12);
+        break;
+      }
+      fmt::print("regress: below target: {}\n", b.get<std::string>());
+    }
+    for (const auto& [m, list] : c["holes"].items()) {
+      std::string first;
+      for (size_t i = 0; i < list.size() && i < 3; ++i) first += (i ? "; " : "") + list[i].get<std::string>();
+      fmt::print("regress: holes of {}: {}{}\n", m, first, list.size() > 3 ? fmt::format(" (and {} more)", list.size() - 3) : "");
+    }
+    fmt::print("regress: coverage closure: {} after {} closure round(s){}\n", c["met"].get<bool>() ? "targets met" : "targets NOT met",
+               c["rounds"].get<size_t>(), c.contains("stopped") ? " (" + c["stopped"].get<std::string>() + ")" : "");
+    std::fflush(stdout);
+  }
   if (missing) throw std::runtime_error(fmt::format("{} shard(s) did not complete (named above with their logs)", missing));
   if (!cov_error.empty()) throw std::runtime_error("coverage: " + cov_error);
   if (!merged["ok"].get<bool>()) throw CheckFailed("regression FAILED (see " + (dir / "summary.md").string() + ")");
+  if (merged.contains("closure") && !merged["closure"]["met"].get<bool>())
+    throw CheckFailed(fmt::format("coverage targets not met after {} closure round(s): {} module/kind pair(s) below target",
+                                  merged["closure"]["rounds"].get<size_t>(), merged["closure"]["below_target"].size()));
   return 0;
 }
 
@@ -1034,6 +1233,15 @@ void add_regress(CLI::App& app) {
                 "summary.json, html/) and add the per-module summary to merged.json (docs/coverage.md)");
   auto* wopt = sub->add_option("--waivers", a->waivers, "--coverage: the waiver file (default config/coverage_waivers.json)")
                    ->check(NonEmpty("path"));
+  sub->add_flag("--until-coverage", a->until_coverage,
+                "--coverage: after the plan, add closure rounds (one shard of every random job under a new seed) until "
+                "every module meets --coverage-target or --max-rounds / --budget runs out; report the holes (exit 2 if not met)");
+  sub->add_option("--coverage-target", a->targets,
+                  "--until-coverage: per-module targets, KIND=PERCENT,... (default line=100,branch=100,toggle=95,functional=100)")
+      ->check(NonEmpty("targets"));
+  sub->add_option("--max-rounds", a->max_rounds, "--until-coverage: closure rounds at most (default 8)")->check(Int(0, 1000));
+  sub->add_option("--budget", a->budget_s, "--until-coverage: wall seconds after which no further round starts (default: none)")
+      ->check(CLI::Range(0.0, 1e9));
   a->progress.add(sub);
   sub->callback([a, wopt] {
     a->waivers_given = wopt->count() > 0;

@@ -13,7 +13,9 @@ cli/coverage.cpp.
   `shadecore regress --plan tests/data/coverage/tiny.json --local --coverage` — every co-simulation shard writes
   its database, the merge after the run equals the hand-made union of the shards' databases module by module,
   merged.json carries that summary, the HTML report is there, and a rerun of the same --out (resume) runs nothing
-  and writes the same merged.json.
+  and writes the same merged.json; `--until-coverage` adds closure rounds of new seeds until a target is met or
+  --max-rounds stops it (exit 2, what is below target and its holes named), resumes them, and stops at once when
+  the targets are met.
 """
 import argparse
 import json
@@ -238,6 +240,55 @@ def full(sc, root, work):
     r2 = run([sc, "regress", "--plan", plan, "--local", "-j", "2", "--coverage", "--out", out, "--no-progress"])
     check(r2.returncode == 0 and "to run" in r2.stdout and open(os.path.join(out, "merged.json")).read() == before,
           "a rerun of the same --out (resume) runs nothing and writes the same merged.json")
+    closure(sc, plan, work)
+
+
+def closure(sc, plan, work):
+    """--until-coverage: a target the tiny plan cannot reach (toggle 100 %) adds --max-rounds closure rounds, each one
+    shard of the random job under a new seed, then stops with exit 2 naming what is below target and its holes; a
+    rerun of the same --out resumes them and adds none; targets it reaches stop at once with exit 0."""
+    out = os.path.join(work, "closure")
+    args = [sc, "regress", "--plan", plan, "--local", "-j", "2", "--coverage", "--until-coverage", "--max-rounds", "2",
+            "--coverage-target", "line=0,branch=0,functional=0,toggle=100", "--out", out, "--no-progress"]
+    r = run(args)
+    print(r.stdout[-2000:])
+    m = json.load(open(os.path.join(out, "merged.json"))) if os.path.exists(os.path.join(out, "merged.json")) else {}
+    c = m.get("closure", {})
+    check(r.returncode == 2 and "coverage targets not met after 2 closure round(s)" in r.stderr,
+          "an unreachable target: exit 2 after --max-rounds 2 rounds (%d: %s)" % (r.returncode, r.stderr.strip()[-200:]))
+    check(c.get("met") is False and c.get("rounds") == 2 and c.get("stopped") == "--max-rounds 2 reached",
+          "merged.json closure: not met, 2 rounds, stopped by --max-rounds (%s)" % {k: c.get(k) for k in ("met", "rounds", "stopped")})
+    below = c.get("below_target", [])
+    check(below and all(" toggle " in b for b in below), "only toggle is below target (%s)" % below[:3])
+    check(sum(len(v) for v in c.get("holes", {}).values()) > 0, "the holes of the modules below target are named")
+    rec = json.load(open(os.path.join(out, "closure.json")))
+    tiny = json.load(open(plan))
+    rand = [j for j in tiny["jobs"] if j.get("mode") == "random"]
+    for k, rnd in enumerate(rec["rounds"], 1):
+        for j, c_job in zip(rand, rnd["jobs"]):
+            check(c_job["name"] == "%s-c%d" % (j["name"], k) and c_job["seed"] == j["seed"] + k * 1000003 and
+                  c_job["shards"] == 1 and c_job["count"] == j["count"] // j.get("shards", 1),
+                  "closure round %d adds %s-c%d: seed %d, one shard of %d" % (k, j["name"], k, j["seed"] + k * 1000003,
+                                                                              j["count"] // j.get("shards", 1)))
+    ids = [s["id"] for s in json.load(open(os.path.join(out, "shards.json")))]
+    done = [i for i in ids if json.load(open(os.path.join(out, "shards", i + ".json"))).get("completed")]
+    check(len(done) == len(ids) and any(i.startswith("rand_cs16-c2.") for i in ids),
+          "every shard of the plan and of both rounds completed (%d of %d)" % (len(done), len(ids)))
+    totals = [h["totals"]["toggle"]["hit"] for h in c.get("history", [])]
+    check(len(totals) == 3 and totals == sorted(totals), "toggle hits never fall from round to round (%s)" % totals)
+    r2 = run(args)
+    check(r2.returncode == 2 and "resume" in r2.stdout and json.load(open(os.path.join(out, "closure.json"))) == rec,
+          "a rerun of the same --out resumes: no new round (%d)" % r2.returncode)
+    r3 = run([sc, "regress", "--plan", plan, "--local", "-j", "2", "--coverage", "--out", out, "--no-progress"])
+    check(r3.returncode == 1 and "--until-coverage" in r3.stderr, "the closure's --out without --until-coverage is refused")
+    out2 = os.path.join(work, "closure_met")
+    r4 = run(args[:-4] + ["line=0,branch=0,functional=0,toggle=0", "--out", out2, "--no-progress"])
+    m4 = json.load(open(os.path.join(out2, "merged.json")))
+    check(r4.returncode == 0 and m4["closure"]["met"] and m4["closure"]["rounds"] == 0 and
+          not os.path.exists(os.path.join(out2, "closure.json")), "targets already met: no round, exit 0")
+    r5 = run(args[:-4] + ["toggle=101", "--out", os.path.join(work, "bad"), "--no-progress"])
+    check(r5.returncode == 1 and len(r5.stderr.strip().splitlines()) == 1 and "0..100" in r5.stderr and
+          not os.path.exists(os.path.join(work, "bad")), "a target above 100 %: one line, exit 1, nothing written")
 
 
 def main():
