@@ -402,7 +402,22 @@ void add_cosim(CLI::App& app) {
       ->check(ResetAt());
   auto* shards_opt = sub->add_option("--shards", args->shards, "parallel simulator processes (0 = one per core; at most 64)")
                          ->check(Int(0, kMaxParallel));
-  sub->add_option("--trace", args->trace, "FST waveform file (one shard)")->check(NonEmpty("path"));
+  sub->add_option("--trace", args->trace,
+                  "FST waveform file (specular: the whole run, one shard; lighting: the cycles around the first failure, "
+                  "from a re-run of a failed run on the trace build — nothing on a PASS)")
+      ->check(NonEmpty("path"));
+  auto trace_window = std::make_shared<uint64_t>(200);
+  sub->add_option("--trace-window", *trace_window,
+                  "--core lighting --trace: cycles kept before and after the first failure (default 200)")
+      ->check(UInt(1, 1000000));
+  // The lighting simulators' self-test (corrupt one observed output; the run must FAIL), for the tests of the
+  // windowed --trace (ctest sim.light.trace.*); no help line.
+  auto inject = std::make_shared<std::string>();
+  auto inject_at = std::make_shared<uint64_t>(0);
+  sub->add_option("--inject", *inject, "")->check(CLI::IsMember({"value", "drop", "dup"}))->group("");
+  sub->add_option("--inject-at", *inject_at, "")->check(UInt(1, uint64_t{1} << 40))->group("");
+  auto trace_all = std::make_shared<bool>(false);
+  sub->add_flag("--trace-all", *trace_all, "--core lighting --trace: the whole run (on the trace build), pass or fail");
   sub->add_option("--coverage", args->coverage_dir,
                   "run the coverage build of the model (built on demand, cached) and write DIR/coverage.dat (merged over "
                   "the shards), DIR/summary.json and DIR/html (docs/coverage.md)")
@@ -438,10 +453,10 @@ void add_cosim(CLI::App& app) {
                                     "with the same seed and --reset-at)")
                         ->check(UInt(0, uint64_t{1} << 40));
   sub->callback([args, n_opt, count_opt, shards_opt, cm_opt, coef_opt, core, features, feat_opt, harness, harness_opt,
-                 first, first_opt, cov_raw, sub] {
+                 first, first_opt, cov_raw, trace_window, trace_all, inject, inject_at, sub] {
     if (*core == "lighting") {
       for (const char* unit_only : {"--variant", "--config", "--cutoff", "--n", "--norm", "--coef-model", "--coef",
-                                    "--shards", "--trace", "--mat-rate"})
+                                    "--shards", "--mat-rate"})
         if (sub->count(unit_only) > 0)
           throw std::invalid_argument(std::string(unit_only) + " does not apply to --core lighting: the feature set fixes the unit and the widths "
                                       "(choose one with --features NAME|FILE; docs/lighting.md)");
@@ -457,6 +472,17 @@ void add_cosim(CLI::App& app) {
       la.first = *first;
       la.coverage_dir = args->coverage_dir;
       la.coverage_report = !*cov_raw;
+      la.trace_path = args->trace;
+      la.trace_window = *trace_window;
+      la.trace_all = *trace_all;
+      la.inject = *inject;
+      la.inject_at = *inject_at;
+      if (sub->count("--inject-at") > 0 && la.inject.empty()) throw std::invalid_argument("--inject-at needs --inject");
+      if ((sub->count("--trace-window") > 0 || la.trace_all) && la.trace_path.empty())
+        throw std::invalid_argument("--trace-window and --trace-all need --trace FILE");
+      if (sub->count("--trace-window") > 0 && la.trace_all)
+        throw std::invalid_argument("--trace-window cuts the waveform around the first failure, --trace-all keeps the "
+                                    "whole run: one or the other");
       if (*cov_raw && la.coverage_dir.empty()) throw std::invalid_argument("--coverage-db-only needs --coverage DIR");
       la.reset_at = sub->count("--reset-at") > 0 ? static_cast<int64_t>(args->reset_at) : -2;
       if (la.first != 0 && la.mode != "random") throw std::invalid_argument("--first applies to --mode random only");
@@ -468,6 +494,11 @@ void add_cosim(CLI::App& app) {
       throw std::invalid_argument("--harness needs --core lighting (the unit's bare harness is shadecore_bare_<config>)");
     if (first_opt->count() > 0) throw std::invalid_argument("--first needs --core lighting (the unit's shards: --shards)");
     if (*cov_raw) throw std::invalid_argument("--coverage-db-only is regress's, for --core lighting");
+    if (sub->count("--inject") > 0 || sub->count("--inject-at") > 0)
+      throw std::invalid_argument("--inject needs --core lighting (the specular simulators take it directly)");
+    if (sub->count("--trace-window") > 0 || *trace_all)
+      throw std::invalid_argument("--trace-window and --trace-all need --core lighting (the specular core's --trace "
+                                  "writes the whole run)");
     args->n_given = n_opt->count() > 0;
     args->count_given = count_opt->count() > 0;
     args->shards_given = shards_opt->count() > 0;

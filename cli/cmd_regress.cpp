@@ -320,6 +320,9 @@ std::vector<ShardSpec> expand(const json& plan, bool coverage = false) {
           "--mode", mode, "--seed", std::to_string(seed), "--in-stall", num(get<double>(j, name, "in_stall", 0.0)),
           "--out-stall", num(get<double>(j, name, "out_stall", 0.0)), "--no-progress"};
       if (coverage) common.insert(common.end(), {"--coverage", "{cov}", "--coverage-db-only"});
+      // A failing shard keeps its waveform (issue 36): the windowed --trace costs nothing on a pass and, on a FAIL,
+      // re-runs the shard on the trace build for the cycles around its first failure, into DIR/work/ID.fst.
+      common.insert(common.end(), {"--trace", "{work}.fst"});
       if (mode == "directed") {
         if (j.contains("reset_at")) common.insert(common.end(), {"--reset-at", std::to_string(get<int64_t>(j, name, "reset_at", -1))});
         common.insert(common.end(), {"--count", std::to_string(count)});

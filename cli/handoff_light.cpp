@@ -504,7 +504,8 @@ docs/spec.md §8):
   stability, the register-write rules, a reset in the middle of the stream with the dropped fragments sent
   again; random input gaps and output backpressure from `+seed=`); prints one `PASS <n> vectors` or
   `FAIL ...` line and exits non-zero on failure.
-- `./run_icarus.sh` and `./run_verilator.sh` (`SEED=`, `IN_GAP=`, `OUT_STALL=`, `RESET_AT=` to vary):
+- `./run_icarus.sh` and `./run_verilator.sh` (`SEED=`, `IN_GAP=`, `OUT_STALL=`, `RESET_AT=` to vary;
+  `VECTORS=FILE` one vector file, `VCD=FILE` a waveform of the design's nets, FST for a `.fst` name):
   exit 0 only on PASS. Their results at generation time, the lint and the synthesis reports: `reports/`.
 - `sha256sum -c MANIFEST.sha256` checks that no file changed.
 

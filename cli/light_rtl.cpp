@@ -191,15 +191,16 @@ CoreBuild ensure_build(const ProjectBuild& pb, bool quiet) {
   return b;
 }
 
-CoreBuild ensure_core(const FeatureSet& feat, bool quiet, Harness harness, bool coverage) {
+CoreBuild ensure_core(const FeatureSet& feat, bool quiet, Harness harness, bool coverage, bool trace) {
+  if (coverage && trace) throw std::invalid_argument("a core is built with coverage or with waveforms, not both");
   auto cmake_list = [](const std::vector<std::string>& v) {
     std::string s;
     for (const auto& e : v) s += (s.empty() ? "" : ";") + e;
     return s;
   };
   ProjectBuild pb;
-  // The coverage build is a directory of its own: the speed build of the set stays as it is.
-  pb.key = feat.key() + (coverage ? "-cov" : "");
+  // The coverage and trace builds are directories of their own: the speed build of the set stays as it is.
+  pb.key = feat.key() + (coverage ? "-cov" : "") + (trace ? "-trace" : "");
   pb.project = "sim/light_core";
   pb.harness_sources = {"light_main.cpp", "light_bare_main.cpp"};
   pb.target = harness == Harness::Bare ? "shadecore_light_bare" : "shadecore_light_sim";
@@ -207,11 +208,15 @@ CoreBuild ensure_core(const FeatureSet& feat, bool quiet, Harness harness, bool 
   pb.log = harness == Harness::Bare ? "build.bare.log" : "build.log";
   pb.defines = {"-DSHADECORE_LIGHT_PARAMS=" + cmake_list(feat.verilog_params(32)),
                 "-DSHADECORE_LIGHT_RTL=" + cmake_list(rtl::light_files(feat)),
-                std::string("-DSHADECORE_COVERAGE=") + (coverage ? "ON" : "OFF")};
-  pb.noun = coverage ? "coverage core" : "core";
-  pb.first_use = coverage ? "first coverage run of this feature set" : "first use of this feature set";
+                std::string("-DSHADECORE_COVERAGE=") + (coverage ? "ON" : "OFF"),
+                std::string("-DSHADECORE_TRACE=") + (trace ? "ON" : "OFF")};
+  pb.noun = coverage ? "coverage core" : trace ? "trace core" : "core";
+  pb.first_use = coverage ? "first coverage run of this feature set"
+                 : trace  ? "first waveform of this feature set"
+                          : "first use of this feature set";
   pb.what = fmt::format("building the lighting core '{}' [{}] ({} harness{}) for {}", feat.name, feat.key(),
-                        harness_name(harness), coverage ? ", coverage build" : "", feat.summary());
+                        harness_name(harness), coverage ? ", coverage build" : trace ? ", trace build" : "",
+                        feat.summary());
   // The feature set's canonical JSON as a header (light_features.hpp) and as a file.
   pb.prepare = [&feat](const fs::path& dir) {
     std::ofstream h(dir / "light_features.hpp");
@@ -279,7 +284,16 @@ namespace shadecore::cli {
 int lighting_cosim(const LightCosimArgs& a) {
   if (a.mode != "random" && a.mode != "directed")
     throw std::invalid_argument("--core lighting: unknown mode '" + a.mode + "' (known: random, directed)");
-  if (!a.json_path.empty()) check_writable_file(a.json_path);
+  // Outputs (docs/cli.md): checked now, written together at the end — the waveform through a temporary file
+  // the simulator writes; a FAIL keeps both, an error leaves neither.
+  io::OutputSet outs;
+  const int json_out = a.json_path.empty() ? -1 : outs.file("--json", a.json_path);
+  const int trace_out = a.trace_path.empty() ? -1 : outs.file("--trace", a.trace_path, /*allow_stream=*/false);
+  if (a.trace_all && trace_out < 0) throw std::invalid_argument("--trace-all needs --trace FILE");
+  if (a.trace_all && !a.coverage_dir.empty())
+    throw std::invalid_argument("--trace-all runs the trace build and --coverage the coverage build: not both (the "
+                                "windowed --trace works with --coverage: only a failed run is run again for its waveform)");
+  if (a.trace_window < 1 || a.trace_window > 1000000) throw std::invalid_argument("--trace-window: 1..1000000 cycles");
   const FeatureSet feat = feature_set_named_or_file(a.features);
   uint64_t seed = a.seed;
   if (seed == 0) {
@@ -289,12 +303,16 @@ int lighting_cosim(const LightCosimArgs& a) {
   const Harness harness = parse_harness(a.harness);
   if (a.first != 0 && a.mode != "random") throw std::invalid_argument("--first applies to --mode random only");
   if (!a.coverage_dir.empty()) coverage::check_output_dir(a.coverage_dir, "--coverage");
-  const CoreBuild b = ensure_core(feat, a.quiet, harness, !a.coverage_dir.empty());
+  const CoreBuild b = ensure_core(feat, a.quiet, harness, !a.coverage_dir.empty(), a.trace_all);
   std::vector<std::string> argv = {
       b.exe, "--mode", a.mode, "--label", feat.name, "--count", std::to_string(a.count), "--seed",
       std::to_string(seed), "--in-stall", fmt::format("{}", a.in_stall), "--out-stall", fmt::format("{}", a.out_stall)};
   if (a.first != 0) argv.insert(argv.end(), {"--first", std::to_string(a.first)});
   if (a.reset_at != -2) argv.insert(argv.end(), {"--reset-at", std::to_string(a.reset_at)});
+  if (!a.inject.empty()) argv.insert(argv.end(), {"--inject", a.inject});
+  if (a.inject_at != 0) argv.insert(argv.end(), {"--inject-at", std::to_string(a.inject_at)});
+  const std::vector<std::string> run_argv = argv;  // what a re-run for the waveform repeats
+  if (a.trace_all) argv.insert(argv.end(), {"--trace", outs.produce_path(trace_out, {".hier"})});
   // --coverage DIR: the simulator writes its database into a scratch file under DIR, merged there at the end.
   const std::string cov_tmp =
       a.coverage_dir.empty() ? "" : (fs::path(a.coverage_dir) / fmt::format(".run.{}.dat", ::getpid())).string();
@@ -312,20 +330,65 @@ int lighting_cosim(const LightCosimArgs& a) {
     }
   } cleanup{cov_tmp};
   ::setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);
-  nlohmann::json result;
-  handoff::ProcOptions po;
-  po.own_group = false;
-  po.on_line = [&](const std::string& line) {
-    if (line.rfind("COSIM-RESULT ", 0) == 0) result = nlohmann::json::parse(line.substr(13));
-    else if (!a.quiet || line.rfind("cosim: FAIL", 0) == 0 || line.rfind("MISMATCH", 0) == 0 ||
-             line.rfind("ERROR", 0) == 0 || line.rfind("cosim: reproduce", 0) == 0) {
-      std::fputs(line.c_str(), stdout);
-      std::fflush(stdout);
+  // One simulator run: its COSIM-RESULT, its other lines shown (all, only the failure's when quiet, none when
+  // silent: the re-run for a waveform, whose failure was shown already).
+  const auto simulate = [](const std::vector<std::string>& args, bool quiet, bool silent = false) {
+    nlohmann::json result;
+    handoff::ProcOptions po;
+    po.own_group = false;
+    po.on_line = [&](const std::string& line) {
+      if (line.rfind("COSIM-RESULT ", 0) == 0) result = nlohmann::json::parse(line.substr(13));
+      else if (silent || line.rfind("cosim: waveform written to", 0) == 0) return;  // its temporary name: ours below
+      else if (!quiet || line.rfind("cosim: FAIL", 0) == 0 || line.rfind("MISMATCH", 0) == 0 ||
+               line.rfind("ERROR", 0) == 0 || line.rfind("cosim: reproduce", 0) == 0) {
+        std::fputs(line.c_str(), stdout);
+        std::fflush(stdout);
+      }
+    };
+    const handoff::Proc p = handoff::run_proc(args, fs::current_path(), po);
+    if (result.is_null()) {
+      // The simulator refused its arguments or crashed: pass its words on, one line.
+      std::string said = p.out;
+      const auto at = said.find("error: ");
+      said = at == std::string::npos ? "" : said.substr(at + 7, said.find('\n', at) - at - 7);
+      throw std::runtime_error("the lighting-core simulator ended without a result (exit " + std::to_string(p.status) +
+                               ")" + (said.empty() ? "" : ": " + said));
     }
+    return result;
   };
-  const int rc = handoff::run_proc(argv, fs::current_path(), po).status;
-  if (result.is_null())
-    throw std::runtime_error("the lighting-core simulator ended without a result (exit " + std::to_string(rc) + ")");
+  nlohmann::json result = simulate(argv, a.quiet);
+  if (trace_out >= 0 && !a.trace_all) {
+    if (result.at("ok").get<bool>()) {
+      if (!a.quiet)
+        fmt::print("cosim: PASS: no waveform written to {} (--trace keeps the cycles around the first failure; "
+                   "--trace-all the whole run)\n", a.trace_path);
+    } else {
+      // The failure again on the trace build, dumping the window around its first error. The same options
+      // give the same stimulus and the same timing (the stall generators are seeded), so the same first error.
+      const uint64_t cycles = result.value("cycles", uint64_t{0});
+      const uint64_t at = result["first_error_cycle"].is_number() ? result["first_error_cycle"].get<uint64_t>() : cycles;
+      const uint64_t from = at > a.trace_window ? at - a.trace_window : 1, to = at + a.trace_window;
+      if (!a.quiet)
+        fmt::print("cosim: running the failure again on the trace build for its waveform (cycles {}..{}, first error at "
+                   "cycle {})\n", from, to, at);
+      std::fflush(stdout);
+      const CoreBuild tb = ensure_core(feat, a.quiet, harness, false, /*trace=*/true);
+      std::vector<std::string> again = run_argv;
+      again[0] = tb.exe;
+      again.insert(again.end(), {"--quiet", "--trace", outs.produce_path(trace_out, {".hier"}), "--trace-from",
+                                 std::to_string(from), "--trace-to", std::to_string(to)});
+      const nlohmann::json r2 = simulate(again, /*quiet=*/true, /*silent=*/true);
+      for (const char* k : {"ok", "first_error_cycle", "vectors", "mismatches", "lost", "duplicated_or_reordered",
+                            "latency_errors", "protocol_errors", "cycles"})
+        if (r2.value(k, nlohmann::json()) != result.value(k, nlohmann::json()))
+          throw std::runtime_error(fmt::format("--trace: the trace build's run did not repeat the failure ({} {} there, "
+                                               "{} here): no waveform written",
+                                               k, r2.value(k, nlohmann::json()).dump(), result.value(k, nlohmann::json()).dump()));
+      result["trace"] = {{"file", a.trace_path}, {"from_cycle", from}, {"to_cycle", to}, {"build_dir", tb.dir}};
+    }
+  } else if (a.trace_all) {
+    result["trace"] = {{"file", a.trace_path}, {"from_cycle", 1}, {"to_cycle", result.value("cycles", uint64_t{0})}};
+  }
   result["build_dir"] = b.dir;
   result["built_now"] = b.built_now;
   result["build_s"] = b.build_seconds;
@@ -334,7 +397,10 @@ int lighting_cosim(const LightCosimArgs& a) {
         coverage::report({cov_tmp}, a.coverage_dir, a.coverage_report ? coverage::waivers_in_use() : "", a.coverage_report,
                          a.quiet || !a.coverage_report, /*summary_file=*/a.coverage_report)["totals"]
             .dump());
-  if (!a.json_path.empty()) write_file_atomic(a.json_path, result.dump(2) + "\n");
+  if (json_out >= 0) outs.set(json_out, result.dump(2) + "\n");
+  outs.commit();  // a FAIL is a completed run: its JSON and waveform are its record
+  if (result.contains("trace")) fmt::print("cosim: waveform written to {}\n", a.trace_path);
+  std::fflush(stdout);
   return result.at("ok").get<bool>() ? 0 : kExitCheckFailed;
 }
 

@@ -36,8 +36,10 @@ const char* harness_name(Harness h);
 // Build (or find) the simulator of `fs` for harness `h`. Progress on stderr when building (it takes
 // ~30–90 s). Throws std::runtime_error with one line (and the log path) if Verilator or the compiler fails.
 // `coverage`: the coverage build of the set (line, branch and toggle points; docs/coverage.md), cached apart
-// (<key>-cov) from the speed build.
-CoreBuild ensure_core(const FeatureSet& fs, bool quiet = false, Harness h = Harness::SystemC, bool coverage = false);
+// (<key>-cov) from the speed build. `trace`: the trace build (Verilated with --trace-fst: the harnesses take
+// --trace FILE; sim/tb_trace.hpp), cached apart (<key>-trace). Not both.
+CoreBuild ensure_core(const FeatureSet& fs, bool quiet = false, Harness h = Harness::SystemC, bool coverage = false,
+                      bool trace = false);
 
 // One simulator built on demand from a CMake project of sim/ and cached by key (the lighting core per
 // feature set; the coverage builds, cli/coverage.hpp): configured and built into <cache>/<key>/, stamped with
@@ -93,6 +95,16 @@ struct LightCosimArgs {
   std::string json_path;
   std::string coverage_dir;        // --coverage DIR: the set's coverage build; DIR/coverage.dat, summary.json, html
   bool coverage_report = true;     // false (regress shards): DIR/coverage.dat only, the merge makes the report
+  // --trace FILE: an FST waveform from the set's trace build (<key>-trace). By default only for a FAILED run:
+  // the run goes on the speed (or coverage) build as without --trace and, if it fails, is run again — same
+  // options, so the same stimulus, timing and first failure — on the trace build, dumping the trace_window
+  // cycles before the first failure to trace_window cycles after it. trace_all: the whole run, on the trace
+  // build, pass or fail.
+  std::string trace_path;
+  uint64_t trace_window = 200;
+  bool trace_all = false;
+  std::string inject;      // self-test: the simulator corrupts one observed output (value | drop | dup)
+  uint64_t inject_at = 0;  // which output transfer (0: the simulator's default)
   bool quiet = false;
 };
 int lighting_cosim(const LightCosimArgs& a);

@@ -12,6 +12,7 @@
 #   FILELIST=signoff/gates.f ./run_icarus.sh   another design file list: the mapped netlist and the
 #                                      cell library's models (gate-level simulation, signoff/signoff.py)
 #   VECTORS=vectors/random.hex VCD=/tmp/a.vcd ./run_icarus.sh   one vector file; a VCD of the design's nets
+#                                      ($dumpvars through +vcd=, tb/tb_common.vh); FST when the name ends in .fst
 # Needs iverilog and vvp (Icarus Verilog 11 or newer). Works in a temporary directory; the bundle is
 # not modified.
 set -u
@@ -30,6 +31,8 @@ plus=""
 [ -n "${OUT_STALL:-}" ] && plus="$plus +out_stall=$OUT_STALL"
 [ -n "${RESET_AT:-}" ] && plus="$plus +reset_at=$RESET_AT"
 [ -n "${VCD:-}" ] && plus="$plus +vcd=$VCD"
+fst=""
+case "${VCD:-}" in *.fst) fst=-fst ;; esac
 filelist=${FILELIST:-filelist.f}
 [ -f "$filelist" ] || { echo "run_icarus.sh: FAIL: no such file list: $filelist"; exit 1; }
 
@@ -46,11 +49,11 @@ status=0 ; total=0 ; summary=""
 for f in ${VECTORS:-vectors/*.hex}; do
   [ -f "$f" ] || continue
   n=$(grep -c '^[0-9a-fA-F]' "$f")
-  echo "run_icarus.sh: vvp -n tb.vvp +vectors=$f +nvec=$n$plus"
+  echo "run_icarus.sh: vvp -n tb.vvp $fst${fst:+ }+vectors=$f +nvec=$n$plus"
   # shellcheck disable=SC2086
-  vvp -n "$work/tb.vvp" "+vectors=$f" "+nvec=$n" $plus >"$work/run.log" 2>&1
+  vvp -n "$work/tb.vvp" $fst "+vectors=$f" "+nvec=$n" $plus >"$work/run.log" 2>&1
   rc=$?
-  grep -v '^VCD info' "$work/run.log"
+  grep -v -e '^VCD info' -e '^FST info' "$work/run.log"
   if [ $rc -eq 0 ] && grep -q "^PASS $n vectors" "$work/run.log" && ! grep -q '^FAIL' "$work/run.log"; then
     total=$((total + n)) ; summary="$summary $(basename "$f") $n"
   else

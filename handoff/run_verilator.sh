@@ -12,6 +12,10 @@
 #   RESET_AT=-1 ./run_verilator.sh     no reset in the middle of the stream
 #   VERILATOR_OBJ_DIR=dir ./run_verilator.sh  keep the build in dir and reuse it while the sources
 #                                      are older than it (default: a temporary directory)
+#   VECTORS=vectors/random.hex VCD=/tmp/a.vcd ./run_verilator.sh   one vector file; a waveform of the design's
+#                                      nets ($dumpvars through +vcd=, tb/tb_common.vh): VCD, or FST when the
+#                                      name ends in .fst; a build of its own (--trace / --trace-fst, in
+#                                      dir/trace-vcd or dir/trace-fst), the plain build stays as it is
 # Needs Verilator 5 (--binary, --timing) and a C++ compiler.
 set -u
 tb=tb_shadecore   # the testbench module, tb/$tb.v (shadecore handoff sets it per core)
@@ -33,15 +37,25 @@ plus=""
 [ -n "${IN_GAP:-}" ] && plus="$plus +in_gap=$IN_GAP"
 [ -n "${OUT_STALL:-}" ] && plus="$plus +out_stall=$OUT_STALL"
 [ -n "${RESET_AT:-}" ] && plus="$plus +reset_at=$RESET_AT"
+trace="" ; bdir=$obj   # the build used: $obj, or a trace build of its own under it
+if [ -n "${VCD:-}" ]; then
+  plus="$plus +vcd=$VCD"
+  case "$VCD" in
+    *.fst) trace=--trace-fst ; bdir="$obj/trace-fst" ;;
+    *)     trace=--trace ; bdir="$obj/trace-vcd" ;;
+  esac
+  mkdir -p "$bdir" || exit 1
+fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
-if [ -x "$obj/Vtb" ] && [ -z "$(find rtl tb filelist.f -newer "$obj/Vtb" 2>/dev/null | head -n 1)" ]; then
-  echo "run_verilator.sh: reusing $obj/Vtb (sources unchanged)"
+if [ -x "$bdir/Vtb" ] && [ -z "$(find rtl tb filelist.f -newer "$bdir/Vtb" 2>/dev/null | head -n 1)" ]; then
+  echo "run_verilator.sh: reusing $bdir/Vtb (sources unchanged)"
 else
   # -Wall without -Wno-fatal: every warning fails the build (the bundle, testbench included, lints clean).
-  echo "run_verilator.sh: verilator --binary -Wall -I tb -f filelist.f --top-module $tb tb/$tb.v"
-  if ! verilator --binary -j "$jobs" -Wall -Itb -f filelist.f --top-module "$tb" \
-       -Mdir "$obj" -o Vtb "tb/$tb.v" >"$log" 2>&1; then
+  echo "run_verilator.sh: verilator --binary -Wall $trace${trace:+ }-I tb -f filelist.f --top-module $tb tb/$tb.v"
+  # shellcheck disable=SC2086
+  if ! verilator --binary -j "$jobs" -Wall $trace -Itb -f filelist.f --top-module "$tb" \
+       -Mdir "$bdir" -o Vtb "tb/$tb.v" >"$log" 2>&1; then
     tail -n 40 "$log"
     echo "run_verilator.sh: FAIL: build failed"
     exit 1
@@ -49,13 +63,13 @@ else
 fi
 
 status=0 ; total=0 ; summary=""
-for f in vectors/*.hex; do
+for f in ${VECTORS:-vectors/*.hex}; do
   [ -f "$f" ] || continue
   n=$(grep -c '^[0-9a-fA-F]' "$f")
   echo "run_verilator.sh: Vtb +vectors=$f +nvec=$n$plus"
   # shellcheck disable=SC2086
   # (in a child shell, so the "Aborted" of a failing run, $stop, lands in the log, not on the terminal)
-  sh -c '"$@"; r=$?; exit $r' sh "$obj/Vtb" "+vectors=$f" "+nvec=$n" $plus >"$log" 2>&1
+  sh -c '"$@"; r=$?; exit $r' sh "$bdir/Vtb" "+vectors=$f" "+nvec=$n" $plus >"$log" 2>&1
   rc=$?
   grep -v -e '^- ' -e '^Aborting' -e 'Aborted' -e 'Verilog \$stop' "$log"
   if [ $rc -eq 0 ] && grep -q "^PASS $n vectors" "$log" && ! grep -q '^FAIL' "$log"; then

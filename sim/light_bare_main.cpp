@@ -25,6 +25,12 @@
 #include "tb_light_logic.hpp"
 #include "tb_light_run.hpp"
 #include "tb_monitor_logic.hpp"
+#include "tb_trace.hpp"
+#if VM_TRACE_FST
+#include <verilated_fst_c.h>
+
+#include <memory>
+#endif
 
 namespace shadecore::sim {
 namespace {
@@ -89,6 +95,7 @@ struct BarePins : LightPinOps<BarePins> {
 LightHarnessStats run_bare(const LightOptions& o, const LightCore& core, LightStimulus& stim, int64_t reset_local,
                            uint64_t timing_seed, LightScoreboard& sb) {
   VerilatedContext ctx;
+  if (kTraceBuild && o.trace.on()) ctx.traceEverOn(true);  // before the model is built
   Vlight_bare top{&ctx};
   top.clk_i = 0;
   top.rst_ni = 0;
@@ -108,6 +115,21 @@ LightHarnessStats run_bare(const LightOptions& o, const LightCore& core, LightSt
     mon.edge_sample = edge_func_sample<LightFuncCov>;
     mon.edge_ctx = &fcov;
   }
+#if VM_TRACE_FST
+  // The trace build's waveform (tb_trace.hpp): dumped at SystemC's times (cycle k's rising edge at
+  // (k - 1) * 10 ns, the falling edge 5 ns later), opened at the window's first cycle, closed after its last.
+  std::unique_ptr<VerilatedFstC> fst;
+  uint64_t cycle = 0;
+  const auto ticks_per_ns = [&ctx] {
+    uint64_t t = 1;
+    for (int p = ctx.timeprecision(); p < -9; ++p) t *= 10;
+    return t;
+  }();
+  if (o.trace.on()) {
+    fst = std::make_unique<VerilatedFstC>();
+    top.trace(fst.get(), 99);
+  }
+#endif
   top.eval();
   for (;;) {
     const bool stop = mon.on_edge();  // pre-edge values
@@ -115,10 +137,30 @@ LightHarnessStats run_bare(const LightOptions& o, const LightCore& core, LightSt
     top.clk_i = 1;
     top.eval();                       // the edge, on the pre-edge inputs
     pins.commit();
+#if VM_TRACE_FST
+    if (fst) {
+      ++cycle;
+      if (cycle == o.trace.from || (cycle == 1 && o.trace.from == 0)) fst->open(o.trace.file.c_str());
+      if (cycle > o.trace.to && fst->isOpen()) fst->close();
+      if (fst->isOpen()) {
+        top.eval();  // the new inputs settle while the clock is high (no edge: the same state as below)
+        const uint64_t t0 = (cycle - 1) * kTraceClockNs * ticks_per_ns;
+        fst->dump(t0);
+        top.clk_i = 0;
+        top.eval();
+        fst->dump(t0 + kTraceClockNs * ticks_per_ns / 2);
+        if (stop) break;
+        continue;
+      }
+    }
+#endif
     top.clk_i = 0;
     top.eval();                       // settle on the new inputs
     if (stop) break;
   }
+#if VM_TRACE_FST
+  if (fst) fst->close();
+#endif
   top.final();
   write_coverage(&ctx, o.coverage);  // while the model (its counters) lives
   sb.model().sample = nullptr;

@@ -18,7 +18,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
@@ -29,6 +32,7 @@
 #include <nlohmann/json.hpp>
 
 #include "shadecore/common/args.hpp"
+#include "shadecore/common/output_files.hpp"
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
 #include "shadecore/stimulus/light_stimulus.hpp"
@@ -36,6 +40,7 @@
 #include "shadecore/stimulus/specular.hpp"
 #include "tb_coverage.hpp"
 #include "tb_light_logic.hpp"
+#include "tb_trace.hpp"
 
 namespace shadecore::sim {
 
@@ -55,6 +60,7 @@ struct LightOptions {
   bool quiet = false;
   std::string label = "custom";
   std::string coverage;  // coverage build: the database written at the end of the run (tb_coverage.hpp)
+  TraceWindow trace;     // trace build: the FST waveform written while the run lasts (tb_trace.hpp)
 };
 
 // What a harness's clock loop reports back (the scoreboard holds the rest).
@@ -81,6 +87,24 @@ using LightHarnessFn = std::function<LightHarnessStats(const LightOptions&, cons
                                                        int64_t reset_local, uint64_t timing_seed, LightScoreboard&)>;
 
 namespace detail {
+
+// The waveform being written (its temporary name and the FST writer's side file): removed if the run is
+// stopped by a signal (SIGINT from a terminal, SIGTERM from `shadecore`), so an interrupted run leaves nothing.
+inline char g_trace_tmp[2][4096];
+inline void light_trace_on_signal(int sig) {
+  for (const char* f : g_trace_tmp)
+    if (f[0]) ::unlink(f);
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+inline void light_trace_cleanup_on_signals(const std::string& tmp) {
+  const std::string hier = tmp + ".hier";
+  if (hier.size() >= sizeof g_trace_tmp[0]) throw std::invalid_argument("--trace: path too long");
+  std::snprintf(g_trace_tmp[0], sizeof g_trace_tmp[0], "%s", tmp.c_str());
+  std::snprintf(g_trace_tmp[1], sizeof g_trace_tmp[1], "%s", hier.c_str());
+  for (int sig : {SIGINT, SIGTERM, SIGHUP})
+    if (std::signal(sig, light_trace_on_signal) == SIG_IGN) std::signal(sig, SIG_IGN);  // inherited ignore stays
+}
 
 inline std::string light_shortest(double v) {
   char b[32];
@@ -188,6 +212,11 @@ inline int light_run(const LightOptions& o, const FeatureSet& fs, const std::str
       {"watchdog", hs.watchdog},
       {"reproduce", repro},
   };
+  // Where a windowed waveform of this run would be cut (`cosim --core lighting --trace`): the monitor cycle
+  // of the first error of any kind; null when there was none (a FAIL without one: nothing checked, or
+  // fragments that never came out, is cut at the end of the run).
+  if (sb.first_error_cycle_ != LightScoreboard::kNoError) j["first_error_cycle"] = sb.first_error_cycle_;
+  else j["first_error_cycle"] = nullptr;
   if (mode == LightMode::Random) j["stimulus_digest"] = stim.digest();
   std::printf("COSIM-RESULT %s\n", j.dump().c_str());
   std::fflush(stdout);
@@ -236,6 +265,14 @@ inline int light_harness_main(int argc, char** argv, const char* harness, const 
   app.add_flag("--quiet", o.quiet, "print only the COSIM-RESULT line when the run passes");
   app.add_option("--coverage", o.coverage, "coverage build only: write the coverage database (coverage.dat) here")
       ->check(NonEmpty("path"));
+  std::string trace;
+  app.add_option("--trace", trace, "trace build only: write an FST waveform of the RTL here (the whole run unless "
+                                   "--trace-from / --trace-to cut it)")
+      ->check(NonEmpty("path"));
+  auto* tfrom_opt = app.add_option("--trace-from", o.trace.from, "--trace: first monitor cycle dumped (default: the first)")
+                        ->check(UInt(0));
+  auto* tto_opt = app.add_option("--trace-to", o.trace.to, "--trace: last monitor cycle dumped (default: the end)")
+                      ->check(UInt(0));
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -255,6 +292,24 @@ inline int light_harness_main(int argc, char** argv, const char* harness, const 
     if (o.mode != "stream" && (in_opt->count() || out_opt->count())) throw std::invalid_argument("--in and --out apply to --mode stream only");
     if (inject_at_opt->count() && !inject_opt->count()) throw std::invalid_argument("--inject-at needs --inject");
     if (const std::string e = coverage_option_error(o.coverage); !e.empty()) throw std::invalid_argument(e);
+    if (const std::string e = trace_option_error(trace); !e.empty()) throw std::invalid_argument(e);
+    if ((tfrom_opt->count() || tto_opt->count()) && trace.empty())
+      throw std::invalid_argument("--trace-from and --trace-to need --trace FILE");
+    if (o.trace.from > o.trace.to) throw std::invalid_argument("--trace-from is after --trace-to");
+    // The waveform is an output (output_files.hpp): checked now (a regular file: the FST writer seeks),
+    // written beside its target and renamed when the run is over — a FAIL keeps it, an error leaves nothing.
+    std::string trace_target;
+    if (!trace.empty()) {
+      trace_target = io::resolve_output(trace, /*allow_stream=*/false).path;
+      o.trace.file = io::temp_name(io::parent_of(trace_target), "fst");
+      detail::light_trace_cleanup_on_signals(o.trace.file);
+    }
+    struct TraceTmp {
+      std::string f;
+      ~TraceTmp() {
+        if (!f.empty()) std::remove(f.c_str()), std::remove((f + ".hier").c_str());
+      }
+    } trace_tmp{o.trace.file};
     if (o.seed == 0) {
       o.seed = (static_cast<uint64_t>(std::random_device{}()) << 32) ^ std::random_device{}();
       if (o.seed == 0) o.seed = 1;
@@ -296,7 +351,18 @@ inline int light_harness_main(int argc, char** argv, const char* harness, const 
                   named.name.c_str(), fs.key().c_str(), harness, fs.summary().c_str(), o.mode.c_str(),
                   (unsigned long long)o.count, o.first ? (" first " + std::to_string(o.first)).c_str() : "",
                   (unsigned long long)o.seed, o.in_stall, o.out_stall, (long long)o.reset_at);
-    return detail::light_run(o, named, harness, repro, loop);
+    const int status = detail::light_run(o, named, harness, repro, loop);
+    if (!trace_tmp.f.empty()) {
+      if (::access(trace_tmp.f.c_str(), F_OK) != 0)
+        throw std::runtime_error("--trace: the run ended before cycle " + std::to_string(o.trace.from) +
+                                 ", where the waveform was to start");
+      if (std::rename(trace_tmp.f.c_str(), trace_target.c_str()) != 0)
+        throw std::runtime_error("cannot write the waveform " + trace);
+      trace_tmp.f.clear();
+      if (!o.quiet) std::printf("cosim: waveform written to %s\n", trace.c_str());
+      std::fflush(stdout);
+    }
+    return status;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: error: %s\n", prog.c_str(), e.what());
     return 1;

@@ -79,6 +79,7 @@ class ScoreboardT {
     ++outputs_;
     if (size_ == 0) {
       ++unexpected_;
+      note_error(cycle);
       if (unexpected_ <= static_cast<uint64_t>(show_))
         std::printf("ERROR cycle %llu: output tag %u with nothing in flight (duplicated or spurious)\n",
                     ull(cycle), tag);
@@ -86,6 +87,7 @@ class ScoreboardT {
     }
     const uint32_t off = tag - ring_[head_].tag;  // tags are consecutive in acceptance order
     if (off != 0) {
+      note_error(cycle);
       if (off < size_) {
         if (lost_ < static_cast<uint64_t>(show_))
           std::printf("ERROR cycle %llu: %u transaction(s) lost: expected tag %u, got tag %u\n",
@@ -105,6 +107,7 @@ class ScoreboardT {
     if (record_) record_->push_back(got);
     if (got != e.expected) {
       ++mismatches_;
+      note_error(cycle);
       if (first_.size() < static_cast<size_t>(show_)) {
         MismatchT<Model> m;
         static_cast<In&>(m) = e.in;
@@ -121,6 +124,7 @@ class ScoreboardT {
     // bubbles under backpressure, so the contract is the range latency_min..latency.
     if (lat_adv > static_cast<uint64_t>(e.lat_hi) || lat_adv < static_cast<uint64_t>(e.lat_lo)) {
       ++latency_errors_;
+      note_error(cycle);
       if (latency_errors_ <= static_cast<uint64_t>(show_))
         std::printf("ERROR cycle %llu: tag %u latency %llu advancing cycles (%llu cycles), spec says %d..%d\n",
                     ull(cycle), tag, ull(lat_adv), ull(lat_cyc), e.lat_lo, e.lat_hi);
@@ -137,6 +141,7 @@ class ScoreboardT {
 
   void error(const std::string& what, uint64_t cycle) {
     ++protocol_errors_;
+    note_error(cycle);
     if (protocol_errors_ <= static_cast<uint64_t>(show_)) std::printf("ERROR cycle %llu: %s\n", ull(cycle), what.c_str());
   }
 
@@ -173,6 +178,10 @@ class ScoreboardT {
            latency_errors_ = 0, protocol_errors_ = 0, dropped_by_reset_ = 0, material_writes_ = 0;
   uint64_t lat_min_ = ~uint64_t{0}, lat_max_ = 0;
   std::vector<MismatchT<Model>> first_;
+  // The monitor cycle of the first error of any kind (mismatch, lost, duplicated / reordered, latency,
+  // protocol, watchdog); kNoError while there is none. A windowed waveform is cut around it (tb_trace.hpp).
+  static constexpr uint64_t kNoError = ~uint64_t{0};
+  uint64_t first_error_cycle_ = kNoError;
 
  protected:
   Model model_;
@@ -187,6 +196,9 @@ class ScoreboardT {
     int lat_lo, lat_hi;
   };
   static unsigned long long ull(uint64_t v) { return static_cast<unsigned long long>(v); }
+  void note_error(uint64_t cycle) {
+    if (first_error_cycle_ == kNoError) first_error_cycle_ = cycle;
+  }
   void pop(uint32_t k) {
     head_ = (head_ + k) & (kCap - 1);
     size_ -= k;
