@@ -447,13 +447,19 @@ void add_cosim(CLI::App& app) {
                                       "--core lighting: systemc (default: the SystemC testbench) | bare (the same RTL, "
                                       "stimulus and checks in a plain C++ loop without SystemC, for long random runs)")
                           ->check(CLI::IsMember({"systemc", "bare"}));
+  auto write_rate = std::make_shared<double>(-1.0);
+  auto* write_rate_opt =
+      sub->add_option("--write-rate", *write_rate,
+                      "--core lighting, random: probability per fragment of a register-write burst (a new light program, "
+                      "material or mode) before it, in [0, 1) (default 0.002: docs/lighting.md)")
+          ->check(CLI::Range(0.0, 0.999999));
   auto first = std::make_shared<uint64_t>(0);
   auto* first_opt = sub->add_option("--first", *first,
                                     "--core lighting, random: global index of the first fragment (a shard of a longer run "
                                     "with the same seed and --reset-at)")
                         ->check(UInt(0, uint64_t{1} << 40));
   sub->callback([args, n_opt, count_opt, shards_opt, cm_opt, coef_opt, core, features, feat_opt, harness, harness_opt,
-                 first, first_opt, cov_raw, trace_window, trace_all, inject, inject_at, sub] {
+                 write_rate, write_rate_opt, first, first_opt, cov_raw, trace_window, trace_all, inject, inject_at, sub] {
     if (*core == "lighting") {
       for (const char* unit_only : {"--variant", "--config", "--cutoff", "--n", "--norm", "--coef-model", "--coef",
                                     "--shards", "--mat-rate"})
@@ -470,6 +476,8 @@ void add_cosim(CLI::App& app) {
       la.json_path = args->json_path;
       la.harness = *harness;
       la.first = *first;
+      la.write_rate = *write_rate;
+      if (write_rate_opt->count() > 0 && la.mode != "random") throw std::invalid_argument("--write-rate applies to --mode random only");
       la.coverage_dir = args->coverage_dir;
       la.coverage_report = !*cov_raw;
       la.trace_path = args->trace;
@@ -493,6 +501,7 @@ void add_cosim(CLI::App& app) {
     if (harness_opt->count() > 0)
       throw std::invalid_argument("--harness needs --core lighting (the unit's bare harness is shadecore_bare_<config>)");
     if (first_opt->count() > 0) throw std::invalid_argument("--first needs --core lighting (the unit's shards: --shards)");
+    if (write_rate_opt->count() > 0) throw std::invalid_argument("--write-rate needs --core lighting (the unit's: --mat-rate)");
     if (*cov_raw) throw std::invalid_argument("--coverage-db-only is regress's, for --core lighting");
     if (sub->count("--inject") > 0 || sub->count("--inject-at") > 0)
       throw std::invalid_argument("--inject needs --core lighting (the specular simulators take it directly)");

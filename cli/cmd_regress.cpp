@@ -140,7 +140,7 @@ const std::set<std::string>& keys_for(const std::string& kind) {
         "reset_at", "norm", "coef_model", "coef", "harness", "shards", "note"}},
       {"sweep", {"name", "kind", "variant", "config", "cutoff", "n", "shards", "note"}},
       {"cosim_lighting", {"name", "kind", "features", "mode", "count", "seed", "in_stall", "out_stall", "reset_at", "harness",
-                          "shards", "note"}},
+                          "write_rate", "shards", "note"}},
       {"command", {"name", "kind", "args", "json", "note"}},
   };
   const auto it = k.find(kind);
@@ -315,6 +315,9 @@ std::vector<ShardSpec> expand(const json& plan, bool coverage = false) {
       if (count == 0) throw std::invalid_argument(fmt::format("plan: job '{}': count must be >= 1", name));
       if (mode != "random" && shards_req != 1)
         throw std::invalid_argument(fmt::format("plan: job '{}': a directed job is one shard", name));
+      const double write_rate = get<double>(j, name, "write_rate", -1.0);
+      if (j.contains("write_rate") && (mode != "random" || !(write_rate >= 0 && write_rate < 1)))
+        throw std::invalid_argument(fmt::format("plan: job '{}': write_rate applies to random jobs and is in [0, 1)", name));
       std::vector<std::string> common = {
           self, "cosim", "--core", "lighting", "--harness", harness, "--features", get<std::string>(j, name, "features", "full"),
           "--mode", mode, "--seed", std::to_string(seed), "--in-stall", num(get<double>(j, name, "in_stall", 0.0)),
@@ -323,6 +326,7 @@ std::vector<ShardSpec> expand(const json& plan, bool coverage = false) {
       // A failing shard keeps its waveform (issue 36): the windowed --trace costs nothing on a pass and, on a FAIL,
       // re-runs the shard on the trace build for the cycles around its first failure, into DIR/work/ID.fst.
       common.insert(common.end(), {"--trace", "{work}.fst"});
+      if (j.contains("write_rate")) common.insert(common.end(), {"--write-rate", num(write_rate)});
       if (mode == "directed") {
         if (j.contains("reset_at")) common.insert(common.end(), {"--reset-at", std::to_string(get<int64_t>(j, name, "reset_at", -1))});
         common.insert(common.end(), {"--count", std::to_string(count)});

@@ -308,6 +308,7 @@ int lighting_cosim(const LightCosimArgs& a) {
       b.exe, "--mode", a.mode, "--label", feat.name, "--count", std::to_string(a.count), "--seed",
       std::to_string(seed), "--in-stall", fmt::format("{}", a.in_stall), "--out-stall", fmt::format("{}", a.out_stall)};
   if (a.first != 0) argv.insert(argv.end(), {"--first", std::to_string(a.first)});
+  if (a.write_rate >= 0) argv.insert(argv.end(), {"--write-rate", fmt::format("{}", a.write_rate)});
   if (a.reset_at != -2) argv.insert(argv.end(), {"--reset-at", std::to_string(a.reset_at)});
   if (!a.inject.empty()) argv.insert(argv.end(), {"--inject", a.inject});
   if (a.inject_at != 0) argv.insert(argv.end(), {"--inject-at", std::to_string(a.inject_at)});

@@ -89,6 +89,7 @@ struct LightCosimArgs {
   std::string harness = "systemc"; // systemc | bare (parse_harness)
   uint64_t count = 100000;
   uint64_t first = 0;              // random: global index of the first fragment (a shard of a longer run)
+  double write_rate = -1.0;        // random: register-write bursts per fragment (< 0: the simulator's default)
   int64_t reset_at = -2;           // global fragment index of the mid-stream reset; -1 none; -2 the simulator's default
   uint64_t seed = 0;               // 0 = pick one (printed)
   double in_stall = 0.0, out_stall = 0.0;
