@@ -12,7 +12,8 @@ The table units have no handoff bundle (the plain-Verilog bench cannot load the 
 synthesised and timed from the RTL (sc_specular with VARIANT set) without a gate-level run, and say so.
 Rows are cached in OUT/timing.cache.json by the SHA-256 of what decides them (the row's own RTL files — a unit's,
 or all of rtl/ for a lighting set —, config/configs.json, signoff/signoff.py and fastmul.py, handoff/, the sources
-that write a bundle, the target, the vector count): a rerun computes only what changed. Each measured row also
+that write a bundle, the target, the vector count; a table row, which has no bundle, only its RTL, configs.json,
+the flow and the target): a rerun computes only what changed. Each measured row also
 gets signoff/stages.py's analysis (what closing the target would take); --add-stages adds it to cached rows.
 A row also records what of its bundle decided it (rtl/, tb/, vectors/, the I/O constraints: inputs_sha) and the
 flow's hash; --revalidate rewrites the bundle of a row whose key changed and keeps the row when that bundle is
@@ -52,6 +53,8 @@ FIELDS = ["name", "kind", "width", "contract", "latency_cycles", "period_ns", "w
 # than one of those sources is refused (rebuild first), so the key never describes sources the binary lacks.
 # The RTL enters per row (rtl_of): a unit's row takes its own files, so work on the lighting core keeps the units' rows.
 DECIDING = ["config/configs.json", "signoff/signoff.py", "signoff/fastmul.py", "handoff"]
+# A table unit's row has no bundle (synthesis and STA of its RTL only): neither handoff/ nor the binary decide it.
+TABLE_DECIDING = ["config/configs.json", "signoff/signoff.py", "signoff/fastmul.py"]
 LEGACY_DECIDING = ["rtl/*.v", "rtl/*.vh"] + DECIDING  # the key until 2026-12-06 (rows upgraded when it still matches)
 BINARY_SOURCES = ["cmodel/include/shadecore/*.hpp", "cmodel/include/shadecore/units", "cmodel/include/shadecore/analysis",
                   "cmodel/src/units", "cmodel/src/analysis", "stimulus", "common", "cli/handoff_*",
@@ -498,9 +501,13 @@ def main():
     legacy = sha_tree(LEGACY_DECIDING)
     srch = sha_tree(BINARY_SOURCES)
     out_rows, meta, missing = [], None, []
+    table_common = sha_tree(TABLE_DECIDING)
     for i, r in enumerate(rows):
         tail = f"src:{srch}|{a.target}|{count_of(a, r)}"
         key = hashlib.sha256(f"{row_id(r)}|{common}|rtl:{sha_tree(rtl_of(cfg, r))}|{tail}".encode()).hexdigest()[:24]
+        if r["table"]:  # no bundle, no vectors: synthesis and STA of the RTL under configs.json and the flow alone
+            key = hashlib.sha256(f"{row_id(r)}|table:{table_common}|rtl:{sha_tree(rtl_of(cfg, r))}|{a.target}"
+                                 .encode()).hexdigest()[:24]
         old = hashlib.sha256(f"{row_id(r)}|{legacy}|{tail}".encode()).hexdigest()[:24]
         if os.path.exists(cache_path):  # another run may have added rows since this one started
             cache = json.load(open(cache_path))
