@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 // shadecore sim — the functional coverage model in the harnesses (docs/coverage.md "Functional model"): the model
-// (func_cov_model.hpp) sampled by the harnesses of the coverage builds and counted into the same Verilator database
+// (stimulus/include/shadecore/stimulus/func_cov.hpp) sampled by the harnesses of the coverage builds and counted into the same Verilator database
 // as the code coverage (VL_COVER_INSERT's calls: page v_func/<group>, one point per bin), so it merges over shards
 // and runs and ranks with the rest. Every bin is declared when the run starts — a bin never hit is in the database
 // as a hole, by name. In a speed build (VM_COVERAGE 0) nothing is declared and the harnesses do not sample
 // (kCoverageBuild).
 #pragma once
 
-#include "func_cov_model.hpp"
+#include "shadecore/stimulus/func_cov.hpp"
 #include "tb_coverage.hpp"
 #include "tb_monitor_logic.hpp"
 

@@ -20,15 +20,10 @@
 #include <cstdint>
 #include <string>
 
+#include "shadecore/stimulus/func_cov.hpp"  // EdgeState: the handshake state of one edge, for the functional model
 #include "tb_scoreboard.hpp"
 
 namespace shadecore::sim {
-
-// The handshake state of one edge, for the functional coverage model (tb_func_cov.hpp).
-struct EdgeState {
-  bool rst_n, in_valid, in_ready, out_valid, out_ready;
-  uint64_t in_flight;
-};
 
 template <class PinsT, class SbT, class DrvT>
 class MonitorLogic {

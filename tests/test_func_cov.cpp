@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The lighting core's functional coverage model (sim/func_cov_model.hpp, docs/coverage.md "Functional model") on
+// The lighting core's functional coverage model (shadecore/stimulus/func_cov.hpp, docs/coverage.md "Functional model") on
 // the C model alone: the nightly plan's stimulus for each lighting feature set it runs (every cosim_lighting job of
 // regress/plans/nightly.json: directed and random, with its count, seed and write rate) is fed through
 // LightCore::eval and the model samples each fragment as the harnesses do. Every bin of the model that the RTL's handshake does not decide must be reached — a bin the
@@ -14,9 +14,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "func_cov_model.hpp"
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
+#include "shadecore/stimulus/func_cov.hpp"
 #include "shadecore/stimulus/light_stimulus.hpp"
 
 namespace {

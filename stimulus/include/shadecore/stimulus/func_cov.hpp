@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-// shadecore sim — the functional coverage model itself (docs/coverage.md "Functional model"): the bins and what
-// samples them, with no Verilator in it, so a GoogleTest can run the project's stimulus through it on the C model
-// alone (tests/test_func_cov.cpp: every bin reachable). The harnesses use it through tb_func_cov.hpp, which counts
-// the bins into the run's Verilator coverage database.
+// shadecore stimulus — the functional coverage model (docs/coverage.md "Functional model"): the situations the
+// stimulus must reach, as named bins, and what samples them (the C model's trace of each fragment or input; the
+// ports' handshake per edge). No Verilator in it: a GoogleTest runs the project's stimulus through it on the C model
+// alone (tests/test_func_cov.cpp: every bin reachable); the harnesses (sim/tb_func_cov.hpp) count the same bins
+// into the run's Verilator coverage database.
 //
 //   UnitFuncCov    the specular unit: input-code class × n class (cs16 with θcr: the threshold and its
 //                  neighbours; every unit: 0, negative, the lobe, 1.0 exactly, above 1.0).
@@ -22,9 +23,14 @@
 
 #include "shadecore/light.hpp"
 #include "shadecore/unit.hpp"
-#include "tb_monitor_logic.hpp"
 
 namespace shadecore::sim {
+
+// The handshake state of one clock edge at a core's ports (the monitor's, sim/tb_monitor_logic.hpp).
+struct EdgeState {
+  bool rst_n, in_valid, in_ready, out_valid, out_ready;
+  uint64_t in_flight;
+};
 
 // A group of named bins.
 class FuncCov {
