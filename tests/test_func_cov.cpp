@@ -18,6 +18,7 @@
 #include "shadecore/light.hpp"
 #include "shadecore/stimulus/func_cov.hpp"
 #include "shadecore/stimulus/light_stimulus.hpp"
+#include "light_model_run.hpp"
 
 namespace {
 
@@ -27,17 +28,9 @@ using namespace shadecore;
 void run_job(const LightCore& core, sim::LightFuncCov& cov, sim::LightMode mode, uint64_t count, uint64_t seed,
              double write_rate) {
   sim::LightStimulus stim(core, mode, count, seed, write_rate);
-  LightRegs regs;
-  sim::CoreCommand c;
-  while (stim.next(c)) {
-    if (c.is_write) {
-      regs.write(core.widths(), c.w.addr, c.w.data);
-      continue;
-    }
-    LightCoreTrace t;
-    (void)core.eval(regs, c.f, &t);
-    cov.sample(regs, c.f, t);
-  }
+  test::model_run(core, stim, [&cov](const LightRegs& r, const Fragment& f, const LightCoreTrace& t, const Colour&) {
+    cov.sample(r, f, t);
+  });
 }
 
 // The bins `cov` has not counted, the handshake bins left out (the RTL's handshake decides them).

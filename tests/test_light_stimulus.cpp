@@ -15,6 +15,7 @@
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
 #include "shadecore/stimulus/light_stimulus.hpp"
+#include "light_model_run.hpp"
 
 using namespace shadecore;
 
@@ -27,30 +28,22 @@ struct Coverage {
 };
 Coverage run(const LightCore& core, sim::LightMode mode, uint64_t count, uint64_t seed) {
   sim::LightStimulus stim(core, mode, count, seed, 0.01);
-  LightRegs regs;
   Coverage cv;
-  sim::CoreCommand c;
-  while (stim.next(c)) {
-    if (c.is_write) {
-      regs.write(core.widths(), c.w.addr, c.w.data);
-      continue;
-    }
+  test::model_run(core, stim, [&](const LightRegs& regs, const Fragment& f, const LightCoreTrace& t, const Colour& out) {
     ++cv.frags;
-    LightCoreTrace t;
-    const Colour out = core.eval(regs, c.f, &t);
     const LightModes md = core.modes(regs);
     if (md.low_n && md.unit >= 0) ++cv.low, cv.low_n.insert(regs.mat_n);
     if (md.separate) ++cv.separate;
-    if (md.two_side && c.f.back) ++cv.back_lit;
+    if (md.two_side && f.back) ++cv.back_lit;
     if (md.cm_emission || md.cm_ambient || md.cm_diffuse || md.cm_specular) {
       cv.cm_modes.insert(static_cast<int>(regs.colour_material >> 1));
-      for (uint32_t x : c.f.col)
+      for (uint32_t x : f.col)
         if (x == 0 || x == (1u << core.format().frac) || x == (2u << core.format().frac) - 1) cv.cm_extreme.insert(x);
     }
     if (out.s[0] | out.s[1] | out.s[2]) ++cv.secondary;
     for (const auto& l : t.light)
       if (l.on && l.kind == LightKind::Spot && l.in_cone) ++cv.spot_in;
-  }
+  });
   return cv;
 }
 }  // namespace
@@ -128,16 +121,8 @@ TEST(LightStimulus, RandomSpotFragmentsFallInsideOutsideAndOnTheEdge) {
   std::array<uint64_t, 3> total{0, 0, 0};
   for (uint64_t seed = 1; seed <= 12; ++seed) {
     sim::LightStimulus stim(core, sim::LightMode::Random, 3000, seed, 0.002);
-    LightRegs regs;
-    sim::CoreCommand c;
-    while (stim.next(c)) {
-      if (c.is_write) {
-        regs.write(core.widths(), c.w.addr, c.w.data);
-        continue;
-      }
+    test::model_run(core, stim, [&](const LightRegs& regs, const Fragment&, const LightCoreTrace& t, const Colour&) {
       ++frags;
-      LightCoreTrace t;
-      (void)core.eval(regs, c.f, &t);
       bool any = false;
       for (int j = 0; j < nl; ++j) {
         const auto& lt = t.light[static_cast<size_t>(j)];
@@ -148,7 +133,7 @@ TEST(LightStimulus, RandomSpotFragmentsFallInsideOutsideAndOnTheEdge) {
         ++cls[static_cast<size_t>(j)][static_cast<size_t>(k)];
       }
       if (any) ++with_spot;
-    }
+    });
   }
   ASSERT_GT(with_spot, 1000u) << "of " << frags << " fragments";
   for (int j = 0; j < nl; ++j) {
