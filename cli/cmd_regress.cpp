@@ -160,6 +160,10 @@ T get(const json& j, const std::string& job, const char* key, T dflt) {
 
 std::string num(double v) { return fmt::format("{}", v); }
 
+// A job's count when the plan gives none: a random cosim job's transactions, a cosim_lighting job's fragments
+// (expand() and the closure rounds read the same defaults).
+constexpr uint64_t kCosimRandomCount = 100000, kLightingCount = 10000;
+
 // A random job of `count` transactions (a function of (seed, index)) in shards: every shard's first global
 // index and count (min(shards, count) shards; the first count % shards take one more), and the one global
 // reset index every shard is given (the plan's reset_at, else the stimulus's default for (seed, count)).
@@ -267,7 +271,7 @@ std::vector<ShardSpec> expand(const json& plan, bool coverage = false) {
           add(k, shards, bare ? "bare" : "sim", v);
         }
       } else if (mode == "random") {
-        const uint64_t count = get<uint64_t>(j, name, "count", 100000);
+        const uint64_t count = get<uint64_t>(j, name, "count", kCosimRandomCount);
         if (count == 0) throw std::invalid_argument(fmt::format("plan: job '{}': count must be >= 1", name));
         const RandomShards rs = random_shards(j, name, seed, count, shards_req);
         const int shards = static_cast<int>(rs.ranges.size());
@@ -311,7 +315,7 @@ std::vector<ShardSpec> expand(const json& plan, bool coverage = false) {
       const std::string harness = get<std::string>(j, name, "harness", "systemc");
       if (harness != "systemc" && harness != "bare")
         throw std::invalid_argument(fmt::format("plan: job '{}': harness must be systemc or bare", name));
-      const uint64_t count = get<uint64_t>(j, name, "count", 10000);
+      const uint64_t count = get<uint64_t>(j, name, "count", kLightingCount);
       if (count == 0) throw std::invalid_argument(fmt::format("plan: job '{}': count must be >= 1", name));
       if (mode != "random" && shards_req != 1)
         throw std::invalid_argument(fmt::format("plan: job '{}': a directed job is one shard", name));
@@ -621,7 +625,7 @@ json closure_jobs(const json& plan, int round) {
     if (name.size() > 64) throw std::invalid_argument("--until-coverage: job name '" + name + "' is longer than 64");
     json c = j;
     const uint64_t seed = j.value("seed", uint64_t{1});
-    const uint64_t count = j.value("count", static_cast<uint64_t>(kind == "cosim" ? 100000 : 10000));
+    const uint64_t count = j.value("count", kind == "cosim" ? kCosimRandomCount : kLightingCount);
     const uint64_t shards = std::max<uint64_t>(1, j.value("shards", uint64_t{1}));
     c["name"] = name;
     c["seed"] = (seed + static_cast<uint64_t>(round) * 1000003ull) & 0x7fffffffffffffffull;
