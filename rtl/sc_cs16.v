@@ -19,14 +19,17 @@
 //          (rtl/sc_mul_pool.v, squaring k at stage k; each squarer takes the one valid stage of its
 //          group) and a fragment is accepted only SHARE stages behind the one ahead (rtl/sc_pipe_ctrl.v
 //          GAP): one fragment per SHARE clocks, the same outputs and latency.           (default 1)
-//   MREG   0 or 1 (FORM = 0, SHARE = 1): the pipelining parameter. 1 puts a register inside each of
-//          the five products (n·d and the four squarings, rtl/sc_mul_reg.v: a DSP block's M register;
-//          the standard-cell flow places it between the partial-product tree and the final adder),
-//          so each product spans two clocks: LATENCY = 12, the same outputs.                (default 0)
+//   MREG   0 or 1 (SHARE = 1): the pipelining parameter. 1 puts a register inside each of the five
+//          products (n·d and the four squarings: rtl/sc_mul_reg.v, a DSP block's M register, in the
+//          reference form; rtl/sc_square.v REG = 1, rtl/sc_sum_reg.v, in FORM = 1; the standard-cell flow
+//          places it between the carry-save tree and the final adder), so each product spans two clocks;
+//          FORM = 1 also gains an input register S0 (the port's code, the cut tests and the material, so no
+//          logic sits between the input ports and a product): LATENCY = 12 (reference) or 11 (FORM = 1),
+//          the same outputs.                                                                (default 0)
 //
 // Ports : docs/spec.md §4 (clk_i, rst_ni synchronous active-low, AXI-Stream style valid/ready).
 //
-// Latency   : LATENCY = 7 clock cycles (FORM = 0; 12 with MREG = 1; FORM = 1: 5, below). A fragment presented in
+// Latency   : LATENCY = 7 clock cycles (FORM = 0; 12 with MREG = 1; FORM = 1: 5, 11 with MREG = 1, below). A fragment presented in
 //             cycle t and accepted at the rising edge that ends cycle t is presented on out_*
 //             (out_valid_o = 1) in cycle t+LATENCY, when out_ready_i is high throughout. In general
 //             the result appears after the LATENCY-th *advancing* edge counted from the accepting
@@ -130,8 +133,8 @@ module sc_cs16 #(
     if (MREG != 0 && MREG != 1) begin : g_check_mreg
       sc_cs16_error_illegal_MREG_must_be_0_or_1 u_error ();
     end
-    if (MREG != 0 && (FORM != 0 || SHARE != 1)) begin : g_check_mreg_form
-      sc_cs16_error_illegal_MREG_1_needs_FORM_0_and_SHARE_1 u_error ();
+    if (MREG != 0 && SHARE != 1) begin : g_check_mreg_form
+      sc_cs16_error_illegal_MREG_1_needs_SHARE_1 u_error ();
     end
   endgenerate
 
@@ -142,8 +145,8 @@ module sc_cs16 #(
   // ---------------------------------------------------------------------------- handshake
   // One global enable: every stage moves when the output stage is empty or being taken.
   // LATENCY register stages: S0..S6 in the reference form (and with MREG = 1 the five product
-  // registers M1..M5), S1..S5 in FORM = 1 (no S0, no S6).
-  localparam integer LATENCY = (FORM == 0) ? 7 + 5 * MREG : 5;
+  // registers M1..M5), S1..S5 in FORM = 1 (no S0, no S6; with MREG = 1 S0 and M1..M5 too).
+  localparam integer LATENCY = (FORM == 0) ? 7 + 5 * MREG : 5 + 6 * MREG;
   wire               adv;                  // global enable (rtl/sc_pipe_ctrl.v)
   wire [LATENCY-1:0] v_stage;              // valid bit of each stage (the shared squarers' selection)
   sc_pipe_ctrl #(.DEPTH(LATENCY), .GAP((FORM == 0) ? SHARE : 1)) u_ctrl (
@@ -355,34 +358,83 @@ module sc_cs16 #(
         sc_cs16_error_illegal_SQ_K1_to_SQ_K4_legal_range_is_minus_8_to_99 u_error ();
       end
 
-      // Input stage (no S0 register): everything from the input port and the material registers straight
-      // into S1. mat_n_q/mat_thr_q are read before the accepting edge, so a fragment accepted at a
-      // material-write edge uses the old material, as in the reference form. No clamp or d = 2^F - c sits
-      // in front of the multiplier (docs/spec.md §3.4): with c < 2^F the raw code's low F bits are c and
+      // Input stage. MREG = 0: no S0 register, everything from the input port and the material registers
+      // straight into S1. mat_n_q/mat_thr_q are read before the accepting edge, so a fragment accepted at a
+      // material-write edge uses the old material, as in the reference form. MREG = 1: S0 registers what the
+      // port and the material give (the code's classes, its low F bits, the cut test against thr, n), so the
+      // fragment keeps its material as well; the product n·c + k runs from S0 through M1 (rtl/sc_mul_reg.v).
+      // No clamp or d = 2^F - c sits in front of the multiplier (docs/spec.md §3.4): with c < 2^F the raw
+      // code's low F bits are c and
       //   base = 2^(F+4) - n·(2^F - c) = n·c + (16 - n)·2^F,
       // one product plus a per-material constant (one adder tree, no subtractor after it); a negative code
       // (c = 0: base = (16 - n)·2^F <= 0) is cut and a code >= 2^F (c = 2^F) gives x0 = 1.0 exactly.
-      wire          c_neg  = in_cos_i[F+1];
-      wire          c_ge1  = !c_neg && in_cos_i[F];                 // code >= 2^F: c = 2^F
-      wire [F-1:0]  c_lo   = in_cos_i[F-1:0];                       // c when !c_neg && !c_ge1
-      wire          thr_gt1 = mat_thr_q[F] && (|mat_thr_q[F-1:0]);  // thr > 2^F (not a legal thr(n))
-      wire          cthr_lo = (CUTOFF == 0) && ({1'b0, c_lo} < mat_thr_q);
+      wire          i_neg  = in_cos_i[F+1];
+      wire          i_ge1  = !i_neg && in_cos_i[F];                 // code >= 2^F: c = 2^F
+      wire          i_thr_gt1 = mat_thr_q[F] && (|mat_thr_q[F-1:0]);  // thr > 2^F (not a legal thr(n))
+      wire          i_cthr_lo = (CUTOFF == 0) && ({1'b0, in_cos_i[F-1:0]} < mat_thr_q);
+      wire          c_neg, c_ge1, thr_gt1, cthr_lo;                 // the same, as the product's stage sees them
+      wire [F-1:0]  c_lo;                                           // c when !c_neg && !c_ge1
+      wire [10:0]   n_x;                                            // n of the fragment
+      wire [TAGW-1:0] tag_x;                                        // its tag
+      if (MREG != 0) begin : g_s0
+        reg           s0_neg_q, s0_ge1_q, s0_thr_gt1_q, s0_cthr_q;
+        reg [F-1:0]   s0_c_q;
+        reg [10:0]    s0_n_q;
+        reg [TAGW-1:0] s0_tag_q;
+        always @(posedge clk_i) begin
+          if (adv) begin
+            s0_neg_q     <= i_neg;
+            s0_ge1_q     <= i_ge1;
+            s0_thr_gt1_q <= i_thr_gt1;
+            s0_cthr_q    <= i_cthr_lo;
+            s0_c_q       <= in_cos_i[F-1:0];
+            s0_n_q       <= mat_n_q;
+            s0_tag_q     <= in_tag_i;
+          end
+        end
+        assign c_lo = s0_c_q;
+        assign n_x  = s0_n_q;
+        // the flags and the tag wait beside the product's register M1
+        sc_delay #(.W(TAGW + 4), .DEPTH(1)) u_dly_m1 (
+            .clk_i(clk_i), .en_i(adv), .d_i({s0_tag_q, s0_neg_q, s0_ge1_q, s0_thr_gt1_q, s0_cthr_q}),
+            .q_o({tag_x, c_neg, c_ge1, thr_gt1, cthr_lo}));
+      end else begin : g_no_s0
+        assign c_neg   = i_neg;
+        assign c_ge1   = i_ge1;
+        assign thr_gt1 = i_thr_gt1;
+        assign cthr_lo = i_cthr_lo;
+        assign c_lo    = in_cos_i[F-1:0];
+        assign n_x     = mat_n_q;
+        assign tag_x   = in_tag_i;
+      end
       wire          base_pos;                                       // base >= 0 (c < 2^F)
       wire [F+4:0]  b_lo;                                           // base mod 2^(F+5)
       if (CUTOFF == 0) begin : g_nd_mod
         // theta_cr: a shaded fragment has c >= thr(n) >= cos(6/sqrt(n))·2^F, so n·d <= 18·2^F and
         // -2^(F+1) <= base < 2^(F+4): base mod 2^(F+5) (only the low F+5 columns; of (16 - n)·2^F only
         // (16 - n) mod 32 matters) decides base > 0 exactly; a code below thr is cut whatever it gives.
-        wire [4:0]   k_hi = 5'd16 - mat_n_q[4:0];
-        wire [F+4:0] bm   = mat_n_q * c_lo + {k_hi, {F{1'b0}}};
+        wire [4:0]   k_hi = 5'd16 - n_x[4:0];
+        wire [F+4:0] bm;
+        if (MREG != 0) begin : g_m
+          sc_mul_reg #(.AW(11), .BW(F), .PW(F+5), .SIGNED(0), .ADD(1), .CW(F+5)) u_nd (
+              .clk_i(clk_i), .en_i(adv), .a_i(n_x), .b_i(c_lo), .c_i({k_hi, {F{1'b0}}}), .p_o(bm));
+        end else begin : g_c
+          assign bm = n_x * c_lo + {k_hi, {F{1'b0}}};
+        end
         assign base_pos = ~bm[F+4];  // base = 0 passes bm = 0 = x0 of a cut: no zero test needed
         assign b_lo     = bm;
-        wire unused_n = &{1'b0, mat_n_q[10:5]};
+        wire unused_n = &{1'b0, n_x[10:5]};
       end else begin : g_nd_full
         // sign_clamp: the whole signed base (|base| < 2^(F+11)).
-        wire [12:0]   kh = 13'd16 - {2'b00, mat_n_q};                // 16 - n, two's complement
+        wire [12:0]   kh = 13'd16 - {2'b00, n_x};                    // 16 - n, two's complement
         wire [BW-1:0] kf = {kh, {F{1'b0}}};                             // BW = F + 13
-        wire [BW-1:0] bf = {{(BW-11){1'b0}}, mat_n_q} * {{(BW-F){1'b0}}, c_lo} + kf;
+        wire [BW-1:0] bf;
+        if (MREG != 0) begin : g_m
+          sc_mul_reg #(.AW(11), .BW(F), .PW(BW), .SIGNED(0), .ADD(1), .CW(BW)) u_nd (
+              .clk_i(clk_i), .en_i(adv), .a_i(n_x), .b_i(c_lo), .c_i(kf), .p_o(bf));
+        end else begin : g_c
+          assign bf = {{(BW-11){1'b0}}, n_x} * {{(BW-F){1'b0}}, c_lo} + kf;
+        end
         assign base_pos = ~bf[BW-1];  // base = 0: b_lo = 0, as a cut
         assign b_lo     = bf[F+4:0];
       end
@@ -395,10 +447,12 @@ module sc_cs16 #(
       always @(posedge clk_i) begin
         if (adv) begin
           s1_x_q   <= x0_d;
-          s1_tag_q <= in_tag_i;
+          s1_tag_q <= tag_x;
         end
       end
       // S2..S4: x_k = x_(k-1)^2 truncated to W_k fraction bits; S5: x3^2 rounded to F bits (= output).
+      // MREG = 1: each squarer holds its register inside (rtl/sc_square.v REG = 1, M2..M5), the integer bit
+      // and the tag of its stage wait beside it.
       wire [W1:0] sq1;
       wire [W2:0] sq2;
       wire [W3:0] sq3;
@@ -408,27 +462,33 @@ module sc_cs16 #(
       reg  [W3:0] s4_x_q;
       reg  [F:0]  s5_x_q;
       reg  [TAGW-1:0] s2_tag_q, s3_tag_q, s4_tag_q, s5_tag_q;
-      sc_square #(.N(W0), .OW(W1 + 1), .SHIFT(S1), .DROP(D1), .RND(SQ_COMP), .ECOMP(SQ_COMP))
-          u_sq1 (.x_i(s1_x_q[W0-1:0]), .sq_o(sq1));
-      sc_square #(.N(W1), .OW(W2 + 1), .SHIFT(S2), .DROP(D2), .RND(SQ_COMP), .ECOMP(SQ_COMP))
-          u_sq2 (.x_i(s2_x_q[W1-1:0]), .sq_o(sq2));
-      sc_square #(.N(W2), .OW(W3 + 1), .SHIFT(S3), .DROP(D3), .RND(SQ_COMP), .ECOMP(SQ_COMP))
-          u_sq3 (.x_i(s3_x_q[W2-1:0]), .sq_o(sq3));
-      sc_square #(.N(W3), .OW(F + 1), .SHIFT(S4), .DROP(D4), .RND(1), .ECOMP(SQ_COMP))
-          u_sq4 (.x_i(s4_x_q[W3-1:0]), .sq_o(sq4));
+      sc_square #(.N(W0), .OW(W1 + 1), .SHIFT(S1), .DROP(D1), .RND(SQ_COMP), .ECOMP(SQ_COMP), .REG(MREG))
+          u_sq1 (.clk_i(clk_i), .en_i(adv), .x_i(s1_x_q[W0-1:0]), .sq_o(sq1));
+      sc_square #(.N(W1), .OW(W2 + 1), .SHIFT(S2), .DROP(D2), .RND(SQ_COMP), .ECOMP(SQ_COMP), .REG(MREG))
+          u_sq2 (.clk_i(clk_i), .en_i(adv), .x_i(s2_x_q[W1-1:0]), .sq_o(sq2));
+      sc_square #(.N(W2), .OW(W3 + 1), .SHIFT(S3), .DROP(D3), .RND(SQ_COMP), .ECOMP(SQ_COMP), .REG(MREG))
+          u_sq3 (.clk_i(clk_i), .en_i(adv), .x_i(s3_x_q[W2-1:0]), .sq_o(sq3));
+      sc_square #(.N(W3), .OW(F + 1), .SHIFT(S4), .DROP(D4), .RND(1), .ECOMP(SQ_COMP), .REG(MREG))
+          u_sq4 (.clk_i(clk_i), .en_i(adv), .x_i(s4_x_q[W3-1:0]), .sq_o(sq4));
+      wire [3:0]        ib_m;    // the integer bit of S1..S4 beside squaring 1..4
+      wire [4*TAGW-1:0] tag_m;   // the tag of S1..S4 beside squaring 1..4
+      sc_delay #(.W(4 * TAGW + 4), .DEPTH(MREG)) u_dly_sq (
+          .clk_i(clk_i), .en_i(adv),
+          .d_i({s4_tag_q, s3_tag_q, s2_tag_q, s1_tag_q, s4_x_q[W3], s3_x_q[W2], s2_x_q[W1], s1_x_q[W0]}),
+          .q_o({tag_m, ib_m}));
       always @(posedge clk_i) begin
         if (adv) begin
-          s2_x_q   <= {s1_x_q[W0], {W1{1'b0}}} | sq1;
-          s2_tag_q <= s1_tag_q;
-          s3_x_q   <= {s2_x_q[W1], {W2{1'b0}}} | sq2;
-          s3_tag_q <= s2_tag_q;
-          s4_x_q   <= {s3_x_q[W2], {W3{1'b0}}} | sq3;
-          s4_tag_q <= s3_tag_q;
-          s5_x_q   <= {s4_x_q[W3], {F{1'b0}}} | sq4;
-          s5_tag_q <= s4_tag_q;
+          s2_x_q   <= {ib_m[0], {W1{1'b0}}} | sq1;
+          s2_tag_q <= tag_m[0*TAGW +: TAGW];
+          s3_x_q   <= {ib_m[1], {W2{1'b0}}} | sq2;
+          s3_tag_q <= tag_m[1*TAGW +: TAGW];
+          s4_x_q   <= {ib_m[2], {W3{1'b0}}} | sq3;
+          s4_tag_q <= tag_m[2*TAGW +: TAGW];
+          s5_x_q   <= {ib_m[3], {F{1'b0}}} | sq4;
+          s5_tag_q <= tag_m[3*TAGW +: TAGW];
         end
       end
-      // S5 is the output register (latency 5).
+      // S5 is the output register (latency 5; 11 with MREG = 1).
       assign out_spec_o = s5_x_q;
       assign out_tag_o  = s5_tag_q;
     end

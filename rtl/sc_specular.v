@@ -30,9 +30,10 @@
 //   SHARE    1..4 (the lighting core's `share`; default 1): cs16 and schlick_nr share their multipliers
 //            over SHARE consecutive stages and accept a fragment at most every SHARE clocks (their
 //            headers); the other units ignore it.
-//   MREG     0 or 1 (default 0): the pipelining parameter of cs16 (SHARE = 1; rtl/sc_cs16.v: latency 7 -> 12)
-//            and schlick_div (F+4 -> F+5): a register inside each product (rtl/sc_mul_reg.v), the same
-//            outputs; the other units ignore it (config/configs.json variants[].mreg_stages).
+//   MREG     0 or 1 (default 0): the pipelining parameter of cs16 (SHARE = 1; rtl/sc_cs16.v: latency 7 -> 12),
+//            its forms cs16_faithful and cs16_compact (5 -> 11) and schlick_div (F+4 -> F+5): a register inside
+//            each product (rtl/sc_mul_reg.v, rtl/sc_sum_reg.v), the same outputs; the other units ignore it
+//            (config/configs.json variants[].mreg_stages).
 //   COEFW    coefficient (and, with ENERGY = 1, output) width I+F, FRAC+1..FRAC+16 (default FRAC+8,
 //            enough for every model's coef over n = 16..1024). mat_coef_i is ignored when ENERGY = 0.
 // Table port: tab_we_i, tab_addr_i[9:0], tab_value_i[FRAC:0], tab_delta_i[FRAC:0] write one entry of a
@@ -164,7 +165,8 @@ module sc_specular #(
           .SQ_K2   (cs16_sq_param(VARIANT, 7)),
           .SQ_K3   (cs16_sq_param(VARIANT, 8)),
           .SQ_K4   (cs16_sq_param(VARIANT, 9)),
-          .SQ_COMP (cs16_sq_param(VARIANT, 10))
+          .SQ_COMP (cs16_sq_param(VARIANT, 10)),
+          .MREG    (MREG)
       ) u_unit (
           `SC_SPECULAR_UNIT_PORTS
       );

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // ============================================================================================
 // Filename : rtl/sc_square.v
-// Purpose  : folded (and optionally truncated) squarer, combinational:
+// Purpose  : folded (and optionally truncated) squarer, combinational (or registered inside: REG = 1):
 //              sq_o = (S + C) >> SHIFT,  OW bits,
 //            S = the sum of the kept partial-product bits of x_i·x_i, C a constant (below).
 //            Bit-accurate C model: cmodel/include/shadecore/units/square.hpp (square_trunc()); used by
@@ -26,6 +26,9 @@
 //   SHIFT  result shift                                 0 <= SHIFT, SHIFT + OW <= 2N + 1
 //   DROP   columns dropped                              0 <= DROP <= SHIFT
 //   RND    0/1, ECOMP 0/1 (above; RND needs SHIFT >= 1)
+//   REG    0: combinational (clk_i, en_i unused); 1: the sum S + C is registered inside (rtl/sc_sum_reg.v:
+//          the cell flow puts the register between the carry-save tree and the final adder), so sq_o is the
+//          result for x_i as it was one enabled edge ago (the cs16 forms' MREG = 1, rtl/sc_cs16.v)  (default 0)
 // ============================================================================================
 `default_nettype none
 
@@ -35,8 +38,11 @@ module sc_square #(
     parameter integer SHIFT = 16,
     parameter integer DROP  = 0,
     parameter integer RND   = 0,
-    parameter integer ECOMP = 0
+    parameter integer ECOMP = 0,
+    parameter integer REG   = 0
 ) (
+    input  wire          clk_i,   // REG = 1: the register's clock
+    input  wire          en_i,    // REG = 1: its enable (the pipeline's global enable)
     input  wire [N-1:0]  x_i,
     output wire [OW-1:0] sq_o
 );
@@ -55,6 +61,9 @@ module sc_square #(
     end
     if ((RND != 0 && RND != 1) || (ECOMP != 0 && ECOMP != 1) || (RND == 1 && SHIFT < 1)) begin : g_check_c
       sc_square_error_illegal_RND_or_ECOMP_must_be_0_or_1_RND_needs_SHIFT_at_least_1 u_error ();
+    end
+    if (REG != 0 && REG != 1) begin : g_check_reg
+      sc_square_error_illegal_REG_must_be_0_or_1 u_error ();
     end
   endgenerate
 
@@ -81,31 +90,47 @@ module sc_square #(
     end
   endfunction
   localparam [PW-1:0] C = comp_const(0);
-  localparam [PW-1:0] KEEP_MASK = ~((({{(PW - 1) {1'b0}}, 1'b1}) << DROP) - 1'b1);
 
-  // Rows of the folded matrix, masked to the kept columns, then one multi-operand sum.
-  wire [PW-1:0] xs = {{(PW - N - 2) {1'b0}}, x_i, 2'b00};  // x_p at position p+2
-  localparam [PW-1:0] LOW2 = 3;
-  localparam [PW-1:0] ONE  = 1;
+  // Rows of the folded matrix, bit by bit at elaboration: column c of row i is x_i (c = 2i, the diagonal), x_i·x_j
+  // (c = i + j + 1, j > i) or a constant 0 (every other column, and every column below DROP), so each structural
+  // zero is a constant in the netlist, not a masked gate. Then one multi-operand sum.
   wire [N*PW-1:0] rows;
-  genvar i;
+  genvar i, c;
   generate
     for (i = 0; i < N; i = i + 1) begin : g_row
-      wire [PW-1:0] bits = ((xs >> (i + 1)) & ~LOW2) | ONE;  // {x[N-1:i+1], 1'b0, 1'b1}
-      assign rows[i*PW +: PW] = x_i[i] ? ((bits << (2 * i)) & KEEP_MASK) : {PW{1'b0}};
+      for (c = 0; c < PW; c = c + 1) begin : g_col
+        if (c >= DROP && c == 2 * i) begin : g_diag
+          assign rows[i*PW + c] = x_i[i];
+        end else if (c >= DROP && c >= 2 * i + 2 && c - i - 1 < N) begin : g_pair
+          assign rows[i*PW + c] = x_i[i] & x_i[c-i-1];
+        end else begin : g_zero
+          assign rows[i*PW + c] = 1'b0;
+        end
+      end
     end
   endgenerate
-  reg [PW-1:0] sum;
-  integer k;
-  always @* begin
-    sum = C;
-    for (k = 0; k < N; k = k + 1) sum = sum + rows[k*PW +: PW];
-  end
+  wire unused_x = &{1'b0, x_i};   // bits whose every column is dropped (DROP) are not read
+  wire [PW-1:0] sum;
+  generate
+    if (REG != 0) begin : g_reg
+      // the rows and the constant as N + 1 operands of one registered sum (the constant's bits fold into one row)
+      sc_sum_reg #(.N(N + 1), .W(PW)) u_sum (.clk_i(clk_i), .en_i(en_i), .x_i({rows, C}), .s_o(sum));
+    end else begin : g_comb
+      reg [PW-1:0] s;
+      integer k;
+      always @* begin
+        s = C;
+        for (k = 0; k < N; k = k + 1) s = s + rows[k*PW +: PW];
+      end
+      assign sum = s;
+      wire unused_clk = &{1'b0, clk_i, en_i};
+    end
+  endgenerate
 
   assign sq_o = sum[SHIFT+OW-1:SHIFT];
   generate
     if (SHIFT > 0) begin : g_unused_lo
-      wire unused_lo = &{1'b0, sum[SHIFT-1:0], xs[1:0]};
+      wire unused_lo = &{1'b0, sum[SHIFT-1:0]};
     end
     if (SHIFT + OW < PW) begin : g_unused_hi
       wire unused_hi = &{1'b0, sum[PW-1:SHIFT+OW]};

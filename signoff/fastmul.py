@@ -272,15 +272,10 @@ endmodule
     return ok
 
 
-def mulreg_module_for(aw, bw, pw, signed, square, cw, index):
-    """Verilog of one techmap module for an rtl/sc_mul_reg.v instance of this shape: the partial-product
-    tree (with the addend's bits as one more row when cw > 0, ADD = 1), the register (enable en_i) on its two
-    carry-save rows, then the Kogge-Stone adder."""
-    m, n = min(aw, pw), min(bw, pw)
+def registered_tree(heap, pw):
+    """The tree | register | adder of a bit heap (pw columns): (tree lines, [(register, expression)], adder lines,
+    sum bits). The register holds the tree's two carry-save rows (a constant bit of a row needs none)."""
     net = Net()
-    heap = heap_of(m, n, pw, signed, square)
-    for k in range(min(cw, pw)):
-        heap[k].append(f"C[{k}]")
     rows = dadda(net, heap)
     tree = list(net.lines)
     regs, rcols = [], []
@@ -295,13 +290,38 @@ def mulreg_module_for(aw, bw, pw, signed, square, cw, index):
         rcols.append(rc)
     net.lines = []
     bits = kogge_stone(net, rcols) if any(rcols) else ["1'b0"] * pw
+    return tree, regs, net.lines, bits
+
+
+def registered_body(heap, pw, out):
+    """Verilog statements of registered_tree: the tree, the registers (clk_i, en_i), the adder, out[k] assigned."""
+    tree, regs, adder, bits = registered_tree(heap, pw)
+    decl = "\n".join(f"  reg {r};" for r, _ in regs)
+    load = "\n".join(f"      {r} <= {e};" for r, e in regs)
+    asg = "\n".join(f"  assign {out}[{k}] = {bits[k]};" for k in range(pw))
+    return f"""{chr(10).join(tree)}
+{decl}
+  always @(posedge clk_i) begin
+    if (en_i) begin
+{load}
+    end
+  end
+{chr(10).join(adder)}
+{asg}"""
+
+
+def mulreg_module_for(aw, bw, pw, signed, square, cw, index):
+    """Verilog of one techmap module for an rtl/sc_mul_reg.v instance of this shape: the partial-product
+    tree (with the addend's bits as one more row when cw > 0, ADD = 1), the register (enable en_i) on its two
+    carry-save rows, then the Kogge-Stone adder."""
+    m, n = min(aw, pw), min(bw, pw)
+    heap = heap_of(m, n, pw, signed, square)
+    for k in range(min(cw, pw)):
+        heap[k].append(f"C[{k}]")
     cond = [f"AW == {aw}", f"BW == {bw}", f"PW == {pw}", f"SIGNED == {int(signed)}"]
     cond += [f"ADD == 1", f"CW == {cw}"] if cw else ["ADD == 0"]
     if square:
         cond.append("_TECHMAP_CONNMAP_a_i_ == _TECHMAP_CONNMAP_b_i_")
-    decl = "\n".join(f"  reg {r};" for r, _ in regs)
-    load = "\n".join(f"      {r} <= {e};" for r, e in regs)
-    out = "\n".join(f"  assign p_o[{k}] = {bits[k]};" for k in range(pw))
     kind = ("square" if square else "product") + (f" + {cw}-bit addend" if cw else "")
     return f"""// sc_mul_reg {kind} {aw}x{bw} -> {pw}, {'signed' if signed else 'unsigned'}: tree | register | adder
 (* techmap_celltype = "sc_mul_reg" *)
@@ -323,17 +343,65 @@ module _sc_mulreg_{index} (clk_i, en_i, a_i, b_i, c_i, p_o);
   wire [AW-1:0] A = a_i;
   wire [BW-1:0] B = b_i;
   wire [CW-1:0] C = c_i;
-{chr(10).join(tree)}
-{decl}
-  always @(posedge clk_i) begin
-    if (en_i) begin
-{load}
-    end
-  end
-{chr(10).join(net.lines)}
-{out}
+{registered_body(heap, pw, "p_o")}
 endmodule
 """
+
+
+def sumreg_module_for(n, w, pattern, index):
+    """Verilog of one techmap module for an rtl/sc_sum_reg.v instance: n operands of w bits whose bits are
+    `pattern` (x_i's bits from bit 0: 'v' a signal, '0'/'1' a constant; the module matches only an instance with
+    exactly these constant bits, _TECHMAP_CONSTMSK/VAL). The signal bits form the heap, the constants one row;
+    then tree | register | adder as sc_mul_reg."""
+    heap = [[] for _ in range(w)]
+    const = 0
+    for i, ch in enumerate(pattern):
+        if ch == "1":
+            const += 1 << (i % w)
+        elif ch == "v":
+            heap[i % w].append(f"x_i[{i}]")
+    const %= 1 << w
+    for k in range(w):
+        if const >> k & 1:
+            heap[k].append("1'b1")
+    nw = n * w
+    msk = "".join("0" if ch == "v" else "1" for ch in reversed(pattern))
+    val = "".join("1" if ch == "1" else "0" for ch in reversed(pattern))
+    cond = (f"N == {n} && W == {w} && _TECHMAP_CONSTMSK_x_i_ == {nw}'b{msk} && "
+            f"(_TECHMAP_CONSTVAL_x_i_ & {nw}'b{msk}) == {nw}'b{val}")
+    nvar = pattern.count("v")
+    return f"""// sc_sum_reg {n} x {w} bits ({nvar} signal bits, the rest constant): tree | register | adder
+(* techmap_celltype = "sc_sum_reg" *)
+module _sc_sumreg_{index} (clk_i, en_i, x_i, s_o);
+  parameter N = 1;
+  parameter W = 1;
+  parameter _TECHMAP_CONSTMSK_x_i_ = 0;
+  parameter _TECHMAP_CONSTVAL_x_i_ = 0;
+  input clk_i, en_i;
+  (* force_downto *) input [N*W-1:0] x_i;
+  (* force_downto *) output [W-1:0] s_o;
+  wire _TECHMAP_FAIL_ = !({cond});
+{registered_body(heap, w, "s_o")}
+endmodule
+"""
+
+
+def sumreg_shapes_of(design_json):
+    """The distinct rtl/sc_sum_reg.v instances (black-box cells) of a Yosys write_json file, by their operand count,
+    width and constant bits: (n, w, pattern)."""
+    with open(design_json) as f:
+        d = json.load(f)
+    shapes = set()
+    for mod in d["modules"].values():
+        for cell in mod.get("cells", {}).values():
+            if cell["type"] != "sc_sum_reg":
+                continue
+            p = {"N": 2, "W": 8}  # rtl/sc_sum_reg.v's defaults
+            p.update({k: int(v, 2) if isinstance(v, str) else int(v) for k, v in cell["parameters"].items()})
+            bits = cell["connections"]["x_i"]
+            pattern = "".join(b if b in ("0", "1") else "v" for b in bits)  # an 'x' bit is a signal: never folded
+            shapes.add((p["N"], p["W"], pattern))
+    return sorted(shapes)
 
 
 def mulreg_shapes_of(design_json):
@@ -353,9 +421,10 @@ def mulreg_shapes_of(design_json):
     return sorted(shapes)
 
 
-def write_mulreg_map(shapes, path):
-    """Write the techmap file of the sc_mul_reg shapes (squares first)."""
+def write_mulreg_map(shapes, path, sums=()):
+    """Write the techmap file of the sc_mul_reg shapes (squares first) and the sc_sum_reg instances."""
     mods = [mulreg_module_for(*s, i) for i, s in enumerate(sorted(shapes, key=lambda s: not s[4]))]
+    mods += [sumreg_module_for(*s, i) for i, s in enumerate(sums)]
     with open(path, "w") as f:
         f.write("// generated by signoff/fastmul.py, do not edit\n")
         f.write("\n".join(mods))
@@ -388,6 +457,39 @@ endmodule
                       f"sat -verify -prove-asserts -set-init-zero -seq 3 -set-at 1 in_en 1 -prove-skip 1 "
                       f"-show-inputs miter")
             ok &= _prove(f"sc_mul_reg {s}", script)
+    return ok
+
+
+def sumreg_selftest(rtl_sum):
+    """Prove the generated sc_sum_reg maps equal to rtl/sc_sum_reg.v, as mulreg_selftest: small instances whose
+    operands mix signals, constant 0 and 1 bits, AND terms and repeated bits (what rtl/sc_square.v's rows give),
+    their shapes (constant bits) read from a Yosys write_json of the instance, as signoff.py reads them."""
+    cases = {"mixed": ("input [3:0] a, input [3:0] b", 4, 5,
+                       "{1'b0, a & b, 4'b1011, 1'b1, b, a[3], 1'b0, a[2:0], 1'b1}"),
+             "square rows": ("input [3:0] a, input [3:0] b", 3, 6,
+                             "{2'b0, a[3] & a[2], a[3] & a[1], a[3] & a[0], a[3], 1'b0, a[2] & a[1], a[2] & a[0], "
+                             "a[2], 3'b0, a[1] & a[0], a[1], 1'b0, a[0], 1'b1}"),
+             "no constant": ("input [3:0] a, input [3:0] b", 2, 4, "{a, b}")}
+    ok = True
+    for label, (ports, n, w, expr) in cases.items():
+        with tempfile.TemporaryDirectory() as tmp:
+            src = f"""module top(input clk, input en, {ports}, output [{w-1}:0] y);
+  sc_sum_reg #(.N({n}), .W({w})) u (.clk_i(clk), .en_i(en), .x_i({expr}), .s_o(y));
+endmodule
+"""
+            open(os.path.join(tmp, "t.v"), "w").write(src)
+            subprocess.run(["yosys", "-q", "-p", f"read_verilog {tmp}/t.v; read_verilog -lib {rtl_sum}; "
+                            f"hierarchy -top top; proc; opt_expr; opt_clean; write_json {tmp}/t.json"], check=True)
+            sums = sumreg_shapes_of(os.path.join(tmp, "t.json"))
+            write_mulreg_map([], os.path.join(tmp, "map.v"), sums)
+            script = (f"read_verilog {tmp}/t.v; read_verilog -lib {rtl_sum}; hierarchy -top top; proc; opt_expr; "
+                      f"rename top gate; techmap -autoproc -map {tmp}/map.v gate; select -assert-none gate/t:sc_sum_reg; "
+                      f"design -stash gatedesign; read_verilog {tmp}/t.v {rtl_sum}; hierarchy -top top; proc; flatten; "
+                      f"rename top gold; design -copy-from gatedesign gate; proc; opt_clean; "
+                      f"miter -equiv -flatten -make_assert gold gate miter; hierarchy -top miter; "
+                      f"sat -verify -prove-asserts -set-init-zero -seq 3 -set-at 1 in_en 1 -prove-skip 1 "
+                      f"-show-inputs miter")
+            ok &= _prove(f"sc_sum_reg {label} ({n} x {w}, {sums[0][2].count('v') if sums else 0} signal bits)", script)
     return ok
 
 
@@ -462,6 +564,7 @@ def main():
         if os.path.exists(rtl):  # in a handoff bundle: rtl/ beside signoff/ too
             ok &= mulreg_selftest([s + (0,) for s in shapes[:4]] + [(7, 5, 12, False, False, 0), (5, 6, 12, True, False, 6),
                                                                   (4, 4, 8, False, True, 9)], rtl)
+            ok &= sumreg_selftest(os.path.join(os.path.dirname(rtl), "sc_sum_reg.v"))
         sys.exit(0 if ok else 1)
     if not a.design or not a.out:
         ap.error("--design and --out are required (or --selftest)")

@@ -6,8 +6,8 @@ its results into BUNDLE/signoff/ (and BUNDLE/constraints.sdc with the measured c
 
   synth    Yosys 0.23: prepare (proc, flatten, opt, wreduce), map every `$mul` to a Dadda tree with a
            Kogge-Stone adder (signoff/fastmul.py; every other `$add`/`$sub`/compare's carry unit `$lcu`
-           Kogge-Stone too, instead of Yosys's Brent-Kung; rtl/sc_mul_reg.v black boxes to tree | register |
-           adder), synth, dfflibmap, then ABC with the library, the target delay and load
+           Kogge-Stone too, instead of Yosys's Brent-Kung; rtl/sc_mul_reg.v and rtl/sc_sum_reg.v black boxes to tree |
+           register | adder), synth, dfflibmap, then ABC with the library, the target delay and load
            and drive constraints (the same driving cell and load as the SDC): ABC's `buffer` pass
            builds the buffer trees of high-fanout nets (the pipeline enable, valid, stall). The mapped
            netlist is signoff/netlist.v (bus ports kept, internal nets split to bits).
@@ -135,9 +135,10 @@ def synth(a, sdir):
     incs, files = read_filelist(a.bundle)
     lib = a.liberty
     inc = " ".join(f"-I{os.path.join(a.bundle, i)}" for i in incs)
-    # rtl/sc_mul_reg.v (a product with its pipeline register, the units' MREG): a black box here, mapped by
-    # fastmul.py to tree | register | adder (the register between the tree and the final adder)
-    lib_files = [f for f in files if a.arith == "fast" and os.path.basename(f) == "sc_mul_reg.v"]
+    # rtl/sc_mul_reg.v (a product with its pipeline register, the units' MREG) and rtl/sc_sum_reg.v (a multi-operand
+    # sum with one, the cs16 forms' squarers at MREG = 1): black boxes here, mapped by fastmul.py to tree | register |
+    # adder (the register between the tree and the final adder)
+    lib_files = [f for f in files if a.arith == "fast" and os.path.basename(f) in ("sc_mul_reg.v", "sc_sum_reg.v")]
     src = " ".join(os.path.join(a.bundle, f) for f in files if f not in lib_files)
     load = 4 * lib_input_cap(lib, DRIVE_CELL)
     with open(os.path.join(sdir, "abc.constr"), "w") as f:
@@ -154,12 +155,14 @@ def synth(a, sdir):
     shapes = fastmul.shapes_of(os.path.join(sdir, "prep.json")) if a.arith == "fast" else []
     fastmul.write_map(shapes, os.path.join(sdir, "fastmul_map.v"))
     mregs = fastmul.mulreg_shapes_of(os.path.join(sdir, "prep.json")) if lib_files else []
-    fastmul.write_mulreg_map(mregs, os.path.join(sdir, "mulreg_map.v"))
+    sums = fastmul.sumreg_shapes_of(os.path.join(sdir, "prep.json")) if lib_files else []
+    fastmul.write_mulreg_map(mregs, os.path.join(sdir, "mulreg_map.v"), sums)
     if a.arith == "fast":
         fastmul.write_lcu_map(os.path.join(sdir, "lcu_map.v"))
     os.remove(os.path.join(sdir, "prep.json"))
     period_ps = int(round(a.target * 1000))
-    mregcmd = "techmap -autoproc -map mulreg_map.v; opt_clean\nselect -assert-none t:sc_mul_reg\n" if lib_files else ""
+    mregcmd = ("techmap -autoproc -map mulreg_map.v; opt_clean\nselect -assert-none t:sc_mul_reg t:sc_sum_reg\n"
+               if lib_files else "")
     if a.arith == "fast":
         # The word-level passes (synth's coarse and fine optimisation) run with every $mul hidden as a black box
         # (HIDDEN_MUL), so they never see the multipliers' bit heaps; then the Dadda trees (fastmul_map.v), every
@@ -197,8 +200,9 @@ def synth(a, sdir):
     flops = sum(int(m.group(1)) for m in re.finditer(r"\s(\d+)\s*$", "\n".join(
         l for l in area.splitlines() if re.search(r"\bDFF\w+\b", l)), re.M))
     log(f"synth: {cells} cells, {um2:.0f} um2, {flops} flip-flops, {len(shapes)} multiplier shape(s) "
-        f"mapped fast, {len(mregs)} registered-product shape(s) ({time.time() - t0:.0f} s)")
+        f"mapped fast, {len(mregs)} registered-product shape(s), {len(sums)} registered sum(s) ({time.time() - t0:.0f} s)")
     return {"cells": cells, "area_um2": um2, "flops": flops, "mul_shapes": len(shapes), "mulreg_shapes": len(mregs),
+            "sumreg_shapes": len(sums),
             "load_pf": load}
 
 

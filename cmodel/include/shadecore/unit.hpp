@@ -105,9 +105,9 @@ class Unit {
   }
   [[nodiscard]] bool energy() const { return energy_; }
 
-  // The pipelining parameter MREG (rtl/sc_cs16.v reference form with SHARE = 1, rtl/sc_schlick_div.v): 1 puts a
-  // register inside each of the unit's products (rtl/sc_mul_reg.v), mreg_stages(variant) more cycles, the same
-  // outputs.
+  // The pipelining parameter MREG (rtl/sc_cs16.v with SHARE = 1, both forms; rtl/sc_schlick_div.v): 1 puts a
+  // register inside each of the unit's products (rtl/sc_mul_reg.v, rtl/sc_sum_reg.v), mreg_stages(variant) more
+  // cycles, the same outputs.
   void set_mreg(int mreg) {
     if (mreg != 0 && mreg != 1) throw std::invalid_argument("MREG " + std::to_string(mreg) + " out of range (0 or 1)");
     if (mreg != 0 && mreg_stages(variant_) == 0) {
@@ -123,7 +123,8 @@ class Unit {
 
   // Pipeline latency in cycles: accepted at the rising edge ending cycle t -> out_valid_o in t+latency.
   [[nodiscard]] int latency() const {
-    if (is_cs16_form()) return kCs16FormLatency + (energy_ ? 2 : 0);  // rtl/sc_cs16.v FORM = 1: S1..S5
+    if (is_cs16_form())  // rtl/sc_cs16.v FORM = 1: S1..S5 (+ S0, M1..M5 with MREG = 1)
+      return kCs16FormLatency + mreg_stages(variant_) * mreg_ + (energy_ ? 2 : 0);
     switch (variant_) {
       case VariantId::cs16:  // rtl/sc_cs16.v: S0..S6 (+ M1..M5 with MREG = 1; + sc_energy N1, N2)
         return kCs16Latency + mreg_stages(variant_) * mreg_ + (energy_ ? 2 : 0);
