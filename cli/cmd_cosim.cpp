@@ -358,6 +358,8 @@ void run_cosim(const CosimArgs& a) {
         std::filesystem::remove_all(d, ec);
       }
     } cleanup{cov_tmp};
+    // each point's module named by its parameterisation (the map beside the coverage build) before the merge
+    for (const auto& d : dats) coverage::canonicalise_from_build(d, std::filesystem::path(sim).parent_path().string());
     coverage::report(dats, a.coverage_dir, coverage::waivers_in_use(), /*html=*/true, /*quiet=*/false);
   }
   // A FAIL verdict is a completed run: its JSON and waveform are the record of the failure.

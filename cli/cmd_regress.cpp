@@ -1008,7 +1008,7 @@ int run_regress(const RegressArgs& a) {
     // ---- coverage: the databases of the completed shards, merged (DIR/coverage/merged.dat, summary.json, html/)
     cov_error.clear();
     if (a.coverage) {
-      std::vector<std::string> dats;
+      std::vector<std::string> dats, builds;
       size_t want = 0;
       for (const auto& s : st) {
         const fs::path d = dir / "coverage" / "shards" / s.spec->id / "coverage.dat";
@@ -1016,13 +1016,19 @@ int run_regress(const RegressArgs& a) {
         for (const auto& x : s.spec->argv) uses = uses || x.find("{cov}") != std::string::npos;
         if (!uses) continue;
         ++want;
-        if (s.done && fs::exists(d, ec)) dats.push_back(d.string());
+        if (s.done && fs::exists(d, ec)) {
+          dats.push_back(d.string());
+          builds.push_back(fs::path(s.spec->argv.front()).parent_path().string());  // the simulator's coverage build
+        }
       }
       json cj = {{"databases", dats.size()}, {"shards_with_coverage", want}};
       if (dats.empty()) {
         cov_error = "no shard wrote a coverage database";
       } else {
         try {
+          // Each shard's points named by their parameterisation, from the map beside the build that ran it (a unit
+          // shard's simulator; a lighting shard's cosim did it already), in place: a shard's database is its record.
+          for (size_t i = 0; i < dats.size(); ++i) coverage::canonicalise_from_build(dats[i], builds[i]);
           const std::string wf = a.waivers_given ? a.waivers : coverage::waivers_in_use();
           const auto sum = coverage::report(dats, (dir / "coverage").string(), wf, /*html=*/true, /*quiet=*/true);
           fs::rename(dir / "coverage" / "coverage.dat", dir / "coverage" / "merged.dat", ec);

@@ -6,10 +6,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
+#include <cstring>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -107,8 +111,20 @@ class Sources {
   std::map<std::string, File> files_;
 };
 
+// Every NAME=VALUE of the waiver is the point's (a point of unknown parameterisation matches no params waiver).
+bool params_match(const Waiver& w, const Point& p) {
+  if (w.params.empty()) return true;
+  if (!p.params_known) return false;
+  for (const auto& [k, v] : w.params) {
+    const auto it = std::lower_bound(p.params.begin(), p.params.end(), std::make_pair(k, std::string()));
+    if (it == p.params.end() || it->first != k || it->second != v) return false;
+  }
+  return true;
+}
+
 bool matches(const Waiver& w, const Point& p, Sources& src) {
   if (!glob(w.module, p.module) || w.kind != p.kind) return false;
+  if (!params_match(w, p)) return false;
   if (!w.file.empty() && !glob(w.file, fs::path(p.file).filename().string())) return false;
   if (!w.hier.empty() && !glob(w.hier, p.hier)) return false;
   if (!w.comment.empty() && w.comment != p.comment) return false;
@@ -133,7 +149,274 @@ const std::vector<std::string>& kinds() {
   return k;
 }
 
+// ------------------------------------------------------------------------------------ parameterisations
+// A parameter value's text in canonical form: chars outside [A-Za-z0-9_.+-] %-escaped (the page is a field of the
+// database's key: no quote, no \001/\002, and no ',', '=', '{', '}' of the canonical name).
+std::string escape_value(const std::string& v) {
+  std::string out;
+  for (unsigned char c : v) {
+    if (std::isalnum(c) || c == '_' || c == '.' || c == '+' || c == '-') out += static_cast<char>(c);
+    else out += fmt::format("%{:02X}", c);
+  }
+  return out.empty() ? "%" : out;
+}
+
+// Verilator's constant (XML: 32'sh4, 64'h4030201, 1'b1) as a decimal number when it fits 64 bits (negative when
+// marked signed with its top bit set); any other value (wider, X/Z, a string, a real) as its escaped text.
+std::string canonical_value(const std::string& v) {
+  static const std::regex num(R"(^(\d+)'(s?)([hdbo])([0-9a-fA-F_]+)$)");
+  std::smatch m;
+  if (std::regex_match(v, m, num)) {
+    const int width = std::atoi(m[1].str().c_str());
+    const int base = m[3] == "h" ? 16 : m[3] == "d" ? 10 : m[3] == "o" ? 8 : 2;
+    bool ok = width >= 1 && width <= 64;
+    uint64_t x = 0;
+    for (char c : m[4].str()) {
+      if (c == '_') continue;
+      const int d = std::isdigit(static_cast<unsigned char>(c)) ? c - '0' : std::tolower(c) - 'a' + 10;
+      if (d >= base || x > (UINT64_MAX - static_cast<uint64_t>(d)) / static_cast<uint64_t>(base)) {
+        ok = false;
+        break;
+      }
+      x = x * static_cast<uint64_t>(base) + static_cast<uint64_t>(d);
+    }
+    if (ok && (width == 64 || (x >> width) == 0)) {
+      if (m[2] == "s" && ((x >> (width - 1)) & 1)) {
+        const int64_t neg = width == 64 ? static_cast<int64_t>(x) : static_cast<int64_t>(x) - (int64_t{1} << width);
+        return std::to_string(neg);
+      }
+      return std::to_string(x);
+    }
+  }
+  return escape_value(v);
+}
+
+std::string xml_unescape(const std::string& s) {
+  std::string out;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] != '&') {
+      out += s[i];
+      continue;
+    }
+    static const std::pair<const char*, char> ents[] = {{"&apos;", '\''}, {"&quot;", '"'}, {"&amp;", '&'}, {"&lt;", '<'}, {"&gt;", '>'}};
+    bool done = false;
+    for (const auto& [e, c] : ents)
+      if (s.compare(i, std::strlen(e), e) == 0) {
+        out += c;
+        i += std::strlen(e) - 1;
+        done = true;
+        break;
+      }
+    if (!done) out += s[i];
+  }
+  return out;
+}
+
+// attribute `name` of a tag's text ("" when absent)
+std::string xml_attr(const std::string& tag, const char* name) {
+  const std::string key = std::string(" ") + name + "=\"";
+  const size_t at = tag.find(key);
+  if (at == std::string::npos) return "";
+  const size_t from = at + key.size(), to = tag.find('"', from);
+  return xml_unescape(tag.substr(from, to == std::string::npos ? std::string::npos : to - from));
+}
+
+// The map from `verilator --xml-only` output: <module name origName> ... <var name param="true"> <const name=VALUE/>
+// </var> ... </module>, and <cell name submodname/> in <cells>.
+ParamsMap parse_params_xml(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read the parameterisation map " + path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string x = ss.str();
+  if (x.find("<verilator_xml") == std::string::npos)
+    throw std::runtime_error(path + " is not Verilator's XML output (no <verilator_xml>)");
+  ParamsMap map;
+  map.source = path;
+  ParamsMap::Module* cur = nullptr;
+  std::string pending;  // a parameter whose <const> comes next
+  std::map<std::string, std::set<std::string>> inst;
+  for (size_t lt = x.find('<'); lt != std::string::npos; lt = x.find('<', lt + 1)) {
+    const size_t gt = x.find('>', lt);
+    if (gt == std::string::npos) break;
+    const std::string tag = x.substr(lt + 1, gt - lt - 1);
+    if (tag.rfind("module ", 0) == 0) {
+      const std::string name = xml_attr(tag, "name"), orig = xml_attr(tag, "origName");
+      cur = &map.modules[name];
+      cur->module = orig.empty() ? name : orig;
+      if (xml_attr(tag, "topModule") == "1") inst[name].insert(name);
+    } else if (tag == "/module") {
+      if (!pending.empty()) throw std::runtime_error(fmt::format("{}: parameter {} has no value", path, pending));
+      cur = nullptr;
+    } else if (cur && tag.rfind("var ", 0) == 0 && xml_attr(tag, "param") == "true") {
+      if (!pending.empty()) throw std::runtime_error(fmt::format("{}: parameter {} has no value", path, pending));
+      pending = xml_attr(tag, "name");
+      if (tag.back() == '/') throw std::runtime_error(fmt::format("{}: parameter {} has no value", path, pending));
+    } else if (cur && !pending.empty() && tag.rfind("const ", 0) == 0) {
+      cur->params.emplace_back(pending, canonical_value(xml_attr(tag, "name")));
+      pending.clear();
+    } else if (cur && !pending.empty() && tag == "/var") {
+      throw std::runtime_error(fmt::format("{}: parameter {} of {} has no constant value", path, pending, cur->module));
+    } else if (tag.rfind("cell ", 0) == 0) {
+      inst[xml_attr(tag, "submodname")].insert(xml_attr(tag, "name"));
+    }
+  }
+  if (map.modules.empty()) throw std::runtime_error(path + ": no module in it");
+  for (auto& [name, m] : map.modules) {
+    std::sort(m.params.begin(), m.params.end());
+    m.instances = inst[name];
+  }
+  return map;
+}
+
+ParamsMap read_params_json(const std::string& path) {
+  std::ifstream in(path);
+  ojson j;
+  try {
+    j = ojson::parse(in);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": not a parameterisation map (" + std::string(e.what()) + ")");
+  }
+  ParamsMap map;
+  map.source = path;
+  if (!j.is_object() || !j.contains("modules") || !j["modules"].is_object()) throw std::runtime_error(path + ": no \"modules\"");
+  for (const auto& [name, m] : j["modules"].items()) {
+    ParamsMap::Module& d = map.modules[name];
+    d.module = m.value("module", name);
+    for (const auto& [k, v] : m["params"].items()) d.params.emplace_back(k, v.get<std::string>());
+    std::sort(d.params.begin(), d.params.end());
+    for (const auto& i : m["instances"]) d.instances.insert(i.get<std::string>());
+  }
+  return map;
+}
+
+void write_params_json(const ParamsMap& map, const std::string& path) {
+  ojson mods = ojson::object();
+  for (const auto& [name, m] : map.modules) {
+    ojson ps = ojson::object();
+    for (const auto& [k, v] : m.params) ps[k] = v;
+    mods[name] = {{"module", m.module}, {"canonical", canonical_name(m.module, m.params)}, {"params", ps},
+                  {"instances", ojson(std::vector<std::string>(m.instances.begin(), m.instances.end()))}};
+  }
+  const ojson j = {{"description", "the parameterisation map of this coverage build (docs/coverage.md): Verilated module "
+                                   "name -> RTL module, parameter values, instance names; made by shadecore from "
+                                   "verilated_params.xml (verilator --xml-only of the build's top, sources and flags)"},
+                   {"source", fs::path(map.source).filename().string()},
+                   {"modules", mods}};
+  write_file_atomic(path, j.dump(1) + "\n");
+}
+
+// The positions of a key's field `name`'s value: [from, to) in the key; npos when absent.
+std::pair<size_t, size_t> key_field(const std::string& key, const std::string& name) {
+  const std::string tag = "\001" + name + "\002";
+  const size_t at = key.find(tag);
+  if (at == std::string::npos) return {std::string::npos, std::string::npos};
+  const size_t from = at + tag.size(), to = key.find('\001', from);
+  return {from, to == std::string::npos ? key.size() : to};
+}
+
+bool canonical_page_module(const std::string& name) {
+  const size_t dd = name.find("__{");
+  return dd != std::string::npos && name.back() == '}';
+}
+
+size_t canonicalise_impl(const std::string& in_path, const std::function<const ParamsMap&()>& get_map, const std::string& out) {
+  std::ifstream in(in_path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read the coverage database " + in_path);
+  std::string line, text;
+  if (!std::getline(in, line) || line.rfind("# SystemC::Coverage", 0) != 0)
+    throw std::runtime_error(in_path + " is not a Verilator coverage database (no '# SystemC::Coverage' header)");
+  text = line + "\n";
+  size_t renamed = 0;
+  for (size_t no = 2; std::getline(in, line); ++no) {
+    const size_t q1 = line.find('\''), q2 = line.rfind('\'');
+    if (line.rfind("C '", 0) != 0 || q2 <= q1) {
+      text += line + "\n";
+      continue;
+    }
+    std::string key = line.substr(q1 + 1, q2 - q1 - 1);
+    const auto [pf, pt] = key_field(key, "page");
+    if (pf == std::string::npos) {
+      text += line + "\n";
+      continue;
+    }
+    const std::string page = key.substr(pf, pt - pf);
+    const size_t slash = page.find('/');
+    const std::string type = page.substr(0, slash), name = slash == std::string::npos ? "" : page.substr(slash + 1);
+    if (slash == std::string::npos || type == "v_func" || canonical_page_module(name)) {
+      text += line + "\n";
+      continue;
+    }
+    const ParamsMap& map = get_map();
+    const auto it = map.modules.find(name);
+    if (it == map.modules.end())
+      throw std::runtime_error(fmt::format("{}:{}: module {} is not in the parameterisation map {} (a database of another build?)",
+                                           in_path, no, name, map.source));
+    const auto [hf, ht] = key_field(key, "h");
+    if (hf != std::string::npos && !it->second.instances.empty()) {
+      std::string leaf = key.substr(hf, ht - hf);
+      if (const size_t dot = leaf.rfind('.'); dot != std::string::npos) leaf = leaf.substr(dot + 1);
+      if (const size_t br = leaf.find('['); br != std::string::npos) leaf.resize(br);
+      if (leaf.find('*') == std::string::npos && !leaf.empty() && !it->second.instances.count(leaf))
+        throw std::runtime_error(fmt::format("{}:{}: the parameterisation map {} has no instance {} of {} (a database of another "
+                                             "build?)", in_path, no, map.source, leaf, name));
+    }
+    key.replace(pf, pt - pf, type + "/" + canonical_name(it->second.module, it->second.params));
+    ++renamed;
+    text += "C '" + key + "'" + line.substr(q2 + 1) + "\n";
+  }
+  if (renamed == 0 && out == in_path) return 0;
+  write_file_atomic(out, text);
+  return renamed;
+}
+
 }  // namespace
+
+std::string canonical_name(const std::string& module, const std::vector<std::pair<std::string, std::string>>& params) {
+  std::string s = module + "__{";
+  for (size_t i = 0; i < params.size(); ++i) s += (i ? "," : "") + params[i].first + "=" + params[i].second;
+  return s + "}";
+}
+
+ParamsMap load_params_map(const std::string& arg) {
+  std::error_code ec;
+  if (fs::is_directory(arg, ec)) {
+    const fs::path xml = fs::path(arg) / "verilated_params.xml", js = fs::path(arg) / "params.json";
+    if (fs::exists(xml, ec)) {
+      if (fs::exists(js, ec) && fs::last_write_time(js, ec) >= fs::last_write_time(xml, ec)) {
+        try {
+          return read_params_json(js.string());
+        } catch (const std::exception&) {
+          // remade below
+        }
+      }
+      ParamsMap m = parse_params_xml(xml.string());
+      try {
+        write_params_json(m, js.string());
+      } catch (const std::exception&) {
+        // a build directory one cannot write to: the map is still good
+      }
+      return m;
+    }
+    if (fs::exists(js, ec)) return read_params_json(js.string());
+    throw std::runtime_error(fmt::format("{} has no parameterisation map (verilated_params.xml: a coverage build made before "
+                                         "parameterisations were recorded; any coverage run rebuilds it)", arg));
+  }
+  if (!fs::exists(arg, ec)) throw std::runtime_error("no parameterisation map at " + arg);
+  return fs::path(arg).extension() == ".json" ? read_params_json(arg) : parse_params_xml(arg);
+}
+
+size_t canonicalise(const std::string& in, const ParamsMap& map, const std::string& out) {
+  return canonicalise_impl(in, [&map]() -> const ParamsMap& { return map; }, out);
+}
+
+void canonicalise_from_build(const std::string& dat, const std::string& build_dir) {
+  std::optional<ParamsMap> map;
+  canonicalise_impl(dat, [&]() -> const ParamsMap& {
+    if (!map) map = load_params_map(build_dir);
+    return *map;
+  }, dat);
+}
 
 std::vector<Point> read_dat(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -169,9 +452,24 @@ std::vector<Point> read_dat(const std::string& path) {
     p.module = slash == std::string::npos ? "" : page.substr(slash + 1);
     // Verilator names a parameterisation <module>__<params> (sc_cs16__F10_G5_T20): the summary is per RTL module,
     // every parameterisation's points counted (they are distinct logic), the full name kept in `variant`.
-    if (const size_t dd = p.module.find("__"); dd != std::string::npos && p.kind != "functional") {
+    if (const size_t dd = p.module.find("__"); dd != std::string::npos && type != "v_func") {
       p.variant = p.module.substr(dd + 2);
       p.module.resize(dd);
+      // canonical: {NAME=VALUE,...} (canonicalise); Verilator's own suffixes say no values
+      if (p.variant.size() >= 2 && p.variant.front() == '{' && p.variant.back() == '}') {
+        p.params_known = true;
+        const std::string body = p.variant.substr(1, p.variant.size() - 2);
+        for (size_t at = 0; at < body.size();) {
+          size_t end = body.find(',', at);
+          if (end == std::string::npos) end = body.size();
+          const std::string kv = body.substr(at, end - at);
+          const size_t eq = kv.find('=');
+          if (eq == std::string::npos) throw std::runtime_error(fmt::format("{}:{}: malformed parameterisation {}", path, no, p.variant));
+          p.params.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+          at = end + 1;
+        }
+        std::sort(p.params.begin(), p.params.end());
+      }
     }
     if (type == "v_line") p.kind = "line";
     else if (type == "v_branch") p.kind = "branch";
@@ -249,13 +547,14 @@ std::vector<Waiver> read_waivers(const std::string& path) {
   for (const auto& [k, v] : j.items())
     if (k != "waivers" && k != "description") throw std::invalid_argument(path + ": unknown key '" + k + "'");
   static const std::set<std::string> keys = {"id",      "module", "kind",   "file",   "function", "signal",
-                                             "source",  "comment", "hier", "reason", "property"};
+                                             "source",  "comment", "hier", "reason", "property", "params"};
   std::vector<Waiver> out;
   std::set<std::string> ids;
   for (const auto& w : j["waivers"]) {
     if (!w.is_object()) throw std::invalid_argument(path + ": every waiver is an object");
     for (const auto& [k, v] : w.items()) {
       if (!keys.count(k)) throw std::invalid_argument(fmt::format("{}: waiver '{}': unknown key '{}'", path, w.value("id", "?"), k));
+      if (k == "params") continue;  // checked below
       if (!v.is_string()) throw std::invalid_argument(fmt::format("{}: waiver '{}': '{}' must be a string", path, w.value("id", "?"), k));
     }
     Waiver x;
@@ -270,6 +569,27 @@ std::vector<Waiver> read_waivers(const std::string& path) {
     x.hier = w.value("hier", "");
     x.reason = w.value("reason", "");
     x.property = w.value("property", "");
+    if (w.contains("params")) {
+      // {"NAME": VALUE, ...}: VALUE an integer, or a string (Verilator's text of the value: 32'h4, "abc")
+      const auto& ps = w["params"];
+      static const std::regex pname("[A-Za-z_][A-Za-z0-9_$]*");
+      if (!ps.is_object() || ps.empty())
+        throw std::invalid_argument(fmt::format("{}: waiver '{}': \"params\" must be an object of parameter values, "
+                                                "e.g. {{\"SH\": 1}}", path, x.id.empty() ? w.value("id", "?") : x.id));
+      for (const auto& [k, v] : ps.items()) {
+        if (!std::regex_match(k, pname))
+          throw std::invalid_argument(fmt::format("{}: waiver '{}': params: '{}' is not a parameter name", path, w.value("id", "?"), k));
+        std::string val;
+        if (v.is_number_unsigned()) val = std::to_string(v.get<uint64_t>());
+        else if (v.is_number_integer()) val = std::to_string(v.get<int64_t>());
+        else if (v.is_string() && !v.get<std::string>().empty()) val = canonical_value(v.get<std::string>());
+        else
+          throw std::invalid_argument(fmt::format("{}: waiver '{}': params: {} must be an integer or a string (it is {})", path,
+                                                  w.value("id", "?"), k, v.dump()));
+        x.params.emplace_back(k, val);
+      }
+      std::sort(x.params.begin(), x.params.end());
+    }
     if (x.id.empty() || !ids.insert(x.id).second)
       throw std::invalid_argument(fmt::format("{}: every waiver needs an id of its own ('{}')", path, x.id));
     if (x.module.empty()) throw std::invalid_argument(fmt::format("{}: waiver '{}': no module", path, x.id));
@@ -281,6 +601,8 @@ std::vector<Waiver> read_waivers(const std::string& path) {
     if ((x.kind == "line" || x.kind == "branch") && x.source.empty() && x.file.empty() && x.function.empty())
       throw std::invalid_argument(fmt::format(
           "{}: waiver '{}': a {} waiver quotes its source line (\"source\") or names its file or function", path, x.id, x.kind));
+    if (x.kind == "functional" && !x.params.empty())
+      throw std::invalid_argument(fmt::format("{}: waiver '{}': a functional bin has no parameterisation (\"params\")", path, x.id));
     if (x.kind == "functional" && x.signal.empty())
       throw std::invalid_argument(fmt::format("{}: waiver '{}': a functional waiver names its bins (\"signal\")", path, x.id));
     out.push_back(std::move(x));
@@ -325,15 +647,56 @@ ojson summarise(const std::vector<Point>& raw, const std::vector<Waiver>& waiver
       holes[p.module].push_back(describe(p));
     }
   }
+  // The parameterisations the database holds: module -> variant -> one of its points (its params).
+  std::map<std::string, std::map<std::string, const Point*>> variants;
+  for (const auto& p : points)
+    if (p.kind != "functional") variants[p.module].emplace(p.variant, &p);
   ojson applied = ojson::array(), not_applicable = ojson::array();
   for (size_t i = 0; i < waivers.size(); ++i) {
+    const Waiver& w = waivers[i];
     bool present = false;
-    for (const auto& m : modules) present = present || glob(waivers[i].module, m);
+    for (const auto& m : modules) present = present || glob(w.module, m);
+    std::string keyed;  // " SH=1, ..." in messages
+    for (const auto& [k, v] : w.params) keyed += fmt::format("{}{}={}", keyed.empty() ? " " : ", ", k, v);
+    if (present && !w.params.empty()) {
+      // A waiver keyed to parameters applies where the database holds such a parameterisation of its module; a
+      // parameter name none of them has is an error, and so is a module whose points carry no parameterisation.
+      std::set<std::string> names, raw;
+      bool here = false;
+      for (const auto& [m, vs] : variants) {
+        if (!glob(w.module, m)) continue;
+        for (const auto& [v, p] : vs) {
+          if (!p->params_known) {
+            raw.insert(m);
+            continue;
+          }
+          for (const auto& kv : p->params) names.insert(kv.first);
+          here = here || params_match(w, *p);
+        }
+      }
+      if (names.empty()) {
+        errors.push_back(fmt::format("waiver '{}' is keyed to parameters ({}), but the database's {} points carry no "
+                                     "parameterisation (a database not written by cosim/regress --coverage: `shadecore "
+                                     "coverage DAT --params-map BUILD_DIR` gives them one)",
+                                     w.id, keyed.substr(1), raw.empty() ? w.module : *raw.begin()));
+        continue;
+      }
+      bool known = true;
+      for (const auto& [k, v] : w.params) {
+        if (names.count(k)) continue;
+        std::string have;
+        for (const auto& n : names) have += (have.empty() ? "" : ", ") + n;
+        errors.push_back(fmt::format("waiver '{}': params: {} has no parameter '{}' (its parameters: {})", w.id, w.module, k, have));
+        known = false;
+      }
+      if (!known) continue;
+      present = here;  // no such parameterisation in this database: not applicable, like a module it does not hold
+    }
     if (!present) {
-      not_applicable.push_back(waivers[i].id);
+      not_applicable.push_back(w.id);
     } else if (matched[i] == 0) {
-      errors.push_back(fmt::format("waiver '{}' ({} {}) matches nothing in the database (stale: remove or correct it)",
-                                   waivers[i].id, waivers[i].module, waivers[i].kind));
+      errors.push_back(fmt::format("waiver '{}' ({} {}{}) matches nothing in the database (stale: remove or correct it)",
+                                   w.id, w.module, w.kind, keyed.empty() ? "" : "," + keyed));
     } else {
       applied.push_back({{"id", waivers[i].id}, {"points", matched[i]}});
     }

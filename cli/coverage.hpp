@@ -11,6 +11,8 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -25,7 +27,12 @@ struct Point {
   std::string key;      // Verilator's key, as in the file (the identity merges sum by)
   std::string kind;     // line | branch | toggle | functional (page v_line, v_branch, v_toggle, v_func)
   std::string module;   // the RTL module (the page's, less Verilator's parameterisation suffix) or the functional group
-  std::string variant;  // the parameterisation suffix ("F10_G5_T20"; "" for the default parameters)
+  std::string variant;  // the parameterisation suffix: canonical "{FRAC=16,GUARD=5,...}" (see canonicalise), or Verilator's
+                        // own ("F10_G5_T20", "pi3": build-specific) in a database not canonicalised
+  // The point's parameterisation, NAME -> VALUE (sorted by name), when the page is canonical; `params_known` false
+  // for Verilator's own names (they do not say all the values, and __piN means another thing in every build).
+  std::vector<std::pair<std::string, std::string>> params;
+  bool params_known = false;
   std::string file;     // source file as Verilator saw it ("" for functional bins)
   int line = 0;
   std::string comment;  // line/branch: block, if, else, case...; toggle: the signal bit; functional: the bin
@@ -37,6 +44,35 @@ struct Point {
 // Reads a coverage.dat ("# SystemC::Coverage-3"). Throws std::runtime_error (one line) if it is not one.
 std::vector<Point> read_dat(const std::string& path);
 
+// The parameterisation map of one coverage build (docs/coverage.md "Parameterisations"): every Verilated module name
+// of the build (sc_mul_pool__pi1, sc_cs16__F10_G5_T20, the top's plain name) -> its RTL module, its parameters' values
+// (canonical text: a number of at most 64 bits in decimal, signed where Verilator says so; anything else Verilator's
+// text, %-escaped) and the instance names it has. Made from `verilator --xml-only` of the build's own top, sources
+// and flags (<build>/verilated_params.xml, written by the CMake projects sim/unit_core and sim/light_core), kept
+// beside it as <build>/params.json.
+struct ParamsMap {
+  struct Module {
+    std::string module;                                        // origName
+    std::vector<std::pair<std::string, std::string>> params;   // sorted by name
+    std::set<std::string> instances;                           // cell names that instantiate it (the top: its own)
+  };
+  std::string source;                       // the XML or params.json it was read from
+  std::map<std::string, Module> modules;    // by Verilated name
+};
+// From a build directory (its params.json, (re)made from verilated_params.xml when older), an XML file or a
+// params.json. Throws std::runtime_error (one line) when there is none or it cannot be read.
+ParamsMap load_params_map(const std::string& build_dir_or_file);
+// "<module>__{NAME=VALUE,...}" ("<module>__{}" without parameters): the page name of a parameterisation.
+std::string canonical_name(const std::string& module, const std::vector<std::pair<std::string, std::string>>& params);
+// Rewrites a database (in place when out == in; atomically) so every code point's page names its module canonically:
+// page v_line/sc_mul_pool__pi1 -> v_line/sc_mul_pool__{AMX=22,AW=370546198,...,SH=1,...}. Pages already canonical and
+// the functional pages (v_func/...) are kept. A module the map does not have, or a point whose instance the map
+// places in another module, is an error (the database is not of this build). Returns the pages renamed.
+size_t canonicalise(const std::string& in, const ParamsMap& map, const std::string& out);
+// canonicalise(dat, load_params_map(build_dir), dat) when the database holds a page that is not canonical (so a
+// database canonicalised already needs no map); the coverage runs call it on each database their build wrote.
+void canonicalise_from_build(const std::string& dat, const std::string& build_dir);
+
 // Merges databases into `out` (verilator_coverage -write; written beside it and renamed).
 void merge(const std::vector<std::string>& inputs, const std::string& out);
 
@@ -46,6 +82,9 @@ struct Waiver {
   // function the point is in (constant functions run at elaboration only); signal: a glob on the toggle bit or
   // functional bin; source: a substring of the point's source line; comment, hier as the points have them.
   std::string id, module, kind, file, function, signal, source, comment, hier, reason, property;
+  // params: {"SH": 1, ...} — only the parameterisations whose parameters have these values (canonical text: an
+  // integer as its decimal, a string as given); empty: every parameterisation.
+  std::vector<std::pair<std::string, std::string>> params;
 };
 std::vector<Waiver> read_waivers(const std::string& path);  // throws std::invalid_argument on a malformed file
 std::string default_waivers();                              // <source tree>/config/coverage_waivers.json

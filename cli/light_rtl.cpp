@@ -393,6 +393,7 @@ int lighting_cosim(const LightCosimArgs& a) {
   result["build_dir"] = b.dir;
   result["built_now"] = b.built_now;
   result["build_s"] = b.build_seconds;
+  if (!cov_tmp.empty()) coverage::canonicalise_from_build(cov_tmp, b.dir);  // parameterisations named (docs/coverage.md)
   if (!cov_tmp.empty())
     result["coverage"] = nlohmann::json::parse(
         coverage::report({cov_tmp}, a.coverage_dir, a.coverage_report ? coverage::waivers_in_use() : "", a.coverage_report,

@@ -16,6 +16,11 @@ cli/coverage.cpp.
   and writes the same merged.json; `--until-coverage` adds closure rounds of new seeds until a target is met or
   --max-rounds stops it (exit 2, what is below target and its holes named), resumes them, and stops at once when
   the targets are met.
+--params-run (ctest coverage.params, label long: two lighting coverage cores, then cached): the parameterisation of
+  real coverage builds — diffuse at share 1 and at share 2 — and the project's share-1 waiver of mp_fld applying to
+  the share-1 pool only (the share-2 one is hit).
+The quick mode also checks the parameterisations (params_quick): verilator --xml-only maps, canonical module names
+  independent of Verilator's __piN numbers, and waivers keyed to parameters ("params").
 """
 import argparse
 import json
@@ -196,6 +201,184 @@ def quick(sc, work):
               "%s: refused with one line (%r)" % (" ".join(cmd[1:3] + cmd[-2:]), lines[-1] if lines else ""))
 
 
+POOL_TOP = """module cov_params_top (input wire [7:0] a, input wire [7:0] b, input wire [1:0] s, output wire [31:0] p);
+%s
+endmodule
+"""
+POOL_INST = {
+    1: "  sc_mul_pool #(.NOP(2), .SH(1), .ON(3), .ST(64'h0100), .AW(64'h0404), .BW(64'h0404), .AMX(4), .BMX(4))\n"
+       "    u_one (.a_i(a), .b_i(b), .sel_i(s), .p_o(p[15:0]));",
+    2: "  sc_mul_pool #(.NOP(2), .SH(2), .ON(3), .ST(64'h0100), .AW(64'h0404), .BW(64'h0404), .AMX(4), .BMX(4))\n"
+       "    u_two (.a_i(a), .b_i(b), .sel_i(s), .p_o(p[31:16]));",
+}
+CANON = "sc_mul_pool__{AMX=4,AW=1028,BMX=4,BW=1028,NOP=2,ON=3,SH=%d,SIGNED=0,ST=256}"
+
+
+def params_quick(sc, root, work):
+    """Waivers keyed to a parameterisation (docs/coverage.md "Parameterisations"). A design holding rtl/sc_mul_pool.v
+    at share 1 (u_one) and share 2 (u_two) through `verilator --xml-only` (the map a coverage build keeps), twice with
+    the instances in the other order so Verilator's __piN numbers swap; hand-made databases of each build's points
+    (sc_mul_pool.v:54, mp_fld: dead at SH = 1, hit at SH = 2; the `else` of line 67, dead while every op is on)
+    through `shadecore coverage --params-map`."""
+    verilator = shutil.which("verilator")
+    if not verilator:
+        check(False, "verilator is on PATH (the parameterisation map is its --xml-only output)")
+        return
+    rtl = os.path.join(root, "rtl")
+    pool_v = os.path.join(rtl, "sc_mul_pool.v")
+    xml, pi = {}, {}
+    for tag, order in (("a", (1, 2)), ("b", (2, 1))):
+        d = os.path.join(work, "xml_" + tag)
+        os.makedirs(d)
+        top = os.path.join(d, "cov_params_top.v")
+        with open(top, "w") as f:
+            f.write(POOL_TOP % "\n".join(POOL_INST[k] for k in order))
+        xml[tag] = os.path.join(d, "verilated_params.xml")
+        r = run([verilator, "--xml-only", "--xml-output", xml[tag], "--Mdir", os.path.join(d, "obj"), "--top", "cov_params_top",
+                 "-Wall", "-Wno-fatal", "-I" + rtl, top, pool_v])
+        check(r.returncode == 0 and os.path.exists(xml[tag]), "verilator --xml-only of the share-1/share-2 design (%s)" % tag)
+        if r.returncode != 0:
+            return
+        text = open(xml[tag]).read()
+        # instance -> Verilator's name of its module in this build
+        pi[tag] = {inst: mod for inst, mod in
+                   __import__("re").findall(r'<cell [^>]*name="(u_one|u_two)" submodname="([^"]+)"', text)}
+    check(pi["a"]["u_one"] == pi["b"]["u_two"] and pi["a"]["u_two"] == pi["b"]["u_one"] and "__pi" in pi["a"]["u_one"],
+          "Verilator numbers the parameterisations per build: %s in one, %s in the other" % (pi["a"], pi["b"]))
+
+    def pool_points(tag, inst, counts):
+        mod = pi[tag][inst]
+        h = "TOP.cov_params_top." + inst
+        return [(key(f=pool_v, l=54, n=20, page="v_line/" + mod, o="block", S="54-55", h=h), counts[0]),   # mp_fld
+                (key(f=pool_v, l=57, n=20, page="v_line/" + mod, o="block", S="57-58", h=h), counts[1]),   # mp_on
+                (key(f=pool_v, l=67, n=9, page="v_branch/" + mod, o="if", S="67-70,73", h=h), counts[2]),
+                (key(f=pool_v, l=67, n=10, page="v_branch/" + mod, o="else", h=h), counts[3])]
+    # share 1: mp_fld never runs; share 2: it does; the else of `if (mp_on(j) != 0)` never (ON = 3 = both ops on)
+    da, db = os.path.join(work, "pa.dat"), os.path.join(work, "pb.dat")
+    write_dat(da, pool_points("a", "u_one", (0, 10, 10, 0)) + pool_points("a", "u_two", (7, 10, 10, 0)))
+    write_dat(db, pool_points("b", "u_one", (0, 4, 4, 0)) + pool_points("b", "u_two", (3, 4, 4, 0)))
+    wf = os.path.join(work, "pw.json")
+    good = [
+        {"id": "pool-mp_fld-share1", "module": "sc_mul_pool", "kind": "line", "function": "mp_fld", "params": {"SH": 1},
+         "reason": "mp_fld runs only in the SH > 1 arm of mp_inst, constant-folded away at share 1"},
+        {"id": "pool-all-on-else", "module": "sc_mul_pool", "kind": "branch", "source": "if (mp_on(j) != 0)",
+         "comment": "else", "params": {"NOP": 2, "ON": "32'h3"},
+         "reason": "every op of a two-op pool with ON = 3 is on: the implicit else is never taken"},
+        {"id": "pool-share3", "module": "sc_mul_pool", "kind": "line", "function": "mp_fld", "params": {"SH": 3},
+         "reason": "a parameterisation these databases do not hold: not applicable, no error"},
+    ]
+    with open(wf, "w") as f:
+        json.dump({"waivers": good}, f)
+    outs = {}
+    for tag, dat in (("a", da), ("b", db)):
+        o = os.path.join(work, "pout_" + tag)
+        r = run([sc, "coverage", dat, "--params-map", xml[tag], "--waivers", wf, "--out", o, "--no-html"])
+        check(r.returncode == 0, "coverage --params-map of build %s exits 0 (%s)" % (tag, r.stderr.strip()))
+        if r.returncode != 0:
+            return
+        outs[tag] = o
+    merged = parse_dat(os.path.join(outs["a"], "coverage.dat"))
+    pages = sorted({fields(k)["page"].split("/", 1)[1] for k in merged})
+    check(pages == sorted([CANON % 1, CANON % 2]), "the merged database names each parameterisation canonically: %s" % pages)
+    s = json.load(open(os.path.join(outs["a"], "summary.json")))
+    pool = {m["module"]: m for m in s["modules"]}.get("sc_mul_pool", {})
+    # By hand: line — mp_fld at SH=1 waived, at SH=2 hit (7), mp_on hit twice: 3/3 +1w; branch — both ifs hit, both
+    # elses waived (NOP=2, ON=3 in both): 2/2 +2w.
+    got = {k: (pool.get(k, {}).get("hit"), pool.get(k, {}).get("total"), pool.get(k, {}).get("waived")) for k in ("line", "branch")}
+    check(got == {"line": (3, 4, 1), "branch": (2, 4, 2)},
+          "sc_mul_pool: line 3 hit of 4, 1 waived (mp_fld at SH=1 only); branch 2 of 4, 2 waived: %s" % got)
+    applied = {x["id"]: x["points"] for x in s["waivers"]["applied"]}
+    check(applied == {"pool-mp_fld-share1": 1, "pool-all-on-else": 2} and s["waivers"]["not_applicable"] == ["pool-share3"],
+          "the share-1 waiver takes one point (not the share-2 one), the SH=3 waiver is not applicable: %s %s" %
+          (applied, s["waivers"]["not_applicable"]))
+    check(not s["holes"], "no hole left: the share-2 mp_fld point is hit, not waived (%s)" % s["holes"])
+    # The two builds' databases, canonical, merge point for point although their __piN numbers are swapped.
+    oab = os.path.join(work, "pout_ab")
+    r = run([sc, "coverage", os.path.join(outs["a"], "coverage.dat"), os.path.join(outs["b"], "coverage.dat"), "--waivers", wf,
+             "--out", oab, "--no-html"])
+    ab = parse_dat(os.path.join(oab, "coverage.dat")) if r.returncode == 0 else {}
+    line54 = {fields(k)["page"]: c for k, c in ab.items() if fields(k).get("l") == "54"}
+    check(r.returncode == 0 and len(ab) == 8 and line54 == {"v_line/" + CANON % 1: 0, "v_line/" + CANON % 2: 10},
+          "two builds with swapped __piN numbers merge into the same 8 points (mp_fld at SH=2: 7 + 3): %s" % line54)
+
+    def refused(waivers, needle, what, dats=(da,), extra=("--params-map", xml["a"])):
+        w2 = os.path.join(work, "pw_%d.json" % len(os.listdir(work)))
+        with open(w2, "w") as f:
+            json.dump({"waivers": waivers}, f)
+        o = os.path.join(work, "prefused_%d" % len(os.listdir(work)))
+        r = run([sc, "coverage", *dats, *extra, "--out", o, "--waivers", w2, "--no-html"])
+        lines = [x for x in r.stderr.splitlines() if x.strip()]
+        check(r.returncode == 1 and len(lines) == 1 and needle in lines[0] and not os.path.exists(o) and
+              not any(x.startswith(os.path.basename(o)) for x in os.listdir(work)),
+              "%s: exit 1, one line naming it, nothing written (%r)" % (what, lines[-1] if lines else ""))
+
+    base = dict(good[0])
+    refused([dict(base, id="share2", params={"SH": 2})], "waiver 'share2' claims line sc_mul_pool.v:54",
+            "the same point waived at share 2, where it is hit")
+    refused([dict(base, id="stale-p", function="mp_gone")], "waiver 'stale-p' (sc_mul_pool line, SH=1) matches nothing",
+            "a params waiver whose parameterisation is there but which matches none of its points")
+    refused([dict(base, id="typo", params={"SHARE": 1})], "waiver 'typo': params: sc_mul_pool has no parameter 'SHARE' (its "
+            "parameters: AMX, AW, BMX, BW, NOP, ON, SH, SIGNED, ST)", "an unknown parameter name")
+    refused([dict(base, id="raw")], "waiver 'raw' is keyed to parameters (SH=1), but the database's sc_mul_pool points carry "
+            "no parameterisation", "a params waiver on a database without parameterisations", extra=())
+    for bad, needle in (([1], '"params" must be an object'), ({}, '"params" must be an object'),
+                        ({"SH": 1.5}, "params: SH must be an integer or a string"), ({"S H": 1}, "is not a parameter name")):
+        refused([dict(base, id="bad", params=bad)], needle, "params %s refused" % json.dumps(bad))
+    other = os.path.join(work, "pother.dat")
+    write_dat(other, [(key(f=pool_v, l=57, n=20, page="v_line/sc_mul_pool__pi9", o="block", h="TOP.cov_params_top.u_one"), 1)])
+    refused([], "module sc_mul_pool__pi9 is not in the parameterisation map", "a database of another build", dats=(other,))
+    wrong = os.path.join(work, "pwrong.dat")
+    write_dat(wrong, [(key(f=pool_v, l=57, n=20, page="v_line/" + pi["a"]["u_one"], o="block", h="TOP.cov_params_top.u_two"), 1)])
+    refused([], "has no instance u_two of %s" % pi["a"]["u_one"], "a point the map places in another module", dats=(wrong,))
+
+
+def params_run(sc, root, work):
+    """The share-tied waiver on real coverage builds (ctest coverage.params, label long: two lighting coverage cores,
+    ~2 min each the first time, then cached): `cosim --core lighting --coverage` of `diffuse` (share 1) and of the same
+    set at share 2 write canonical databases (the map beside each build); merged with the project's waivers, mp_fld
+    (sc_mul_pool.v:54) is waived at SH = 1 and counted — hit — at SH = 2."""
+    base = json.load(open(os.path.join(root, "config", "configs.json")))
+    s2 = dict(next(f for f in base["feature_sets"] if f["name"] == "diffuse"), name="diffuse_share2", share=2)
+    s2f = os.path.join(work, "diffuse_share2.json")
+    with open(s2f, "w") as f:
+        json.dump(s2, f)
+    dats = []
+    for tag, feat in (("s1", "diffuse"), ("s2", s2f)):
+        o, js = os.path.join(work, "cov_" + tag), os.path.join(work, tag + ".json")
+        r = run([sc, "cosim", "--core", "lighting", "--features", feat, "--harness", "bare", "--mode", "random", "--count", "2000",
+                 "--seed", "3", "--in-stall", "0.2", "--out-stall", "0.2", "--coverage", o, "--json", js])
+        check(r.returncode == 0, "cosim --core lighting --features %s --coverage passes (%s)" % (tag, r.stderr.strip()[-300:]))
+        if r.returncode != 0:
+            return
+        bdir = json.load(open(js))["build_dir"]
+        check(os.path.exists(os.path.join(bdir, "verilated_params.xml")) and os.path.exists(os.path.join(bdir, "params.json")),
+              "the coverage build %s keeps its parameterisation map (verilated_params.xml, params.json)" % os.path.basename(bdir))
+        dats.append(os.path.join(o, "coverage.dat"))
+    for d in dats:
+        pages = {fields(k)["page"] for k in parse_dat(d)}
+        raw = sorted(p for p in pages if not p.startswith("v_func/") and not p.endswith("}"))
+        check(not raw, "every code point of %s names its parameterisation canonically (%s)" % (d, raw[:3]))
+    o = os.path.join(work, "merged")
+    r = run([sc, "coverage", *dats, "--out", o, "--no-html"])
+    check(r.returncode == 0, "the two databases merge with the project's waivers (%s)" % r.stderr.strip())
+    if r.returncode != 0:
+        return
+    fld = {}
+    for k, c in parse_dat(os.path.join(o, "coverage.dat")).items():
+        fl = fields(k)
+        if fl["page"].startswith("v_line/sc_mul_pool__") and fl.get("l") == "54":
+            sh = [x.split("=")[1] for x in fl["page"][fl["page"].index("{") + 1:-1].split(",") if x.startswith("SH=")][0]
+            fld[sh] = fld.get(sh, 0) + c
+    check(set(fld) == {"1", "2"} and fld["1"] == 0 and fld["2"] > 0,
+          "mp_fld (sc_mul_pool.v:54): never run at SH=1, run %s time(s) at SH=2" % fld.get("2"))
+    s = json.load(open(os.path.join(o, "summary.json")))
+    applied = {x["id"]: x["points"] for x in s["waivers"]["applied"]}
+    holes = [h for h in s["holes"].get("sc_mul_pool", []) if "sc_mul_pool.v:54 " in h]
+    check(applied.get("mul-pool-mp_fld-share1") == 1 and not holes,
+          "the share-1 waiver takes the one SH=1 point; the SH=2 point is counted (hit), neither waived nor a hole (%s, %s)" %
+          (applied.get("mul-pool-mp_fld-share1"), holes))
+
+
 def full(sc, root, work):
     plan = os.path.join(root, "tests", "data", "coverage", "tiny.json")
     out = os.path.join(work, "run")
@@ -298,13 +481,20 @@ def main():
     g = ap.add_mutually_exclusive_group(required=True)
     g.add_argument("--quick", action="store_true")
     g.add_argument("--run", action="store_true")
+    g.add_argument("--params-run", action="store_true")
     a = ap.parse_args()
     sc = os.path.join(a.build, "cli", "shadecore")
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     os.makedirs(a.work, exist_ok=True)
     work = tempfile.mkdtemp(dir=a.work)
     try:
-        quick(sc, work) if a.quick else full(sc, root, work)
+        if a.quick:
+            quick(sc, work)
+            params_quick(sc, root, work)
+        elif a.params_run:
+            params_run(sc, root, work)
+        else:
+            full(sc, root, work)
     finally:
         shutil.rmtree(work, ignore_errors=True)
     print("coverage_check: %s" % ("PASS" if not FAILS else "FAIL (%d)" % len(FAILS)))
