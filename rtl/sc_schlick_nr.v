@@ -17,11 +17,16 @@
 //          e1, y2, c·y2 and y1, one for e0 and n·d), each taking the one valid stage of its group, and a
 //          fragment is accepted only SHARE stages behind the one ahead (rtl/sc_pipe_ctrl.v GAP): one
 //          fragment per SHARE clocks, the same outputs and latency                  (default 1)
+//   MREG   0 or 1 (SHARE = 1): the pipelining parameter. 1 makes each of the six products an rtl/sc_mul_reg.v
+//          (a DSP block's M register; the standard-cell flow places it between the carry-save tree and the
+//          final adder), M1..M6 after S0, S3..S7, the other stage data beside it: LATENCY = 16, the same
+//          outputs. n·d's "+ c" and S9's rounding "+ 1" become the products' addends (c; 2^(R−1+10−s), so S9
+//          is a shift only: ⌊(p + 2^k) / 2^(k+1)⌋ = ((p >> k) + 1) >> 1)                       (default 0)
 //   (no GUARD: the reciprocal carries R = F + 6 fraction bits; mat_thr_i is not used)
 //
 // Ports : docs/spec.md §4 (clk_i, rst_ni synchronous active-low, AXI-Stream style valid/ready).
 //
-// Latency   : LATENCY = 10 clock cycles for every F (stages S0..S9), counted in advancing edges
+// Latency   : LATENCY = 10 clock cycles for every F (stages S0..S9; 16 with MREG = 1), counted in advancing edges
 //             as in rtl/sc_cs16.v (an edge advances iff !out_valid_o || out_ready_i before it).
 // Throughput: one fragment per clock while out_ready_i is high.
 // Handshake : in_ready_o = rst_ni && (!out_valid_o || out_ready_i); out_* hold while stalled.
@@ -60,7 +65,8 @@
 module sc_schlick_nr #(
     parameter integer FRAC = 16,
     parameter integer TAGW = 8,
-    parameter integer SHARE = 1
+    parameter integer SHARE = 1,
+    parameter integer MREG = 0
 ) (
     // clk_i, rst_ni; mat_we_i, mat_n_i[10:0], mat_thr_i[FRAC:0]; in_valid_i, in_ready_o,
     // in_cos_i[FRAC+1:0], in_tag_i; out_valid_o, out_ready_i, out_spec_o[FRAC:0], out_tag_o
@@ -72,7 +78,7 @@ module sc_schlick_nr #(
   localparam integer R  = FRAC + 6;    // fraction bits of the reciprocal
   localparam integer T  = 10;          // fraction bits of the table entries
   localparam integer PW = 2 * FRAC + 8;  // width of p = c * y2
-  localparam integer NS = 10;          // register stages S0..S9 = latency
+  localparam integer NS = 10 + 6 * MREG;  // register stages S0..S9 (and M1..M6) = latency
 
   // ---------------------------------------------------------------------------- check configuration
   // Portable Verilog-2005 elaboration error: a failing check instantiates a module that does not
@@ -86,6 +92,12 @@ module sc_schlick_nr #(
     end
     if (SHARE < 1 || SHARE > 4) begin : g_check_share
       sc_schlick_nr_error_illegal_SHARE_legal_range_is_1_to_4 u_error ();
+    end
+    if (MREG != 0 && MREG != 1) begin : g_check_mreg
+      sc_schlick_nr_error_illegal_MREG_must_be_0_or_1 u_error ();
+    end
+    if (MREG != 0 && SHARE != 1) begin : g_check_mreg_share
+      sc_schlick_nr_error_illegal_MREG_1_needs_SHARE_1 u_error ();
     end
   endgenerate
 
@@ -142,26 +154,59 @@ module sc_schlick_nr #(
                {(MA-R1){1'b0}}, s5_mt_w};
   assign pb = {{(MB-NN){1'b0}}, s0_n_w, {(MB-TT){1'b0}}, s3_y0_w, {(MB-TT){1'b0}}, s4_y0t_w, {(MB-F1){1'b0}}, s7_c_w,
                s6_y1_w, s5_y1_w};
-  sc_mul_pool #(
-      .NOP(6), .SH(SHARE), .ON(63),
-      .ST({16'd0, 8'd0, 8'd3, 8'd4, 8'd7, 8'd6, 8'd5}),
-      .AW({16'd0, F1[7:0], R1[7:0], R2[7:0], R1[7:0], R2[7:0], R1[7:0]}),
-      .BW({16'd0, NN[7:0], TT[7:0], TT[7:0], F1[7:0], R1[7:0], R1[7:0]}),
-      .AMX(MA), .BMX(MB), .SIGNED(0)
-  ) u_mul (
-      .a_i(pa), .b_i(pb),
-      .sel_i({v_stage[0], v_stage[3], v_stage[4], v_stage[7], v_stage[6], v_stage[5]}), .p_o(pp));
-  wire unused_v_rest = &{1'b0, v_stage[9:8], v_stage[2:1]};
+  wire [R+9:0] s7_rnd_w;   // MREG = 1: 2^(R−1+10−s) (<= 2^(R+9)), S9's rounding, as the last product's addend
+  generate
+    if (MREG != 0) begin : g_mreg
+      // One rtl/sc_mul_reg.v per op, its product in the low bits of the op's slot (as the pool's).
+      localparam integer P5 = DB, P4 = R + T + 1, P3 = R + T + 2, P0 = 2 * R + 2, P1 = 2 * R + 3;
+      wire [P5-1:0] m5;
+      wire [P4-1:0] m4;
+      wire [P3-1:0] m3;
+      wire [P0-1:0] m0;
+      wire [P1-1:0] m1;
+      wire [PW-1:0] m2;
+      sc_mul_reg #(.AW(F1), .BW(NN), .PW(P5), .ADD(1), .CW(F1)) u_m1 (     // n·d + c
+          .clk_i(clk_i), .en_i(adv), .a_i(s0_d_w), .b_i(s0_n_w), .c_i(s0_c_q), .p_o(m5));
+      sc_mul_reg #(.AW(R1), .BW(TT), .PW(P4)) u_m2 (                        // e0 = mt·y0
+          .clk_i(clk_i), .en_i(adv), .a_i(s3_mt_w), .b_i(s3_y0_w), .c_i(1'b0), .p_o(m4));
+      sc_mul_reg #(.AW(R2), .BW(TT), .PW(P3)) u_m3 (                        // y0·g
+          .clk_i(clk_i), .en_i(adv), .a_i(s4_g_w), .b_i(s4_y0t_w), .c_i(1'b0), .p_o(m3));
+      sc_mul_reg #(.AW(R1), .BW(R1), .PW(P0)) u_m4 (                        // e1 = mt·y1
+          .clk_i(clk_i), .en_i(adv), .a_i(s5_mt_w), .b_i(s5_y1_w), .c_i(1'b0), .p_o(m0));
+      sc_mul_reg #(.AW(R2), .BW(R1), .PW(P1)) u_m5 (                        // y1·g
+          .clk_i(clk_i), .en_i(adv), .a_i(s6_g_w), .b_i(s6_y1_w), .c_i(1'b0), .p_o(m1));
+      sc_mul_reg #(.AW(R1), .BW(F1), .PW(PW), .ADD(1), .CW(R + 10)) u_m6 (   // c·y2 + 2^(R−1+10−s)
+          .clk_i(clk_i), .en_i(adv), .a_i(s7_y2_w), .b_i(s7_c_w), .c_i(s7_rnd_w), .p_o(m2));
+      assign pp = {{(MP-P5){1'b0}}, m5, {(MP-P4){1'b0}}, m4, {(MP-P3){1'b0}}, m3, {(MP-PW){1'b0}}, m2,
+                   {(MP-P1){1'b0}}, m1, {(MP-P0){1'b0}}, m0};
+      wire unused_pool = &{1'b0, pa, pb, v_stage};
+    end else begin : g_pool
+      sc_mul_pool #(
+          .NOP(6), .SH(SHARE), .ON(63),
+          .ST({16'd0, 8'd0, 8'd3, 8'd4, 8'd7, 8'd6, 8'd5}),
+          .AW({16'd0, F1[7:0], R1[7:0], R2[7:0], R1[7:0], R2[7:0], R1[7:0]}),
+          .BW({16'd0, NN[7:0], TT[7:0], TT[7:0], F1[7:0], R1[7:0], R1[7:0]}),
+          .AMX(MA), .BMX(MB), .SIGNED(0)
+      ) u_mul (
+          .a_i(pa), .b_i(pb),
+          .sel_i({v_stage[0], v_stage[3], v_stage[4], v_stage[7], v_stage[6], v_stage[5]}), .p_o(pp));
+      wire unused_v_rest = &{1'b0, v_stage[9:8], v_stage[2:1], s7_rnd_w};
+    end
+  endgenerate
   wire unused_pp = &{1'b0, pp};   // each op reads the low bits of its slot
 
   // ---------------------------------------------------------------------------- S1: denominator
-  wire [DB-1:0] den_d = pp[5*MP +: DB] + {{(DB-F-1){1'b0}}, s0_c_q};   // n·d + c < 2^(F+11)
+  // (MREG = 1: c is the product's addend, and c waits beside M1)
+  wire [DB-1:0] den_d = (MREG != 0) ? pp[5*MP +: DB]
+                                    : pp[5*MP +: DB] + {{(DB-F-1){1'b0}}, s0_c_q};   // n·d + c < 2^(F+11)
+  wire [F:0]    s0_c_x;
+  sc_delay #(.W(F + 1), .DEPTH(MREG)) u_dly_m1 (.clk_i(clk_i), .en_i(adv), .d_i(s0_c_q), .q_o(s0_c_x));
   reg [DB-1:0] s1_den_q;
   reg [F:0]    s1_c_q;
   always @(posedge clk_i) begin
     if (adv) begin
       s1_den_q <= den_d;
-      s1_c_q   <= s0_c_q;
+      s1_c_q   <= s0_c_x;
     end
   end
 
@@ -282,13 +327,19 @@ module sc_schlick_nr #(
   reg  [R:0]     s4_mt_q;
   reg  [3:0]     s4_s_q;
   reg  [F:0]     s4_c_q;
+  wire [T-1:0]   s3_y0_x;   // S3's data beside M2 (MREG = 1), or S3's own
+  wire [R:0]     s3_mt_x;
+  wire [3:0]     s3_s_x;
+  wire [F:0]     s3_c_x;
+  sc_delay #(.W(T + R + 1 + 4 + F + 1), .DEPTH(MREG)) u_dly_m2 (.clk_i(clk_i), .en_i(adv),
+      .d_i({s3_y0_q, s3_mt_q, s3_s_q, s3_c_q}), .q_o({s3_y0_x, s3_mt_x, s3_s_x, s3_c_x}));
   always @(posedge clk_i) begin
     if (adv) begin
       s4_g_q  <= g0_d;
-      s4_y0_q <= s3_y0_q;
-      s4_mt_q <= s3_mt_q;
-      s4_s_q  <= s3_s_q;
-      s4_c_q  <= s3_c_q;
+      s4_y0_q <= s3_y0_x;
+      s4_mt_q <= s3_mt_x;
+      s4_s_q  <= s3_s_x;
+      s4_c_q  <= s3_c_x;
     end
   end
 
@@ -298,12 +349,17 @@ module sc_schlick_nr #(
   reg  [R:0]     s5_mt_q;
   reg  [3:0]     s5_s_q;
   reg  [F:0]     s5_c_q;
+  wire [R:0]     s4_mt_x;   // S4's data beside M3
+  wire [3:0]     s4_s_x;
+  wire [F:0]     s4_c_x;
+  sc_delay #(.W(R + 1 + 4 + F + 1), .DEPTH(MREG)) u_dly_m3 (.clk_i(clk_i), .en_i(adv),
+      .d_i({s4_mt_q, s4_s_q, s4_c_q}), .q_o({s4_mt_x, s4_s_x, s4_c_x}));
   always @(posedge clk_i) begin
     if (adv) begin
       s5_y1_q <= y1_p[R+T:T];
-      s5_mt_q <= s4_mt_q;
-      s5_s_q  <= s4_s_q;
-      s5_c_q  <= s4_c_q;
+      s5_mt_q <= s4_mt_x;
+      s5_s_q  <= s4_s_x;
+      s5_c_q  <= s4_c_x;
     end
   end
 
@@ -315,12 +371,17 @@ module sc_schlick_nr #(
   reg  [R:0]     s6_y1_q;
   reg  [3:0]     s6_s_q;
   reg  [F:0]     s6_c_q;
+  wire [R:0]     s5_y1_x;   // S5's data beside M4
+  wire [3:0]     s5_s_x;
+  wire [F:0]     s5_c_x;
+  sc_delay #(.W(R + 1 + 4 + F + 1), .DEPTH(MREG)) u_dly_m4 (.clk_i(clk_i), .en_i(adv),
+      .d_i({s5_y1_q, s5_s_q, s5_c_q}), .q_o({s5_y1_x, s5_s_x, s5_c_x}));
   always @(posedge clk_i) begin
     if (adv) begin
       s6_g_q  <= g1_d;
-      s6_y1_q <= s5_y1_q;
-      s6_s_q  <= s5_s_q;
-      s6_c_q  <= s5_c_q;
+      s6_y1_q <= s5_y1_x;
+      s6_s_q  <= s5_s_x;
+      s6_c_q  <= s5_c_x;
     end
   end
 
@@ -329,21 +390,30 @@ module sc_schlick_nr #(
   reg  [R:0]     s7_y2_q;
   reg  [3:0]     s7_s_q;
   reg  [F:0]     s7_c_q;
+  wire [3:0]     s6_s_x;   // S6's data beside M5
+  wire [F:0]     s6_c_x;
+  sc_delay #(.W(4 + F + 1), .DEPTH(MREG)) u_dly_m5 (.clk_i(clk_i), .en_i(adv),
+      .d_i({s6_s_q, s6_c_q}), .q_o({s6_s_x, s6_c_x}));
   always @(posedge clk_i) begin
     if (adv) begin
       s7_y2_q <= y2_p[2*R:R];
-      s7_s_q  <= s6_s_q;
-      s7_c_q  <= s6_c_q;
+      s7_s_q  <= s6_s_x;
+      s7_c_q  <= s6_c_x;
     end
   end
+  // MREG = 1: S9's rounding bit, 2^(R−1+rsh) with rsh = 10 − s, added inside the last product
+  wire [3:0] s7_rsh = 4'd10 - s7_s_q;   // 0..10
+  assign s7_rnd_w = {{(R+9){1'b0}}, 1'b1} << ((R - 1) + {28'd0, s7_rsh});
 
   // ---------------------------------------------------------------------------- S8: multiply
   reg [PW-1:0] s8_p_q;
   reg [3:0]    s8_s_q;
+  wire [3:0]   s7_s_x;   // S7's s beside M6
+  sc_delay #(.W(4), .DEPTH(MREG)) u_dly_m6 (.clk_i(clk_i), .en_i(adv), .d_i(s7_s_q), .q_o(s7_s_x));
   always @(posedge clk_i) begin
     if (adv) begin
-      s8_p_q <= pp[2*MP +: PW];   // c·y2
-      s8_s_q <= s7_s_q;
+      s8_p_q <= pp[2*MP +: PW];   // c·y2 (MREG = 1: + 2^(R−1+rsh))
+      s8_s_q <= s7_s_x;
     end
   end
 
@@ -352,7 +422,7 @@ module sc_schlick_nr #(
   wire [PW-R:0]  p_hi  = s8_p_q[PW-1:R-1];
   wire [3:0]     rsh   = 4'd10 - s8_s_q;                 // 0..10
   wire [PW-R:0]  p_sh  = p_hi >> rsh;
-  wire [PW-R+1:0] rnd  = {1'b0, p_sh} + {{(PW-R+1){1'b0}}, 1'b1};
+  wire [PW-R+1:0] rnd  = {1'b0, p_sh} + {{(PW-R+1){1'b0}}, (MREG != 0) ? 1'b0 : 1'b1};   // rounded already
   wire unused_rnd = &{1'b0, s8_p_q[R-2:0], rnd[PW-R+1:F+2], rnd[0]};  // result <= 2^F
   reg  [F:0]     s9_out_q;
   always @(posedge clk_i) begin

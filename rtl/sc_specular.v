@@ -31,9 +31,9 @@
 //            over SHARE consecutive stages and accept a fragment at most every SHARE clocks (their
 //            headers); the other units ignore it.
 //   MREG     0 or 1 (default 0): the pipelining parameter of cs16 (SHARE = 1; rtl/sc_cs16.v: latency 7 -> 12),
-//            its forms cs16_faithful and cs16_compact (5 -> 11) and schlick_div (F+4 -> F+5): a register inside
-//            each product (rtl/sc_mul_reg.v, rtl/sc_sum_reg.v), the same outputs; the other units ignore it
-//            (config/configs.json variants[].mreg_stages).
+//            its forms cs16_faithful and cs16_compact (5 -> 11), schlick_div (F+4 -> F+5) and schlick_nr
+//            (SHARE = 1; 10 -> 16): a register inside each product (rtl/sc_mul_reg.v, rtl/sc_sum_reg.v),
+//            the same outputs; the other units ignore it (config/configs.json variants[].mreg_stages).
 //   COEFW    coefficient (and, with ENERGY = 1, output) width I+F, FRAC+1..FRAC+16 (default FRAC+8,
 //            enough for every model's coef over n = 16..1024). mat_coef_i is ignored when ENERGY = 0.
 // Table port: tab_we_i, tab_addr_i[9:0], tab_value_i[FRAC:0], tab_delta_i[FRAC:0] write one entry of a
@@ -136,7 +136,8 @@ module sc_specular #(
       sc_schlick_nr #(
           .FRAC (FRAC),
           .TAGW (UTAGW),
-          .SHARE(SHARE)
+          .SHARE(SHARE),
+          .MREG (MREG)
       ) u_unit (
           `SC_SPECULAR_UNIT_PORTS
       );

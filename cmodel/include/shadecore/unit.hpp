@@ -105,9 +105,9 @@ class Unit {
   }
   [[nodiscard]] bool energy() const { return energy_; }
 
-  // The pipelining parameter MREG (rtl/sc_cs16.v with SHARE = 1, both forms; rtl/sc_schlick_div.v): 1 puts a
-  // register inside each of the unit's products (rtl/sc_mul_reg.v, rtl/sc_sum_reg.v), mreg_stages(variant) more
-  // cycles, the same outputs.
+  // The pipelining parameter MREG (rtl/sc_cs16.v with SHARE = 1, both forms; rtl/sc_schlick_div.v; rtl/sc_schlick_nr.v
+  // with SHARE = 1): 1 puts a register inside each of the unit's products (rtl/sc_mul_reg.v, rtl/sc_sum_reg.v),
+  // mreg_stages(variant) more cycles, the same outputs.
   void set_mreg(int mreg) {
     if (mreg != 0 && mreg != 1) throw std::invalid_argument("MREG " + std::to_string(mreg) + " out of range (0 or 1)");
     if (mreg != 0 && mreg_stages(variant_) == 0) {
@@ -131,7 +131,8 @@ class Unit {
       // Schlick units (docs/spec.md §6.5): div/iter S0, S1, Q0..Q(F+1); nr S0..S9.
       case VariantId::schlick_div:  // + M1 with MREG = 1 (n·d)
         return schlick_div_latency(format_.frac) + mreg_stages(variant_) * mreg_ + (energy_ ? 2 : 0);
-      case VariantId::schlick_nr: return kSchlickNrLatency + (energy_ ? 2 : 0);
+      case VariantId::schlick_nr:  // + M1..M6 with MREG = 1 (every product)
+        return kSchlickNrLatency + mreg_stages(variant_) * mreg_ + (energy_ ? 2 : 0);
       case VariantId::schlick_iter: return schlick_iter_latency(format_.frac) + (energy_ ? 2 : 0);
       case VariantId::table256:
       case VariantId::table1024: return kTableLatency + (energy_ ? 2 : 0);  // rtl/sc_table.v: S0..S2
