@@ -135,5 +135,31 @@ class FromBundle(unittest.TestCase):
         self.refused("another signoff/fastmul.py")
 
 
+
+class ClosesWithMreg(unittest.TestCase):
+    """A unit row that misses the target leads its reason with its +mreg row only when that row meets it."""
+
+    @staticmethod
+    def row(name, met, kind="unit", width="default (F=16, G=5)", period=4.9, lat=7, flops=275):
+        return {"name": name, "kind": kind, "width": width, "met": met, "period_ns": period, "wns_ns": 0.4 if met else -0.9,
+                "latency_cycles": lat, "flops": flops, "reason": "misses 4.0 ns by 0.9 ns"}
+
+    def test_a_meeting_mreg_row_is_named(self):
+        rows = [self.row("cs16", False), self.row("cs16+mreg", True, period=4.0, lat=12, flops=666)]
+        tr.closes_with_mreg(rows)
+        self.assertEqual(rows[0]["closes_with"], "cs16+mreg")
+        self.assertTrue(rows[0]["reason"].startswith("closes with the pipelining parameter MREG = 1: row cs16+mreg"))
+        self.assertIn("at 12 cycles instead of 7", rows[0]["reason"])
+        self.assertIn("misses 4.0 ns by 0.9 ns", rows[0]["reason"])
+        self.assertNotIn("closes_with", rows[1])
+
+    def test_a_missing_mreg_row_another_width_or_a_lighting_row_is_not(self):
+        rows = [self.row("schlick_nr", False), self.row("schlick_nr+mreg", False, period=5.05),
+                self.row("cs16", False, width="narrow (F=10, G=5)"), self.row("cs16+mreg", True),
+                self.row("gl_default", False, kind="lighting"), self.row("gl_default+mreg", True, kind="lighting")]
+        tr.closes_with_mreg(rows)
+        self.assertFalse(any("closes_with" in r for r in rows))
+        self.assertTrue(all(r["reason"] == "misses 4.0 ns by 0.9 ns" for r in rows))
+
 if __name__ == "__main__":
     unittest.main(verbosity=1)
