@@ -656,6 +656,26 @@ def describe(mut):
     return "%s %s (%s)" % (where, what.get(f.get("mode"), f.get("mode")), ", ".join(srcs))
 
 
+def previous_design(opts, name):
+    """--report-only, a design whose cache no longer holds a finished campaign (a single-mutant run such as the ctest
+    overwrites it when the fingerprint changed): its complete entry of the report being replaced (--json), carried over
+    as it was, with the commit of its sources, and marked so. None when that report has no complete entry."""
+    try:
+        prev = json.load(open(opts.json))
+    except (OSError, ValueError):
+        return None
+    if prev.get("count") != opts.count or prev.get("seed") != opts.seed:
+        return None
+    for d in prev.get("designs", []):
+        if d.get("name") == name and len(d.get("results", [])) == opts.count and not d.get("partial"):
+            keep = {k: d[k] for k in ("name", "unit", "handoff", "params", "stages", "timeouts", "source", "results")
+                    if k in d}
+            return dict(keep, count=opts.count, seed=opts.seed, baseline=d.get("baseline_seconds"),
+                        eq_timeout=d.get("equivalence_bound_seconds"),
+                        carried=d.get("carried") or prev.get("date", "an earlier report"))
+    return None
+
+
 def write_report(opts, designs, md_path, json_path):
     reasons = json.load(open(REASONS)) if os.path.isfile(REASONS) else {}
     now = datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M %Z")
@@ -710,7 +730,8 @@ def write_report(opts, designs, md_path, json_path):
         ks = s["killed_by_stage"]
         sc = s["survivors_by_reason"]
         L.append("| %s | %s | %d | %d (%s) | %d (%d / %d / %d) | %d | %d | %s | %s |" % (
-            d["name"] + (" (partial: %d of %d run)" % (len(d["results"]), d["count"]) if d.get("partial") else ""),
+            d["name"] + (" (partial: %d of %d run)" % (len(d["results"]), d["count"]) if d.get("partial") else "")
+            + (" (carried over from the report of %s)" % d["carried"] if d.get("carried") else ""),
             d["unit"], s["total"], s["killed"], " / ".join(str(ks.get(st, 0)) for st in STAGES),
             s["survived"], sc["all"], sc["contract"], sc["other"], s["timeout"], s["equivalent"],
             "%.2f %%" % s["score"] if s["score"] is not None else "-",
@@ -719,6 +740,7 @@ def write_report(opts, designs, md_path, json_path):
                                "params": d["params"], "stages": d["stages"], "timeouts": d["timeouts"],
                                "baseline_seconds": d["baseline"], "summary": s,
                                "equivalence_bound_seconds": d.get("eq_timeout"), "source": d.get("source"),
+                               **({"carried": d["carried"]} if d.get("carried") else {}),
                                # killed: id, stage and the first failure line; the others in full
                                "results": [{k: v for k, v in r.items() if k in ("id", "status", "stage", "detail")}
                                            if r["status"] == "killed" else r for r in d["results"]]})
@@ -861,7 +883,7 @@ def main(argv):
     chosen = [d for d in DESIGNS if not opts.design or d[0] in opts.design]
     results = []
     if opts.report_only:
-        results = [r for r in (cached_design(opts, d[0]) for d in chosen) if r]
+        results = [r for r in (cached_design(opts, d[0]) or previous_design(opts, d[0]) for d in chosen) if r]
         missing = [d[0] for d in chosen if d[0] not in [r["name"] for r in results]]
         opts.pending = missing
         write_report(opts, results, opts.md, opts.json)
