@@ -442,7 +442,7 @@ def plot(path, rows, footer):
         taken = []
         for x, err, r in placed:
             px, py = ax.transData.transform((x, err))
-            for dy in (6, 18, 30, 42, 54, 66, 78):
+            for dy in range(6, 150, 12):  # enough slots for the cs16 cluster (8 rows within a few pixels)
                 if all(abs(px - qx) > 95 or abs(py + dy - qy) > 12 for qx, qy in taken):
                     break
             taken.append((px, py + dy))
