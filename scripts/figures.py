@@ -31,7 +31,10 @@ def run(main):
 
 
 def machine():
-    """CPU model name and core count, as `lscpu` reports the model name."""
+    """CPU model name and core count, as `lscpu` reports the model name (SHADECORE_FIGURE_MACHINE, when set, instead:
+    tests/figures_check.py draws every figure with a long one, so a long CPU name cannot push a footer out)."""
+    if os.environ.get("SHADECORE_FIGURE_MACHINE"):
+        return os.environ["SHADECORE_FIGURE_MACHINE"]
     try:
         with open("/proc/cpuinfo") as f:
             for line in f:
@@ -43,7 +46,7 @@ def machine():
 
 
 # What a footer looks like (footer() below, or a figure redrawn from recorded data naming where its data came from).
-FOOTER = re.compile(r"\S.* \| .+ \| .*\d{4}-\d{2}-\d{2}")
+FOOTER = re.compile(r"\S.* \|\s.+ \|\s.*\d{4}-\d{2}-\d{2}", re.S)  # broken over lines too (stamp_footer)
 
 
 def footer(command):
@@ -173,11 +176,38 @@ def check(fig, path, dpi):
         f.write(json.dumps({"path": os.path.abspath(path), "problems": problems}) + "\n")
 
 
+def stamp_footer(fig, footer_text, size=6.0, smallest=4.5):
+    """The footer at the figure's bottom left, fitted to the figure's width: a long command or a long CPU name first
+    shrinks it (down to `smallest` points), then breaks it after its ' |' separators (the command, the machine, the
+    date each whole), never cutting what it names."""
+    t = fig.text(0.01, 0.005, footer_text, fontsize=size, color="0.35", ha="left", va="bottom")
+    renderer = fig.canvas.get_renderer()
+    room = 0.98 * fig.bbox.width
+    width = t.get_window_extent(renderer).width
+    if width <= room:
+        return t
+    t.set_fontsize(max(smallest, size * room / width))
+    if t.get_window_extent(renderer).width <= room:
+        return t
+    lines, parts = [], footer_text.split(" | ")
+    for part in parts:
+        trial = (lines[-1] + " | " + part) if lines else part
+        t.set_text(trial)
+        if lines and t.get_window_extent(renderer).width > room:
+            lines.append(part)
+        elif lines:
+            lines[-1] = trial
+        else:
+            lines.append(part)
+    t.set_text(" |\n".join(lines))
+    return t
+
+
 def _draw(fig, path, footer_text, dpi):
     import matplotlib.pyplot as plt
 
     layout(fig)
-    fig.text(0.01, 0.005, footer_text, fontsize=6, color="0.35", ha="left", va="bottom")
+    stamp_footer(fig, footer_text)
     check(fig, path, dpi)
     tmp = path + ".tmp.png"
     try:

@@ -347,8 +347,10 @@ def to_row(r, s):
                               f"{out['flops'] + sg['extra_flops_estimate']:,}); the worst instances: {worst}")
             out["stages"] = sg
         if r["kind"] == "lighting":
+            cfg = json.load(open(os.path.join(ROOT, "config", "configs.json")))
+            mreg = [v["name"] for v in cfg["variants"] if v.get("mreg_stages")]
             out["reason"] += ("; the lighting core has no pipelining parameter yet (MREG, a register inside each "
-                              "product, exists in the units cs16, cs16_faithful, cs16_compact and schlick_div only)")
+                              f"product, exists in the units {', '.join(mreg[:-1])} and {mreg[-1]} only)")
     if gs is None:
         out["reason_gate_sim"] = ("no gate-level run: the handoff bench cannot load a table RAM"
                                   if r["table"] else "not run")
@@ -438,15 +440,28 @@ def plot(path, rows, footer):
         lo, hi = ax.get_ylim()
         ax.set_ylim(lo, hi * 3)  # headroom: every label goes above its point (below would leave the axes)
         fig.canvas.draw()
-        # labels: the first of the offsets (points) that keeps this label clear of those already placed
+        # labels: the first slot (offset in points, right or left of the point, above or below it) whose box
+        # stays inside the axes and clear of the boxes already placed; boxes estimated in pixels (8 pt text)
+        scale = fig.dpi / 72.0
+        box = ax.bbox
         taken = []
         for x, err, r in placed:
             px, py = ax.transData.transform((x, err))
-            for dy in range(6, 150, 12):  # enough slots for the cs16 cluster (8 rows within a few pixels)
-                if all(abs(px - qx) > 95 or abs(py + dy - qy) > 12 for qx, qy in taken):
+            w, h = 5.0 * len(r["name"]) * scale, 11 * scale
+            slots = [(dx, dy) for dy in list(range(6, 150, 12)) + list(range(-18, -150, -12)) for dx in (4, -4)]
+            chosen = slots[0]
+            for dx, dy in slots:
+                x0 = px + dx * scale - (w if dx < 0 else 0)
+                y0 = py + dy * scale
+                if x0 < box.x0 or x0 + w > box.x1 or y0 < box.y0 or y0 + h > box.y1:
+                    continue
+                if all(x0 + w < qx0 or qx0 + qw < x0 or y0 + h < qy0 or qy0 + qh < y0 for qx0, qy0, qw, qh in taken):
+                    chosen = (dx, dy)
+                    taken.append((x0, y0, w, h))
                     break
-            taken.append((px, py + dy))
-            ax.annotate(r["name"], (x, err), textcoords="offset points", xytext=(4, dy), fontsize=8,
+            dx, dy = chosen
+            ax.annotate(r["name"], (x, err), textcoords="offset points", xytext=(dx, dy), fontsize=8,
+                        ha="right" if dx < 0 else "left",
                         arrowprops=None if abs(dy) < 15 else dict(arrowstyle="-", lw=0.5, color="0.4"))
         ax.set_xlabel(label)
         ax.set_ylabel("max |cos^n − unit| over n = 16..1024 (sweep)")
