@@ -20,8 +20,11 @@
 //   MREG   0 or 1 (SHARE = 1): the pipelining parameter. 1 makes each of the six products an rtl/sc_mul_reg.v
 //          (a DSP block's M register; the standard-cell flow places it between the carry-save tree and the
 //          final adder), M1..M6 after S0, S3..S7, the other stage data beside it: LATENCY = 16, the same
-//          outputs. n·d's "+ c" and S9's rounding "+ 1" become the products' addends (c; 2^(R−1+10−s), so S9
-//          is a shift only: ⌊(p + 2^k) / 2^(k+1)⌋ = ((p >> k) + 1) >> 1)                       (default 0)
+//          outputs. Forms that leave each stage after a register its adder alone: Dc = (1 − n)·c + n·2^F
+//          (1 − n from the material register; no subtractor behind the input ports), each Newton step's
+//          g = 2 − e as K + (−mt)·y (K = 2^(R+1+s) + 2^s − 1 the addend, −mt carried from S3), and S9's rounding
+//          "+ 1" as the last product's addend 2^(R−1+10−s) (S9 a shift only:
+//          ⌊(p + 2^k) / 2^(k+1)⌋ = ((p >> k) + 1) >> 1)                                        (default 0)
 //   (no GUARD: the reciprocal carries R = F + 6 fraction bits; mat_thr_i is not used)
 //
 // Ports : docs/spec.md §4 (clk_i, rst_ni synchronous active-low, AXI-Stream style valid/ready).
@@ -79,6 +82,7 @@ module sc_schlick_nr #(
   localparam integer T  = 10;          // fraction bits of the table entries
   localparam integer PW = 2 * FRAC + 8;  // width of p = c * y2
   localparam integer NS = 10 + 6 * MREG;  // register stages S0..S9 (and M1..M6) = latency
+  localparam integer MTW = R + 1 + MREG;  // the mantissa word carried S3..S5: mt, or −mt (signed) with MREG = 1
 
   // ---------------------------------------------------------------------------- check configuration
   // Portable Verilog-2005 elaboration error: a failing check instantiates a module that does not
@@ -125,13 +129,17 @@ module sc_schlick_nr #(
 
   // ---------------------------------------------------------------------------- S0: clamp
 
+  // MREG = 1 forms Dc = n·2^F + (1 − n)·c instead (1 − n from the material register), so no subtractor
+  // follows the input ports: S0 holds the clamp only
   reg [F:0]  s0_c_q, s0_d_q;
   reg [10:0] s0_n_q;
+  reg [11:0] s0_omn_q;   // 1 − n, two's complement (MREG = 1)
   always @(posedge clk_i) begin
     if (adv) begin
-      s0_c_q <= c_d;
-      s0_d_q <= ONE - c_d;
-      s0_n_q <= mat_n_q;
+      s0_c_q   <= c_d;
+      s0_d_q   <= ONE - c_d;
+      s0_n_q   <= mat_n_q;
+      s0_omn_q <= 12'd1 - {1'b0, mat_n_q};
     end
   end
 
@@ -143,6 +151,7 @@ module sc_schlick_nr #(
   localparam integer MP = MA + MB;
   localparam integer R1 = R + 1, R2 = R + 2, F1 = F + 1, TT = T, NN = 11;
   wire [R:0]   s3_mt_w, s5_mt_w, s5_y1_w, s6_y1_w, s7_y2_w;   // the stage registers below
+  wire [MTW-1:0] s3_mtc_w, s5_mtc_w;                         // the carried mantissa word (−mt with MREG = 1)
   wire [R+1:0] s4_g_w, s6_g_w;
   wire [T-1:0] s3_y0_w, s4_y0t_w;
   wire [F:0]   s0_d_w, s7_c_w;
@@ -158,28 +167,36 @@ module sc_schlick_nr #(
   generate
     if (MREG != 0) begin : g_mreg
       // One rtl/sc_mul_reg.v per op, its product in the low bits of the op's slot (as the pool's).
-      localparam integer P5 = DB, P4 = R + T + 1, P3 = R + T + 2, P0 = 2 * R + 2, P1 = 2 * R + 3;
+      // The Newton steps' g = 2^(R+1) − ⌊mt·y / 2^s⌋ (s = T, then R) is ⌊(K − mt·y) / 2^s⌋ with
+      // K = 2^(R+1+s) + 2^s − 1, exactly and modulo 2^(R+2): formed as K + (−mt)·y inside the product's
+      // tree (−mt carried from S3, K the addend), so the stage after the register is its adder alone;
+      // slots 4 and 0 hold g·2^s + (low bits) instead of e.
+      localparam integer P5 = DB, P4 = R + T + 2, P3 = R + T + 2, P0 = 2 * R + 2, P1 = 2 * R + 3;
+      localparam [P4-1:0] K0 = {1'b1, {(R+1){1'b0}}, {T{1'b1}}};   // 2^(R+1+T) + 2^T − 1
+      localparam [P0-1:0] K1 = {1'b1, {(R+1){1'b0}}, {R{1'b1}}};   // 2^(2R+1) + 2^R − 1
+      localparam integer F2 = F + 2, T1 = T + 1;
       wire [P5-1:0] m5;
       wire [P4-1:0] m4;
       wire [P3-1:0] m3;
       wire [P0-1:0] m0;
       wire [P1-1:0] m1;
       wire [PW-1:0] m2;
-      sc_mul_reg #(.AW(F1), .BW(NN), .PW(P5), .ADD(1), .CW(F1)) u_m1 (     // n·d + c
-          .clk_i(clk_i), .en_i(adv), .a_i(s0_d_w), .b_i(s0_n_w), .c_i(s0_c_q), .p_o(m5));
-      sc_mul_reg #(.AW(R1), .BW(TT), .PW(P4)) u_m2 (                        // e0 = mt·y0
-          .clk_i(clk_i), .en_i(adv), .a_i(s3_mt_w), .b_i(s3_y0_w), .c_i(1'b0), .p_o(m4));
+      sc_mul_reg #(.AW(F2), .BW(12), .PW(P5), .SIGNED(1), .ADD(1), .CW(DB)) u_m1 (   // (1 − n)·c + n·2^F
+          .clk_i(clk_i), .en_i(adv), .a_i({1'b0, s0_c_q}), .b_i(s0_omn_q),
+          .c_i({s0_n_w, {F{1'b0}}}), .p_o(m5));   // DB = F + 11 bits
+      sc_mul_reg #(.AW(MTW), .BW(T1), .PW(P4), .SIGNED(1), .ADD(1), .CW(P4)) u_m2 (   // K0 − mt·y0
+          .clk_i(clk_i), .en_i(adv), .a_i(s3_mtc_w), .b_i({1'b0, s3_y0_w}), .c_i(K0), .p_o(m4));
       sc_mul_reg #(.AW(R2), .BW(TT), .PW(P3)) u_m3 (                        // y0·g
           .clk_i(clk_i), .en_i(adv), .a_i(s4_g_w), .b_i(s4_y0t_w), .c_i(1'b0), .p_o(m3));
-      sc_mul_reg #(.AW(R1), .BW(R1), .PW(P0)) u_m4 (                        // e1 = mt·y1
-          .clk_i(clk_i), .en_i(adv), .a_i(s5_mt_w), .b_i(s5_y1_w), .c_i(1'b0), .p_o(m0));
+      sc_mul_reg #(.AW(MTW), .BW(R2), .PW(P0), .SIGNED(1), .ADD(1), .CW(P0)) u_m4 (   // K1 − mt·y1
+          .clk_i(clk_i), .en_i(adv), .a_i(s5_mtc_w), .b_i({1'b0, s5_y1_w}), .c_i(K1), .p_o(m0));
       sc_mul_reg #(.AW(R2), .BW(R1), .PW(P1)) u_m5 (                        // y1·g
           .clk_i(clk_i), .en_i(adv), .a_i(s6_g_w), .b_i(s6_y1_w), .c_i(1'b0), .p_o(m1));
       sc_mul_reg #(.AW(R1), .BW(F1), .PW(PW), .ADD(1), .CW(R + 10)) u_m6 (   // c·y2 + 2^(R−1+10−s)
           .clk_i(clk_i), .en_i(adv), .a_i(s7_y2_w), .b_i(s7_c_w), .c_i(s7_rnd_w), .p_o(m2));
       assign pp = {{(MP-P5){1'b0}}, m5, {(MP-P4){1'b0}}, m4, {(MP-P3){1'b0}}, m3, {(MP-PW){1'b0}}, m2,
                    {(MP-P1){1'b0}}, m1, {(MP-P0){1'b0}}, m0};
-      wire unused_pool = &{1'b0, pa, pb, v_stage};
+      wire unused_pool = &{1'b0, pa, pb, v_stage, s0_d_w};
     end else begin : g_pool
       sc_mul_pool #(
           .NOP(6), .SH(SHARE), .ON(63),
@@ -190,7 +207,7 @@ module sc_schlick_nr #(
       ) u_mul (
           .a_i(pa), .b_i(pb),
           .sel_i({v_stage[0], v_stage[3], v_stage[4], v_stage[7], v_stage[6], v_stage[5]}), .p_o(pp));
-      wire unused_v_rest = &{1'b0, v_stage[9:8], v_stage[2:1], s7_rnd_w};
+      wire unused_v_rest = &{1'b0, v_stage[9:8], v_stage[2:1], s7_rnd_w, s0_omn_q, s3_mtc_w, s5_mtc_w};
     end
   endgenerate
   wire unused_pp = &{1'b0, pp};   // each op reads the low bits of its slot
@@ -305,33 +322,42 @@ module sc_schlick_nr #(
       default: y0_d = 10'd0;
     endcase
   end
-  reg [T-1:0] s3_y0_q;
-  reg [R:0]   s3_mt_q;
-  reg [3:0]   s3_s_q;
-  reg [F:0]   s3_c_q;
+  wire [MTW-1:0] mtc_d;   // mt, or −mt with MREG = 1 (R+2 bits, signed: −2^(R+1) < −mt <= −2^R)
+  generate
+    if (MREG != 0) begin : g_neg_mt
+      assign mtc_d = ~{1'b0, s2_mt_q} + 1'b1;
+    end else begin : g_mt
+      assign mtc_d = s2_mt_q;
+    end
+  endgenerate
+  reg [T-1:0]   s3_y0_q;
+  reg [MTW-1:0] s3_mt_q;
+  reg [3:0]     s3_s_q;
+  reg [F:0]     s3_c_q;
   always @(posedge clk_i) begin
     if (adv) begin
       s3_y0_q <= y0_d;
-      s3_mt_q <= s2_mt_q;
+      s3_mt_q <= mtc_d;
       s3_s_q  <= s2_s_q;
       s3_c_q  <= s2_c_q;
     end
   end
 
   // ---------------------------------------------------------------------------- S4/S5: first iteration
-  wire [R+T:0]   e0_p = pp[4*MP +: R+T+1];              // mt·y0 < 2^(R+1+T)
-  wire [R+1:0]   g0_d = TWO_R - {1'b0, e0_p[R+T:T]};     // 2 − e, e < 2
+  wire [R+T+1:0] e0_p = pp[4*MP +: R+T+2];              // mt·y0 < 2^(R+1+T) (MREG = 1: (K0 − mt·y0))
+  wire [R+1:0]   g0_d = (MREG != 0) ? e0_p[R+T+1:T]       // 2 − e, e < 2
+                                    : TWO_R - {1'b0, e0_p[R+T:T]};
   wire unused_e0 = &{1'b0, e0_p[T-1:0]};
   reg  [R+1:0]   s4_g_q;
   reg  [T-1:0]   s4_y0_q;
-  reg  [R:0]     s4_mt_q;
+  reg  [MTW-1:0] s4_mt_q;
   reg  [3:0]     s4_s_q;
   reg  [F:0]     s4_c_q;
   wire [T-1:0]   s3_y0_x;   // S3's data beside M2 (MREG = 1), or S3's own
-  wire [R:0]     s3_mt_x;
+  wire [MTW-1:0] s3_mt_x;
   wire [3:0]     s3_s_x;
   wire [F:0]     s3_c_x;
-  sc_delay #(.W(T + R + 1 + 4 + F + 1), .DEPTH(MREG)) u_dly_m2 (.clk_i(clk_i), .en_i(adv),
+  sc_delay #(.W(T + MTW + 4 + F + 1), .DEPTH(MREG)) u_dly_m2 (.clk_i(clk_i), .en_i(adv),
       .d_i({s3_y0_q, s3_mt_q, s3_s_q, s3_c_q}), .q_o({s3_y0_x, s3_mt_x, s3_s_x, s3_c_x}));
   always @(posedge clk_i) begin
     if (adv) begin
@@ -346,13 +372,13 @@ module sc_schlick_nr #(
   wire [R+T+1:0] y1_p = pp[3*MP +: R+T+2];              // y0·g; y1 = ⌊y0·g / 2^T⌋ <= 2^R + 1
   wire unused_y1 = &{1'b0, y1_p[R+T+1], y1_p[T-1:0]};
   reg  [R:0]     s5_y1_q;
-  reg  [R:0]     s5_mt_q;
+  reg  [MTW-1:0] s5_mt_q;
   reg  [3:0]     s5_s_q;
   reg  [F:0]     s5_c_q;
-  wire [R:0]     s4_mt_x;   // S4's data beside M3
+  wire [MTW-1:0] s4_mt_x;   // S4's data beside M3
   wire [3:0]     s4_s_x;
   wire [F:0]     s4_c_x;
-  sc_delay #(.W(R + 1 + 4 + F + 1), .DEPTH(MREG)) u_dly_m3 (.clk_i(clk_i), .en_i(adv),
+  sc_delay #(.W(MTW + 4 + F + 1), .DEPTH(MREG)) u_dly_m3 (.clk_i(clk_i), .en_i(adv),
       .d_i({s4_mt_q, s4_s_q, s4_c_q}), .q_o({s4_mt_x, s4_s_x, s4_c_x}));
   always @(posedge clk_i) begin
     if (adv) begin
@@ -365,7 +391,7 @@ module sc_schlick_nr #(
 
   // ---------------------------------------------------------------------------- S6/S7: second iteration
   wire [2*R+1:0] e1_p = pp[0*MP +: 2*R+2];              // mt·y1 < 2^(2R+2)
-  wire [R+1:0]   g1_d = TWO_R - e1_p[2*R+1:R];
+  wire [R+1:0]   g1_d = (MREG != 0) ? e1_p[2*R+1:R] : TWO_R - e1_p[2*R+1:R];   // MREG = 1: (K1 − mt·y1)
   wire unused_e1 = &{1'b0, e1_p[R-1:0]};
   reg  [R+1:0]   s6_g_q;
   reg  [R:0]     s6_y1_q;
@@ -434,11 +460,13 @@ module sc_schlick_nr #(
   // the pool's operands (declared before the registers they read)
   assign s0_d_w   = s0_d_q;
   assign s0_n_w   = s0_n_q;
-  assign s3_mt_w  = s3_mt_q;
+  assign s3_mtc_w = s3_mt_q;
+  assign s3_mt_w  = s3_mt_q[R:0];
   assign s3_y0_w  = s3_y0_q;
   assign s4_g_w   = s4_g_q;
   assign s4_y0t_w = s4_y0_q;
-  assign s5_mt_w  = s5_mt_q;
+  assign s5_mtc_w = s5_mt_q;
+  assign s5_mt_w  = s5_mt_q[R:0];
   assign s5_y1_w  = s5_y1_q;
   assign s6_g_w   = s6_g_q;
   assign s6_y1_w  = s6_y1_q;
