@@ -28,11 +28,15 @@
 //
 // Datapath (DB = F+11):
 //
-//   accept:  c, d = 2^F − c, n, tag ──► working registers          busy = 1, phase = DEN
-//   DEN   :  Dc = n·d + c; r = c; q = 0                              phase = DIV, k = 0
-//   DIV k :  r2 = (k == 0) ? r : 2r;  b = (r2 >= Dc);  r = b ? r2 − Dc : r2;  q = {q, b}
-//            k = 0 .. F+1 (one bit per clock); at k = F+1: out = (q + 1) >> 1, out_valid = 1,
-//            busy = 0
+//   accept:  c, n, 1 − n, tag ──► working registers               busy = 1, phase = DEN
+//   DEN   :  Dc = (1 − n)·c + n·2^F into a registered product (its tree);
+//            quotient bit 0 without Dc: b0 = (n == 0 || c == 2^F) (c >= Dc iff n·(2^F − c) = 0),
+//            r = b0 ? 0 : c, q = b0                                  phase = DIV, k = 0
+//   DIV 0 :  den = Dc (the product's final adder); r, q hold
+//   DIV k :  2r;  b = (2r >= Dc);  r = b ? 2r − Dc : 2r;  q = {q, b}
+//            k = 1 .. F+1 (one bit per clock; k == 0 is the register first_q); at k = F+1:
+//            out = (q + 1) >> 1 = Q + b (Q the bits before the last, Q + 1 formed beside the last
+//            subtraction), out_valid = 1, busy = 0
 // ============================================================================================
 `default_nettype none
 
@@ -69,6 +73,7 @@ module sc_schlick_iter #(
   reg        busy_q;       // a fragment is in DEN or DIV
   reg        div_q;        // phase: 0 = DEN, 1 = DIV (meaningful while busy_q)
   reg  [4:0] k_q;          // quotient bit being produced
+  reg        first_q;      // k_q == 0 in DIV (den_q loads; no step), as a register of its own
   reg        out_valid_q;
 
   wire take   = out_valid_q && out_ready_i;
@@ -83,18 +88,22 @@ module sc_schlick_iter #(
       busy_q      <= 1'b0;
       div_q       <= 1'b0;
       k_q         <= 5'd0;
+      first_q     <= 1'b0;
       out_valid_q <= 1'b0;
     end else begin
       if (accept) begin
         busy_q <= 1'b1;
         div_q  <= 1'b0;
       end else if (busy_q && !div_q) begin
-        div_q <= 1'b1;
-        k_q   <= 5'd0;
+        div_q   <= 1'b1;
+        k_q     <= 5'd0;
+        first_q <= 1'b1;
       end else if (last) begin
-        busy_q <= 1'b0;
+        busy_q  <= 1'b0;
+        first_q <= 1'b0;
       end else if (busy_q) begin
-        k_q <= k_q + 5'd1;
+        k_q     <= k_q + 5'd1;
+        first_q <= 1'b0;
       end
       // last never coincides with take of an older result: in_ready (hence a new fragment) needs
       // an empty or departing output register, and a result is only produced by the fragment
@@ -112,42 +121,55 @@ module sc_schlick_iter #(
 
   // ---------------------------------------------------------------------------- datapath
 
-  reg [F:0]      c_q, d_q;
+  reg [F:0]      c_q;
   reg [10:0]     n_q;
+  reg [11:0]     omn_q;      // 1 − n, two's complement, from the material register
   reg [TAGW-1:0] tag_q;
   reg [DB-1:0]   den_q, r_q;
   reg [NQ-1:0]   quo_q;
   reg [F:0]      out_q;
   reg [TAGW-1:0] out_tag_q;
 
-  wire [DB-1:0] den_d = ({{(DB-11){1'b0}}, n_q} * {{(DB-F-1){1'b0}}, d_q})
-                      + {{(DB-F-1){1'b0}}, c_q};
+  // Dc = n·(2^F − c) + c = (1 − n)·c + n·2^F: one signed product with n·2^F as its addend (no subtractor behind
+  // the input ports), an rtl/sc_mul_reg.v loaded in DEN; den_q takes it at k = 0 (the cell flow cuts it between
+  // its carry-save tree, in DEN, and its final adder, at k = 0).
+  wire den_en = busy_q && !div_q;
+  wire [DB-1:0] den_p;
+  sc_mul_reg #(.AW(F + 2), .BW(12), .PW(DB), .SIGNED(1), .ADD(1), .CW(DB)) u_den (
+      .clk_i(clk_i), .en_i(den_en), .a_i({1'b0, c_q}), .b_i(omn_q), .c_i({n_q, {F{1'b0}}}), .p_o(den_p));
+  // Quotient bit 0 needs no Dc: c >= Dc iff n·(2^F − c) = 0, i.e. n = 0 or c = 2^F, and then c − Dc = 0. DEN
+  // produces it; k = 0 loads den_q; k = 1..F+1 each shift the remainder and subtract Dc.
+  wire          b0     = (n_q == 11'd0) || (c_q == ONE);
 
-  wire [DB:0]   r2     = (k_q == 5'd0) ? {1'b0, r_q} : {r_q, 1'b0};   // 2r < 2·Dc
+  wire [DB:0]   r2     = {r_q, 1'b0};                                  // 2r < 2·Dc
   wire [DB+1:0] diff   = {1'b0, r2} - {2'b0, den_q};
   wire          b      = !diff[DB+1];                                  // r2 >= Dc
   wire [DB:0]   r_nx   = b ? diff[DB:0] : r2;                          // < Dc
   wire [NQ-1:0] quo_nx = {quo_q[NQ-2:0], b};
-  wire [NQ:0]   rnd    = {1'b0, quo_nx} + {{NQ{1'b0}}, 1'b1};          // (q + 1) >> 1 <= 2^F
-  wire unused_dp = &{1'b0, r_nx[DB], quo_q[NQ-1], rnd[NQ], rnd[0]};
+  // round half up: out = (q + 1) >> 1 with q = {Q, b}, Q = quo_q[NQ-2:0], is Q + b (<= 2^F); Q + 1 is formed
+  // beside the step's subtraction, so only a select follows b
+  wire [NQ-2:0] q_inc  = quo_q[NQ-2:0] + {{(NQ-2){1'b0}}, 1'b1};
+  wire [F:0]    rnd    = b ? q_inc : quo_q[NQ-2:0];
+  wire unused_dp = &{1'b0, r_nx[DB], quo_q[NQ-1]};
 
   always @(posedge clk_i) begin
     if (accept) begin
       c_q   <= c_d;
-      d_q   <= ONE - c_d;
       n_q   <= mat_n_q;
+      omn_q <= 12'd1 - {1'b0, mat_n_q};
       tag_q <= in_tag_i;
     end
-    if (busy_q && !div_q) begin
-      den_q <= den_d;
-      r_q   <= {{(DB-F-1){1'b0}}, c_q};
-      quo_q <= {NQ{1'b0}};
+    if (den_en) begin
+      r_q   <= b0 ? {DB{1'b0}} : {{(DB-F-1){1'b0}}, c_q};
+      quo_q <= {{(NQ-1){1'b0}}, b0};
+    end else if (busy_q && first_q) begin
+      den_q <= den_p;
     end else if (busy_q) begin
       r_q   <= r_nx[DB-1:0];
       quo_q <= quo_nx;
     end
     if (last) begin
-      out_q     <= rnd[NQ-1:1];
+      out_q     <= rnd;
       out_tag_q <= tag_q;
     end
   end

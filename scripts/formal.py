@@ -275,8 +275,8 @@ MUTATIONS = {
                              "assign in_ready_o  = rst_ni && !busy_q && (!out_valid_q || out_ready_i);",
                              "assign in_ready_o  = !busy_q && (!out_valid_q || out_ready_i);",
                              ["it_ready_reset", "u_ready_reset"]),
-    "iter_release_held": ("sc_schlick_iter.v", "if (last) begin\n      out_q     <= rnd[NQ-1:1];",
-                          "if (last || in_valid_i) begin\n      out_q     <= rnd[NQ-1:1];", ["u_hold_data"]),
+    "iter_release_held": ("sc_schlick_iter.v", "if (last) begin\n      out_q     <= rnd;",
+                          "if (last || in_valid_i) begin\n      out_q     <= rnd;", ["u_hold_data"]),
     # the iterative unit drops a held result (out_valid_q falls without a take)
     "iter_drop_held": ("sc_schlick_iter.v", "end else if (take) begin\n        out_valid_q <= 1'b0;",
                        "end else begin\n        out_valid_q <= 1'b0;", ["it_hold", "it_count", "u_hold_valid"]),
