@@ -371,6 +371,398 @@ inline constexpr const char* kConfigsJson = R\"shadecore_json(${_cfg_json})shade
 }  // namespace shadecore
 " @ONLY)
 
+# The same register map for C drivers (issue 39, docs/driver.md):
+#   ${SHADECORE_GENERATED_DIR}/shadecore/shadecore_light_regs.h   (plain C99: addresses, strides, the light_model bits,
+#                                                                 light kinds, unit ids, register formats and mode-word
+#                                                                 fields, the named configs and feature sets)
+# from the entries above plus "light" formats / spec_guard_default, "limits" and "feature_sets". The driver routine
+# driver/ (shadecore_light_driver) includes it; tests/light_driver_test.cpp checks it against the C++ model.
+string(JSON _lsgd GET "${_cfg_json}" light spec_guard_default)
+string(JSON _lfmin GET "${_cfg_json}" limits light_frac min)
+string(JSON _lfmax GET "${_cfg_json}" limits light_frac max)
+string(JSON _lsgmin GET "${_cfg_json}" limits spec_guard min)
+string(JSON _lsgmax GET "${_cfg_json}" limits spec_guard max)
+string(JSON _lufmax GET "${_cfg_json}" limits frac max)
+math(EXPR _lnmin_expect "1 << ${_llnb}")
+set(_ch "")
+# light_model fields
+set(_ch_lm "")
+foreach(i RANGE ${_lastlm})
+  string(JSON _lmname GET "${_cfg_json}" light light_model_bits ${i} name)
+  string(JSON _lmbit GET "${_cfg_json}" light light_model_bits ${i} bit)
+  string(TOUPPER "${_lmname}" _lmup)
+  string(APPEND _ch_lm "#define SC_LIGHT_LM_${_lmup}_SHIFT ${_lmbit}\n#define SC_LIGHT_LM_${_lmup} (1u << ${_lmbit})\n")
+endforeach()
+# light kinds (reserved kinds are listed too: their id is taken, no core has them)
+set(_ch_kinds "")
+foreach(i RANGE ${_lastk})
+  string(JSON _kname GET "${_cfg_json}" light light_kinds ${i} name)
+  string(JSON _kid GET "${_cfg_json}" light light_kinds ${i} id)
+  string(TOUPPER "${_kname}" _kup)
+  string(APPEND _ch_kinds "#define SC_LIGHT_KIND_${_kup} ${_kid}\n")
+endforeach()
+# specular units: the values of mat_unit; THR: units whose material has the θcr threshold (cs16 and its squarer forms)
+set(_ch_units "")
+set(_ch_known 0)
+set(_ch_thr 0)
+foreach(i RANGE ${_lastv})
+  string(JSON _vname GET "${_cfg_json}" variants ${i} name)
+  string(JSON _vid GET "${_cfg_json}" variants ${i} id)
+  string(TOUPPER "${_vname}" _vupper)
+  string(APPEND _ch_units "#define SC_LIGHT_UNIT_${_vupper} ${_vid}\n")
+  math(EXPR _ch_known "${_ch_known} | (1 << ${_vid})")
+  string(JSON _sq ERROR_VARIABLE _nosq GET "${_cfg_json}" variants ${i} squarer)
+  if(_vname STREQUAL "cs16" OR NOT _nosq)
+    math(EXPR _ch_thr "${_ch_thr} | (1 << ${_vid})")
+  endif()
+endforeach()
+math(EXPR _ch_known "${_ch_known}" OUTPUT_FORMAT HEXADECIMAL)
+math(EXPR _ch_thr "${_ch_thr}" OUTPUT_FORMAT HEXADECIMAL)
+# register formats
+set(_ch_fmt "")
+string(JSON _nf LENGTH "${_cfg_json}" light formats)
+math(EXPR _lastf "${_nf} - 1")
+set(_fmt_names "")
+foreach(i RANGE ${_lastf})
+  string(JSON _fname MEMBER "${_cfg_json}" light formats ${i})
+  if(_fname STREQUAL "_comment")
+    continue()
+  endif()
+  list(APPEND _fmt_names "${_fname}")
+  string(TOUPPER "${_fname}" _fup)
+  string(JSON _ffrac ERROR_VARIABLE _nofrac GET "${_cfg_json}" light formats ${_fname} frac)
+  if(NOT _nofrac)  # fixed point
+    string(JSON _fint GET "${_cfg_json}" light formats ${_fname} int_bits)
+    _shadecore_json_flag(_fsig light formats ${_fname} signed)
+    if(_ffrac STREQUAL "F")
+      set(_fexpr "(F)")
+    elseif(_ffrac STREQUAL "UF")
+      set(_fexpr "(UF)")
+    else()
+      message(FATAL_ERROR "config/configs.json: light.formats.${_fname}.frac must be \"F\" or \"UF\", not \"${_ffrac}\"")
+    endif()
+    if(_fsig)
+      set(_fs 1)
+    else()
+      set(_fs 0)
+    endif()
+    math(EXPR _fextra "${_fint} + ${_fs}")
+    string(APPEND _ch_fmt "#define SC_LIGHT_FMT_${_fup}_FRAC(F, UF) ${_fexpr}\n"
+                          "#define SC_LIGHT_FMT_${_fup}_INT_BITS ${_fint}\n"
+                          "#define SC_LIGHT_FMT_${_fup}_SIGNED ${_fs}\n"
+                          "#define SC_LIGHT_FMT_${_fup}_BITS(F, UF) (${_fexpr} + ${_fextra})\n")
+  else()  # integer
+    string(JSON _fbits GET "${_cfg_json}" light formats ${_fname} bits)
+    if(_fname STREQUAL "spot_exponent" AND NOT _fbits EQUAL _lspeb)
+      message(FATAL_ERROR "config/configs.json: light.formats.spot_exponent.bits ${_fbits} != spot_exponent_bits ${_lspeb}")
+    endif()
+    if(_fname STREQUAL "light_model" AND NOT _fbits EQUAL _lmn)
+      message(FATAL_ERROR "config/configs.json: light.formats.light_model.bits ${_fbits} != the ${_lmn} light_model_bits")
+    endif()
+    string(APPEND _ch_fmt "#define SC_LIGHT_FMT_${_fup}_BITS(F, UF) ${_fbits}\n#define SC_LIGHT_FMT_${_fup}_SIGNED 0\n")
+    foreach(_b min max)
+      string(JSON _bv ERROR_VARIABLE _nob GET "${_cfg_json}" light formats ${_fname} ${_b})
+      if(NOT _nob)
+        string(TOUPPER "${_b}" _bup)
+        string(APPEND _ch_fmt "#define SC_LIGHT_FMT_${_fup}_${_bup} ${_bv}\n")
+      endif()
+    endforeach()
+    if(_fname STREQUAL "n")
+      string(JSON _nmin GET "${_cfg_json}" light formats n min)
+      if(NOT _nmin EQUAL _lnmin_expect)
+        message(FATAL_ERROR "config/configs.json: light.formats.n.min ${_nmin} != 2^low_shininess_bits = ${_lnmin_expect}")
+      endif()
+    endif()
+    string(JSON _nfld ERROR_VARIABLE _nofld LENGTH "${_cfg_json}" light formats ${_fname} fields)
+    if(NOT _nofld AND _nfld GREATER 0)
+      math(EXPR _lastfld "${_nfld} - 1")
+      foreach(k RANGE ${_lastfld})
+        string(JSON _fldn GET "${_cfg_json}" light formats ${_fname} fields ${k} name)
+        string(JSON _fldl GET "${_cfg_json}" light formats ${_fname} fields ${k} lsb)
+        string(JSON _fldb GET "${_cfg_json}" light formats ${_fname} fields ${k} bits)
+        string(TOUPPER "${_fldn}" _fldu)
+        math(EXPR _fldm "((1 << ${_fldb}) - 1) << ${_fldl}" OUTPUT_FORMAT HEXADECIMAL)
+        string(APPEND _ch_fmt "#define SC_LIGHT_${_fup}_${_fldu}_SHIFT ${_fldl}\n#define SC_LIGHT_${_fup}_${_fldu}_MASK ${_fldm}u\n")
+      endforeach()
+    endif()
+    string(JSON _nval ERROR_VARIABLE _noval LENGTH "${_cfg_json}" light formats ${_fname} values)
+    if(NOT _noval AND _nval GREATER 0)
+      math(EXPR _lastval "${_nval} - 1")
+      foreach(k RANGE ${_lastval})
+        string(JSON _valn GET "${_cfg_json}" light formats ${_fname} values ${k} name)
+        string(JSON _valv GET "${_cfg_json}" light formats ${_fname} values ${k} value)
+        string(TOUPPER "${_valn}" _valu)
+        string(APPEND _ch_fmt "#define SC_LIGHT_${_fup}_${_valu} ${_valv}\n")
+      endforeach()
+    endif()
+  endif()
+endforeach()
+# registers: address, count, whether per light and reserved, and the format's width / fraction bits
+set(_ch_regs "")
+set(_ch_reglist "")
+foreach(i RANGE ${_lastr})
+  string(JSON _rname GET "${_cfg_json}" light registers ${i} name)
+  string(JSON _raddr GET "${_cfg_json}" light registers ${i} addr)
+  string(JSON _rcount GET "${_cfg_json}" light registers ${i} count)
+  string(JSON _rfmt GET "${_cfg_json}" light registers ${i} format)
+  _shadecore_json_flag(_rperc light registers ${i} per_light)
+  _shadecore_json_flag(_rresc light registers ${i} reserved)
+  if(NOT _rfmt IN_LIST _fmt_names)
+    message(FATAL_ERROR "config/configs.json: light register ${_rname}: format '${_rfmt}' has no entry in light.formats")
+  endif()
+  string(TOUPPER "${_rname}" _rup)
+  string(TOUPPER "${_rfmt}" _rfup)
+  if(_rperc)
+    set(_rp 1)
+  else()
+    set(_rp 0)
+  endif()
+  if(_rresc)
+    set(_rr 1)
+    set(_rnote "  /* reserved: no register in this core, a write is ignored */")
+  else()
+    set(_rr 0)
+    set(_rnote "")
+  endif()
+  string(APPEND _ch_reglist " \\\n  X(${_rname}, ${_rup})")
+  string(APPEND _ch_regs "#define SC_LIGHT_REG_${_rup} ${_raddr}u${_rnote}\n"
+                         "#define SC_LIGHT_REG_${_rup}_COUNT ${_rcount}\n"
+                         "#define SC_LIGHT_REG_${_rup}_PER_LIGHT ${_rp}\n"
+                         "#define SC_LIGHT_REG_${_rup}_RESERVED ${_rr}\n"
+                         "#define SC_LIGHT_REG_${_rup}_BITS(F, UF) SC_LIGHT_FMT_${_rfup}_BITS(F, UF)\n"
+                         "#define SC_LIGHT_REG_${_rup}_SIGNED SC_LIGHT_FMT_${_rfup}_SIGNED\n")
+endforeach()
+# named configs: F, and UF with the default spec_guard; LIGHT 0 where the lighting core does not take the width
+set(_ch_cfgs "")
+set(_ch_cfglist "")
+foreach(i RANGE ${_last})
+  string(JSON _name GET "${_cfg_json}" configs ${i} name)
+  string(JSON _frac GET "${_cfg_json}" configs ${i} frac)
+  string(MAKE_C_IDENTIFIER "${_name}" _cid)
+  string(TOUPPER "${_cid}" _cup)
+  math(EXPR _uf "${_frac} + ${_lsgd}")
+  if(_frac GREATER_EQUAL _lfmin AND _frac LESS_EQUAL _lfmax)
+    set(_lok 1)
+  else()
+    set(_lok 0)
+  endif()
+  string(APPEND _ch_cfglist " \\\n  X(${_name}, ${_cup})")
+  string(APPEND _ch_cfgs "#define SC_LIGHT_CONFIG_${_cup}_FRAC ${_frac}\n"
+                         "#define SC_LIGHT_CONFIG_${_cup}_UNIT_FRAC ${_uf}  /* F + SC_LIGHT_SPEC_GUARD_DEFAULT */\n"
+                         "#define SC_LIGHT_CONFIG_${_cup}_LIGHT ${_lok}\n")
+endforeach()
+# named feature sets: what a driver needs of each (the defaults of a key left out are FeatureSet's in
+# cmodel/include/shadecore/features.hpp; tests/light_driver_test.cpp checks every set against that parser)
+set(_ch_flag_names ambient diffuse norm low_shininess local_viewer blinn phong normalize two_side separate_specular
+    colour_material)
+set(_ch_flags "")
+set(_fbit 0)
+foreach(_fl IN LISTS _ch_flag_names)
+  string(TOUPPER "${_fl}" _flu)
+  string(APPEND _ch_flags "#define SC_LIGHT_FEAT_${_flu} (1u << ${_fbit})\n")
+  math(EXPR _fbit "${_fbit} + 1")
+endforeach()
+set(_ch_fs "")
+set(_ch_fslist "")
+string(JSON _nfs LENGTH "${_cfg_json}" feature_sets)
+math(EXPR _lastfs "${_nfs} - 1")
+function(_shadecore_fs_bool out i key default)
+  string(JSON _v ERROR_VARIABLE _missing GET "${_cfg_json}" feature_sets ${i} ${key})
+  if(_missing)
+    set(${out} ${default} PARENT_SCOPE)
+  elseif(_v)
+    set(${out} 1 PARENT_SCOPE)
+  else()
+    set(${out} 0 PARENT_SCOPE)
+  endif()
+endfunction()
+# _shadecore_fs_names(<out> <path...>): the string-or-list member at feature_sets <path...> as a list ("" when absent)
+function(_shadecore_fs_names out)
+  string(JSON _t ERROR_VARIABLE _missing TYPE "${_cfg_json}" feature_sets ${ARGN})
+  set(_l "")
+  if(_missing)
+  elseif(_t STREQUAL "STRING")
+    string(JSON _s GET "${_cfg_json}" feature_sets ${ARGN})
+    list(APPEND _l "${_s}")
+  else()
+    string(JSON _n LENGTH "${_cfg_json}" feature_sets ${ARGN})
+    if(_n GREATER 0)
+      math(EXPR _ln "${_n} - 1")
+      foreach(k RANGE ${_ln})
+        string(JSON _s GET "${_cfg_json}" feature_sets ${ARGN} ${k})
+        list(APPEND _l "${_s}")
+      endforeach()
+    endif()
+  endif()
+  set(${out} "${_l}" PARENT_SCOPE)
+endfunction()
+foreach(i RANGE ${_lastfs})
+  string(JSON _fsname GET "${_cfg_json}" feature_sets ${i} name)
+  string(MAKE_C_IDENTIFIER "${_fsname}" _fsid)
+  string(TOUPPER "${_fsid}" _fsup)
+  string(JSON _fscfg ERROR_VARIABLE _nocfg GET "${_cfg_json}" feature_sets ${i} config)
+  if(_nocfg)
+    set(_fscfg default)
+  endif()
+  if(NOT _fscfg IN_LIST SHADECORE_CONFIG_NAMES)
+    message(FATAL_ERROR "config/configs.json: feature set ${_fsname}: unknown config '${_fscfg}'")
+  endif()
+  set(_fsfrac "${SHADECORE_CONFIG_${_fscfg}_FRAC}")
+  string(JSON _fssg ERROR_VARIABLE _nosg GET "${_cfg_json}" feature_sets ${i} spec_guard)
+  if(_nosg)
+    set(_fssg ${_lsgd})
+  endif()
+  math(EXPR _fsuf "${_fsfrac} + ${_fssg}")
+  # slots: 4 bits each (bit 4j + k: slot j can take kind id k)
+  string(JSON _nsl LENGTH "${_cfg_json}" feature_sets ${i} lights)
+  math(EXPR _lastsl "${_nsl} - 1")
+  set(_slots 0)
+  foreach(j RANGE ${_lastsl})
+    _shadecore_fs_names(_kl ${i} lights ${j})
+    foreach(_kn IN LISTS _kl)
+      set(_kid "")
+      foreach(k RANGE ${_lastk})
+        string(JSON _kname GET "${_cfg_json}" light light_kinds ${k} name)
+        if(_kname STREQUAL _kn)
+          string(JSON _kid GET "${_cfg_json}" light light_kinds ${k} id)
+        endif()
+      endforeach()
+      if(_kid STREQUAL "")
+        message(FATAL_ERROR "config/configs.json: feature set ${_fsname}: unknown light kind '${_kn}'")
+      endif()
+      math(EXPR _slots "${_slots} | (1 << (4 * ${j} + ${_kid}))")
+    endforeach()
+  endforeach()
+  math(EXPR _slots "${_slots}" OUTPUT_FORMAT HEXADECIMAL)
+  # units: specular absent = cs16 (FeatureSet's default), "none" = no unit (the first unit stays cs16)
+  _shadecore_fs_names(_ul ${i} specular)
+  if(NOT _ul)
+    set(_ul cs16)
+  endif()
+  set(_units 0)
+  set(_first "${SHADECORE_VARIANT_cs16_ID}")
+  set(_have_first FALSE)
+  set(_fs_spec 1)
+  foreach(_un IN LISTS _ul)
+    if(_un STREQUAL "none")
+      set(_fs_spec 0)
+      continue()
+    endif()
+    if(NOT _un IN_LIST SHADECORE_VARIANT_NAMES)
+      message(FATAL_ERROR "config/configs.json: feature set ${_fsname}: unknown specular unit '${_un}'")
+    endif()
+    math(EXPR _units "${_units} | (1 << ${SHADECORE_VARIANT_${_un}_ID})")
+    if(NOT _have_first)
+      set(_first "${SHADECORE_VARIANT_${_un}_ID}")
+      set(_have_first TRUE)
+    endif()
+  endforeach()
+  math(EXPR _units "${_units}" OUTPUT_FORMAT HEXADECIMAL)
+  # reflection: absent = blinn
+  _shadecore_fs_names(_rl ${i} reflection)
+  if(NOT _rl)
+    set(_rl blinn)
+  endif()
+  set(_fsv_blinn 0)
+  set(_fsv_phong 0)
+  if("blinn" IN_LIST _rl)
+    set(_fsv_blinn 1)
+  endif()
+  if("phong" IN_LIST _rl)
+    set(_fsv_phong 1)
+  endif()
+  _shadecore_fs_bool(_fsv_ambient ${i} ambient 1)
+  _shadecore_fs_bool(_fsv_diffuse ${i} diffuse 1)
+  _shadecore_fs_bool(_fsv_norm ${i} norm 0)
+  _shadecore_fs_bool(_fsv_low_shininess ${i} low_shininess 0)
+  _shadecore_fs_bool(_fsv_local_viewer ${i} local_viewer 0)
+  _shadecore_fs_bool(_fsv_normalize ${i} normalize 1)
+  _shadecore_fs_bool(_fsv_two_side ${i} two_side 0)
+  _shadecore_fs_bool(_fsv_separate_specular ${i} separate_specular 0)
+  _shadecore_fs_bool(_fsv_colour_material ${i} colour_material 0)
+  set(_feat "")
+  foreach(_fl IN LISTS _ch_flag_names)
+    if(_fsv_${_fl})
+      string(TOUPPER "${_fl}" _flu)
+      list(APPEND _feat "SC_LIGHT_FEAT_${_flu}")
+    endif()
+  endforeach()
+  list(JOIN _feat " | " _featstr)
+  if(_featstr STREQUAL "")
+    set(_featstr "0u")
+  endif()
+  string(APPEND _ch_fslist " \\\n  X(${_fsname}, ${_fsup})")
+  string(APPEND _ch_fs "/* ${_fsname} */\n"
+                       "#define SC_LIGHT_FS_${_fsup}_NAME \"${_fsname}\"\n"
+                       "#define SC_LIGHT_FS_${_fsup}_CONFIG \"${_fscfg}\"\n"
+                       "#define SC_LIGHT_FS_${_fsup}_FRAC ${_fsfrac}\n"
+                       "#define SC_LIGHT_FS_${_fsup}_UNIT_FRAC ${_fsuf}\n"
+                       "#define SC_LIGHT_FS_${_fsup}_LIGHTS ${_nsl}\n"
+                       "#define SC_LIGHT_FS_${_fsup}_SLOT_KINDS ${_slots}u\n"
+                       "#define SC_LIGHT_FS_${_fsup}_UNITS ${_units}u\n"
+                       "#define SC_LIGHT_FS_${_fsup}_FIRST_UNIT ${_first}\n"
+                       "#define SC_LIGHT_FS_${_fsup}_FEATURES (${_featstr})\n")
+endforeach()
+file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/shadecore_light_regs.h" CONTENT
+"/* SPDX-License-Identifier: Apache-2.0 */
+/* generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit */
+/* Register map of the lighting core rtl/sc_light.v for C drivers (docs/driver.md, docs/lighting.md §4): the same
+ * entries as rtl/sc_light_regs.vh and shadecore/light_regs.hpp. Plain C99.
+ *
+ * The addresses are one map for every feature set and config: a register a core lacks ignores its write. What
+ * depends on the core is the format of a word: F = the feature set's config frac (FRAC) and UF = F + its
+ * spec_guard (SGUARD; the specular units' format). A fixed-point register holds round(value * 2^frac) in
+ * SC_LIGHT_REG_<name>_BITS(F, UF) bits (two's complement where _SIGNED). A per-light register of light j is at
+ * SC_LIGHT_REG_LIGHT(SC_LIGHT_REG_<name>, j); count consecutive addresses hold r, g, b or x, y, z. */
+#ifndef SHADECORE_LIGHT_REGS_H
+#define SHADECORE_LIGHT_REGS_H
+
+#include <stdint.h>
+
+#define SC_LIGHT_MAX_LIGHTS ${_lmax}
+#define SC_LIGHT_STRIDE ${_lstride}u                /* address of light j's register = addr + stride * j */
+#define SC_LIGHT_ADDR_BITS ${_labits}                /* width of reg_addr_i */
+#define SC_LIGHT_SPOT_EXP_BITS ${_lspeb}             /* the spot exponent register's width */
+#define SC_LIGHT_LOW_N_BITS ${_llnb}                 /* shininess below 2^this: the low-shininess chain (feature) */
+#define SC_LIGHT_MODEL_BITS ${_lmn}                  /* stored bits of light_model */
+#define SC_LIGHT_SPEC_GUARD_DEFAULT ${_lsgd}          /* a feature set's spec_guard when it names none */
+#define SC_LIGHT_FRAC_MIN ${_lfmin}                  /* the lighting core's F (config frac) */
+#define SC_LIGHT_FRAC_MAX ${_lfmax}
+#define SC_LIGHT_SPEC_GUARD_MIN ${_lsgmin}
+#define SC_LIGHT_SPEC_GUARD_MAX ${_lsgmax}
+#define SC_LIGHT_UNIT_FRAC_MAX ${_lufmax}             /* F + spec_guard at most this */
+
+#define SC_LIGHT_REG_LIGHT(reg, j) ((uint32_t)(reg) + (uint32_t)(j) * SC_LIGHT_STRIDE)
+#define SC_LIGHT_MASK(bits) ((uint32_t)((((uint64_t)1) << (bits)) - 1u))
+
+/* light_model fields */
+${_ch_lm}
+/* light kinds (light_mode's kind field) */
+${_ch_kinds}#define SC_LIGHT_NUM_KINDS ${_nk}
+
+/* specular units: the values of mat_unit (config/configs.json variants) */
+${_ch_units}#define SC_LIGHT_UNITS_KNOWN ${_ch_known}u
+#define SC_LIGHT_UNITS_THR ${_ch_thr}u  /* units whose material has the threshold mat_thr (the others take 0) */
+
+/* register formats: _FRAC(F, UF) fraction bits, _BITS(F, UF) the word's width; mode words' fields and values */
+${_ch_fmt}
+/* registers (SC_LIGHT_REG_LIST(X) expands X(name, NAME) for each) */
+#define SC_LIGHT_REG_LIST(X)${_ch_reglist}
+${_ch_regs}
+/* named configs (config/configs.json configs): F, UF with the default spec_guard, LIGHT 1 where the lighting
+ * core takes the width (SC_LIGHT_FRAC_MIN..SC_LIGHT_FRAC_MAX); SC_LIGHT_CONFIG_LIST(X) expands X(name, NAME) for each */
+#define SC_LIGHT_CONFIG_LIST(X)${_ch_cfglist}
+${_ch_cfgs}
+/* feature flags of a core (config/configs.json feature_sets keys) */
+${_ch_flags}
+/* named feature sets (config/configs.json feature_sets): F, UF, slots (LIGHTS; SLOT_KINDS: bit 4j + k set = slot j
+ * can take kind k), UNITS (bit v set: unit v is in the core; 0: no specular), FIRST_UNIT (the unit a material
+ * without its own selects), FEATURES (SC_LIGHT_FEAT_*). SC_LIGHT_FS_LIST(X) expands X(name, NAME) for each. */
+#define SC_LIGHT_FS_LIST(X)${_ch_fslist}
+${_ch_fs}
+#endif /* SHADECORE_LIGHT_REGS_H */
+" @ONLY)
+
 # RTL file lists (config/configs.json "rtl" and variants[].rtl; the one source, issue 20). Sets
 #   SHADECORE_RTL_SOURCES            sc_specular with every unit and sc_energy (absolute paths)
 #   SHADECORE_LIGHT_SOURCES          sc_light with every operator and SHADECORE_RTL_SOURCES

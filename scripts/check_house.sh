@@ -13,11 +13,11 @@ while IFS= read -r -d '' f; do
   if ! head -n 3 "$f" | grep -q 'SPDX-License-Identifier: Apache-2.0'; then
     echo "check_house: no SPDX line: $f"; fail=1
   fi
-done < <(find cli cmodel common stimulus sim rtl tests bench scripts cmake handoff formal signoff python .ci CMakeLists.txt \
+done < <(find cli cmodel common driver stimulus sim rtl tests bench scripts cmake handoff formal signoff python .ci CMakeLists.txt \
            -path tests/data -prune -o -type f \
            \( -name '*.cpp' -o -name '*.hpp' -o -name '*.v' -o -name '*.vh' -o -name '*.vlt' -o -name '*.sh' \
-              -o -name '*.py' -o -name '*.cmake' -o -name CMakeLists.txt -o -name run \) -print0)
-if grep -rn --include='*.cpp' --include='*.hpp' '\.\./sim\|\.\./cli' cli cmodel common stimulus sim tests bench python; then
+              -o -name '*.py' -o -name '*.cmake' -o -name CMakeLists.txt -o -name run -o -name '*.c' -o -name '*.h' \) -print0)
+if grep -rn --include='*.cpp' --include='*.hpp' --include='*.c' --include='*.h' '\.\./sim\|\.\./cli' cli cmodel common driver stimulus sim tests bench python; then
   echo "check_house: a source includes another layer's folder by a relative path"; fail=1
 fi
 # Templates compiled into the CLI (cli/templates/): the SPDX line is their first line (cmake/EmbedTemplates.cmake
