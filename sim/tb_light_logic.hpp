@@ -107,6 +107,11 @@ struct LightPinOps {
     c.c[0] ^= 1u;
     return c;
   }
+  // EdgeState::reg: 0 no register write presented, 1 presented and held (the core drains first), 2 taken.
+  [[nodiscard]] int reg_port() const {
+    const D& d = self();
+    return !d.reg_we.read() ? 0 : d.reg_ready.read() ? 2 : 1;
+  }
   // A register write is taken at an edge where reg_we_i && reg_ready_o; reg_ready_o must be low in reset.
   template <class Sb>
   bool observe_state(Sb& sb, uint64_t cycle) {

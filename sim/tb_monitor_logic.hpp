@@ -61,7 +61,7 @@ class MonitorLogic {
     const bool irdy = pins_.in_ready.read();
     const uint32_t otag = pins_.out_tag.read();
     const Out opay = pins_.out_payload();
-    if (edge_sample) edge_sample(edge_ctx, EdgeState{rst_n, iv, irdy, ov, ordy, sb_.in_flight()});
+    if (edge_sample) edge_sample(edge_ctx, EdgeState{rst_n, iv, irdy, ov, ordy, sb_.in_flight(), pins_.reg_port()});
 
     if (held_ && (!ov || otag != held_tag_ || opay != held_pay_))
       sb_.error("output changed while held back by out_ready_i low (valid " + std::to_string(ov) +

@@ -38,6 +38,7 @@ struct Pins {
     return static_cast<int64_t>(static_cast<uint64_t>(in_cos.read()) << sh) >> sh;
   }
   [[nodiscard]] uint32_t out_payload() const { return out_spec.read(); }
+  [[nodiscard]] int reg_port() const { return 0; }  // EdgeState::reg: a unit has no register port
   static uint32_t corrupt(uint32_t v) { return v ^ 1u; }  // self-test: flip bit 0
   // A material or table write at this edge (after the input of the same edge: it uses the old state).
   template <class Sb>

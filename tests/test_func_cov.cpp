@@ -84,4 +84,31 @@ TEST(FuncCovModel, LessStimulusLeavesNamedHoles) {
   for (const auto& b : m) EXPECT_FALSE(b.empty());
 }
 
+// The register port's bins (sampled per edge from the pins, EdgeState::reg): a write held while fragments drain
+// counts "waiting" (and "waiting while the output is held" when the consumer stalls the drain), a write taken
+// counts "taken", nothing counts in reset or without a write presented.
+TEST(FuncCovModel, RegisterPortBinsFollowTheEdge) {
+  const LightCore core(feature_set_named_or_file("gl_default"));
+  sim::LightFuncCov cov(core);
+  const auto& names = cov.bins().names();
+  auto count = [&](const std::string& name) {
+    for (size_t i = 0; i < names.size(); ++i)
+      if (names[i] == name) return cov.bins().count(static_cast<int>(i));
+    ADD_FAILURE() << "no bin " << name;
+    return 0u;
+  };
+  const std::string wait = "handshake register write waiting for a drain (reg_we high, reg_ready low)";
+  const std::string held = "handshake register write waiting while the output is held (out_valid high, out_ready low)";
+  const std::string taken = "handshake register write taken";
+  cov.sample_edge(sim::EdgeState{true, false, true, false, true, 0, 0});   // no write presented
+  cov.sample_edge(sim::EdgeState{false, false, false, false, true, 3, 1});  // in reset
+  EXPECT_EQ(count(wait) + count(held) + count(taken), 0u);
+  cov.sample_edge(sim::EdgeState{true, false, false, true, false, 2, 1});   // held, the drain stalled by out_ready
+  cov.sample_edge(sim::EdgeState{true, false, false, true, true, 1, 1});    // held, draining
+  cov.sample_edge(sim::EdgeState{true, false, false, false, true, 0, 2});   // taken
+  EXPECT_EQ(count(wait), 2u);
+  EXPECT_EQ(count(held), 1u);
+  EXPECT_EQ(count(taken), 1u);
+}
+
 }  // namespace

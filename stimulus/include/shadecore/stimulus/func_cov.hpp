@@ -30,6 +30,9 @@ namespace shadecore::sim {
 struct EdgeState {
   bool rst_n, in_valid, in_ready, out_valid, out_ready;
   uint64_t in_flight;
+  // The lighting core's register port (the pins adapter's reg_port()): 0 no write presented (or no register port),
+  // 1 a write presented and held (reg_we_i high, reg_ready_o low: the core drains its fragments first), 2 taken.
+  int reg = 0;
 };
 
 // A group of named bins.
@@ -107,6 +110,27 @@ class HandshakeBins {
  private:
   static constexpr int kBins = 8;
   int b_[kBins] = {};
+};
+
+// Register-port bins of the lighting core, sampled per clock edge in its group.
+class RegPortBins {
+ public:
+  void declare(FuncCov& c) {
+    wait_ = c.declare("handshake register write waiting for a drain (reg_we high, reg_ready low)");
+    wait_held_ = c.declare("handshake register write waiting while the output is held (out_valid high, out_ready low)");
+    taken_ = c.declare("handshake register write taken");
+  }
+  void sample(FuncCov& c, const EdgeState& e) const {
+    if (!e.rst_n) return;
+    if (e.reg == 1) {
+      c.hit(wait_);
+      if (e.out_valid && !e.out_ready) c.hit(wait_held_);  // the drain itself stalled by the consumer
+    }
+    if (e.reg == 2) c.hit(taken_);
+  }
+
+ private:
+  int wait_ = -1, wait_held_ = -1, taken_ = -1;
 };
 
 // The specular unit: code class × n class.
@@ -240,12 +264,16 @@ class LightFuncCov {
     }
     none_on_ = cov_.declare("no light on (the scene term alone)");
     hs_.declare(cov_);
+    reg_.declare(cov_);
   }
   template <class Context>
   void attach(Context* ctx) {
     cov_.attach(ctx);
   }
-  void sample_edge(const EdgeState& e) { hs_.sample(cov_, e); }
+  void sample_edge(const EdgeState& e) {
+    hs_.sample(cov_, e);
+    reg_.sample(cov_, e);
+  }
   [[nodiscard]] const FuncCov& bins() const { return cov_; }
 
   void sample(const LightRegs& r, const Fragment& fr, const LightCoreTrace& t) {
@@ -313,6 +341,7 @@ class LightFuncCov {
  private:
   FuncCov cov_;
   HandshakeBins hs_;
+  RegPortBins reg_;
   const LightCore& core_;
   int kind_[kMaxLights][kNumLightKinds][2] = {};
   int spot_[kMaxLights][3] = {};
