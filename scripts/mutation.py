@@ -659,7 +659,8 @@ def describe(mut):
 def previous_design(opts, name):
     """--report-only, a design whose cache no longer holds a finished campaign (a single-mutant run such as the ctest
     overwrites it when the fingerprint changed): its complete entry of the report being replaced (--json), carried over
-    as it was, with the commit of its sources, and marked so. None when that report has no complete entry."""
+    as it was, with the commit of its sources, and marked so; a partial entry (a campaign stopped for time) is carried
+    over as partial. None when that report has no entry of it."""
     try:
         prev = json.load(open(opts.json))
     except (OSError, ValueError):
@@ -667,9 +668,11 @@ def previous_design(opts, name):
     if prev.get("count") != opts.count or prev.get("seed") != opts.seed:
         return None
     for d in prev.get("designs", []):
-        if d.get("name") == name and len(d.get("results", [])) == opts.count and not d.get("partial"):
+        if d.get("name") == name and d.get("results"):
             keep = {k: d[k] for k in ("name", "unit", "handoff", "params", "stages", "timeouts", "source", "results")
                     if k in d}
+            if len(d["results"]) < opts.count:  # a campaign stopped for time: carried as the partial run it was
+                keep["partial"] = True
             return dict(keep, count=opts.count, seed=opts.seed, baseline=d.get("baseline_seconds"),
                         eq_timeout=d.get("equivalence_bound_seconds"),
                         carried=d.get("carried") or prev.get("date", "an earlier report"))
