@@ -148,8 +148,11 @@ module sc_schlick_iter #(
   wire [NQ-1:0] quo_nx = {quo_q[NQ-2:0], b};
   // round half up: out = (q + 1) >> 1 with q = {Q, b}, Q = quo_q[NQ-2:0], is Q + b (<= 2^F); Q + 1 is formed
   // beside the step's subtraction, so only a select follows b
+  // The select takes its own compare, 2r + 1 > Dc (= b, for integers), written on other operands so that synthesis
+  // keeps it apart from the subtraction's sign: b then drives the remainder's select alone, this one the output's.
   wire [NQ-2:0] q_inc  = quo_q[NQ-2:0] + {{(NQ-2){1'b0}}, 1'b1};
-  wire [F:0]    rnd    = b ? q_inc : quo_q[NQ-2:0];
+  wire          b_out  = ({1'b0, r_q, 1'b1} > {2'b0, den_q});
+  wire [F:0]    rnd    = b_out ? q_inc : quo_q[NQ-2:0];
   wire unused_dp = &{1'b0, r_nx[DB], quo_q[NQ-1]};
 
   always @(posedge clk_i) begin
