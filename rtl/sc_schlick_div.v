@@ -68,6 +68,7 @@ module sc_schlick_div #(
   localparam integer F  = FRAC;
   localparam integer DB = FRAC + 11;   // Dc <= n*2^F <= 2^(F+10)
   localparam integer NQ = FRAC + 2;    // quotient bits = division stages Q0..Q(F+1)
+  localparam integer HB = (DB + 1) / 2;   // the remainder select's halves: bits [DB:HB] by b, [HB-1:0] by b2
   localparam integer NS = FRAC + 4 + MREG;  // register stages S0, (M1,) S1, Q0..Q(F+1) = latency
 
   // ---------------------------------------------------------------------------- check configuration
@@ -182,7 +183,11 @@ module sc_schlick_div #(
       wire [DB:0]   r2     = {r_in, 1'b0};                       // 2r < 2·Dc
       wire [DB+1:0] diff   = {1'b0, r2} - {2'b0, den_in};        // sign bit = borrow
       wire          b      = !diff[DB+1];                        // r2 >= Dc
-      wire [DB:0]   r_nx   = b ? diff[DB:0] : r2;                // < Dc: top bit is 0
+      // The same bit from a compare of its own, 2r + 1 > Dc, on other operands so that synthesis keeps it apart
+      // from the subtraction's sign: b selects the remainder's upper half, b2 its lower half and the output
+      // (each sign half the fanout; rtl/sc_schlick_iter.v does the same)
+      wire          b2     = ({1'b0, r_in, 1'b1} > {2'b0, den_in});
+      wire [DB:0]   r_nx   = {b ? diff[DB:HB] : r2[DB:HB], b2 ? diff[HB-1:0] : r2[HB-1:0]};   // < Dc: top bit 0
       wire [NQ-1:0] quo_nx = {quo_in[NQ-2:0], b};
       wire unused_step = &{1'b0, r_nx[DB], quo_in[NQ-1]};
       if (k < NQ - 1) begin : g_mid
@@ -195,12 +200,13 @@ module sc_schlick_div #(
           end
         end
       end else begin : g_last
-        // q = ⌊c·2^(F+1)/Dc⌋ <= 2^(F+1); out = (q + 1) >> 1 <= 2^F (round half up)
-        wire [NQ:0] rnd = {1'b0, quo_nx} + {{NQ{1'b0}}, 1'b1};
-        wire unused_rnd = &{1'b0, rnd[NQ], rnd[0]};
+        // q = ⌊c·2^(F+1)/Dc⌋ <= 2^(F+1); out = (q + 1) >> 1 <= 2^F (round half up) = Q + b with Q the
+        // bits before the last: Q + 1 is formed beside the step's subtraction, and b2 selects
+        wire [NQ-2:0] q_inc = quo_in[NQ-2:0] + {{(NQ-2){1'b0}}, 1'b1};
+        wire unused_last = &{1'b0, quo_nx, r_nx};
         always @(posedge clk_i) begin
           if (adv) begin
-            out_q     <= rnd[NQ-1:1];
+            out_q     <= b2 ? q_inc : quo_in[NQ-2:0];
             out_tag_q <= tag_q[(k-1)*TAGW +: TAGW];
           end
         end
