@@ -58,10 +58,14 @@ void run(HandoffArgs& ha) {
   a.count_given = ha.sub->count("--count") > 0;
   if (ha.core == "lighting") {
     // The feature set fixes the unit and the widths: the unit options do not apply.
-    for (const char* opt : {"--variant", "--config", "--frac", "--guard", "--cutoff", "--norm", "--coef", "--mreg"})
+    for (const char* opt : {"--variant", "--config", "--frac", "--guard", "--cutoff", "--norm", "--coef"})
       if (ha.sub->count(opt) > 0)
         throw std::invalid_argument(std::string(opt) + " does not apply to --core lighting (the feature set fixes the "
                                     "specular unit and the widths)");
+    if (ha.sub->count("--mreg") > 0) {
+      if (ha.unit->mreg < 0) throw std::invalid_argument(fmt::format("--mreg {} out of range (0 or 1)", ha.unit->mreg));
+      a.mreg = ha.unit->mreg;
+    }
     run_lighting(a);
     return;
   }
@@ -100,7 +104,8 @@ void add_handoff(CLI::App& app) {
                   "The pipelining parameter MREG (cs16, schlick_div, schlick_nr, cs16_faithful, cs16_compact: "
                   "config/configs.json variants[].mreg_stages): 1 puts a register inside each product (cs16 latency "
                   "7 -> 12, schlick_div 20 -> 21, schlick_nr 10 -> 16, the cs16 forms 5 -> 11; the same outputs; "
-                  "docs/signoff.md), default 0");
+                  "docs/signoff.md), default 0; with --core lighting it replaces the feature set's key mreg (share 1: "
+                  "the normalisers' products registered, 10 -> 18 cycles each, and the units' MREG)");
   sub->add_option("--core", a->core, "Which core: specular (default) or lighting")->check(cliargs::NonEmpty("core"));
   sub->add_option("--features", l.features, "Lighting core feature set: a name of config/configs.json \"feature_sets\" "
                                             "or a JSON file (with --core lighting)")->check(cliargs::NonEmpty("feature set"));

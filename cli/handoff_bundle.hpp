@@ -113,6 +113,7 @@ struct BundleBase {
 // The command's options shared by both cores (cli/cmd_handoff.cpp registers them).
 struct Options {
   std::string features;      // lighting: a named feature set or a JSON file
+  int mreg = -1;             // lighting: --mreg (the feature set's key mreg replaced); -1 = the set's own
   std::string out;
   bool force = false;
   int tagw = 8;

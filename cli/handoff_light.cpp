@@ -580,7 +580,13 @@ std::string lighting_vectors(const FeatureSet& fset, const std::string& mode, ui
 void run_lighting(const Options& o) {
   // ---- validate everything before doing anything
   if (o.features.empty()) throw std::invalid_argument("--core lighting needs --features NAME|FILE");
-  const FeatureSet fs = feature_set_named_or_file(o.features);
+  FeatureSet fs = feature_set_named_or_file(o.features);
+  if (o.mreg >= 0) {
+    if (o.mreg > 1) throw std::invalid_argument(fmt::format("--mreg {} out of range (0 or 1)", o.mreg));
+    if (o.mreg == 1 && fs.share != 1)
+      throw std::invalid_argument(fmt::format("--mreg 1 needs share 1; feature set '{}' has share {}", fs.name, fs.share));
+    fs.mreg = o.mreg;
+  }
   if (o.out.empty()) throw std::invalid_argument("--out DIR is required");
   const LightCore core(fs);
   if (o.tagw < 1 || o.tagw > 32) throw std::invalid_argument("--tagw must be in 1..32");

@@ -273,6 +273,9 @@ string(JSON _lstride GET "${_cfg_json}" light light_stride)
 string(JSON _labits GET "${_cfg_json}" light addr_bits)
 string(JSON _lspeb GET "${_cfg_json}" light spot_exponent_bits)
 string(JSON _llnb GET "${_cfg_json}" light low_shininess_bits)
+string(JSON _llat_n GET "${_cfg_json}" light latency normalize)
+string(JSON _llat_r GET "${_cfg_json}" light latency recip)
+string(JSON _llat_mn GET "${_cfg_json}" light latency mreg_normalize)
 string(JSON _nk LENGTH "${_cfg_json}" light light_kinds)
 math(EXPR _lastk "${_nk} - 1")
 set(_kenum "")
@@ -316,7 +319,7 @@ set(_rtab "")
 set(_ch_regs "")      # the C header's lines (shadecore_light_regs.h)
 set(_ch_reglist "")
 set(_reg_fmts "")     # name=format, checked against light.formats below
-set(_ruse "MAX_LIGHTS[0], LIGHT_STRIDE[0], REG_ADDR_BITS[0], SPOT_EXP_BITS[0], LOW_N_BITS[0], LIGHT_MODEL_BITS[0]")
+set(_ruse "MAX_LIGHTS[0], LIGHT_STRIDE[0], REG_ADDR_BITS[0], SPOT_EXP_BITS[0], LOW_N_BITS[0], LIGHT_MODEL_BITS[0], NORMALIZE_LATENCY[0], RECIP_LATENCY[0], MREG_NORMALIZE[0]")
 foreach(i RANGE ${_lastr})
   string(JSON _rname GET "${_cfg_json}" light registers ${i} name)
   string(JSON _raddr GET "${_cfg_json}" light registers ${i} addr)
@@ -368,6 +371,9 @@ inline constexpr int kRegAddrBits = ${_labits};         // width of reg_addr_i
 inline constexpr int kSpotExpBits = ${_lspeb};          // the spot exponent register = the spot power chain's stages
 inline constexpr int kLowNBits = ${_llnb};             // shininess n < 2^kLowNBits: the low-shininess chain's stages
 inline constexpr int kLightModelBits = ${_lmn};        // stored bits of light_model (its fields below)
+inline constexpr int kNormalizeLatency = ${_llat_n};     // rtl/sc_normalize.v (light.latency)
+inline constexpr int kRecipLatency = ${_llat_r};         // rtl/sc_recip.v
+inline constexpr int kMregNormalize = ${_llat_mn};       // cycles the lighting core's MREG = 1 adds to the normaliser
 ${_lmhpp}${_rhpp}// reserved: laid out for the GL-completeness issue, no register in this core (a write is ignored)
 struct RegInfo { std::string_view name; uint32_t addr; int count; std::string_view format; bool per_light; bool reserved; };
 inline constexpr std::array<RegInfo, ${_nr}> kRegisters{{
@@ -387,6 +393,9 @@ localparam integer REG_ADDR_BITS = ${_labits};
 localparam integer SPOT_EXP_BITS = ${_lspeb};
 localparam integer LOW_N_BITS = ${_llnb};
 localparam integer LIGHT_MODEL_BITS = ${_lmn};
+localparam integer NORMALIZE_LATENCY = ${_llat_n};
+localparam integer RECIP_LATENCY = ${_llat_r};
+localparam integer MREG_NORMALIZE = ${_llat_mn};
 ${_lmvh}${_kvh}${_rvh}// every name above, so that a module using a few of them lints clean (Verilator's unused pattern)
 localparam [0:0] unused_light_regs = ^{1'b0, ${_ruse}${_kusestr}};
 " @ONLY)

@@ -63,6 +63,10 @@
 //                 tag widens by 3·(F+1) bits) and the scene term is formed per fragment    (default 0)
 //   CHANNELS      1 (mono: channel 0 only, out_g_o = out_b_o = 0) or 3 (RGB)           (default 3)
 //   TAGW          width of the opaque fragment tag, >= 1                               (default 8)
+//   MREG          0/1, the pipelining parameter (feature-set key mreg; needs SHARE = 1): 1 cuts every
+//                 product of the vector normalisers with a register (rtl/sc_normalize.v, NL 10 -> 18) and
+//                 passes MREG to the specular units (their mreg_stages, config/configs.json); the same
+//                 outputs, more latency (docs/signoff.md)                                (default 0)
 //   At least one of AMBIENT, DIFFUSE, UNITS must be non-zero.
 //
 // Ports (docs/spec.md §4 convention: all flops on the rising edge of clk_i; rst_ni synchronous,
@@ -104,7 +108,8 @@
 //             product's truncation, docs/spec.md §10.4).
 //
 // Latency   : per pass LATENCY_P advancing edges from its issue to the colour (out_ready_i high):
-//               NL = 10 (sc_normalize), RL = 7 (sc_recip), NEED_N = DIFFUSE | UNITS,
+//               NL = 10 + 8·MREG (sc_normalize), RL = 7 (sc_recip) (config/configs.json light.latency, through
+//               sc_light_regs.vh), NEED_N = DIFFUSE | UNITS,
 //               LV = UNITS & LOCAL_VIEWER, ANY_ATT = some slot can be point_att or spot,
 //               ANY_SPOT = some slot can be spot,
 //               ANY_PL = ANY_ATT | (NEED_N & some slot can be point)
@@ -126,7 +131,7 @@
 //               NB   = 3 + ANY_ATT
 //               LATENCY_P = T_F + (UNITS ? L_unit : 0) + NB, L_unit = the material's unit's
 //                           Unit::latency(): cs16 7, cs16 forms 5, schlick_nr 10, schlick_div /
-//                           schlick_iter VF+4; +2 with ENERGY
+//                           schlick_iter VF+4; +2 with ENERGY; + the unit's mreg_stages with MREG
 //             and the last pass issues (passes − 1)·interval edges after the acceptance (interval = S,
 //             schlick_iter: VF+4 rounded up to a multiple of S):
 //             LightCore::latency(regs) = LATENCY_P + (passes − 1)·interval. Under backpressure the
@@ -164,7 +169,8 @@ module sc_light #(
     parameter integer TWO_SIDE     = 0,
     parameter integer COL_MAT      = 0,
     parameter integer CHANNELS     = 3,
-    parameter integer TAGW         = 8
+    parameter integer TAGW         = 8,
+    parameter integer MREG         = 0
 ) (
     input  wire              clk_i,
     input  wire              rst_ni,
@@ -214,10 +220,11 @@ module sc_light #(
   endfunction
   // the longest unit latency among UNITS (for the in-flight counter's width)
   function integer unit_latency(input integer v);
+    // (+ 6 with MREG: at least any unit's mreg_stages, config/configs.json; a bound for a counter's width)
     unit_latency = ((v == VARIANT_CS16) ? 7 : (cs16_sq_param(v, 0) == 1) ? 5 :
                     (v == VARIANT_SCHLICK_NR) ? 10 :
                     (v == VARIANT_SCHLICK_DIV || v == VARIANT_SCHLICK_ITER) ? FRAC + SGUARD + 4 : 0) +
-                   ((ENERGY != 0) ? 2 : 0);
+                   ((ENERGY != 0) ? 2 : 0) + 6 * MREG;
   endfunction
   function integer max_unit_latency(input integer dummy);
     integer v;
@@ -274,8 +281,8 @@ module sc_light #(
   localparam integer PW  = FRAC + 8;   // position component (and directional L), kc/kl/kq, coef
   localparam integer CL  = FRAC + 1;   // colour
   localparam integer AW  = REG_ADDR_BITS;
-  localparam integer NL  = 10;         // latency of rtl/sc_normalize.v
-  localparam integer RL  = 7;          // latency of rtl/sc_recip.v
+  localparam integer NL  = NORMALIZE_LATENCY + MREG_NORMALIZE * MREG;   // latency of rtl/sc_normalize.v
+  localparam integer RL  = RECIP_LATENCY;                               // latency of rtl/sc_recip.v
   // structure sizes, clamped so that an illegal LIGHTS / LANES / CHANNELS reaches its own error message
   localparam integer NLT = (LIGHTS < 1) ? 1 : ((LIGHTS > MAX_LIGHTS) ? MAX_LIGHTS : LIGHTS);
   localparam integer NLN = (LANES < 1) ? 1 : ((LANES > NLT) ? NLT : LANES);
@@ -377,6 +384,9 @@ module sc_light #(
     end
     if (LANES < 1 || LANES > LIGHTS) begin : g_check_lanes
       sc_light_error_illegal_LANES_legal_range_is_1_to_LIGHTS u_error ();
+    end
+    if ((MREG != 0 && MREG != 1) || (MREG != 0 && SHARE != 1)) begin : g_check_mreg
+      sc_light_error_illegal_MREG_must_be_0_or_1_and_1_needs_SHARE_1 u_error ();
     end
     if (SHARE < 1 || SHARE > 4) begin : g_check_share
       sc_light_error_illegal_SHARE_legal_range_is_1_to_4 u_error ();
@@ -719,7 +729,7 @@ module sc_light #(
         assign nn0 = norm_mode ? pool_nhat : n_raw_v;
       end else if (NORMALIZE != 0) begin : g_norm_n
         wire [3*NV-1:0] n_norm;
-        sc_normalize #(.FRAC(VF), .VW(NW)) u_norm_n (
+        sc_normalize #(.FRAC(VF), .VW(NW), .MREG(MREG)) u_norm_n (
             .clk_i(clk_i), .en_i(adv_f), .v_i(n_in), .u_o(n_norm), .v_o(n_raw));
         assign nn0 = norm_mode ? n_norm : n_raw_v;
         wire unused_pool_n = &{1'b0, pool_nhat};
@@ -767,7 +777,7 @@ module sc_light #(
         assign v_norm = pool_vhat;
       end else begin : g_own_v
         wire [3*(PW+1)-1:0] mp_pass_unused;
-        sc_normalize #(.FRAC(VF), .VW(PW+1)) u_norm_v (
+        sc_normalize #(.FRAC(VF), .VW(PW+1), .MREG(MREG)) u_norm_v (
             .clk_i(clk_i), .en_i(adv_f), .v_i(mp), .u_o(v_norm), .v_o(mp_pass_unused));
         wire unused_pool_v = &{1'b0, pool_vhat};
       end
@@ -836,7 +846,7 @@ module sc_light #(
           .CAN_SPOT(ANY_SPOT), .T_SP(T_SP), .SEB(SPEB), .LOW_N(HAS_LO), .LNB(LNB),
           .NEED_N(NEED_N), .SPECULAR(SPECULAR), .DIFFUSE(DIFFUSE), .BLINN(BLINN), .PHONG(PHONG),
           .LV(LV), .T_L(T_L), .T_A(T_A), .T_H(T_H), .T_RV(T_RV), .T_XB(T_XB), .T_XP(T_XP),
-          .T_ATT(T_ATT), .T_F(T_F), .EXT_NORM((SH > 1) ? 1 : 0), .SH(SH)
+          .T_ATT(T_ATT), .T_F(T_F), .EXT_NORM((SH > 1) ? 1 : 0), .SH(SH), .MREG(MREG)
       ) u_lane (
           .clk_i(clk_i), .en_i(adv_f), .idx_i(lane_idx[3*j +: 3]), .p_i(p_in),
           .nn_a_i(nn_a), .nn_b_i(nn_b), .nn_p_i(nn_p), .v_h_i(v_h), .v_p_i(v_p), .phong_i(phong_mode),
@@ -893,7 +903,8 @@ module sc_light #(
                 .CUTOFF (CUTOFF),
                 .TAGW   (UTAG),
                 .ENERGY ((SNORM != 0) ? 0 : ENERGY),
-                .SHARE  (SH)
+                .SHARE  (SH),
+                .MREG   (MREG)
             ) u_unit (
                 .clk_i      (clk_i),
                 .rst_ni     (rst_ni),
@@ -1129,7 +1140,7 @@ module sc_light #(
           end
         end
         wire [3*PVW-1:0] pass_unused;
-        sc_normalize #(.FRAC(VF), .VW(PVW)) u_norm (
+        sc_normalize #(.FRAC(VF), .VW(PVW), .MREG(MREG)) u_norm (
             .clk_i(clk_i), .en_i(adv_f), .v_i(pin), .u_o(pu[u*3*NV +: 3*NV]), .v_o(pass_unused));
       end
       if (NPOOL < 4) begin : g_pu_pad

@@ -37,6 +37,7 @@
 //             L̂ and Ĥ are normalised outside the lane by the core's shared normalisers — the lane
 //             hands out P_j − P (stage 0, lv_o) and H (stage T_H, hv_o) and takes L̂ (T_L, lhat_i) and
 //             Ĥ (T_H+NL, hhat_i); with EXT_NORM = 0 these ports are unused and the lane has its own.
+//             MREG: rtl/sc_light.v's pipelining parameter, passed to the lane's own normalisers.
 // Ports     : clk_i, en_i; idx_i (slot, stage 0); p_i (fragment position, stage 0); nn_a_i (N̂ at
 //             T_A), nn_b_i (N̂ at T_H+NL), nn_p_i (N̂ at T_A+1), v_h_i (V̂ at T_H), v_p_i (V̂ at T_RV);
 //             phong_i (mode); pos_i, katt_i, kind_i, sdir_i, scos_i, sexp_i (every slot's registers,
@@ -73,7 +74,8 @@ module sc_light_lane #(
     parameter integer LNB      = 4,
     parameter integer T_F      = 1,
     parameter integer EXT_NORM = 0,
-    parameter integer SH       = 1
+    parameter integer SH       = 1,
+    parameter integer MREG     = 0
 ) (
     input  wire                      clk_i,
     input  wire                      en_i,
@@ -251,7 +253,7 @@ module sc_light_lane #(
       end else begin : g_own_l
         assign lv_o = {3*(PW+1){1'b0}};
         wire unused_lhat = &{1'b0, lhat_i};
-        sc_normalize #(.FRAC(VF), .VW(PW+1)) u_norm_l (
+        sc_normalize #(.FRAC(VF), .VW(PW+1), .MREG(MREG)) u_norm_l (
             .clk_i(clk_i), .en_i(en_i), .v_i(dv), .u_o(l_pt), .v_o(dv_d));
       end
     end else begin : g_no_point
@@ -544,7 +546,7 @@ module sc_light_lane #(
         assign hv_o = {3*HVW{1'b0}};
         wire unused_hhat = &{1'b0, hhat_i};
         wire [3*HVW-1:0] h_pass_unused;
-        sc_normalize #(.FRAC(VF), .VW(HVW)) u_norm_h (
+        sc_normalize #(.FRAC(VF), .VW(HVW), .MREG(MREG)) u_norm_h (
             .clk_i(clk_i), .en_i(en_i), .v_i(h), .u_o(hn), .v_o(h_pass_unused));
       end
       // x = ⌊N̂·Ĥ / 2^VF⌋ (T_XB = T_H+NL+1)

@@ -14,6 +14,12 @@
 //         (the lighting core uses F + SGUARD of rtl/sc_light.v)
 //   VW    width of each signed input component (any common fraction: the result does not
 //         depend on it)                                              2 <= VW <= 41 (default 18)
+//   MREG  the pipelining parameter, 0 or 1 (default 0): 1 cuts each of the seven products (the
+//         squares of S1, S4..S9) with a register between its partial-product tree and its final
+//         adder (rtl/sc_mul_stage.v, rtl/sc_mul_reg.v) and S1's sum after one more register:
+//         LATENCY 10 -> 18, the same outputs (config/configs.json light.normalize_latency and
+//         light.mreg_stages.normalize). The subtractions of S4 and S7 and the rounding add of S10
+//         then go inside the products' trees as addends ("MREG = 1" below).
 //
 // Ports : clk_i             clock, all flops on the rising edge
 //         en_i              enable (the embedding pipeline's global enable)
@@ -23,8 +29,9 @@
 //         v_o[3*VW-1:0]     v_i delayed by the latency (aligned with u_o, for a caller that needs
 //                           the vector with its normalised form; unused bits cost nothing)
 //
-// Latency : LATENCY = 10 enabled edges (stages S1..S10): u_o (and v_o) show the result for the
-//           v_i presented before the enabled edge that was 10 enabled edges ago.
+// Latency : LATENCY = 10 + 8·MREG enabled edges (stages S1..S10; with MREG = 1 each product stage
+//           is two and S1 three): u_o (and v_o) show the result for the v_i presented LATENCY
+//           enabled edges ago.
 //
 // Datapath (R = F+6 fraction bits of y, MB = F+6+(F mod 2) even mantissa fraction bits, T = 10
 // seed fraction bits, SWF = max(2·VW, MB+2) even, HW = SWF/2):
@@ -47,14 +54,21 @@
 //               C model), computed as ⌊(p_i·2^k + 2^(HW+4)) / 2^(HW+5)⌋: a left barrel shift by k,
 //               a constant rounding add and a constant slice (arithmetic shift, ties toward +inf)
 //
-// Both data-dependent shifts (S2 by 2k, S10 by k) are log2-stage barrel shifters. For s = 0 the
+// Both data-dependent shifts (S2 by 2k, S10 by k) are log2-stage barrel shifters.
+//
+// MREG = 1: each product's final adder is after its register, so nothing else may follow it in its
+// stage. S4 and S7 form c = ⌊(Kc − m·a)/2^MB⌋ with Kc = 3·2^(R+MB) + 2^MB − 1 (= 3·2^R − ⌊m·a/2^MB⌋
+// exactly), as the signed product m·~a (= −m·a − m) plus the addend Kc + m, whose low part
+// m + 2^MB − 1 is added at S3 and travels with m. S9 adds 2^(HW+4−k) to v_i·y2 in its tree, so that
+// S10 is the shift alone: (p + 2^(HW+4−k))·2^k = p·2^k + 2^(HW+4). For s = 0 the
 // table index is 0 and y2 is meaningless, but every p_i = 0, so u = 0 as the C model's early return.
 // ============================================================================================
 `default_nettype none
 
 module sc_normalize #(
     parameter integer FRAC = 16,
-    parameter integer VW   = 18
+    parameter integer VW   = 18,
+    parameter integer MREG = 0
 ) (
     input  wire                  clk_i,
     input  wire                  en_i,
@@ -74,7 +88,7 @@ module sc_normalize #(
   localparam integer KW  = sc_bits(HW);                // width of k (k <= HW-1)
   localparam integer OW  = FRAC + 2;                 // output component width
   localparam integer PW  = HW + FRAC + 7;            // low bits of v_i·y2 that reach u_i
-  localparam integer NS  = 10;                       // stages = latency
+  localparam integer NS  = 10 + 8 * MREG;            // stages = latency
 
   // ---------------------------------------------------------------------------- check configuration
   // Portable Verilog-2005 elaboration error: a failing check instantiates a module that does not
@@ -85,6 +99,9 @@ module sc_normalize #(
     end
     if (VW < 2 || VW > 41) begin : g_check_vw
       sc_normalize_error_illegal_VW_legal_range_is_2_to_41 u_error ();
+    end
+    if (MREG != 0 && MREG != 1) begin : g_check_mreg
+      sc_normalize_error_illegal_MREG_must_be_0_or_1 u_error ();
     end
   endgenerate
 
@@ -131,17 +148,28 @@ module sc_normalize #(
   // v travels with the fragment to S10 (S9 needs it; v_o is its S10 copy).
   // Two rtl/sc_delay.v lines: S1..S8 (the S8 copy is multiplied in S9), then S9..S10 (v_o).
   wire [3*VW-1:0] v8;
-  sc_delay #(.W(3 * VW), .DEPTH(8)) u_v_s8 (.clk_i(clk_i), .en_i(en_i), .d_i(v_i), .q_o(v8));
-  sc_delay #(.W(3 * VW), .DEPTH(NS - 8)) u_v_s10 (.clk_i(clk_i), .en_i(en_i), .d_i(v8), .q_o(v_o));
+  // v at the S9 product's operands: eight stages, and seven more before S9 with MREG = 1
+  sc_delay #(.W(3 * VW), .DEPTH(8 + 7 * MREG)) u_v_s8 (.clk_i(clk_i), .en_i(en_i), .d_i(v_i), .q_o(v8));
+  sc_delay #(.W(3 * VW), .DEPTH(NS - 8 - 7 * MREG)) u_v_s10 (.clk_i(clk_i), .en_i(en_i), .d_i(v8), .q_o(v_o));
 
   // ---------------------------------------------------------------------------- S1: s = v·v
   wire signed [VW-1:0]   vx = v_i[VW-1:0];
   wire signed [VW-1:0]   vy = v_i[2*VW-1:VW];
   wire signed [VW-1:0]   vz = v_i[3*VW-1:2*VW];
-  wire signed [2*VW-1:0] sqx = vx * vx;   // <= 2^(2VW-2): non-negative in 2VW bits
-  wire signed [2*VW-1:0] sqy = vy * vy;
-  wire signed [2*VW-1:0] sqz = vz * vz;
-  wire [2*VW-1:0] s_raw = sqx + sqy + sqz;        // < 3·2^(2VW-2) < 2^(2VW): no carry lost
+  wire [2*VW-1:0] sqx, sqy, sqz;   // each <= 2^(2VW-2): non-negative in 2VW bits
+  wire [2:0]      sq_side;
+  wire unused_sq_side = &{1'b0, sq_side};
+  sc_mul_stage #(.AW(VW), .BW(VW), .PW(2 * VW), .SIGNED(1), .MREG(MREG)) u_sqx (
+      .clk_i(clk_i), .en_i(en_i), .a_i(vx), .b_i(vx), .c_i(1'b0), .side_i(1'b0), .p_o(sqx), .side_o(sq_side[0]));
+  sc_mul_stage #(.AW(VW), .BW(VW), .PW(2 * VW), .SIGNED(1), .MREG(MREG)) u_sqy (
+      .clk_i(clk_i), .en_i(en_i), .a_i(vy), .b_i(vy), .c_i(1'b0), .side_i(1'b0), .p_o(sqy), .side_o(sq_side[1]));
+  sc_mul_stage #(.AW(VW), .BW(VW), .PW(2 * VW), .SIGNED(1), .MREG(MREG)) u_sqz (
+      .clk_i(clk_i), .en_i(en_i), .a_i(vz), .b_i(vz), .c_i(1'b0), .side_i(1'b0), .p_o(sqz), .side_o(sq_side[2]));
+  // MREG = 1: the squares' final adders end a stage of their own (a register on the three squares)
+  wire [6*VW-1:0] sq3;
+  sc_delay #(.W(6 * VW), .DEPTH(MREG)) u_sq3 (
+      .clk_i(clk_i), .en_i(en_i), .d_i({sqz, sqy, sqx}), .q_o(sq3));
+  wire [2*VW-1:0] s_raw = sq3[0 +: 2*VW] + sq3[2*VW +: 2*VW] + sq3[4*VW +: 2*VW];   // < 3·2^(2VW-2) < 2^(2VW)
   wire [SWF-1:0]  s_d;
   generate
     if (SWF > 2 * VW) begin : g_frame_pad
@@ -209,8 +237,10 @@ module sc_normalize #(
   reg  [AW-1:0] s3_a0_q;
   reg  [MW-1:0] s3_m_q;
   reg  [KW-1:0] s3_k_q;
+  reg  [MB+2:0] s3_km_q;   // m + 2^MB − 1, the low part of the addend Kc + m of S4 and S7 (MREG = 1)
   always @(posedge clk_i) begin
     if (en_i) begin
+      s3_km_q <= {1'b0, s2_m_q} + {3'b000, {MB{1'b1}}};
       s3_y0_q <= seed_tab[idx*T +: T];
       s3_a0_q <= a0_tab[idx*AW +: AW];
       s3_m_q  <= s2_m_q;
@@ -219,55 +249,113 @@ module sc_normalize #(
   end
 
   // ---------------------------------------------------------------------------- S4: c0 = 3 − m·a0
-  wire [MW+AW-1:0] ma0 = {{AW{1'b0}}, s3_m_q} * {{MW{1'b0}}, s3_a0_q};
-  wire [R+1:0]     c0_d = THREE_R - ma0[MB+R+1:MB];   // b < 2^(R+1) for every m in range
+  wire [MW+AW-1:0] ma0;
+  wire [T-1:0]     y0_4;
+  wire [MW-1:0]    m_4;
+  wire [KW-1:0]    k_4;
+  wire [MB+2:0]    km_4;
+  wire [R+1:0]     c0_d;   // b < 2^(R+1) for every m in range
+  generate
+    if (MREG != 0) begin : g_c0_fold
+      // Kc − m·a0 = m·~a0 + (Kc + m) (signed, modulo 2^(MW+AW)); c0 is its bits [MB+R+1 : MB]
+      sc_mul_stage #(.AW(MW + 1), .BW(AW + 1), .PW(MW + AW), .SIGNED(1), .ADD(1), .CW(R + MB + 2), .MREG(1),
+                     .SW(T + MW + KW + MB + 3)) u_ma0 (
+          .clk_i(clk_i), .en_i(en_i), .a_i({1'b0, s3_m_q}), .b_i(~{1'b0, s3_a0_q}),
+          .c_i({2'b11, {(R-3){1'b0}}, s3_km_q}),
+          .side_i({s3_y0_q, s3_m_q, s3_k_q, s3_km_q}), .p_o(ma0), .side_o({y0_4, m_4, k_4, km_4}));
+      assign c0_d = ma0[MB+R+1:MB];
+    end else begin : g_c0_sub
+      sc_mul_stage #(.AW(MW), .BW(AW), .PW(MW + AW), .MREG(0), .SW(T + MW + KW + MB + 3)) u_ma0 (
+          .clk_i(clk_i), .en_i(en_i), .a_i(s3_m_q), .b_i(s3_a0_q), .c_i(1'b0),
+          .side_i({s3_y0_q, s3_m_q, s3_k_q, s3_km_q}), .p_o(ma0), .side_o({y0_4, m_4, k_4, km_4}));
+      assign c0_d = THREE_R - ma0[MB+R+1:MB];
+    end
+  endgenerate
   wire unused_ma0 = &{1'b0, ma0[MW+AW-1:MB+R+2], ma0[MB-1:0]};
   reg  [R+1:0]  s4_c_q;
   reg  [T-1:0]  s4_y0_q;
   reg  [MW-1:0] s4_m_q;
   reg  [KW-1:0] s4_k_q;
+  reg  [MB+2:0] s4_km_q;
   always @(posedge clk_i) begin
     if (en_i) begin
+      s4_km_q <= km_4;
       s4_c_q  <= c0_d;
-      s4_y0_q <= s3_y0_q;
-      s4_m_q  <= s3_m_q;
-      s4_k_q  <= s3_k_q;
+      s4_y0_q <= y0_4;
+      s4_m_q  <= m_4;
+      s4_k_q  <= k_4;
     end
   end
 
   // ---------------------------------------------------------------------------- S5: y1
-  wire [T+R+1:0] yc0 = {{(R+2){1'b0}}, s4_y0_q} * {{T{1'b0}}, s4_c_q};
+  wire [T+R+1:0] yc0;
+  wire [MW-1:0]  m_5;
+  wire [KW-1:0]  k_5;
+  wire [MB+2:0]  km_5;
+  sc_mul_stage #(.AW(T), .BW(R + 2), .PW(T + R + 2), .MREG(MREG), .SW(MW + KW + MB + 3)) u_yc0 (
+      .clk_i(clk_i), .en_i(en_i), .a_i(s4_y0_q), .b_i(s4_c_q), .c_i(1'b0),
+      .side_i({s4_m_q, s4_k_q, s4_km_q}), .p_o(yc0), .side_o({m_5, k_5, km_5}));
   wire unused_yc0 = &{1'b0, yc0[T:0]};
   reg  [R:0]    s5_y_q;
   reg  [MW-1:0] s5_m_q;
   reg  [KW-1:0] s5_k_q;
+  reg  [MB+2:0] s5_km_q;
   always @(posedge clk_i) begin
     if (en_i) begin
+      s5_km_q <= km_5;
       s5_y_q <= yc0[T+R+1:T+1];
-      s5_m_q <= s4_m_q;
-      s5_k_q <= s4_k_q;
+      s5_m_q <= m_5;
+      s5_k_q <= k_5;
     end
   end
 
   // ---------------------------------------------------------------------------- S6: a1 = y1²
-  wire [2*R+1:0] yy1 = {{(R+1){1'b0}}, s5_y_q} * {{(R+1){1'b0}}, s5_y_q};
+  wire [2*R+1:0] yy1;
+  wire [R:0]     y_6;
+  wire [MW-1:0]  m_6;
+  wire [KW-1:0]  k_6;
+  wire [MB+2:0]  km_6;
+  sc_mul_stage #(.AW(R + 1), .BW(R + 1), .PW(2 * R + 2), .MREG(MREG), .SW(R + 1 + MW + KW + MB + 3)) u_yy1 (
+      .clk_i(clk_i), .en_i(en_i), .a_i(s5_y_q), .b_i(s5_y_q), .c_i(1'b0),
+      .side_i({s5_y_q, s5_m_q, s5_k_q, s5_km_q}), .p_o(yy1), .side_o({y_6, m_6, k_6, km_6}));
   wire unused_yy1 = &{1'b0, yy1[R-1:0]};
   reg  [R+1:0]  s6_a_q;
   reg  [R:0]    s6_y_q;
   reg  [MW-1:0] s6_m_q;
   reg  [KW-1:0] s6_k_q;
+  reg  [MB+2:0] s6_km_q;
   always @(posedge clk_i) begin
     if (en_i) begin
+      s6_km_q <= km_6;
       s6_a_q <= yy1[2*R+1:R];
-      s6_y_q <= s5_y_q;
-      s6_m_q <= s5_m_q;
-      s6_k_q <= s5_k_q;
+      s6_y_q <= y_6;
+      s6_m_q <= m_6;
+      s6_k_q <= k_6;
     end
   end
 
   // ---------------------------------------------------------------------------- S7: c1 = 3 − m·a1
-  wire [MW+R+1:0] ma1 = {{(R+2){1'b0}}, s6_m_q} * {{MW{1'b0}}, s6_a_q};
-  wire [R+1:0]    c1_d = THREE_R - ma1[MB+R+1:MB];
+  wire [MW+R+1:0] ma1;
+  wire [R:0]      y_7;
+  wire [KW-1:0]   k_7;
+  wire [R+1:0]    c1_d;
+  generate
+    if (MREG != 0) begin : g_c1_fold
+      // as S4: Kc − m·a1 = m·~a1 + (Kc + m)
+      sc_mul_stage #(.AW(MW + 1), .BW(R + 3), .PW(MW + R + 2), .SIGNED(1), .ADD(1), .CW(R + MB + 2), .MREG(1),
+                     .SW(R + 1 + KW)) u_ma1 (
+          .clk_i(clk_i), .en_i(en_i), .a_i({1'b0, s6_m_q}), .b_i(~{1'b0, s6_a_q}),
+          .c_i({2'b11, {(R-3){1'b0}}, s6_km_q}),
+          .side_i({s6_y_q, s6_k_q}), .p_o(ma1), .side_o({y_7, k_7}));
+      assign c1_d = ma1[MB+R+1:MB];
+    end else begin : g_c1_sub
+      sc_mul_stage #(.AW(MW), .BW(R + 2), .PW(MW + R + 2), .MREG(0), .SW(R + 1 + KW)) u_ma1 (
+          .clk_i(clk_i), .en_i(en_i), .a_i(s6_m_q), .b_i(s6_a_q), .c_i(1'b0),
+          .side_i({s6_y_q, s6_k_q}), .p_o(ma1), .side_o({y_7, k_7}));
+      assign c1_d = THREE_R - ma1[MB+R+1:MB];
+      wire unused_km = &{1'b0, s6_km_q};
+    end
+  endgenerate
   wire unused_ma1 = &{1'b0, ma1[MW+R+1:MB+R+2], ma1[MB-1:0]};
   reg  [R+1:0]  s7_c_q;
   reg  [R:0]    s7_y_q;
@@ -275,20 +363,24 @@ module sc_normalize #(
   always @(posedge clk_i) begin
     if (en_i) begin
       s7_c_q <= c1_d;
-      s7_y_q <= s6_y_q;
-      s7_k_q <= s6_k_q;
+      s7_y_q <= y_7;
+      s7_k_q <= k_7;
     end
   end
 
   // ---------------------------------------------------------------------------- S8: y2
-  wire [2*R+2:0] yc1 = {{(R+2){1'b0}}, s7_y_q} * {{(R+1){1'b0}}, s7_c_q};
+  wire [2*R+2:0] yc1;
+  wire [KW-1:0]  k_8;
+  sc_mul_stage #(.AW(R + 1), .BW(R + 2), .PW(2 * R + 3), .MREG(MREG), .SW(KW)) u_yc1 (
+      .clk_i(clk_i), .en_i(en_i), .a_i(s7_y_q), .b_i(s7_c_q), .c_i(1'b0),
+      .side_i(s7_k_q), .p_o(yc1), .side_o(k_8));
   wire unused_yc1 = &{1'b0, yc1[2*R+2], yc1[R:0]};   // y2 < 2^R: bit 2R+2 is 0
   reg  [R:0]    s8_y_q;
   reg  [KW-1:0] s8_k_q;
   always @(posedge clk_i) begin
     if (en_i) begin
       s8_y_q <= yc1[2*R+1:R+1];
-      s8_k_q <= s7_k_q;
+      s8_k_q <= k_8;
     end
   end
 
@@ -307,7 +399,19 @@ module sc_normalize #(
       localparam integer YL = 17;
       wire signed [VW-1:0]   vc = v8[c*VW +: VW];
       wire signed [VW+R+1:0] pn;
-      if (R + 1 > YL) begin : g_split
+      if (MREG != 0) begin : g_mreg
+        // MREG = 1: one registered product (its final adder after the register), not the split
+        wire [VW+R+1:0] pr;
+        wire            p_side;
+        // with the rounding addend 2^(HW+4−k) (k <= HW−1: a one-hot of HW+5 bits; |v·y2| < 2^(VW+R),
+        // so the sum is still exact in VW+R+2 signed bits)
+        wire [HW+4:0] rnd = {1'b1, {(HW+4){1'b0}}} >> s8_k_q;
+        sc_mul_stage #(.AW(VW), .BW(R + 2), .PW(VW + R + 2), .SIGNED(1), .ADD(1), .CW(HW + 5), .MREG(1)) u_p (
+            .clk_i(clk_i), .en_i(en_i), .a_i(vc), .b_i({1'b0, s8_y_q}), .c_i(rnd), .side_i(1'b0),
+            .p_o(pr), .side_o(p_side));
+        wire unused_p_side = &{1'b0, p_side};
+        assign pn = pr;
+      end else if (R + 1 > YL) begin : g_split
         wire signed [YL:0]        ylo = {1'b0, s8_y_q[YL-1:0]};
         wire signed [R+1-YL:0]    yhi = {1'b0, s8_y_q[R:YL]};
         wire signed [VW+YL:0]     plo = vc * ylo;
@@ -331,8 +435,10 @@ module sc_normalize #(
       end
     end
   endgenerate
+  wire [KW-1:0] k_9;
+  sc_delay #(.W(KW), .DEPTH(MREG)) u_k_9 (.clk_i(clk_i), .en_i(en_i), .d_i(s8_k_q), .q_o(k_9));
   always @(posedge clk_i) begin
-    if (en_i) s9_k_q <= s8_k_q;
+    if (en_i) s9_k_q <= k_9;
   end
 
   // ---------------------------------------------------------------------------- S10: rounding shift
@@ -348,7 +454,8 @@ module sc_normalize #(
           if (s9_k_q[pb]) psh = psh << (1 << pb);
         end
       end
-      wire [PW-1:0] r_d = psh + HALF_SH;
+      // MREG = 1: the rounding constant is already in p (S9)
+      wire [PW-1:0] r_d = (MREG != 0) ? psh : psh + HALF_SH;
       wire unused_r = &{1'b0, r_d[HW+4:0]};
       always @(posedge clk_i) begin
         if (en_i) s10_u_q[c*OW +: OW] <= r_d[PW-1:HW+5];

@@ -102,7 +102,10 @@ def rows_of(cfg, only, configs):
                                  "variant": v, "table": False, "mreg": 1})
     for s in cfg["feature_sets"]:
         rows.append({"name": s["name"], "kind": "lighting", "config": {"name": s.get("config", "default")},
-                     "contract": "lighting", "set": s, "table": False})
+                     "contract": "lighting", "set": s, "table": False, "mreg": 0})
+        if s.get("share", 1) == 1:  # the lighting core's pipelining parameter (feature-set key mreg, handoff --mreg)
+            rows.append({"name": s["name"] + "+mreg", "kind": "lighting", "config": {"name": s.get("config", "default")},
+                         "contract": "lighting", "set": s, "table": False, "mreg": 1})
     if only:
         known = {r["name"] for r in rows}
         bad = [o for o in only if o not in known]
@@ -138,7 +141,9 @@ def bundle(a, r, d, signoff="on"):
         if r.get("mreg"):
             cmd += ["--mreg", str(r["mreg"])]
     else:
-        cmd += ["--core", "lighting", "--features", r["name"]]
+        cmd += ["--core", "lighting", "--features", r["set"]["name"]]
+        if r.get("mreg"):
+            cmd += ["--mreg", str(r["mreg"])]
     p = subprocess.run(cmd, capture_output=True, text=True, timeout=a.timeout)
     if p.returncode:
         raise Failure(f"{' '.join(cmd)} failed: {(p.stderr or p.stdout).strip().splitlines()[-1:]}")
@@ -348,9 +353,11 @@ def to_row(r, s):
             out["stages"] = sg
         if r["kind"] == "lighting":
             cfg = json.load(open(os.path.join(ROOT, "config", "configs.json")))
-            mreg = [v["name"] for v in cfg["variants"] if v.get("mreg_stages")]
-            out["reason"] += ("; the lighting core has no pipelining parameter yet (MREG, a register inside each "
-                              f"product, exists in the units {', '.join(mreg[:-1])} and {mreg[-1]} only)")
+            lat = cfg["light"]["latency"]
+            out["reason"] += ("; the lighting core's pipelining parameter MREG (row <set>+mreg) registers the "
+                              f"normalisers' products ({lat['normalize']} -> {lat['normalize'] + lat['mreg_normalize']} "
+                              "cycles) and passes MREG to the units; the dot products, the attenuation and reciprocal, "
+                              "the shade and accumulator products have no register inside yet")
     if gs is None:
         out["reason_gate_sim"] = ("no gate-level run: the handoff bench cannot load a table RAM"
                                   if r["table"] else "not run")

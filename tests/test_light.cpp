@@ -707,6 +707,9 @@ TEST(FeatureSets, StrictParsing) {
   bad(R"({"share": 5})", "'share' must be an integer 1..4");
   bad(R"({"share": 2.5})", "'share' must be an integer 1..4");
   bad(R"({"lights": ["point", "point"], "lanes": 2, "share": 2})", "'share' 2 needs 'lanes' 1");
+  bad(R"({"mreg": 2})", "'mreg' must be 0 or 1");
+  bad(R"({"mreg": true})", "'mreg' must be 0 or 1");
+  bad(R"({"mreg": 1, "share": 2})", "'mreg' 1 needs 'share' 1");
   bad(R"({"specular": ["cs16", "cs16"]})", "named twice");
   bad(R"({"specular": ["cs16", "none"]})", "none cannot be listed");
   bad(R"({"specular": ["schlick_iter", "cs16"]})", "cannot share a core");
@@ -906,6 +909,34 @@ TEST(LightModes, ShareSpacesThePassesAndMovesTheSharedNormalisations) {
   bool found = false;
   for (const auto& p : b.verilog_params(8)) found = found || p == "SHARE=2";
   EXPECT_TRUE(found);
+}
+
+// The pipelining parameter: every normalisation on a pass's path takes kMregNormalize cycles more, each unit
+// its mreg_stages (configs.json); a set without it keeps its key (and so its
+// cached builds), a set with it gets its own key and the MREG parameter.
+TEST(LightModes, MregLengthensThePathThroughTheNormalisersAndTheUnits) {
+  const FeatureSet base = named("gl_default");  // N̂ and Ĥ = normalise(L̂ + V̂) side by side: one on the path
+  FeatureSet m = base;
+  m.mreg = 1;
+  EXPECT_EQ(base.key(), FeatureSet(base).key());
+  EXPECT_FALSE(base.canonical().contains("mreg"));
+  EXPECT_NE(base.key(), m.key());
+  bool found = false;
+  for (const auto& p : m.verilog_params(8)) found = found || p == "MREG=1";
+  EXPECT_TRUE(found);
+  for (const auto& p : base.verilog_params(8)) EXPECT_EQ(p.find("MREG"), std::string::npos) << p;
+  const LightCore c0(base), c1(m);
+  LightRegs r;
+  r.mat_unit = static_cast<uint32_t>(VariantId::cs16);
+  EXPECT_EQ(c1.latency(r) - c0.latency(r), kMregNormalize + mreg_stages(VariantId::cs16));
+  // a point light's L̂, then Ĥ = normalise(L̂ + V̂): two in series
+  FeatureSet p = base, pm;
+  p.slots = {kind_bit(LightKind::Point)};
+  pm = p;
+  pm.mreg = 1;
+  r.light[0].mode = light_mode_word(true, LightKind::Point);
+  EXPECT_EQ(LightCore(pm).latency(r) - LightCore(p).latency(r), 2 * kMregNormalize + mreg_stages(VariantId::cs16));
+  // (that the RTL computes the same colours at that latency is the co-simulation's: ctest sim.light.mreg.*)
 }
 
 // The lighting core's legal ranges in features.hpp state config/configs.json "limits" (generated

@@ -79,6 +79,9 @@ struct FeatureSet {
                                         // pass share ⌈ops/share⌉ normalisers (docs/lighting.md §2.1); > 1 needs lanes 1
   int spec_guard = kSpecGuardDefault;   // extra fraction bits of the specular path: N̂, V̂, L̂, Ĥ, R, x and the
                                         // unit run at F + spec_guard fraction bits (docs/lighting.md §7)
+  int mreg = 0;                         // the pipelining parameter MREG of rtl/sc_light.v (0/1; 1 needs share 1):
+                                        // registers inside the normalisers' products (kMregNormalize more
+                                        // cycles each) and the units' MREG; the same results
 
   [[nodiscard]] Format format() const { return config_named(config).format; }
   // The format of the specular path and its units: F + spec_guard fraction bits, the same guard.
@@ -300,6 +303,10 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
       if (!v.is_number_integer() || v.get<int>() < 1 || v.get<int>() > kShareMax)
         fs_fail(where, "'share' must be an integer 1.." + std::to_string(kShareMax) + " (clocks per pass)");
       fs.share = v.get<int>();
+    } else if (k == "mreg") {
+      if (!v.is_number_integer() || (v.get<int>() != 0 && v.get<int>() != 1))
+        fs_fail(where, "'mreg' must be 0 or 1 (the pipelining parameter)");
+      fs.mreg = v.get<int>();
     } else if (k == "spec_guard") {
       if (!v.is_number_integer() || v.get<int>() < 0 || v.get<int>() > kSpecGuardMax)
         fs_fail(where, "'spec_guard' must be an integer 0.." + std::to_string(kSpecGuardMax));
@@ -329,6 +336,8 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
   if (fs.lanes > fs.num_lights()) fs.lanes = fs.num_lights();
   if (fs.share > 1 && fs.lanes != 1)
     fs_fail(where, "'share' " + std::to_string(fs.share) + " needs 'lanes' 1 (the shared normalisers serve one lane)");
+  if (fs.mreg != 0 && fs.share != 1)
+    fs_fail(where, "'mreg' 1 needs 'share' 1 (the shared multipliers have no product registers)");
   if (fs.specular && fs.has_unit(VariantId::schlick_iter) && fs.units().size() > 1)
     fs_fail(where, "schlick_iter (one fragment per F+4 clocks) cannot share a core with other units");
   return fs;
@@ -415,6 +424,7 @@ inline nlohmann::ordered_json FeatureSet::canonical() const {
   j["lanes"] = lanes;
   j["share"] = share;
   j["spec_guard"] = spec_guard;
+  if (mreg != 0) j["mreg"] = mreg;  // only when set: the keys (and cached builds) of mreg 0 sets stay as they were
   return j;
 }
 
@@ -464,6 +474,7 @@ inline std::vector<std::string> FeatureSet::verilog_params(int tagw) const {
       "CHANNELS=" + std::to_string(channels),
       "TAGW=" + std::to_string(tagw),
   };
+  if (mreg != 0) p.push_back("MREG=" + std::to_string(mreg));
   return p;
 }
 
@@ -473,6 +484,7 @@ inline std::string FeatureSet::summary() const {
   s += ")";
   s += lanes == 1 ? ", 1 lane" : ", " + std::to_string(lanes) + " lanes";
   if (share > 1) s += ", " + std::to_string(share) + " clocks per pass";
+  if (mreg != 0) s += ", MREG 1";
   if (ambient) s += ", ambient+emission";
   if (diffuse) s += ", diffuse";
   if (specular) {

@@ -249,6 +249,8 @@ class LightCore {
     for (VariantId v : fs_.units()) {
       units_.emplace_back(v, uf_, fs_.cutoff);
       if (fs_.norm) units_.back().set_energy(true, 0);  // the coefficient comes from mat_coef; the model index is unused
+      // MREG reaches every unit; those without the parameter (mreg_stages 0: schlick_iter) ignore it
+      if (fs_.mreg != 0 && mreg_stages(v) > 0) units_.back().set_mreg(fs_.mreg);
     }
     if (units_.empty()) units_.emplace_back(fs_.variant, uf_, fs_.cutoff);  // latency / setup only
   }
@@ -488,8 +490,9 @@ struct LightPipe {
   int back;   // NB: stages of the back pipeline (colour products, attenuation, sum and accumulator)
 };
 inline LightPipe light_pipe(const FeatureSet& fs) {
-  constexpr int NL = 10;  // rtl/sc_normalize.v
-  constexpr int RL = 7;   // rtl/sc_recip.v
+  // rtl/sc_normalize.v and rtl/sc_recip.v (config/configs.json light.latency: the RTL's NL and RL come from there too)
+  const int NL = kNormalizeLatency + kMregNormalize * fs.mreg;
+  constexpr int RL = kRecipLatency;
   const bool any_att = fs.any_att();  // point_att or spot
   const bool any_spot = fs.any_kind(LightKind::Spot);
   const bool any_point = fs.any_kind(LightKind::Point);
