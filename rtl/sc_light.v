@@ -118,14 +118,15 @@
 //               T_NN = (NEED_N & NORMALIZE) ? NL : 0      N̂
 //               T_V  = LV ? K_V mod S + NL : 0             V̂
 //               T_L  = ANY_PL ? K_L mod S + NL : 0         L̂ of point lights
-//               T_A  = max(T_NN, T_L)                      N̂·L → diff, f at T_A+1
-//               T_H  = the first t >= max(T_L, T_V) with t ≡ K_H (mod S);  T_RV = max(T_A+2, T_V)
-//               T_XB = T_H+NL+1 (BLINN), T_XP = LV ? T_RV+1 : T_A+2 (PHONG)      unit input x
-//               T_ATT = T_L+3+RL (+1 with SHARE > 1)       att (point_att)
-//               T_SP = T_L+2+SPOT_EXP_BITS                 the spot factor (sc_powi, one stage per exponent bit;
+//               D    = MREG_DOT·MREG (1 with MREG): a register inside each of the lanes' dot products
+//               T_A  = max(T_NN, T_L)                      N̂·L → diff, f at T_A+1+D
+//               T_H  = the first t >= max(T_L, T_V) with t ≡ K_H (mod S);  T_RV = max(T_A+2+2D, T_V)
+//               T_XB = T_H+NL+1+D (BLINN), T_XP = LV ? T_RV+1+D : T_A+2+2D (PHONG)   unit input x
+//               T_ATT = T_L+3+D+RL (+1 with SHARE > 1)     att (point_att)
+//               T_SP = T_L+2+D+SPOT_EXP_BITS               the spot factor (sc_powi, one stage per exponent bit;
 //                                                          SPOT_EXP_BITS = 8, sc_light_regs.vh)
 //               T_X  = max(T_XB, T_XP) of the reflections that exist
-//               T_F  = max(1, NEED_N ? T_A+1 : 0, UNITS ? T_X : 0, ANY_ATT ? T_ATT : 0,
+//               T_F  = max(1, NEED_N ? T_A+1+D : 0, UNITS ? T_X : 0, ANY_ATT ? T_ATT : 0,
 //                          ANY_SPOT ? max(T_ATT, T_SP)+1 : 0, LOW_N ? T_X+LOW_N_BITS : 0)
 //               (with S = 1 every op enters at stage 0: T_V = T_L = NL, T_H = max(T_L, T_V))
 //               NB   = 3 + ANY_ATT
@@ -283,6 +284,7 @@ module sc_light #(
   localparam integer AW  = REG_ADDR_BITS;
   localparam integer NL  = NORMALIZE_LATENCY + MREG_NORMALIZE * MREG;   // latency of rtl/sc_normalize.v
   localparam integer RL  = RECIP_LATENCY;                               // latency of rtl/sc_recip.v
+  localparam integer D   = MREG_DOT * MREG;   // the lanes' dot products' (and R's products') extra stages
   // structure sizes, clamped so that an illegal LIGHTS / LANES / CHANNELS reaches its own error message
   localparam integer NLT = (LIGHTS < 1) ? 1 : ((LIGHTS > MAX_LIGHTS) ? MAX_LIGHTS : LIGHTS);
   localparam integer NLN = (LANES < 1) ? 1 : ((LANES > NLT) ? NLT : LANES);
@@ -318,19 +320,19 @@ module sc_light #(
   localparam integer T_A   = sc_max(T_NN, T_L);                             // N̂·L operands
   localparam integer T_H0  = sc_max(T_L, T_V);
   localparam integer T_H   = T_H0 + (((K_H % SH) - (T_H0 % SH)) + SH) % SH;   // H = L + V (Blinn)
-  localparam integer T_RV  = sc_max(T_A + 2, T_V);                          // R·V operands (Phong, local viewer)
-  localparam integer T_XB  = T_H + NL + 1;                                // x, Blinn
-  localparam integer T_XP  = (LV != 0) ? T_RV + 1 : T_A + 2;              // x, Phong
+  localparam integer T_RV  = sc_max(T_A + 2 + 2 * D, T_V);                  // R·V operands (Phong, local viewer)
+  localparam integer T_XB  = T_H + NL + 1 + D;                            // x, Blinn
+  localparam integer T_XP  = (LV != 0) ? T_RV + 1 + D : T_A + 2 + 2 * D;  // x, Phong
   localparam integer T_X   = sc_max((HAS_B != 0) ? T_XB : 0, (HAS_P != 0) ? T_XP : 0);
   // att (point_att; T_L = NL with SHARE 1); with SHARE > 1 q takes one stage more, its three products at
   // three stages sharing one multiplier (rtl/sc_light_lane.v)
-  localparam integer T_ATT = T_L + 3 + RL + ((SH > 1) ? 1 : 0);
+  localparam integer T_ATT = T_L + 3 + D + RL + ((SH > 1) ? 1 : 0);
   localparam integer SPEB  = SPOT_EXP_BITS;                                // spot exponent bits (sc_powi stages)
-  localparam integer T_SP  = T_L + 2 + SPEB;                               // the spot factor
+  localparam integer T_SP  = T_L + 2 + D + SPEB;                           // the spot factor
   localparam integer LNB   = LOW_N_BITS;                                 // the low-shininess chain's stages
   localparam integer HAS_LO = (SPECULAR != 0 && LOW_N != 0) ? 1 : 0;      // x^n for n < 2^LNB (low_shininess)
   localparam integer HAS_SEP = (SPECULAR != 0 && SEP_SPEC != 0) ? 1 : 0;   // the secondary colour (separate_specular)
-  localparam integer T_F   = sc_max(sc_max(sc_max(sc_max(1, (NEED_N != 0) ? T_A + 1 : 0),
+  localparam integer T_F   = sc_max(sc_max(sc_max(sc_max(1, (NEED_N != 0) ? T_A + 1 + D : 0),
                                   sc_max((SPECULAR != 0) ? T_X : 0, (ANY_ATT != 0) ? T_ATT : 0)),
                                   (ANY_SPOT != 0) ? sc_max(T_ATT, T_SP) + 1 : 0),
                                   (HAS_LO != 0) ? T_X + LNB : 0);
@@ -747,7 +749,7 @@ module sc_light #(
         assign nn_b = {3*NV{1'b0}};
       end
       if (HAS_P != 0) begin : g_nn_p
-        sc_delay #(.W(3*NV), .DEPTH(1)) u_dly_nn_p (
+        sc_delay #(.W(3*NV), .DEPTH(1 + D)) u_dly_nn_p (
             .clk_i(clk_i), .en_i(adv_f), .d_i(nn_a), .q_o(nn_p));
       end else begin : g_no_nn_p
         assign nn_p = {3*NV{1'b0}};

@@ -108,6 +108,7 @@ module sc_light_lane #(
 );
 
 `include "sc_light_regs.vh"
+  localparam integer D = MREG_DOT * MREG;   // the dot products' (and R's products') extra stages (rtl/sc_light.v)
 
   localparam integer F   = FRAC;
   localparam integer VF  = FRAC + SG;                        // fraction bits of the specular path
@@ -146,7 +147,8 @@ module sc_light_lane #(
             (o == 4) ? ((SPECULAR != 0 && BLINN != 0) ? 1 : 0) : CAN_SPOT;
   endfunction
   function integer op_stage(input integer o);
-    op_stage = (o == 0) ? T_L : (o == 1) ? T_A : (o == 2) ? T_A + 1 : (o == 3) ? T_RV : (o == 4) ? T_XB - 1 : T_L + 1;
+    op_stage = (o == 0) ? T_L : (o == 1) ? T_A : (o == 2) ? T_A + 1 + D : (o == 3) ? T_RV : (o == 4) ? T_XB - 1 - D :
+               T_L + 1;
   endfunction
   function integer op_bw(input integer o);
     op_bw = (o == 0) ? PW + 1 : (o == 1) ? LW : (o == 2) ? NDW : (o == 3) ? RVW : (o == 4) ? NW : LW;
@@ -184,6 +186,38 @@ module sc_light_lane #(
       localparam integer RI = op_stage(k) % SH;
       assign op_sel[k] = (SH == 1) || (ph_i == RI[1:0]);
     end
+    if (D != 0) begin : g_dot_reg
+      // MREG (SHARE = 1): each op's products through rtl/sc_mul_reg.v, D = 1 stage later: a dot product as one
+      // sum of three products (N = 3: one tree, the register on its two carry-save rows, one adder), R's three
+      // products (op 2) each on its own
+      for (k = 0; k < NOP; k = k + 1) begin : g_k
+        localparam integer BK = op_bw(k);
+        wire [3*NW-1:0] ak;
+        wire [3*BK-1:0] bk;
+        for (gi = 0; gi < 3; gi = gi + 1) begin : g_ab
+          assign ak[gi*NW +: NW] = opa[(3*k + gi)*NW +: NW];
+          assign bk[gi*BK +: BK] = opb[(3*k + gi)*BMX +: BK];   // the low bits of the sign-extended operand
+        end
+        if (op_on(k) == 0) begin : g_off
+          assign prod[3*k*PMX +: 3*PMX] = {3*PMX{1'b0}};
+          wire unused_ab = &{1'b0, ak, bk};
+        end else if (k == 2) begin : g_each
+          for (gi = 0; gi < 3; gi = gi + 1) begin : g_p
+            sc_mul_reg #(.AW(NW), .BW(BK), .PW(PMX), .SIGNED(1)) u_p (
+                .clk_i(clk_i), .en_i(en_i), .a_i(ak[gi*NW +: NW]), .b_i(bk[gi*BK +: BK]), .c_i(1'b0),
+                .p_o(prod[(3*k + gi)*PMX +: PMX]));
+          end
+        end else begin : g_dot
+          assign prod[3*k*PMX +: 3*PMX] = {3*PMX{1'b0}};
+          sc_mul_reg #(.AW(NW), .BW(BK), .PW(SMX), .SIGNED(1), .N(3)) u_dot (
+              .clk_i(clk_i), .en_i(en_i), .a_i(ak), .b_i(bk), .c_i(1'b0), .p_o(dsum[k*SMX +: SMX]));
+        end
+        if (BMX > BK) begin : g_bhi
+          wire unused_bhi = &{1'b0, opb[3*k*BMX +: 3*BMX]};
+        end
+      end
+      wire unused_sel = &{1'b0, op_sel};
+    end else begin : g_pool
     // one pool per component: op o's component c is at [o*NW +: NW] / [o*BMX +: BMX] of pool c
     for (gi = 0; gi < 3; gi = gi + 1) begin : g_c
       wire [NOP*NW-1:0]  a_c;
@@ -199,12 +233,15 @@ module sc_light_lane #(
       ) u_mul (
           .a_i(a_c), .b_i(b_c), .sel_i(op_sel), .p_o(p_c));
     end
+    end
     for (k = 0; k < NOP; k = k + 1) begin : g_op_off
       if (op_on(k) == 0) begin : g_off
         assign opa[k*3*NW +: 3*NW]   = {3*NW{1'b0}};
         assign opb[k*3*BMX +: 3*BMX] = {3*BMX{1'b0}};
         assign dsum[k*SMX +: SMX] = {SMX{1'b0}};
-      end else begin : g_on
+      end else if (D != 0 && k == 2) begin : g_prod_only
+        assign dsum[k*SMX +: SMX] = {SMX{1'b0}};   // R's products are used one by one
+      end else if (D == 0) begin : g_on
         wire [PMX-1:0] p0 = prod[(3*k + 0)*PMX +: PMX];
         wire [PMX-1:0] p1 = prod[(3*k + 1)*PMX +: PMX];
         wire [PMX-1:0] p2 = prod[(3*k + 2)*PMX +: PMX];
@@ -292,12 +329,12 @@ module sc_light_lane #(
   // ---------------------------------------------------------------------------- spot factor (spot)
   wire [VF:0]   spot_f;    // the spot factor at T_SP (VF fraction bits, <= 2^VF)
   generate
-    if (CAN_SPOT != 0 && T_SP != T_L + 2 + SEB) begin : g_check_tsp
-      sc_light_lane_error_T_SP_must_be_T_L_plus_2_plus_SEB u_error ();
+    if (CAN_SPOT != 0 && T_SP != T_L + 2 + D + SEB) begin : g_check_tsp
+      sc_light_lane_error_T_SP_must_be_T_L_plus_2_plus_D_plus_SEB u_error ();
     end
     if (CAN_SPOT != 0) begin : g_spot
       wire [2:0] idx_s1 = idx_s[3*(T_L+1) +: 3];
-      wire [2:0] idx_s2 = idx_s[3*(T_L+2) +: 3];
+      wire [2:0] idx_s2 = idx_s[3*(T_L+2+D) +: 3];
       wire [3*LW-1:0] l_s1;
       sc_delay #(.W(3*LW), .DEPTH(1)) u_dly_ls (
           .clk_i(clk_i), .en_i(en_i), .d_i(l), .q_o(l_s1));
@@ -327,7 +364,7 @@ module sc_light_lane #(
       wire           in_cone = $signed(sdl_q) >= $signed(scos_x);
       wire [VF:0]    sx;
       sc_clamp01 #(.IW(SDW), .FRAC(VF)) u_clamp_sx (.d_i(sdl_q), .q_o(sx));
-      localparam integer PH0 = (T_L + 2) % SH;
+      localparam integer PH0 = (T_L + 2 + D) % SH;
       sc_powi #(.FRAC(VF), .EB(SEB), .SH(SH), .PH0(PH0)) u_powi (
           .clk_i(clk_i), .en_i(en_i), .x_i(sx), .e_i(sexp_i[SEB*idx_s2 +: SEB]), .zero_i(!in_cone),
           .ph_i(ph_i), .r_o(spot_f));
@@ -343,8 +380,8 @@ module sc_light_lane #(
     if (CAN_ATT != 0) begin : g_att
       localparam integer DW = FRAC + 9;    // distance d < 2^(F+9) (|P_j − P| < √3·2^(F+8))
       localparam integer QW = FRAC + 27;   // q = kc + kl·d + kq·d² < 2^(F+27)
-      wire [2:0] idx_a1 = idx_s[3*(T_L+1) +: 3];
-      wire [2:0] idx_a2 = idx_s[3*(T_L+2) +: 3];
+      wire [2:0] idx_a1 = idx_s[3*(T_L+1+D) +: 3];
+      wire [2:0] idx_a2 = idx_s[3*(T_L+2+D) +: 3];
       wire [2:0] idx_t  = idx_s[3*T_ATT +: 3];
       localparam integer DDW = 2 * DW - F;
       // A1 (T_L+1): dl = ⌊(P_j − P)·L̂ / 2^VF⌋, d = max(dl, 0)
@@ -388,7 +425,7 @@ module sc_light_lane #(
       end else begin : g_q4
         // A2 (T_L+1): dd = ⌊d² / 2^F⌋; A3 (T_L+2): ⌊kq·dd / 2^F⌋; A4 (T_L+3): q = kc + ⌊kl·d / 2^F⌋ + that:
         // the same q one stage later, its three products at three stages in one rtl/sc_mul_pool.v instance
-        wire [2:0] idx_a3 = idx_s[3*(T_L+3) +: 3];
+        wire [2:0] idx_a3 = idx_s[3*(T_L+3+D) +: 3];
         wire [PW-1:0] kq = katt_i[(3*idx_a2 + 2)*PW +: PW];
         wire [PW-1:0] kl = katt_i[(3*idx_a3 + 1)*PW +: PW];
         wire [PW-1:0] kc = katt_i[(3*idx_a3 + 0)*PW +: PW];
@@ -397,7 +434,7 @@ module sc_light_lane #(
         reg  [DW-1:0]        a2_d_q, a3_d_q;
         reg  [PW+DDW-F-1:0]  a3_kqdd_q;
         localparam integer AM = DDW, BM = DW, MP = AM + BM;
-        localparam integer ST1 = T_L + 1, ST2 = T_L + 2, ST3 = T_L + 3;
+        localparam integer ST1 = T_L + 1 + D, ST2 = T_L + 2 + D, ST3 = T_L + 3 + D;
         wire [3*MP-1:0] ap;   // op 0 d·d (T_L+1), 1 dd·kq (T_L+2), 2 d·kl (T_L+3)
         localparam integer RS1 = ST1 % SH, RS2 = ST2 % SH, RS3 = ST3 % SH;
         wire [2:0] asel = {ph_i == RS3[1:0], ph_i == RS2[1:0], ph_i == RS1[1:0]};
@@ -428,7 +465,7 @@ module sc_light_lane #(
       wire [FRAC+7:0] att_r;
       // q at T_L+3 (+1 with SH > 1): the recip's products share multipliers over SH stages by the phase
       // (rtl/sc_recip.v)
-      sc_recip #(.FRAC(FRAC), .QW(QW), .SH(SH), .PH0((T_L + 3 + ((SH > 1) ? 1 : 0)) % SH)) u_recip (
+      sc_recip #(.FRAC(FRAC), .QW(QW), .SH(SH), .PH0((T_L + 3 + D + ((SH > 1) ? 1 : 0)) % SH)) u_recip (
           .clk_i(clk_i), .en_i(en_i), .q_i(q_q), .ph_i(ph_i), .att_o(att_r));
       wire [1:0] kind_t = kind_i[2*idx_t +: 2];
       wire [FRAC+7:0] att_k = (kind_t == KIND_POINT_ATT[1:0] || kind_t == KIND_SPOT[1:0]) ? att_r : ATT_ONE;
@@ -495,14 +532,14 @@ module sc_light_lane #(
       sc_clamp01 #(.IW(NSW), .FRAC(FRAC)) u_clamp_diff (.d_i(ndl_q[NDW-1:SG]), .q_o(diff1));
       wire          f1    = !neg && (ndl_q != {NDW{1'b0}});
       if (DIFFUSE != 0) begin : g_diff
-        sc_delay #(.W(CL), .DEPTH(T_F - T_A - 1)) u_dly_diff (
+        sc_delay #(.W(CL), .DEPTH(T_F - T_A - 1 - D)) u_dly_diff (
             .clk_i(clk_i), .en_i(en_i), .d_i(diff1), .q_o(diff_f));
       end else begin : g_no_diff
         assign diff_f = {CL{1'b0}};
         wire unused_diff = &{1'b0, diff1};
       end
       if (SPECULAR != 0) begin : g_f
-        sc_delay #(.W(1), .DEPTH(T_F - T_A - 1)) u_dly_f (
+        sc_delay #(.W(1), .DEPTH(T_F - T_A - 1 - D)) u_dly_f (
             .clk_i(clk_i), .en_i(en_i), .d_i(f1), .q_o(f_f));
       end else begin : g_no_f
         assign f_f = 1'b0;
@@ -571,7 +608,7 @@ module sc_light_lane #(
     if (SPECULAR != 0 && PHONG != 0) begin : g_phong
       // R = ((ndl·N̂) >> (VF−1)) − L at T_A+1 (L delayed to T_A+1), registered at T_A+2
       wire [3*LW-1:0] l1;
-      sc_delay #(.W(3*LW), .DEPTH(1)) u_dly_l1 (
+      sc_delay #(.W(3*LW), .DEPTH(1 + 2 * D)) u_dly_l1 (
           .clk_i(clk_i), .en_i(en_i), .d_i(l_a), .q_o(l1));
       wire [3*RVW-1:0] rv;
       for (gi = 0; gi < 3; gi = gi + 1) begin : g_r
@@ -593,7 +630,7 @@ module sc_light_lane #(
           if (en_i) rv_q <= rv;
         end
         wire [3*RVW-1:0] rv_d;
-        sc_delay #(.W(3*RVW), .DEPTH(T_RV - T_A - 2)) u_dly_rv (
+        sc_delay #(.W(3*RVW), .DEPTH(T_RV - T_A - 2 - 2 * D)) u_dly_rv (
             .clk_i(clk_i), .en_i(en_i), .d_i(rv_q), .q_o(rv_d));
         for (gi = 0; gi < 3; gi = gi + 1) begin : g_op_rv
           assign opa[(9 + gi)*NW +: NW]   = v_p_i[gi*NW +: NW];

@@ -51,8 +51,9 @@ class Net:
         return name
 
 
-def heap_of(m, n, y, signed, square):
-    """Partial-product bit heap: list of columns 0..y-1, each a list of expressions; plus a constant."""
+def heap_of(m, n, y, signed, square, nprod=1):
+    """Partial-product bit heap: list of columns 0..y-1, each a list of expressions; plus a constant. With nprod > 1
+    the heap of the sum of nprod products A[k*m +: m] * B[k*n +: n] (rtl/sc_mul_reg.v N), one constant row."""
     cols = [[] for _ in range(y)]
     const = 0
 
@@ -75,9 +76,10 @@ def heap_of(m, n, y, signed, square):
             for j in range(i + 1, m):
                 add(i + j + 1, f"A[{i}] & A[{j}]", sign(i, m) != sign(j, m))
     else:
-        for i in range(m):
-            for j in range(n):
-                add(i + j, f"A[{i}] & B[{j}]", sign(i, m) != sign(j, n))
+        for k in range(nprod):
+            for i in range(m):
+                for j in range(n):
+                    add(i + j, f"A[{k * m + i}] & B[{k * n + j}]", sign(i, m) != sign(j, n))
     const %= 1 << y
     for k in range(y):
         if const >> k & 1:
@@ -310,19 +312,23 @@ def registered_body(heap, pw, out):
 {asg}"""
 
 
-def mulreg_module_for(aw, bw, pw, signed, square, cw, index):
+def mulreg_module_for(aw, bw, pw, signed, square, cw, index, nprod=1):
     """Verilog of one techmap module for an rtl/sc_mul_reg.v instance of this shape: the partial-product
-    tree (with the addend's bits as one more row when cw > 0, ADD = 1), the register (enable en_i) on its two
-    carry-save rows, then the Kogge-Stone adder."""
+    tree (of the nprod products, N; with the addend's bits as one more row when cw > 0, ADD = 1), the register
+    (enable en_i) on its two carry-save rows, then the Kogge-Stone adder."""
+    if nprod > 1 and (aw > pw or bw > pw):
+        raise ValueError(f"sc_mul_reg N = {nprod} with an operand wider than the product ({aw}, {bw} > {pw})")
     m, n = min(aw, pw), min(bw, pw)
-    heap = heap_of(m, n, pw, signed, square)
+    heap = heap_of(m, n, pw, signed, square, nprod)
     for k in range(min(cw, pw)):
         heap[k].append(f"C[{k}]")
     cond = [f"AW == {aw}", f"BW == {bw}", f"PW == {pw}", f"SIGNED == {int(signed)}"]
     cond += [f"ADD == 1", f"CW == {cw}"] if cw else ["ADD == 0"]
+    cond.append(f"N == {nprod}")
     if square:
         cond.append("_TECHMAP_CONNMAP_a_i_ == _TECHMAP_CONNMAP_b_i_")
-    kind = ("square" if square else "product") + (f" + {cw}-bit addend" if cw else "")
+    kind = ("square" if square else "product" if nprod == 1 else f"sum of {nprod} products") + \
+        (f" + {cw}-bit addend" if cw else "")
     return f"""// sc_mul_reg {kind} {aw}x{bw} -> {pw}, {'signed' if signed else 'unsigned'}: tree | register | adder
 (* techmap_celltype = "sc_mul_reg" *)
 module _sc_mulreg_{index} (clk_i, en_i, a_i, b_i, c_i, p_o);
@@ -332,16 +338,17 @@ module _sc_mulreg_{index} (clk_i, en_i, a_i, b_i, c_i, p_o);
   parameter SIGNED = 0;
   parameter ADD = 0;
   parameter CW = 1;
+  parameter N = 1;
   parameter _TECHMAP_CONNMAP_a_i_ = 0;
   parameter _TECHMAP_CONNMAP_b_i_ = 0;
   input clk_i, en_i;
-  (* force_downto *) input [AW-1:0] a_i;
-  (* force_downto *) input [BW-1:0] b_i;
+  (* force_downto *) input [N*AW-1:0] a_i;
+  (* force_downto *) input [N*BW-1:0] b_i;
   (* force_downto *) input [CW-1:0] c_i;
   (* force_downto *) output [PW-1:0] p_o;
   wire _TECHMAP_FAIL_ = !({' && '.join(cond)});
-  wire [AW-1:0] A = a_i;
-  wire [BW-1:0] B = b_i;
+  wire [N*AW-1:0] A = a_i;
+  wire [N*BW-1:0] B = b_i;
   wire [CW-1:0] C = c_i;
 {registered_body(heap, pw, "p_o")}
 endmodule
@@ -413,17 +420,17 @@ def mulreg_shapes_of(design_json):
         for cell in mod.get("cells", {}).values():
             if cell["type"] != "sc_mul_reg":
                 continue
-            p = {"SIGNED": 0, "ADD": 0, "CW": 1}  # rtl/sc_mul_reg.v's defaults (a cell lists only what it sets)
+            p = {"SIGNED": 0, "ADD": 0, "CW": 1, "N": 1}  # rtl/sc_mul_reg.v's defaults (a cell lists only what it sets)
             p.update({k: int(v, 2) if isinstance(v, str) else int(v) for k, v in cell["parameters"].items()})
             con = cell["connections"]
-            shapes.add((p["AW"], p["BW"], p["PW"], bool(p["SIGNED"]), con["a_i"] == con["b_i"],
-                        p["CW"] if p["ADD"] else 0))
+            shapes.add((p["AW"], p["BW"], p["PW"], bool(p["SIGNED"]), p["N"] == 1 and con["a_i"] == con["b_i"],
+                        p["CW"] if p["ADD"] else 0, p["N"]))
     return sorted(shapes)
 
 
 def write_mulreg_map(shapes, path, sums=()):
     """Write the techmap file of the sc_mul_reg shapes (squares first) and the sc_sum_reg instances."""
-    mods = [mulreg_module_for(*s, i) for i, s in enumerate(sorted(shapes, key=lambda s: not s[4]))]
+    mods = [mulreg_module_for(*s[:6], i, *s[6:]) for i, s in enumerate(sorted(shapes, key=lambda s: not s[4]))]
     mods += [sumreg_module_for(*s, i) for i, s in enumerate(sums)]
     with open(path, "w") as f:
         f.write("// generated by signoff/fastmul.py, do not edit\n")
@@ -437,12 +444,14 @@ def mulreg_selftest(shapes, rtl):
     and a load covers every case. Small shapes: a multiplier miter is hard for SAT beyond ~8 bits."""
     ok = True
     for s in shapes:
-        aw, bw, pw, signed, square, cw = s
+        aw, bw, pw, signed, square, cw, nprod = s if len(s) == 7 else s + (1,)
+        s = (aw, bw, pw, signed, square, cw, nprod)
         with tempfile.TemporaryDirectory() as tmp:
             b = "a" if square else "b"
             add = f", .ADD(1), .CW({cw})" if cw else ""
-            src = f"""module top(input clk, input en, input [{aw-1}:0] a, input [{bw-1}:0] b, input [{max(cw, 1)-1}:0] c,
-           output [{pw-1}:0] y);
+            add += f", .N({nprod})" if nprod > 1 else ""
+            src = f"""module top(input clk, input en, input [{nprod*aw-1}:0] a, input [{nprod*bw-1}:0] b,
+           input [{max(cw, 1)-1}:0] c, output [{pw-1}:0] y);
   sc_mul_reg #(.AW({aw}), .BW({bw}), .PW({pw}), .SIGNED({int(signed)}){add}) u (.clk_i(clk), .en_i(en), .a_i(a), .b_i({b}),
       .c_i(c), .p_o(y));
 endmodule
@@ -563,7 +572,8 @@ def main():
         ok = selftest(shapes) and lcu_selftest()
         if os.path.exists(rtl):  # in a handoff bundle: rtl/ beside signoff/ too
             ok &= mulreg_selftest([s + (0,) for s in shapes[:4]] + [(7, 5, 12, False, False, 0), (5, 6, 12, True, False, 6),
-                                                                  (4, 4, 8, False, True, 9)], rtl)
+                                                                  (4, 4, 8, False, True, 9), (3, 4, 9, True, False, 0, 3),
+                                                                  (3, 3, 7, False, False, 5, 2)], rtl)
             ok &= sumreg_selftest(os.path.join(os.path.dirname(rtl), "sc_sum_reg.v"))
         sys.exit(0 if ok else 1)
     if not a.design or not a.out:

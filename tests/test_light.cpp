@@ -911,8 +911,8 @@ TEST(LightModes, ShareSpacesThePassesAndMovesTheSharedNormalisations) {
   EXPECT_TRUE(found);
 }
 
-// The pipelining parameter: every normalisation on a pass's path takes kMregNormalize cycles more, each unit
-// its mreg_stages (configs.json); a set without it keeps its key (and so its
+// The pipelining parameter: every normalisation on a pass's path takes kMregNormalize cycles more, every dot
+// product kMregDot, each unit its mreg_stages (configs.json); a set without it keeps its key (and so its
 // cached builds), a set with it gets its own key and the MREG parameter.
 TEST(LightModes, MregLengthensThePathThroughTheNormalisersAndTheUnits) {
   const FeatureSet base = named("gl_default");  // N̂ and Ĥ = normalise(L̂ + V̂) side by side: one on the path
@@ -928,14 +928,15 @@ TEST(LightModes, MregLengthensThePathThroughTheNormalisersAndTheUnits) {
   const LightCore c0(base), c1(m);
   LightRegs r;
   r.mat_unit = static_cast<uint32_t>(VariantId::cs16);
-  EXPECT_EQ(c1.latency(r) - c0.latency(r), kMregNormalize + mreg_stages(VariantId::cs16));
+  EXPECT_EQ(c1.latency(r) - c0.latency(r), kMregNormalize + kMregDot + mreg_stages(VariantId::cs16));
   // a point light's L̂, then Ĥ = normalise(L̂ + V̂): two in series
   FeatureSet p = base, pm;
   p.slots = {kind_bit(LightKind::Point)};
   pm = p;
   pm.mreg = 1;
   r.light[0].mode = light_mode_word(true, LightKind::Point);
-  EXPECT_EQ(LightCore(pm).latency(r) - LightCore(p).latency(r), 2 * kMregNormalize + mreg_stages(VariantId::cs16));
+  EXPECT_EQ(LightCore(pm).latency(r) - LightCore(p).latency(r),
+            2 * kMregNormalize + kMregDot + mreg_stages(VariantId::cs16));
   // (that the RTL computes the same colours at that latency is the co-simulation's: ctest sim.light.mreg.*)
 }
 

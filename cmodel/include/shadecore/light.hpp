@@ -493,6 +493,7 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   // rtl/sc_normalize.v and rtl/sc_recip.v (config/configs.json light.latency: the RTL's NL and RL come from there too)
   const int NL = kNormalizeLatency + kMregNormalize * fs.mreg;
   constexpr int RL = kRecipLatency;
+  const int D = kMregDot * fs.mreg;  // the lanes' dot products (and R's products): a register inside each
   const bool any_att = fs.any_att();  // point_att or spot
   const bool any_spot = fs.any_kind(LightKind::Spot);
   const bool any_point = fs.any_kind(LightKind::Point);
@@ -510,22 +511,22 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   const int t_a = std::max(t_nn, t_l);                                // N̂·L operands
   const int t_h0 = std::max(t_l, t_v);
   const int t_h = t_h0 + ((k_h % S - t_h0 % S) + S) % S;              // H = L + V
-  const int t_rv = std::max(t_a + 2, t_v);                            // R·V operands
+  const int t_rv = std::max(t_a + 2 + 2 * D, t_v);                    // R·V operands
   int t_x = 0;                                                        // the unit input x
-  if (fs.blinn) t_x = std::max(t_x, t_h + NL + 1);
-  if (fs.phong) t_x = std::max(t_x, lv ? t_rv + 1 : t_a + 2);
+  if (fs.blinn) t_x = std::max(t_x, t_h + NL + 1 + D);
+  if (fs.phong) t_x = std::max(t_x, lv ? t_rv + 1 + D : t_a + 2 + 2 * D);
   // att (distance, q, 1/q; t_l = NL at share 1); at share > 1 q takes a stage more (its three products at
   // three stages, one shared multiplier)
-  const int t_att = t_l + 3 + RL + (S > 1 ? 1 : 0);
+  const int t_att = t_l + 3 + D + RL + (S > 1 ? 1 : 0);
   int t_f = 1;
-  if (need_n) t_f = std::max(t_f, t_a + 1);
+  if (need_n) t_f = std::max(t_f, t_a + 1 + D);
   if (fs.specular) t_f = std::max(t_f, t_x);
   // low_shininess: the chain takes x at t_x, kLowNBits stages (rtl/sc_light_lane.v)
   if (fs.specular && fs.low_shininess) t_f = std::max(t_f, t_x + kLowNBits);
   if (any_att) t_f = std::max(t_f, t_att);
   // spot: ŝ·L̂ at t_l+1, sdl registered at t_l+2, then kSpotExpBits chain stages (rtl/sc_powi.v); att · spot
   // registered one stage after both are there
-  if (any_spot) t_f = std::max(t_f, std::max(t_att, t_l + 2 + kSpotExpBits) + 1);
+  if (any_spot) t_f = std::max(t_f, std::max(t_att, t_l + 2 + D + kSpotExpBits) + 1);
   // The back: colour products, attenuation, sum, accumulator. With share >= 4 on an RGB core with units it
   // is channel-serial (rtl/sc_light.v CSER): a pass enters it as three items, one per channel, on
   // consecutive edges, so its colour is out two edges later.
