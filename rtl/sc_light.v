@@ -129,7 +129,7 @@
 //               T_F  = max(1, NEED_N ? T_A+1+D : 0, UNITS ? T_X : 0, ANY_ATT ? T_ATT : 0,
 //                          ANY_SPOT ? max(T_ATT, T_SP)+1 : 0, LOW_N ? T_X+LOW_N_BITS : 0)
 //               (with S = 1 every op enters at stage 0: T_V = T_L = NL, T_H = max(T_L, T_V))
-//               NB   = 3 + ANY_ATT
+//               NB   = 3 + ANY_ATT + D·(2 + ANY_ATT)   (each product stage of the back one more with D)
 //               LATENCY_P = T_F + (UNITS ? L_unit : 0) + NB, L_unit = the material's unit's
 //                           Unit::latency(): cs16 7, cs16 forms 5, schlick_nr 10, schlick_div /
 //                           schlick_iter VF+4; +2 with ENERGY; + the unit's mreg_stages with MREG
@@ -336,7 +336,7 @@ module sc_light #(
                                   sc_max((SPECULAR != 0) ? T_X : 0, (ANY_ATT != 0) ? T_ATT : 0)),
                                   (ANY_SPOT != 0) ? sc_max(T_ATT, T_SP) + 1 : 0),
                                   (HAS_LO != 0) ? T_X + LNB : 0);
-  localparam integer NB    = (ANY_ATT != 0) ? 4 : 3;                      // back pipeline stages
+  localparam integer NB    = (ANY_ATT != 0) ? 4 + 3 * D : 3 + 2 * D;      // back pipeline stages
   // channel-serial back (SHARE >= 4, RGB, units): a pass enters the back as three items, channels 0, 1, 2 on
   // consecutive back-advancing edges, through one set of colour multipliers (rtl/sc_light_shade.v CSER):
   // its colour is out two edges later (LightCore: back = NB + 2). SHARE >= 4 keeps the back (3 edges per
@@ -503,7 +503,8 @@ module sc_light #(
   sc_light_regfile #(
       .FRAC(FRAC), .UFRAC(VF), .SLOT_KINDS(SLOT_KINDS), .SLOT_SPOT(SLOT_SPOT), .SEB(SPEB), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
       .UNITS(UNITS), .ENERGY(ENERGY), .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER),
-      .NORMALIZE(NORMALIZE), .SEP(HAS_SEP), .TWO_SIDE(HAS_TWO), .COL_MAT(HAS_CM), .NLT(NLT), .NCH(NCH), .AW(AW)
+      .NORMALIZE(NORMALIZE), .SEP(HAS_SEP), .TWO_SIDE(HAS_TWO), .COL_MAT(HAS_CM), .NLT(NLT), .NCH(NCH), .AW(AW),
+      .MREG(D)
   ) u_regs (
       .clk_i(clk_i), .wr_i(wr), .addr_i(reg_addr_i[AW-1:0]), .data_i(reg_data_i),
       .pos_o(pos_all), .katt_o(katt_all), .kind_o(kind_all), .on_o(on_all),
@@ -820,12 +821,10 @@ module sc_light #(
   wire [NCH*CL-1:0]     col_b0, col_b1;
   generate
     if (HAS_CM != 0) begin : g_col_b
-      reg [NCH*CL-1:0] col_b1_q;
-      always @(posedge clk_i) begin
-        if (adv_b) col_b1_q <= col_b0;
-      end
+      // (B1 is 1 + D edges after B0: rtl/sc_light_shade.v)
       assign col_b0 = bk_ftag[FTW-1:TAGW+3];
-      assign col_b1 = col_b1_q;
+      sc_delay #(.W(NCH*CL), .DEPTH(1 + D)) u_dly_col_b1 (
+          .clk_i(clk_i), .en_i(adv_b), .d_i(col_b0), .q_o(col_b1));
     end else begin : g_no_col_b
       assign col_b0 = {(NCH*CL){1'b0}};
       assign col_b1 = {(NCH*CL){1'b0}};
@@ -1048,7 +1047,7 @@ module sc_light #(
       end
       sc_light_shade #(
           .FRAC(FRAC), .NLT(NLT), .NCH(NCH), .SPW(SPW), .SG(SGUARD), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
-          .SPECULAR(SPECULAR), .CAN_ATT(ANY_ATT), .CSER(CSER), .SEP(HAS_SEP), .TWO(HAS_TWO), .COL(HAS_CM)
+          .SPECULAR(SPECULAR), .CAN_ATT(ANY_ATT), .CSER(CSER), .SEP(HAS_SEP), .TWO(HAS_TWO), .COL(HAS_CM), .D(D)
       ) u_shade (
           .clk_i(clk_i), .en_i(adv_b), .spec_i(spec_s), .f_i(ut_x[OFF_F]), .sep_i(sep_mode),
           .back_i(bk_ftag[2]), .bamb_i(bamb_w), .bdif_i(bdif_w), .bspec_i(bspec_w), .diff_i(bk_diff),
@@ -1188,12 +1187,13 @@ module sc_light #(
       wire [NCH*CL-1:0] em_bk0 = (HAS_TWO != 0 && bk_ftag[2]) ? bem_w : em_w;
       wire [NCH*CL-1:0] am_bk0 = (HAS_TWO != 0 && bk_ftag[2]) ? bamb_w : mamb_w;
       for (c = 0; c < NCH; c = c + 1) begin : g_sc
-        sc_light_scene #(.FRAC(FRAC)) u_scene (
+        sc_light_scene #(.FRAC(FRAC), .MREG(D)) u_scene (
+            .clk_i(clk_i), .en_i(adv_b),
             .em_i(cm_w[0] ? col_b0[c*CL +: CL] : em_bk0[c*CL +: CL]),
             .am_i(cm_w[1] ? col_b0[c*CL +: CL] : am_bk0[c*CL +: CL]),
             .ga_i(ga_w[c*CL +: CL]), .scene_o(sc0[c*CL +: CL]));
       end
-      sc_delay #(.W(NCH*CL), .DEPTH(NB-1)) u_dly_scene (
+      sc_delay #(.W(NCH*CL), .DEPTH(NB-1-D)) u_dly_scene (
           .clk_i(clk_i), .en_i(adv_b), .d_i(sc0), .q_o(scene_acc));
     end else begin : g_no_scene_cm
       assign scene_acc = {(NCH*CL){1'b0}};

@@ -54,7 +54,8 @@ module sc_light_regfile #(
     parameter integer COL_MAT      = 0,
     parameter integer NLT          = 1,
     parameter integer NCH          = 3,
-    parameter integer AW           = 9
+    parameter integer AW           = 9,
+    parameter integer MREG         = 0
 ) (
     input  wire                  clk_i,
     input  wire                  wr_i,
@@ -185,8 +186,10 @@ module sc_light_regfile #(
             if (wr_i && addr_i == A_MA[AW-1:0]) mamb_q <= data_i[CL-1:0];
           end
           wire [CL-1:0] sc;
-          sc_light_scene #(.FRAC(FRAC)) u_scene (
-              .em_i(em_q), .am_i(mamb_q), .ga_i(ga_w[c*CL +: CL]), .scene_o(sc));
+          // (MREG: two edges from a write to scene_q; no fragment is in flight then, and the first one after it
+          // reaches the accumulator T_F + NB >= 4 edges after it is taken)
+          sc_light_scene #(.FRAC(FRAC), .MREG(MREG)) u_scene (
+              .clk_i(clk_i), .en_i(1'b1), .em_i(em_q), .am_i(mamb_q), .ga_i(ga_w[c*CL +: CL]), .scene_o(sc));
           always @(posedge clk_i) begin
             scene_q <= sc;
           end

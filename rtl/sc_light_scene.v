@@ -6,14 +6,18 @@
 //            LightCore::eval()'s t.scene (saturated: every term after it is >= 0, so the core's saturating
 //            sum is unchanged). One source for the register-only scene term of rtl/sc_light_regfile.v and
 //            the per-fragment one of rtl/sc_light.v (colour material, docs/lighting.md §3.8).
-// Parameters: FRAC (F).
-// Ports     : em_i, am_i, ga_i (colour codes, F+1 bits); scene_o (F+1 bits, <= 2^F).
+// Parameters: FRAC (F); MREG 0/1 (rtl/sc_light.v's pipelining parameter: the product a·A registered between
+//             its tree and its final adder, rtl/sc_mul_stage.v: scene_o one enabled edge after the inputs).
+// Ports     : clk_i, en_i (MREG = 1); em_i, am_i, ga_i (colour codes, F+1 bits); scene_o (F+1 bits, <= 2^F).
 // ============================================================================================
 `default_nettype none
 
 module sc_light_scene #(
-    parameter integer FRAC = 16
+    parameter integer FRAC = 16,
+    parameter integer MREG = 0
 ) (
+    input  wire          clk_i,
+    input  wire          en_i,
     input  wire [FRAC:0] em_i,
     input  wire [FRAC:0] am_i,
     input  wire [FRAC:0] ga_i,
@@ -23,8 +27,11 @@ module sc_light_scene #(
   localparam integer CL = FRAC + 1;
   localparam [CL-1:0] ONE = {1'b1, {FRAC{1'b0}}};
 
-  wire [2*CL-1:0] ag = {{CL{1'b0}}, am_i} * {{CL{1'b0}}, ga_i};
-  wire [CL+1:0]   sc = {2'b00, em_i} + {1'b0, ag[2*CL-1:FRAC]};
+  wire [2*CL-1:0] ag;
+  wire [CL-1:0]   em;   // em_i beside the product
+  sc_mul_stage #(.AW(CL), .BW(CL), .PW(2 * CL), .MREG(MREG), .SW(CL)) u_ag (
+      .clk_i(clk_i), .en_i(en_i), .a_i(am_i), .b_i(ga_i), .c_i(1'b0), .side_i(em_i), .p_o(ag), .side_o(em));
+  wire [CL+1:0]   sc = {2'b00, em} + {1'b0, ag[2*CL-1:FRAC]};
   wire unused_ag = &{1'b0, ag[FRAC-1:0]};
   assign scene_o = (sc > {2'b00, ONE}) ? ONE : sc[CL-1:0];
 

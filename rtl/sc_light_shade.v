@@ -19,6 +19,9 @@
 //   specular product apart and B3 attenuates each (two products): term_o = ⌊att·(amb + diff)/2^F⌋, sterm_o =
 //   ⌊att·spec/2^F⌋, each saturated to 2^F; without sep_i the whole sum in term_o as with SEP = 0 (bit for bit)
 //   and sterm_o = 0.
+//   D = 1 (rtl/sc_light.v MREG): every product stage is two, its product registered between the tree and the
+//   final adder (rtl/sc_mul_stage.v): B1, B2 and B3 each one stage later than the one before (3 + 3D stages with
+//   the point_att capability, 2 + 2D without); the same terms.
 // Parameters: FRAC, NLT, NCH, SPW (unit output width), SG (the unit's extra fraction bits, SGUARD of
 //             rtl/sc_light.v), AMBIENT, DIFFUSE, SPECULAR, CAN_ATT, CSER, SEP, TWO (two-sided: back_i at B0
 //             chooses the back colour bank bamb_i / bdif_i / bspec_i for the item, each read at its stage),
@@ -45,7 +48,8 @@ module sc_light_shade #(
     parameter integer CSER     = 0,
     parameter integer SEP      = 0,
     parameter integer TWO      = 0,
-    parameter integer COL      = 0
+    parameter integer COL      = 0,
+    parameter integer D        = 0
 ) (
     input  wire                          clk_i,
     input  wire                          en_i,
@@ -86,10 +90,17 @@ module sc_light_shade #(
 
   // spec only counts when N̂·L > 0
   wire [SPW-1:0] spec_e = f_i ? spec_i : {SPW{1'b0}};
+  // D: what B1 takes from B0 beside the products, D stages later (aligned with the registered products)
+  wire [2:0]      idx_d;
+  wire [1:0]      ch_d;
+  wire            v_d, back_d;
+  wire [FRAC+7:0] att_d;
+  sc_delay #(.W(FRAC + 15), .DEPTH(D)) u_dly_b0 (
+      .clk_i(clk_i), .en_i(en_i), .d_i({idx_i, ch_i, v_i, back_i, att_i}), .q_o({idx_d, ch_d, v_d, back_d, att_d}));
   // TWO: the item's colour bank — diffuse and specular read at B0, ambient at B1
   reg  b1_back_q;
   always @(posedge clk_i) begin
-    if (en_i) b1_back_q <= back_i;
+    if (en_i) b1_back_q <= back_d;
   end
   wire [NCH*CL-1:0] mdif_b  = (TWO != 0 && back_i) ? bdif_i : mdif_i;
   wire [NCH*CL-1:0] mspec_b = (TWO != 0 && back_i) ? bspec_i : mspec_i;
@@ -104,26 +115,33 @@ module sc_light_shade #(
   reg        b1_v_q, b2_v_q;
   always @(posedge clk_i) begin
     if (en_i) begin
-      b1_idx_q <= idx_i;
-      b1_ch_q  <= ch_i;
-      b1_v_q   <= v_i;
-      b2_v_q   <= b1_v_q;
+      b1_idx_q <= idx_d;
+      b1_ch_q  <= ch_d;
+      b1_v_q   <= v_d;
+      b2_v_q   <= b1_v_d;
     end
   end
+  // D: what B2 takes from B1 beside the products
+  wire            b1_v_d;
+  wire [FRAC+7:0] b1_att_d;
   wire [FRAC+7:0] b2_att;   // att at B2 (point_att capability)
   generate
     if (CAN_ATT != 0) begin : g_b_att
       reg [FRAC+7:0] b1_att_q, b2_att_q;
       always @(posedge clk_i) begin
         if (en_i) begin
-          b1_att_q <= att_i;
-          b2_att_q <= b1_att_q;
+          b1_att_q <= att_d;
+          b2_att_q <= b1_att_d;
         end
       end
+      sc_delay #(.W(FRAC + 9), .DEPTH(D)) u_dly_b1 (
+          .clk_i(clk_i), .en_i(en_i), .d_i({b1_v_q, b1_att_q}), .q_o({b1_v_d, b1_att_d}));
       assign b2_att = b2_att_q;
     end else begin : g_no_b_att
       assign b2_att = {(FRAC+8){1'b0}};
-      wire unused_b_att = &{1'b0, att_i, b2_att};
+      assign b1_att_d = {(FRAC+8){1'b0}};
+      sc_delay #(.W(1), .DEPTH(D)) u_dly_b1 (.clk_i(clk_i), .en_i(en_i), .d_i(b1_v_q), .q_o(b1_v_d));
+      wire unused_b_att = &{1'b0, att_d, b2_att, b1_att_d};
     end
     if (SPECULAR == 0) begin : g_spec_unused
       wire unused_spec = &{1'b0, spec_e, mspec_i, lspec_i, mspec_s};
@@ -152,35 +170,60 @@ module sc_light_shade #(
       wire [CL:0]     amb;   // ⌊a_c·Ia_jc / 2^F⌋
       if (AMBIENT != 0) begin : g_a
         wire [CL-1:0]   la   = lamb_i[(NCH*b1_idx_q + {30'd0, c1})*CL +: CL];
-        wire [2*CL-1:0] pa_p = {{CL{1'b0}}, mamb_s[c1*CL +: CL]} * {{CL{1'b0}}, la};
+        wire [2*CL-1:0] pa_p;
+        wire u_pa_nc;   // no sideband
+        wire unused_u_pa_nc = &{1'b0, u_pa_nc};
+        sc_mul_stage #(.AW(CL), .BW(CL), .PW(2 * CL), .MREG(D)) u_pa (
+            .clk_i(clk_i), .en_i(en_i), .a_i(mamb_s[c1*CL +: CL]), .b_i(la), .c_i(1'b0), .side_i(1'b0),
+            .p_o(pa_p), .side_o(u_pa_nc));
         wire unused_pa = &{1'b0, pa_p[F-1:0]};
         assign amb = pa_p[2*CL-1:F];
       end else begin : g_no_a
         assign amb = {(CL+1){1'b0}};
       end
       if (DIFFUSE != 0) begin : g_d
-        wire [2*CL-1:0] pd_p = {{CL{1'b0}}, diff_i} * {{CL{1'b0}}, mdif_s[c0*CL +: CL]};
+        wire [2*CL-1:0] pd_p;
+        wire u_pd_nc;   // no sideband
+        wire unused_u_pd_nc = &{1'b0, u_pd_nc};
+        sc_mul_stage #(.AW(CL), .BW(CL), .PW(2 * CL), .MREG(D)) u_pd (
+            .clk_i(clk_i), .en_i(en_i), .a_i(diff_i), .b_i(mdif_s[c0*CL +: CL]), .c_i(1'b0), .side_i(1'b0),
+            .p_o(pd_p), .side_o(u_pd_nc));
         wire unused_pd = &{1'b0, pd_p[F-1:0]};
         reg  [CL:0] b1_pd_q;
         always @(posedge clk_i) begin
           if (en_i) b1_pd_q <= pd_p[2*CL-1:F];
         end
         wire [CL-1:0] ld = ldif_i[(NCH*b1_idx_q + {30'd0, c1})*CL +: CL];
-        wire [2*CL:0] td_p = {{CL{1'b0}}, b1_pd_q} * {{(CL+1){1'b0}}, ld};
+        wire [2*CL:0] td_p;
+        wire u_td_nc;   // no sideband
+        wire unused_u_td_nc = &{1'b0, u_td_nc};
+        sc_mul_stage #(.AW(CL + 1), .BW(CL), .PW(2 * CL + 1), .MREG(D)) u_td (
+            .clk_i(clk_i), .en_i(en_i), .a_i(b1_pd_q), .b_i(ld), .c_i(1'b0), .side_i(1'b0),
+            .p_o(td_p), .side_o(u_td_nc));
         wire unused_td = &{1'b0, td_p[F-1:0]};
         assign td = td_p[2*CL:F];
       end else begin : g_no_d
         assign td = {(CL+2){1'b0}};
       end
       if (SPECULAR != 0) begin : g_s
-        wire [SPW+CL-1:0] ps_p = {{CL{1'b0}}, spec_e} * {{SPW{1'b0}}, mspec_s[c0*CL +: CL]};
+        wire [SPW+CL-1:0] ps_p;
+        wire u_ps_nc;   // no sideband
+        wire unused_u_ps_nc = &{1'b0, u_ps_nc};
+        sc_mul_stage #(.AW(SPW), .BW(CL), .PW(SPW + CL), .MREG(D)) u_ps (
+            .clk_i(clk_i), .en_i(en_i), .a_i(spec_e), .b_i(mspec_s[c0*CL +: CL]), .c_i(1'b0), .side_i(1'b0),
+            .p_o(ps_p), .side_o(u_ps_nc));
         wire unused_ps = &{1'b0, ps_p[F+SG-1:0]};
         reg  [SPF:0] b1_ps_q;
         always @(posedge clk_i) begin
           if (en_i) b1_ps_q <= ps_p[SPW+CL-1:F+SG];
         end
         wire [CL-1:0] ls = lspec_i[(NCH*b1_idx_q + {30'd0, c1})*CL +: CL];
-        wire [SPF+CL:0] ts_p = {{CL{1'b0}}, b1_ps_q} * {{(SPF+1){1'b0}}, ls};
+        wire [SPF+CL:0] ts_p;
+        wire u_ts_nc;   // no sideband
+        wire unused_u_ts_nc = &{1'b0, u_ts_nc};
+        sc_mul_stage #(.AW(SPF + 1), .BW(CL), .PW(SPF + CL + 1), .MREG(D)) u_ts (
+            .clk_i(clk_i), .en_i(en_i), .a_i(b1_ps_q), .b_i(ls), .c_i(1'b0), .side_i(1'b0),
+            .p_o(ts_p), .side_o(u_ts_nc));
         wire unused_ts = &{1'b0, ts_p[F-1:0]};
         assign ts = ts_p[SPF+CL:F];
       end else begin : g_no_s
@@ -192,13 +235,13 @@ module sc_light_shade #(
       wire [SUMW-1:0] sum_d = sum_p + sum_s;
       reg  [SUMW-1:0] b2_sum_q;
       always @(posedge clk_i) begin
-        if (en_i) b2_sum_q <= b1_v_q ? ((SEP != 0 && sep_i) ? sum_p : sum_d) : {SUMW{1'b0}};
+        if (en_i) b2_sum_q <= b1_v_d ? ((SEP != 0 && sep_i) ? sum_p : sum_d) : {SUMW{1'b0}};
       end
       wire [SUMW-1:0] b2_ssum;
       if (SEP != 0) begin : g_b2_sep
         reg [SUMW-1:0] b2_ssum_q;
         always @(posedge clk_i) begin
-          if (en_i) b2_ssum_q <= (b1_v_q && sep_i) ? sum_s : {SUMW{1'b0}};
+          if (en_i) b2_ssum_q <= (b1_v_d && sep_i) ? sum_s : {SUMW{1'b0}};
         end
         assign b2_ssum = b2_ssum_q;
       end else begin : g_b2_one
@@ -209,7 +252,12 @@ module sc_light_shade #(
       for (k = 0; k < NSUM; k = k + 1) begin : g_b3
         wire [SUMW-1:0] sq = (k == 0) ? b2_sum_q : b2_ssum;
         if (CAN_ATT != 0) begin : g_att
-          wire [SUMW+FRAC+7:0] at_p = {{SUMW{1'b0}}, b2_att} * {{(FRAC+8){1'b0}}, sq};
+          wire [SUMW+FRAC+7:0] at_p;
+          wire u_at_nc;   // no sideband
+          wire unused_u_at_nc = &{1'b0, u_at_nc};
+          sc_mul_stage #(.AW(FRAC + 8), .BW(SUMW), .PW(SUMW + FRAC + 8), .MREG(D)) u_at (
+              .clk_i(clk_i), .en_i(en_i), .a_i(b2_att), .b_i(sq), .c_i(1'b0), .side_i(1'b0),
+              .p_o(at_p), .side_o(u_at_nc));
           wire unused_at = &{1'b0, at_p[F-1:0]};
           wire [SUMW+7:0] t_d = at_p[SUMW+FRAC+7:F];
           reg [CL-1:0] b3_term_q;

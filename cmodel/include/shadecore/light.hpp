@@ -531,7 +531,8 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   // is channel-serial (rtl/sc_light.v CSER): a pass enters it as three items, one per channel, on
   // consecutive edges, so its colour is out two edges later.
   const bool cser = S >= 4 && fs.channels == 3 && fs.specular;
-  return {t_f, (any_att ? 4 : 3) + (cser ? 2 : 0)};
+  // MREG: each product stage of the back (B1, B2 and with attenuation B3) takes D more (rtl/sc_light_shade.v)
+  return {t_f, (any_att ? 4 + 3 * D : 3 + 2 * D) + (cser ? 2 : 0)};
 }
 }  // namespace detail
 
