@@ -105,7 +105,7 @@ struct BundleBase {
   double signoff_target = 4.0;
   // ABC's script (signoff.py --abc): full for the units unless config/configs.json variants[].signoff_abc says lean
   // (schlick_nr); lean for the lighting cores (no SAT sweeping: the full script does not finish on their multiplier
-  // trees in hours; docs/signoff.md)
+  // trees in hours; docs/signoff.md), keep for a lighting core with MREG = 1 (no AIG rewriting either)
   std::string signoff_abc = "full";
   std::string signoff_status = "not run";
 };

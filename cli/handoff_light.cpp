@@ -619,7 +619,9 @@ void run_lighting(const Options& o) {
     b.synth = synth;
     b.signoff_mode = o.signoff;
     b.signoff_target = o.clock_target;
-    b.signoff_abc = "lean";
+    // keep (signoff.py ABC_KEEP) for the pipelined core: ABC's AIG rewriting turns the adders after its product
+    // registers into carry chains (docs/signoff.md)
+    b.signoff_abc = fs.mreg != 0 ? "keep" : "lean";
     b.synth_why = o.synth != "auto" ? "--synth " + o.synth
                   : synth == SynthMode::Skipped
                       ? fmt::format("{} lights: a flat synthesis takes too long for the handoff (use --synth hier or "

@@ -255,7 +255,8 @@ def add_stages(a, r, hit):
         bundle(a, r, d, signoff="off")
         p = subprocess.run(["/usr/bin/python3", SIGNOFF, d, "--target", str(a.target), "--timeout", str(a.timeout),
                             "--steps", "synth,sta", "--abc",
-                            "lean" if r["kind"] == "lighting" else r["variant"].get("signoff_abc", "full")],
+                            ("keep" if r.get("mreg") else "lean") if r["kind"] == "lighting"
+                            else r["variant"].get("signoff_abc", "full")],
                            capture_output=True, text=True)
         if p.returncode:
             raise Failure(f"signoff of {row_id(r)} failed: {(p.stderr or p.stdout).strip().splitlines()[-1:]}")

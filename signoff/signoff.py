@@ -54,6 +54,10 @@ CLOCK = "clk_i"
 # a lighting core's 310k AND nodes of multiplier trees (where SAT sweeping finds little); `dc2` + `&dch -f` still
 # restructure, `&nf` maps for delay, `buffer`/`upsize`/`dnsize` build and size the buffer trees. ({D}: the target.)
 ABC_LEAN = "+strash;dc2;strash;&get,-n;&dch,-f;&nf,{D};&put;buffer;upsize,{D};dnsize,{D};stime,-p"
+# keep: map the structure as built, without ABC's AIG rewriting (dc2) and choice computation (dch), which turn
+# fastmul.py's Kogge-Stone adders after a product register into carry chains (sc_normalize at MREG = 1: 4.65 ns with
+# lean, 3.77 with keep, 17 % more area); for the pipelined lighting core (MREG = 1, docs/signoff.md)
+ABC_KEEP = "+strash;&get,-n;&nf,{D};&put;buffer;upsize,{D};dnsize,{D};stime,-p"
 
 
 def die(msg, code=1):
@@ -181,7 +185,7 @@ def synth(a, sdir):
     script = (flow +
               f"dfflibmap -liberty {lib}\n"
               f"abc -liberty {lib} -D {period_ps} -constr abc.constr" +
-              (f" -script {ABC_LEAN}\n" if a.abc == "lean" else "\n") +
+              ({"lean": f" -script {ABC_LEAN}\n", "keep": f" -script {ABC_KEEP}\n"}.get(a.abc, "\n")) +
               "opt_clean -purge\nsetundef -zero\nsplitnets\nopt_clean -purge\n"
               "insbuf -buf BUFX2 A Y\n"
               "check -assert\n"
@@ -595,9 +599,11 @@ def main():
     ap.add_argument("--target", type=float, default=4.0, help="target clock period in ns (default 4.0)")
     ap.add_argument("--arith", choices=["fast", "yosys"], default="fast",
                     help="multipliers: fast = Dadda + Kogge-Stone (signoff/fastmul.py), yosys = Yosys's own")
-    ap.add_argument("--abc", choices=["full", "lean"], default="full",
+    ap.add_argument("--abc", choices=["full", "lean", "keep"], default="full",
                     help="ABC script: full = Yosys's own for -liberty -D, lean = without SAT sweeping (ABC_LEAN; "
-                         "for the lighting cores, where the full script does not finish in hours)")
+                         "for the lighting cores, where the full script does not finish in hours), keep = lean "
+                         "without AIG rewriting, the arithmetic mapped as fastmul.py builds it (ABC_KEEP; the "
+                         "pipelined lighting core)")
     ap.add_argument("--liberty", default=None, help=f"Liberty file (default {LIB_DIR}/{LIBERTY})")
     ap.add_argument("--cells", default=None, help=f"the library's Verilog cell models (default {LIB_DIR}/{CELLS})")
     ap.add_argument("--steps", default="synth,sta,gatesim,power",
