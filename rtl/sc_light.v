@@ -118,7 +118,7 @@
 //               T_NN = (NEED_N & NORMALIZE) ? NL : 0      N̂
 //               T_V  = LV ? K_V mod S + NL : 0             V̂
 //               T_L  = ANY_PL ? K_L mod S + NL : 0         L̂ of point lights
-//               D    = MREG_DOT·MREG (1 with MREG): a register inside each of the lanes' dot products
+//               D    = MREG_DOT·MREG (2 with MREG): registers inside each of the lanes' dot products
 //               T_A  = max(T_NN, T_L)                      N̂·L → diff, f at T_A+1+D
 //               T_H  = the first t >= max(T_L, T_V) with t ≡ K_H (mod S);  T_RV = max(T_A+2+2D, T_V)
 //               T_XB = T_H+NL+1+D (BLINN), T_XP = LV ? T_RV+1+D : T_A+2+2D (PHONG)   unit input x
@@ -129,7 +129,7 @@
 //               T_F  = max(1, NEED_N ? T_A+1+D : 0, UNITS ? T_X : 0, ANY_ATT ? T_ATT : 0,
 //                          ANY_SPOT ? max(T_ATT, T_SP)+1 : 0, LOW_N ? T_X+LOW_N_BITS : 0)
 //               (with S = 1 every op enters at stage 0: T_V = T_L = NL, T_H = max(T_L, T_V))
-//               NB   = 3 + ANY_ATT + D·(2 + ANY_ATT)   (each product stage of the back one more with D)
+//               NB   = 3 + ANY_ATT + DB·(2 + ANY_ATT), DB = MREG_BACK·MREG (each product stage of the back)
 //               LATENCY_P = T_F + (UNITS ? L_unit : 0) + NB, L_unit = the material's unit's
 //                           Unit::latency(): cs16 7, cs16 forms 5, schlick_nr 10, schlick_div /
 //                           schlick_iter VF+4; +2 with ENERGY; + the unit's mreg_stages with MREG
@@ -284,7 +284,8 @@ module sc_light #(
   localparam integer AW  = REG_ADDR_BITS;
   localparam integer NL  = NORMALIZE_LATENCY + MREG_NORMALIZE * MREG;   // latency of rtl/sc_normalize.v
   localparam integer RL  = RECIP_LATENCY;                               // latency of rtl/sc_recip.v
-  localparam integer D   = MREG_DOT * MREG;   // the lanes' dot products' (and R's products') extra stages
+  localparam integer D   = MREG_DOT * MREG;    // the lanes' dot products' (and R's products') extra stages
+  localparam integer DB  = MREG_BACK * MREG;   // each product stage of the back: its extra stages
   // structure sizes, clamped so that an illegal LIGHTS / LANES / CHANNELS reaches its own error message
   localparam integer NLT = (LIGHTS < 1) ? 1 : ((LIGHTS > MAX_LIGHTS) ? MAX_LIGHTS : LIGHTS);
   localparam integer NLN = (LANES < 1) ? 1 : ((LANES > NLT) ? NLT : LANES);
@@ -336,7 +337,7 @@ module sc_light #(
                                   sc_max((SPECULAR != 0) ? T_X : 0, (ANY_ATT != 0) ? T_ATT : 0)),
                                   (ANY_SPOT != 0) ? sc_max(T_ATT, T_SP) + 1 : 0),
                                   (HAS_LO != 0) ? T_X + LNB : 0);
-  localparam integer NB    = (ANY_ATT != 0) ? 4 + 3 * D : 3 + 2 * D;      // back pipeline stages
+  localparam integer NB    = (ANY_ATT != 0) ? 4 + 3 * DB : 3 + 2 * DB;    // back pipeline stages
   // channel-serial back (SHARE >= 4, RGB, units): a pass enters the back as three items, channels 0, 1, 2 on
   // consecutive back-advancing edges, through one set of colour multipliers (rtl/sc_light_shade.v CSER):
   // its colour is out two edges later (LightCore: back = NB + 2). SHARE >= 4 keeps the back (3 edges per
@@ -387,7 +388,7 @@ module sc_light #(
     if (LANES < 1 || LANES > LIGHTS) begin : g_check_lanes
       sc_light_error_illegal_LANES_legal_range_is_1_to_LIGHTS u_error ();
     end
-    if ((MREG != 0 && MREG != 1) || (MREG != 0 && SHARE != 1)) begin : g_check_mreg
+    if ((MREG != 0 && MREG != 1) || (MREG != 0 && SHARE != 1) || MREG_DOT < 1 || MREG_DOT > 2) begin : g_check_mreg
       sc_light_error_illegal_MREG_must_be_0_or_1_and_1_needs_SHARE_1 u_error ();
     end
     if (SHARE < 1 || SHARE > 4) begin : g_check_share
@@ -504,7 +505,7 @@ module sc_light #(
       .FRAC(FRAC), .UFRAC(VF), .SLOT_KINDS(SLOT_KINDS), .SLOT_SPOT(SLOT_SPOT), .SEB(SPEB), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
       .UNITS(UNITS), .ENERGY(ENERGY), .BLINN(BLINN), .PHONG(PHONG), .LOCAL_VIEWER(LOCAL_VIEWER),
       .NORMALIZE(NORMALIZE), .SEP(HAS_SEP), .TWO_SIDE(HAS_TWO), .COL_MAT(HAS_CM), .NLT(NLT), .NCH(NCH), .AW(AW),
-      .MREG(D)
+      .MREG(DB)
   ) u_regs (
       .clk_i(clk_i), .wr_i(wr), .addr_i(reg_addr_i[AW-1:0]), .data_i(reg_data_i),
       .pos_o(pos_all), .katt_o(katt_all), .kind_o(kind_all), .on_o(on_all),
@@ -823,7 +824,7 @@ module sc_light #(
     if (HAS_CM != 0) begin : g_col_b
       // (B1 is 1 + D edges after B0: rtl/sc_light_shade.v)
       assign col_b0 = bk_ftag[FTW-1:TAGW+3];
-      sc_delay #(.W(NCH*CL), .DEPTH(1 + D)) u_dly_col_b1 (
+      sc_delay #(.W(NCH*CL), .DEPTH(1 + DB)) u_dly_col_b1 (
           .clk_i(clk_i), .en_i(adv_b), .d_i(col_b0), .q_o(col_b1));
     end else begin : g_no_col_b
       assign col_b0 = {(NCH*CL){1'b0}};
@@ -1047,7 +1048,7 @@ module sc_light #(
       end
       sc_light_shade #(
           .FRAC(FRAC), .NLT(NLT), .NCH(NCH), .SPW(SPW), .SG(SGUARD), .AMBIENT(AMBIENT), .DIFFUSE(DIFFUSE),
-          .SPECULAR(SPECULAR), .CAN_ATT(ANY_ATT), .CSER(CSER), .SEP(HAS_SEP), .TWO(HAS_TWO), .COL(HAS_CM), .D(D)
+          .SPECULAR(SPECULAR), .CAN_ATT(ANY_ATT), .CSER(CSER), .SEP(HAS_SEP), .TWO(HAS_TWO), .COL(HAS_CM), .D(DB)
       ) u_shade (
           .clk_i(clk_i), .en_i(adv_b), .spec_i(spec_s), .f_i(ut_x[OFF_F]), .sep_i(sep_mode),
           .back_i(bk_ftag[2]), .bamb_i(bamb_w), .bdif_i(bdif_w), .bspec_i(bspec_w), .diff_i(bk_diff),
@@ -1187,13 +1188,13 @@ module sc_light #(
       wire [NCH*CL-1:0] em_bk0 = (HAS_TWO != 0 && bk_ftag[2]) ? bem_w : em_w;
       wire [NCH*CL-1:0] am_bk0 = (HAS_TWO != 0 && bk_ftag[2]) ? bamb_w : mamb_w;
       for (c = 0; c < NCH; c = c + 1) begin : g_sc
-        sc_light_scene #(.FRAC(FRAC), .MREG(D)) u_scene (
+        sc_light_scene #(.FRAC(FRAC), .MREG(DB)) u_scene (
             .clk_i(clk_i), .en_i(adv_b),
             .em_i(cm_w[0] ? col_b0[c*CL +: CL] : em_bk0[c*CL +: CL]),
             .am_i(cm_w[1] ? col_b0[c*CL +: CL] : am_bk0[c*CL +: CL]),
             .ga_i(ga_w[c*CL +: CL]), .scene_o(sc0[c*CL +: CL]));
       end
-      sc_delay #(.W(NCH*CL), .DEPTH(NB-1-D)) u_dly_scene (
+      sc_delay #(.W(NCH*CL), .DEPTH(NB-1-DB)) u_dly_scene (
           .clk_i(clk_i), .en_i(adv_b), .d_i(sc0), .q_o(scene_acc));
     end else begin : g_no_scene_cm
       assign scene_acc = {(NCH*CL){1'b0}};

@@ -109,6 +109,7 @@ module sc_light_lane #(
 
 `include "sc_light_regs.vh"
   localparam integer D = MREG_DOT * MREG;   // the dot products' (and R's products') extra stages (rtl/sc_light.v)
+  localparam integer DL = (D > 0) ? D : 1;  // their sc_mul_reg's latency (LAT)
 
   localparam integer F   = FRAC;
   localparam integer VF  = FRAC + SG;                        // fraction bits of the specular path
@@ -187,9 +188,9 @@ module sc_light_lane #(
       assign op_sel[k] = (SH == 1) || (ph_i == RI[1:0]);
     end
     if (D != 0) begin : g_dot_reg
-      // MREG (SHARE = 1): each op's products through rtl/sc_mul_reg.v, D = 1 stage later: a dot product as one
-      // sum of three products (N = 3: one tree, the register on its two carry-save rows, one adder), R's three
-      // products (op 2) each on its own
+      // MREG (SHARE = 1): each op's products through rtl/sc_mul_reg.v, D stages later (LAT = D = 2: each product's
+      // tree to two carry-save rows | register | the rows reduced and added | register): a dot product as one sum
+      // of three products (N = 3), R's three products (op 2) each on its own
       for (k = 0; k < NOP; k = k + 1) begin : g_k
         localparam integer BK = op_bw(k);
         wire [3*NW-1:0] ak;
@@ -203,13 +204,13 @@ module sc_light_lane #(
           wire unused_ab = &{1'b0, ak, bk};
         end else if (k == 2) begin : g_each
           for (gi = 0; gi < 3; gi = gi + 1) begin : g_p
-            sc_mul_reg #(.AW(NW), .BW(BK), .PW(PMX), .SIGNED(1)) u_p (
+            sc_mul_reg #(.AW(NW), .BW(BK), .PW(PMX), .SIGNED(1), .LAT(DL)) u_p (
                 .clk_i(clk_i), .en_i(en_i), .a_i(ak[gi*NW +: NW]), .b_i(bk[gi*BK +: BK]), .c_i(1'b0),
                 .p_o(prod[(3*k + gi)*PMX +: PMX]));
           end
         end else begin : g_dot
           assign prod[3*k*PMX +: 3*PMX] = {3*PMX{1'b0}};
-          sc_mul_reg #(.AW(NW), .BW(BK), .PW(SMX), .SIGNED(1), .N(3)) u_dot (
+          sc_mul_reg #(.AW(NW), .BW(BK), .PW(SMX), .SIGNED(1), .N(3), .LAT(DL)) u_dot (
               .clk_i(clk_i), .en_i(en_i), .a_i(ak), .b_i(bk), .c_i(1'b0), .p_o(dsum[k*SMX +: SMX]));
         end
         if (BMX > BK) begin : g_bhi

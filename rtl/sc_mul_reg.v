@@ -15,6 +15,9 @@
 //   ADD     0: no addend (c_i unused); 1: p = a·b + c_i, c_i unsigned          (default 0)
 //   CW      width of c_i, >= 1                                               (default 1)
 //   N       products summed, >= 1: operand k at a_i[k*AW +: AW], b_i[k*BW +: BW] (default 1)
+//   LAT     1 or 2 (default 1): enabled edges to p_o. 2: the cell flow registers each product's two carry-save
+//           rows, then reduces all of them and adds (the second register holds the sum): a deep tree (a dot
+//           product) over two cycles, p_o straight from a register
 //
 // Ports : clk_i    clock, the register loads on the rising edge
 //         en_i     enable (the pipeline's global enable)
@@ -22,7 +25,7 @@
 //         c_i[CW-1:0]               the addend (ADD = 1; tie to 0 otherwise)
 //         p_o[PW-1:0]               the registered product
 //
-// Latency : 1 enabled edge. No reset: the pipeline's valid bits qualify the register.
+// Latency : LAT enabled edges. No reset: the pipeline's valid bits qualify the registers.
 //
 // Implementation: behavioural (`*` then a register), so FPGA flows put the register into the DSP
 // block. The standard-cell flow (signoff/signoff.py) reads this module as a black box and maps each
@@ -39,7 +42,8 @@ module sc_mul_reg #(
     parameter integer SIGNED = 0,
     parameter integer ADD    = 0,
     parameter integer CW     = 1,
-    parameter integer N      = 1
+    parameter integer N      = 1,
+    parameter integer LAT    = 1
 ) (
     input  wire            clk_i,
     input  wire            en_i,
@@ -58,6 +62,9 @@ module sc_mul_reg #(
     end
     if (ADD != 0 && ADD != 1) begin : g_check_add
       sc_mul_reg_error_illegal_ADD_must_be_0_or_1 u_error ();
+    end
+    if (LAT != 1 && LAT != 2) begin : g_check_lat
+      sc_mul_reg_error_illegal_LAT_must_be_1_or_2 u_error ();
     end
     if (SIGNED != 0 && SIGNED != 1) begin : g_check_signed
       sc_mul_reg_error_illegal_SIGNED_must_be_0_or_1 u_error ();
@@ -106,7 +113,17 @@ module sc_mul_reg #(
   always @(posedge clk_i) begin
     if (en_i) m_q <= p;
   end
-  assign p_o = m_q;
+  generate
+    if (LAT == 2) begin : g_lat2
+      reg [PW-1:0] m2_q;
+      always @(posedge clk_i) begin
+        if (en_i) m2_q <= m_q;
+      end
+      assign p_o = m2_q;
+    end else begin : g_lat1
+      assign p_o = m_q;
+    end
+  endgenerate
 
 endmodule
 

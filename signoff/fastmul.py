@@ -51,7 +51,7 @@ class Net:
         return name
 
 
-def heap_of(m, n, y, signed, square, nprod=1):
+def heap_of(m, n, y, signed, square, nprod=1, only=None):
     """Partial-product bit heap: list of columns 0..y-1, each a list of expressions; plus a constant. With nprod > 1
     the heap of the sum of nprod products A[k*m +: m] * B[k*n +: n] (rtl/sc_mul_reg.v N), one constant row."""
     cols = [[] for _ in range(y)]
@@ -76,7 +76,7 @@ def heap_of(m, n, y, signed, square, nprod=1):
             for j in range(i + 1, m):
                 add(i + j + 1, f"A[{i}] & A[{j}]", sign(i, m) != sign(j, m))
     else:
-        for k in range(nprod):
+        for k in (range(nprod) if only is None else [only]):
             for i in range(m):
                 for j in range(n):
                     add(i + j, f"A[{k * m + i}] & B[{k * n + j}]", sign(i, m) != sign(j, n))
@@ -295,6 +295,40 @@ def registered_tree(heap, pw):
     return tree, regs, net.lines, bits
 
 
+def registered_body2(heaps, extra, pw, out):
+    """LAT = 2: each heap (one product's) reduced to two carry-save rows | register | every registered row and the
+    `extra` bits (the addend) reduced to two rows and added | register (out[k] straight from it)."""
+    net = Net()
+    regs, cols2 = [], [[] for _ in range(pw)]
+    for heap in heaps:
+        for k, col in enumerate(dadda(net, heap)):
+            for e in col:
+                if e in ("1'b0", "1'b1"):
+                    cols2[k].append(e)
+                else:
+                    regs.append((f"r{len(regs)}", e))
+                    cols2[k].append(regs[-1][0])
+    tree1 = list(net.lines)
+    for k in range(pw):
+        cols2[k].extend(extra[k])
+    net.lines = []
+    bits = kogge_stone(net, dadda(net, cols2)) if any(cols2) else ["1'b0"] * pw
+    decl = "\n".join(f"  reg {r};" for r, _ in regs) + f"\n  reg [{pw - 1}:0] s_q;"
+    load = "\n".join(f"      {r} <= {e};" for r, e in regs)
+    return f"""{chr(10).join(tree1)}
+{decl}
+  always @(posedge clk_i) begin
+    if (en_i) begin
+{load}
+    end
+  end
+{chr(10).join(net.lines)}
+  always @(posedge clk_i) begin
+    if (en_i) s_q <= {{{", ".join(bits[k] for k in reversed(range(pw)))}}};
+  end
+  assign {out} = s_q;"""
+
+
 def registered_body(heap, pw, out):
     """Verilog statements of registered_tree: the tree, the registers (clk_i, en_i), the adder, out[k] assigned."""
     tree, regs, adder, bits = registered_tree(heap, pw)
@@ -312,7 +346,7 @@ def registered_body(heap, pw, out):
 {asg}"""
 
 
-def mulreg_module_for(aw, bw, pw, signed, square, cw, index, nprod=1):
+def mulreg_module_for(aw, bw, pw, signed, square, cw, index, nprod=1, lat=1):
     """Verilog of one techmap module for an rtl/sc_mul_reg.v instance of this shape: the partial-product
     tree (of the nprod products, N; with the addend's bits as one more row when cw > 0, ADD = 1), the register
     (enable en_i) on its two carry-save rows, then the Kogge-Stone adder."""
@@ -322,13 +356,23 @@ def mulreg_module_for(aw, bw, pw, signed, square, cw, index, nprod=1):
     heap = heap_of(m, n, pw, signed, square, nprod)
     for k in range(min(cw, pw)):
         heap[k].append(f"C[{k}]")
+    if lat == 2:
+        if square:
+            raise ValueError("sc_mul_reg LAT = 2 of a square is not mapped")
+        heaps = [heap_of(m, n, pw, signed, False, nprod, only=k) for k in range(nprod)]
+        for k in range(min(cw, pw)):  # the addend is registered with the operands' rows
+            heaps[0][k].append(f"C[{k}]")
+        body = registered_body2(heaps, [[] for _ in range(pw)], pw, "p_o")
+    else:
+        body = registered_body(heap, pw, "p_o")
     cond = [f"AW == {aw}", f"BW == {bw}", f"PW == {pw}", f"SIGNED == {int(signed)}"]
     cond += [f"ADD == 1", f"CW == {cw}"] if cw else ["ADD == 0"]
     cond.append(f"N == {nprod}")
+    cond.append(f"LAT == {lat}")
     if square:
         cond.append("_TECHMAP_CONNMAP_a_i_ == _TECHMAP_CONNMAP_b_i_")
     kind = ("square" if square else "product" if nprod == 1 else f"sum of {nprod} products") + \
-        (f" + {cw}-bit addend" if cw else "")
+        (f" + {cw}-bit addend" if cw else "") + (", two registers (LAT 2)" if lat == 2 else "")
     return f"""// sc_mul_reg {kind} {aw}x{bw} -> {pw}, {'signed' if signed else 'unsigned'}: tree | register | adder
 (* techmap_celltype = "sc_mul_reg" *)
 module _sc_mulreg_{index} (clk_i, en_i, a_i, b_i, c_i, p_o);
@@ -339,6 +383,7 @@ module _sc_mulreg_{index} (clk_i, en_i, a_i, b_i, c_i, p_o);
   parameter ADD = 0;
   parameter CW = 1;
   parameter N = 1;
+  parameter LAT = 1;
   parameter _TECHMAP_CONNMAP_a_i_ = 0;
   parameter _TECHMAP_CONNMAP_b_i_ = 0;
   input clk_i, en_i;
@@ -350,7 +395,7 @@ module _sc_mulreg_{index} (clk_i, en_i, a_i, b_i, c_i, p_o);
   wire [N*AW-1:0] A = a_i;
   wire [N*BW-1:0] B = b_i;
   wire [CW-1:0] C = c_i;
-{registered_body(heap, pw, "p_o")}
+{body}
 endmodule
 """
 
@@ -420,11 +465,11 @@ def mulreg_shapes_of(design_json):
         for cell in mod.get("cells", {}).values():
             if cell["type"] != "sc_mul_reg":
                 continue
-            p = {"SIGNED": 0, "ADD": 0, "CW": 1, "N": 1}  # rtl/sc_mul_reg.v's defaults (a cell lists only what it sets)
+            p = {"SIGNED": 0, "ADD": 0, "CW": 1, "N": 1, "LAT": 1}  # rtl/sc_mul_reg.v's defaults (a cell lists only what it sets)
             p.update({k: int(v, 2) if isinstance(v, str) else int(v) for k, v in cell["parameters"].items()})
             con = cell["connections"]
             shapes.add((p["AW"], p["BW"], p["PW"], bool(p["SIGNED"]), p["N"] == 1 and con["a_i"] == con["b_i"],
-                        p["CW"] if p["ADD"] else 0, p["N"]))
+                        p["CW"] if p["ADD"] else 0, p["N"], p["LAT"]))
     return sorted(shapes)
 
 
@@ -439,17 +484,18 @@ def write_mulreg_map(shapes, path, sums=()):
 
 def mulreg_selftest(shapes, rtl):
     """Prove each generated sc_mul_reg map equal to rtl/sc_mul_reg.v: a miter of the two, all registers 0 at
-    the start, the enable high at the first edge, then any inputs and enables for 2 more edges (SAT). After an
+    the start, the enable high at the first LAT edges, then any inputs and enables for 2 more edges (SAT). After an
     enabled edge both registers hold all their state (the product, its rows), so a load followed by a hold
     and a load covers every case. Small shapes: a multiplier miter is hard for SAT beyond ~8 bits."""
     ok = True
     for s in shapes:
-        aw, bw, pw, signed, square, cw, nprod = s if len(s) == 7 else s + (1,)
-        s = (aw, bw, pw, signed, square, cw, nprod)
+        aw, bw, pw, signed, square, cw, nprod, lat = tuple(s) + (1, 1)[len(s) - 6:]
+        s = (aw, bw, pw, signed, square, cw, nprod, lat)
         with tempfile.TemporaryDirectory() as tmp:
             b = "a" if square else "b"
             add = f", .ADD(1), .CW({cw})" if cw else ""
             add += f", .N({nprod})" if nprod > 1 else ""
+            add += f", .LAT({lat})" if lat > 1 else ""
             src = f"""module top(input clk, input en, input [{nprod*aw-1}:0] a, input [{nprod*bw-1}:0] b,
            input [{max(cw, 1)-1}:0] c, output [{pw-1}:0] y);
   sc_mul_reg #(.AW({aw}), .BW({bw}), .PW({pw}), .SIGNED({int(signed)}){add}) u (.clk_i(clk), .en_i(en), .a_i(a), .b_i({b}),
@@ -458,12 +504,15 @@ endmodule
 """
             open(os.path.join(tmp, "t.v"), "w").write(src)
             write_mulreg_map([s], os.path.join(tmp, "map.v"))
+            # the first lat edges enabled fill every register (no reset: before that the mapped registers hold no
+            # carry-save form of the gold's zeros), then any inputs and enables
+            en_first = " ".join(f"-set-at {t} in_en 1" for t in range(1, lat + 1))
             script = (f"read_verilog {tmp}/t.v; read_verilog -lib {rtl}; hierarchy -top top; rename top gate; "
                       f"techmap -autoproc -map {tmp}/map.v gate; select -assert-none gate/t:sc_mul_reg; "
                       f"design -stash gatedesign; read_verilog {tmp}/t.v {rtl}; hierarchy -top top; proc; flatten; "
                       f"rename top gold; design -copy-from gatedesign gate; proc; opt_clean; "
                       f"miter -equiv -flatten -make_assert gold gate miter; hierarchy -top miter; "
-                      f"sat -verify -prove-asserts -set-init-zero -seq 3 -set-at 1 in_en 1 -prove-skip 1 "
+                      f"sat -verify -prove-asserts -set-init-zero -seq {2 + lat} {en_first} -prove-skip {lat} "
                       f"-show-inputs miter")
             ok &= _prove(f"sc_mul_reg {s}", script)
     return ok
@@ -573,7 +622,9 @@ def main():
         if os.path.exists(rtl):  # in a handoff bundle: rtl/ beside signoff/ too
             ok &= mulreg_selftest([s + (0,) for s in shapes[:4]] + [(7, 5, 12, False, False, 0), (5, 6, 12, True, False, 6),
                                                                   (4, 4, 8, False, True, 9), (3, 4, 9, True, False, 0, 3),
-                                                                  (3, 3, 7, False, False, 5, 2)], rtl)
+                                                                  (3, 3, 7, False, False, 5, 2),
+                                                                  (3, 4, 9, True, False, 0, 3, 2),
+                                                                  (4, 3, 8, False, False, 4, 1, 2)], rtl)
             ok &= sumreg_selftest(os.path.join(os.path.dirname(rtl), "sc_sum_reg.v"))
         sys.exit(0 if ok else 1)
     if not a.design or not a.out:

@@ -929,7 +929,7 @@ TEST(LightModes, MregLengthensThePathThroughTheNormalisersAndTheUnits) {
   LightRegs r;
   r.mat_unit = static_cast<uint32_t>(VariantId::cs16);
   // (the back without attenuation: B1 and B2 one stage more each)
-  EXPECT_EQ(c1.latency(r) - c0.latency(r), kMregNormalize + kMregDot + 2 * kMregDot + mreg_stages(VariantId::cs16));
+  EXPECT_EQ(c1.latency(r) - c0.latency(r), kMregNormalize + kMregDot + 2 * kMregBack + mreg_stages(VariantId::cs16));
   // a point light's L̂, then Ĥ = normalise(L̂ + V̂): two in series
   FeatureSet p = base, pm;
   p.slots = {kind_bit(LightKind::Point)};
@@ -937,7 +937,7 @@ TEST(LightModes, MregLengthensThePathThroughTheNormalisersAndTheUnits) {
   pm.mreg = 1;
   r.light[0].mode = light_mode_word(true, LightKind::Point);
   EXPECT_EQ(LightCore(pm).latency(r) - LightCore(p).latency(r),
-            2 * kMregNormalize + kMregDot + 2 * kMregDot + mreg_stages(VariantId::cs16));
+            2 * kMregNormalize + kMregDot + 2 * kMregBack + mreg_stages(VariantId::cs16));
   // (that the RTL computes the same colours at that latency is the co-simulation's: ctest sim.light.mreg.*)
 }
 

@@ -493,7 +493,8 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   // rtl/sc_normalize.v and rtl/sc_recip.v (config/configs.json light.latency: the RTL's NL and RL come from there too)
   const int NL = kNormalizeLatency + kMregNormalize * fs.mreg;
   constexpr int RL = kRecipLatency;
-  const int D = kMregDot * fs.mreg;  // the lanes' dot products (and R's products): a register inside each
+  const int D = kMregDot * fs.mreg;    // the lanes' dot products (and R's products): registers inside each
+  const int DB = kMregBack * fs.mreg;  // each product stage of the back
   const bool any_att = fs.any_att();  // point_att or spot
   const bool any_spot = fs.any_kind(LightKind::Spot);
   const bool any_point = fs.any_kind(LightKind::Point);
@@ -532,7 +533,7 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   // consecutive edges, so its colour is out two edges later.
   const bool cser = S >= 4 && fs.channels == 3 && fs.specular;
   // MREG: each product stage of the back (B1, B2 and with attenuation B3) takes D more (rtl/sc_light_shade.v)
-  return {t_f, (any_att ? 4 + 3 * D : 3 + 2 * D) + (cser ? 2 : 0)};
+  return {t_f, (any_att ? 4 + 3 * DB : 3 + 2 * DB) + (cser ? 2 : 0)};
 }
 }  // namespace detail
 
