@@ -9,7 +9,7 @@
 //            (rtl/sc_normalize.v, rtl/sc_recip.v) are written once with it for both values of their MREG.
 //
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
-//   AW, BW, PW, SIGNED, ADD, CW   as rtl/sc_mul_reg.v                     (defaults 8, 8, 16, 0, 0, 1)
+//   AW, BW, PW, SIGNED, ADD, CW   as rtl/sc_mul_reg.v; ADD = 1 needs MREG = 1 (defaults 8, 8, 16, 0, 0, 1)
 //   MREG    0: combinational; 1: registered (latency 1)                     (default 0)
 //   SW      sideband width, >= 1 (tie unused bits to constants)             (default 1)
 //
@@ -53,6 +53,9 @@ module sc_mul_stage #(
     if (SW < 1) begin : g_check_sw
       sc_mul_stage_error_illegal_SW_must_be_at_least_1 u_error ();
     end
+    if (ADD != 0 && MREG == 0) begin : g_check_add
+      sc_mul_stage_error_illegal_ADD_needs_MREG_1 u_error ();
+    end
   endgenerate
 
   generate
@@ -65,30 +68,14 @@ module sc_mul_stage #(
       end
       assign side_o = side_q;
     end else begin : g_comb
-      // the same arithmetic as rtl/sc_mul_reg.v without its register
-      wire [PW-1:0] c;
-      if (ADD != 0) begin : g_add
-        if (CW >= PW) begin : g_c_trunc
-          assign c = c_i[PW-1:0];
-          if (CW > PW) begin : g_c_unused
-            wire unused_c = &{1'b0, c_i[CW-1:PW]};
-          end
-        end else begin : g_c_ext
-          assign c = {{(PW-CW){1'b0}}, c_i};
-        end
-      end else begin : g_no_add
-        assign c = {PW{1'b0}};
-        wire unused_c = &{1'b0, c_i};
-      end
+      // the product alone (modulo 2^PW), as rtl/sc_mul_reg.v without its register
       if (SIGNED != 0) begin : g_signed
-        wire [PW-1:0] ab = $signed(a_i) * $signed(b_i);
-        assign p_o = ab + c;
+        assign p_o = $signed(a_i) * $signed(b_i);
       end else begin : g_unsigned
-        wire [PW-1:0] ab = a_i * b_i;
-        assign p_o = ab + c;
+        assign p_o = a_i * b_i;
       end
       assign side_o = side_i;
-      wire unused_clk = &{1'b0, clk_i, en_i};
+      wire unused_comb = &{1'b0, clk_i, en_i, c_i};
     end
   endgenerate
 

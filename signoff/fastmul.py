@@ -274,55 +274,62 @@ endmodule
     return ok
 
 
-def registered_tree(heap, pw):
-    """The tree | register | adder of a bit heap (pw columns): (tree lines, [(register, expression)], adder lines,
-    sum bits). The register holds the tree's two carry-save rows (a constant bit of a row needs none)."""
-    net = Net()
-    rows = dadda(net, heap)
-    tree = list(net.lines)
-    regs, rcols = [], []
+def register_rows(rows, regs):
+    """The columns of `rows` with every non-constant bit replaced by a register (appended to regs as (name, bit)):
+    a constant bit of a row needs none."""
+    rcols = []
     for col in rows:
         rc = []
         for e in col:
             if e in ("1'b0", "1'b1"):
-                rc.append(e)  # a constant of the heap needs no register
+                rc.append(e)
             else:
                 regs.append((f"r{len(regs)}", e))
                 rc.append(regs[-1][0])
         rcols.append(rc)
+    return rcols
+
+
+def reg_block(regs):
+    """Verilog of the registers regs (one bit each), loaded on the enabled edge."""
+    decl = "\n".join(f"  reg {r};" for r, _ in regs)
+    load = "\n".join(f"      {r} <= {e};" for r, e in regs)
+    return f"""{decl}
+  always @(posedge clk_i) begin
+    if (en_i) begin
+{load}
+    end
+  end"""
+
+
+def registered_tree(heap, pw):
+    """The tree | register | adder of a bit heap (pw columns): (tree lines, [(register, expression)], adder lines,
+    sum bits). The register holds the tree's two carry-save rows."""
+    net = Net()
+    rows = dadda(net, heap)
+    tree = list(net.lines)
+    regs = []
+    rcols = register_rows(rows, regs)
     net.lines = []
     bits = kogge_stone(net, rcols) if any(rcols) else ["1'b0"] * pw
     return tree, regs, net.lines, bits
 
 
-def registered_body2(heaps, extra, pw, out):
-    """LAT = 2: each heap (one product's) reduced to two carry-save rows | register | every registered row and the
-    `extra` bits (the addend) reduced to two rows and added | register (out[k] straight from it)."""
+def registered_body2(heaps, pw, out):
+    """LAT = 2: each heap (one product's) reduced to two carry-save rows | register | every registered row reduced
+    to two and added | register (out straight from it)."""
     net = Net()
     regs, cols2 = [], [[] for _ in range(pw)]
     for heap in heaps:
-        for k, col in enumerate(dadda(net, heap)):
-            for e in col:
-                if e in ("1'b0", "1'b1"):
-                    cols2[k].append(e)
-                else:
-                    regs.append((f"r{len(regs)}", e))
-                    cols2[k].append(regs[-1][0])
+        for k, col in enumerate(register_rows(dadda(net, heap), regs)):
+            cols2[k].extend(col)
     tree1 = list(net.lines)
-    for k in range(pw):
-        cols2[k].extend(extra[k])
     net.lines = []
     bits = kogge_stone(net, dadda(net, cols2)) if any(cols2) else ["1'b0"] * pw
-    decl = "\n".join(f"  reg {r};" for r, _ in regs) + f"\n  reg [{pw - 1}:0] s_q;"
-    load = "\n".join(f"      {r} <= {e};" for r, e in regs)
     return f"""{chr(10).join(tree1)}
-{decl}
-  always @(posedge clk_i) begin
-    if (en_i) begin
-{load}
-    end
-  end
+{reg_block(regs)}
 {chr(10).join(net.lines)}
+  reg [{pw - 1}:0] s_q;
   always @(posedge clk_i) begin
     if (en_i) s_q <= {{{", ".join(bits[k] for k in reversed(range(pw)))}}};
   end
@@ -332,16 +339,9 @@ def registered_body2(heaps, extra, pw, out):
 def registered_body(heap, pw, out):
     """Verilog statements of registered_tree: the tree, the registers (clk_i, en_i), the adder, out[k] assigned."""
     tree, regs, adder, bits = registered_tree(heap, pw)
-    decl = "\n".join(f"  reg {r};" for r, _ in regs)
-    load = "\n".join(f"      {r} <= {e};" for r, e in regs)
     asg = "\n".join(f"  assign {out}[{k}] = {bits[k]};" for k in range(pw))
     return f"""{chr(10).join(tree)}
-{decl}
-  always @(posedge clk_i) begin
-    if (en_i) begin
-{load}
-    end
-  end
+{reg_block(regs)}
 {chr(10).join(adder)}
 {asg}"""
 
@@ -362,7 +362,7 @@ def mulreg_module_for(aw, bw, pw, signed, square, cw, index, nprod=1, lat=1):
         heaps = [heap_of(m, n, pw, signed, False, nprod, only=k) for k in range(nprod)]
         for k in range(min(cw, pw)):  # the addend is registered with the operands' rows
             heaps[0][k].append(f"C[{k}]")
-        body = registered_body2(heaps, [[] for _ in range(pw)], pw, "p_o")
+        body = registered_body2(heaps, pw, "p_o")
     else:
         body = registered_body(heap, pw, "p_o")
     cond = [f"AW == {aw}", f"BW == {bw}", f"PW == {pw}", f"SIGNED == {int(signed)}"]
