@@ -64,9 +64,11 @@
 //   CHANNELS      1 (mono: channel 0 only, out_g_o = out_b_o = 0) or 3 (RGB)           (default 3)
 //   TAGW          width of the opaque fragment tag, >= 1                               (default 8)
 //   MREG          0/1, the pipelining parameter (feature-set key mreg; needs SHARE = 1): 1 cuts every
-//                 product of the vector normalisers with a register (rtl/sc_normalize.v, NL 10 -> 18) and
-//                 passes MREG to the specular units (their mreg_stages, config/configs.json); the same
-//                 outputs, more latency (docs/signoff.md)                                (default 0)
+//                 product of the vector normalisers with a register (rtl/sc_normalize.v, NL 10 -> 18), each
+//                 dot product of the lanes over D = MREG_DOT cycles (rtl/sc_mul_reg.v LAT), each product stage
+//                 of the back over DB = MREG_BACK more (rtl/sc_light_shade.v), and passes MREG to the specular
+//                 units (their mreg_stages); the same outputs, more latency (config/configs.json light.latency;
+//                 docs/signoff.md "Fifth round")                                         (default 0)
 //   At least one of AMBIENT, DIFFUSE, UNITS must be non-zero.
 //
 // Ports (docs/spec.md §4 convention: all flops on the rising edge of clk_i; rst_ni synchronous,
