@@ -112,6 +112,7 @@ set(_ventries "")
 set(_vvh "")
 set(_sqentries "")
 set(_sqcase "")
+set(_mregcase "")  # variant_mreg_stages() of sc_variants.vh: the RTL's copy of variants[].mreg_stages
 set(_nsq 0)
 set(SHADECORE_SQUARER_VARIANTS "")
 foreach(i RANGE ${_lastv})
@@ -131,6 +132,10 @@ foreach(i RANGE ${_lastv})
   string(JSON _vmreg ERROR_VARIABLE _nomreg GET "${_cfg_json}" variants ${i} mreg_stages)
   if(_nomreg)
     set(_vmreg 0)
+  endif()
+  if(NOT _vmreg EQUAL 0)
+    string(TOUPPER "${_vname}" _vmup)
+    string(APPEND _mregcase "      VARIANT_${_vmup}: variant_mreg_stages = ${_vmreg};\n")
   endif()
   # "signoff_abc": the ABC script of the OSU 0.18 um sign-off (signoff/signoff.py --abc): full (default) or lean,
   # for a unit whose delay-driven mapping with SAT sweeping does not finish in hours (schlick_nr; docs/signoff.md)
@@ -256,6 +261,14 @@ function integer cs16_sq_param(input integer variant, input integer field);
     cs16_sq_param = 0;
     case (variant)
 ${_sqcase}      default: cs16_sq_param = 0;
+    endcase
+  end
+endfunction
+// the cycles MREG = 1 adds to a VARIANT (configs.json variants[].mreg_stages; 0: the unit ignores MREG)
+function integer variant_mreg_stages(input integer variant);
+  begin
+    case (variant)
+${_mregcase}      default: variant_mreg_stages = 0;
     endcase
   end
 endfunction

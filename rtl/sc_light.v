@@ -223,11 +223,10 @@ module sc_light #(
   endfunction
   // the longest unit latency among UNITS (for the in-flight counter's width)
   function integer unit_latency(input integer v);
-    // (+ 6 with MREG: at least any unit's mreg_stages, config/configs.json; a bound for a counter's width)
     unit_latency = ((v == VARIANT_CS16) ? 7 : (cs16_sq_param(v, 0) == 1) ? 5 :
                     (v == VARIANT_SCHLICK_NR) ? 10 :
                     (v == VARIANT_SCHLICK_DIV || v == VARIANT_SCHLICK_ITER) ? FRAC + SGUARD + 4 : 0) +
-                   ((ENERGY != 0) ? 2 : 0) + 6 * MREG;
+                   ((ENERGY != 0) ? 2 : 0) + variant_mreg_stages(v) * MREG;   // (sc_variants.vh)
   endfunction
   function integer max_unit_latency(input integer dummy);
     integer v;

@@ -24,3 +24,16 @@ function integer cs16_sq_param(input integer variant, input integer field);
     endcase
   end
 endfunction
+// the cycles MREG = 1 adds to a VARIANT (configs.json variants[].mreg_stages; 0: the unit ignores MREG)
+function integer variant_mreg_stages(input integer variant);
+  begin
+    case (variant)
+      VARIANT_CS16: variant_mreg_stages = 5;
+      VARIANT_SCHLICK_DIV: variant_mreg_stages = 1;
+      VARIANT_SCHLICK_NR: variant_mreg_stages = 6;
+      VARIANT_CS16_FAITHFUL: variant_mreg_stages = 6;
+      VARIANT_CS16_COMPACT: variant_mreg_stages = 6;
+      default: variant_mreg_stages = 0;
+    endcase
+  end
+endfunction
