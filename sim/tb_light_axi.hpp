@@ -251,7 +251,7 @@ struct AxiPins : LightPinOps<AxiPins<M>> {
         axi_port_set(t.s_axis_tdata_i, lsb_in_[i], axis_width(kAXIS_IN_fields[static_cast<size_t>(i)].width, frac), f[i]->v);
       if (in_tdata_ > in_bits_) axi_port_set(t.s_axis_tdata_i, in_bits_, in_tdata_ - in_bits_, rng_());
     }
-    t.s_axis_tuser_i = static_cast<decltype(t.s_axis_tuser_i)>(in_tag.v);
+    t.s_axis_tuser_i = static_cast<std::remove_reference_t<decltype(t.s_axis_tuser_i)>>(in_tag.v);
     t.s_axis_tlast_i = axi_tlast_of(in_tag.v);
     t.m_axis_tready_i = out_ready.v != 0;
   }
