@@ -499,6 +499,7 @@ string(JSON _axwc GET "${_cfg_json}" light axi widths colour)
 string(JSON _axwf GET "${_cfg_json}" light axi widths flag)
 set(_axvh_fields "")
 set(_axhpp_fields "")
+set(_ch_axi "")
 foreach(_side s_axis m_axis)
   if(_side STREQUAL "s_axis")
     set(_pfx AXIS_IN)
@@ -523,8 +524,27 @@ foreach(_side s_axis m_axis)
     string(APPEND _axvh_fields "localparam integer ${_pfx}_${_fup}_W = ${_fv};\n")
     string(APPEND _axuse ", ${_pfx}_${_fup}_LSB[0], ${_pfx}_${_fup}_W[0]")
     string(APPEND _tab "    AxisField{\"${_fname}\", AxisWidth::${_fw}},\n")
+    # the C driver header's macros: LSB and width as a + b*F (widths are "F+n" or "n")
+    if(_fexpr MATCHES "^F\\+([0-9]+)$")
+      set(_wb 1)
+      set(_wa ${CMAKE_MATCH_1})
+    elseif(_fexpr MATCHES "^([0-9]+)$")
+      set(_wb 0)
+      set(_wa ${CMAKE_MATCH_1})
+    else()
+      message(FATAL_ERROR "config/configs.json light.axi.widths: '${_fexpr}' is not F+n or n")
+    endif()
+    if(_prev STREQUAL "")
+      set(_la 0)
+      set(_lb 0)
+    endif()
+    string(APPEND _ch_axi "#define SC_LIGHT_${_pfx}_${_fup}_LSB(F) (${_la} + ${_lb} * (F))\n"
+                          "#define SC_LIGHT_${_pfx}_${_fup}_BITS(F) (${_wa} + ${_wb} * (F))\n")
+    math(EXPR _la "${_la} + ${_wa}")
+    math(EXPR _lb "${_lb} + ${_wb}")
     set(_prev ${_fup})
   endforeach()
+  string(APPEND _ch_axi "#define SC_LIGHT_${_pfx}_TDATA_BITS(F) (((${_la} + ${_lb} * (F)) + 7) / 8 * 8)\n")
   string(APPEND _axvh_fields "localparam integer ${_pfx}_BITS = ${_pfx}_${_prev}_LSB + ${_pfx}_${_prev}_W;\n"
                              "localparam integer ${_pfx}_TDATA = (${_pfx}_BITS + 7) / 8 * 8;  // padded to whole bytes\n")
   string(APPEND _axuse ", ${_pfx}_BITS[0], ${_pfx}_TDATA[0]")
@@ -909,6 +929,14 @@ file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/shadecore_light_regs
 #define SC_LIGHT_REG_LIGHT(reg, j) ((uint32_t)(reg) + (uint32_t)(j) * SC_LIGHT_STRIDE)
 #define SC_LIGHT_MASK(bits) ((uint32_t)((((uint64_t)1) << (bits)) - 1u))
 
+/* The AXI view (rtl/sc_light_axi.v; config/configs.json light.axi; docs/handoff.md \"AXI view\"): the AXI4-Lite byte
+ * address of register address `word`; a write must carry WSTRB = 0xF; BRESP / RRESP SLVERR (2) where the core has
+ * no such register. A fragment on AXI4-Stream (S) and a colour (M): each field at bits [LSB, LSB + BITS) of TDATA,
+ * as functions of F; TUSER = the tag; TLAST travels with the fragment. */
+#define SC_LIGHT_AXI_ADDR(word) ((uint32_t)(word) << 2)
+#define SC_LIGHT_AXI_OKAY 0u
+#define SC_LIGHT_AXI_SLVERR 2u
+${_ch_axi}
 /* light_model fields */
 ${_ch_lm}
 /* light kinds (light_mode's kind field) */
