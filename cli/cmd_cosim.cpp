@@ -447,8 +447,12 @@ void add_cosim(CLI::App& app) {
   auto harness = std::make_shared<std::string>("systemc");
   auto* harness_opt = sub->add_option("--harness", *harness,
                                       "--core lighting: systemc (default: the SystemC testbench) | bare (the same RTL, "
-                                      "stimulus and checks in a plain C++ loop without SystemC, for long random runs)")
-                          ->check(CLI::IsMember({"systemc", "bare"}));
+                                      "stimulus and checks in a plain C++ loop without SystemC, for long random runs) | axi "
+                                      "(the bare harness through the AXI wrapper rtl/sc_light_axi.v: AXI4-Lite registers, "
+                                      "AXI4-Stream fragments and colours; docs/handoff.md)")
+                          ->check(CLI::IsMember({"systemc", "bare", "axi"}));
+  auto axi = std::make_shared<bool>(false);
+  auto* axi_opt = sub->add_flag("--axi", *axi, "--core lighting: the same as --harness axi");
   auto write_rate = std::make_shared<double>(-1.0);
   auto* write_rate_opt =
       sub->add_option("--write-rate", *write_rate,
@@ -460,7 +464,7 @@ void add_cosim(CLI::App& app) {
                                     "--core lighting, random: global index of the first fragment (a shard of a longer run "
                                     "with the same seed and --reset-at)")
                         ->check(UInt(0, uint64_t{1} << 40));
-  sub->callback([args, n_opt, count_opt, shards_opt, cm_opt, coef_opt, core, features, feat_opt, harness, harness_opt,
+  sub->callback([args, n_opt, count_opt, shards_opt, cm_opt, coef_opt, core, features, feat_opt, harness, harness_opt, axi, axi_opt,
                  write_rate, write_rate_opt, first, first_opt, cov_raw, trace_window, trace_all, inject, inject_at, sub] {
     if (*core == "lighting") {
       for (const char* unit_only : {"--variant", "--config", "--cutoff", "--n", "--norm", "--coef-model", "--coef",
@@ -476,7 +480,9 @@ void add_cosim(CLI::App& app) {
       la.in_stall = args->in_stall;
       la.out_stall = args->out_stall;
       la.json_path = args->json_path;
-      la.harness = *harness;
+      if (*axi && harness_opt->count() > 0 && *harness != "axi")
+        throw std::invalid_argument("--axi is --harness axi: not with --harness " + *harness);
+      la.harness = *axi ? "axi" : *harness;
       la.first = *first;
       la.write_rate = *write_rate;
       if (write_rate_opt->count() > 0 && la.mode != "random") throw std::invalid_argument("--write-rate applies to --mode random only");
@@ -500,6 +506,7 @@ void add_cosim(CLI::App& app) {
       return;
     }
     if (feat_opt->count() > 0) throw std::invalid_argument("--features needs --core lighting");
+    if (axi_opt->count() > 0) throw std::invalid_argument("--axi needs --core lighting (the AXI wrapper is the lighting core's)");
     if (harness_opt->count() > 0)
       throw std::invalid_argument("--harness needs --core lighting (the unit's bare harness is shadecore_bare_<config>)");
     if (first_opt->count() > 0) throw std::invalid_argument("--first needs --core lighting (the unit's shards: --shards)");

@@ -29,8 +29,8 @@ struct CoreBuild {
 
 // The two harnesses of a feature set's build: the SystemC testbench (shadecore_light_sim; protocol-rich
 // runs, `render --rtl`) and the bare Verilated harness (shadecore_light_bare; long random regressions).
-enum class Harness { SystemC, Bare };
-Harness parse_harness(const std::string& name);  // "systemc" | "bare"; throws std::invalid_argument
+enum class Harness { SystemC, Bare, Axi };  // Axi: the bare harness through the AXI wrapper rtl/sc_light_axi.v
+Harness parse_harness(const std::string& name);  // "systemc" | "bare" | "axi"; throws std::invalid_argument
 const char* harness_name(Harness h);
 
 // Build (or find) the simulator of `fs` for harness `h`. Progress on stderr when building (it takes

@@ -248,7 +248,7 @@ inline constexpr const SquarerForm* squarer_form(VariantId v) {
 # configs.json: `cmake --build build --target update_rtl_headers` copies them into rtl/).
 set(SHADECORE_RTL_INCDIR "${CMAKE_SOURCE_DIR}/rtl")
 set(SHADECORE_GENERATED_RTL_DIR "${SHADECORE_GENERATED_DIR}/rtl")
-set(SHADECORE_GENERATED_RTL_HEADERS sc_variants.vh sc_light_regs.vh)
+set(SHADECORE_GENERATED_RTL_HEADERS sc_variants.vh sc_light_regs.vh sc_light_axi.vh)
 file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_RTL_DIR}/sc_variants.vh" CONTENT
 "// SPDX-License-Identifier: Apache-2.0
 // generated from config/configs.json by cmake/ShadecoreConfigs.cmake — do not edit
@@ -417,6 +417,185 @@ localparam integer MREG_DOT = ${_llat_md};
 localparam integer MREG_BACK = ${_llat_mb};
 ${_lmvh}${_kvh}${_rvh}// every name above, so that a module using a few of them lints clean (Verilator's unused pattern)
 localparam [0:0] unused_light_regs = ^{1'b0, ${_ruse}${_kusestr}};
+" @ONLY)
+# The AXI view of the lighting core (config/configs.json light.axi, issue 39): which addresses are registers of a
+# build (registers[].needs over the capability bits light.axi.needs) and the AXI4-Stream packing, generated for
+#   ${SHADECORE_GENERATED_RTL_DIR}/sc_light_axi.vh                (included inside rtl/sc_light_axi.v; committed)
+#   ${SHADECORE_GENERATED_DIR}/shadecore/light_axi_map.hpp        (the benches' and the model's side)
+string(JSON _nneeds LENGTH "${_cfg_json}" light axi needs)
+math(EXPR _lastneed "${_nneeds} - 1")
+set(_axvh_need "")
+set(_axhpp_need "")
+set(_axuse "")
+foreach(i RANGE ${_lastneed})
+  string(JSON _ndname GET "${_cfg_json}" light axi needs ${i} name)
+  string(JSON _ndbit GET "${_cfg_json}" light axi needs ${i} bit)
+  string(TOUPPER "${_ndname}" _ndup)
+  set(_needbit_${_ndname} ${_ndbit})
+  string(APPEND _axvh_need "localparam integer AXI_NEED_${_ndup} = ${_ndbit};\n")
+  string(APPEND _axhpp_need "inline constexpr int kAxiNeed_${_ndname} = ${_ndbit};\n")
+  string(APPEND _axuse ", AXI_NEED_${_ndup}[0]")
+endforeach()
+set(_axlight_base 100000)
+set(_axglob "")
+set(_axlight "")
+set(_axtab "")
+foreach(i RANGE ${_lastr})
+  string(JSON _rname GET "${_cfg_json}" light registers ${i} name)
+  string(JSON _raddr GET "${_cfg_json}" light registers ${i} addr)
+  string(JSON _rcount GET "${_cfg_json}" light registers ${i} count)
+  _shadecore_json_flag(_rperc light registers ${i} per_light)
+  _shadecore_json_flag(_rresc light registers ${i} reserved)
+  if(_rperc AND _raddr LESS _axlight_base)
+    set(_axlight_base ${_raddr})
+  endif()
+endforeach()
+foreach(i RANGE ${_lastr})
+  string(JSON _rname GET "${_cfg_json}" light registers ${i} name)
+  string(JSON _raddr GET "${_cfg_json}" light registers ${i} addr)
+  string(JSON _rcount GET "${_cfg_json}" light registers ${i} count)
+  _shadecore_json_flag(_rperc light registers ${i} per_light)
+  _shadecore_json_flag(_rresc light registers ${i} reserved)
+  if(_rresc)
+    continue()
+  endif()
+  string(JSON _nn ERROR_VARIABLE _noneeds LENGTH "${_cfg_json}" light registers ${i} needs)
+  if(_noneeds)
+    message(FATAL_ERROR "config/configs.json: light register ${_rname} has no \"needs\" (the capabilities it exists with)")
+  endif()
+  set(_mask 0)
+  if(_nn GREATER 0)
+    math(EXPR _lastnn "${_nn} - 1")
+    foreach(k RANGE ${_lastnn})
+      string(JSON _nd GET "${_cfg_json}" light registers ${i} needs ${k})
+      if(NOT DEFINED _needbit_${_nd})
+        message(FATAL_ERROR "config/configs.json: light register ${_rname} needs '${_nd}', not one of light.axi.needs")
+      endif()
+      math(EXPR _mask "${_mask} | (1 << ${_needbit_${_nd}})")
+    endforeach()
+  endif()
+  set(_items "")
+  math(EXPR _lastc "${_rcount} - 1")
+  foreach(c RANGE ${_lastc})
+    if(_rperc)
+      math(EXPR _a "${_raddr} - ${_axlight_base} + ${c}")
+      list(APPEND _items "${_a}")
+    else()
+      math(EXPR _a "${_raddr} + ${c}")
+      list(APPEND _items "${_labits}'d${_a}")
+    endif()
+  endforeach()
+  list(JOIN _items ", " _itemstr)
+  if(_rperc)
+    string(APPEND _axlight "      ${_itemstr}: axi_light_needs = ${_mask};  // ${_rname}\n")
+  else()
+    string(APPEND _axglob "      ${_itemstr}: axi_global_needs = ${_mask};  // ${_rname}\n")
+  endif()
+  string(APPEND _axtab "    AxiRegNeeds{${_raddr}, ${_rcount}, ${_rperc}, ${_mask}},\n")
+endforeach()
+string(JSON _axwn GET "${_cfg_json}" light axi widths normal)
+string(JSON _axwp GET "${_cfg_json}" light axi widths position)
+string(JSON _axwc GET "${_cfg_json}" light axi widths colour)
+string(JSON _axwf GET "${_cfg_json}" light axi widths flag)
+set(_axvh_fields "")
+set(_axhpp_fields "")
+set(_ch_axi "")
+foreach(_side s_axis m_axis)
+  if(_side STREQUAL "s_axis")
+    set(_pfx AXIS_IN)
+  else()
+    set(_pfx AXIS_OUT)
+  endif()
+  string(JSON _nf LENGTH "${_cfg_json}" light axi ${_side})
+  math(EXPR _lastf "${_nf} - 1")
+  set(_prev "")
+  set(_tab "")
+  foreach(i RANGE ${_lastf})
+    string(JSON _fname GET "${_cfg_json}" light axi ${_side} ${i} name)
+    string(JSON _fw GET "${_cfg_json}" light axi ${_side} ${i} width)
+    string(JSON _fexpr GET "${_cfg_json}" light axi widths ${_fw})
+    string(REPLACE "F" "FRAC" _fv "${_fexpr}")
+    string(TOUPPER "${_fname}" _fup)
+    if(_prev STREQUAL "")
+      string(APPEND _axvh_fields "localparam integer ${_pfx}_${_fup}_LSB = 0;\n")
+    else()
+      string(APPEND _axvh_fields "localparam integer ${_pfx}_${_fup}_LSB = ${_pfx}_${_prev}_LSB + ${_pfx}_${_prev}_W;\n")
+    endif()
+    string(APPEND _axvh_fields "localparam integer ${_pfx}_${_fup}_W = ${_fv};\n")
+    string(APPEND _axuse ", ${_pfx}_${_fup}_LSB[0], ${_pfx}_${_fup}_W[0]")
+    string(APPEND _tab "    AxisField{\"${_fname}\", AxisWidth::${_fw}},\n")
+    # the C driver header's macros: LSB and width as a + b*F (widths are "F+n" or "n")
+    if(_fexpr MATCHES "^F\\+([0-9]+)$")
+      set(_wb 1)
+      set(_wa ${CMAKE_MATCH_1})
+    elseif(_fexpr MATCHES "^([0-9]+)$")
+      set(_wb 0)
+      set(_wa ${CMAKE_MATCH_1})
+    else()
+      message(FATAL_ERROR "config/configs.json light.axi.widths: '${_fexpr}' is not F+n or n")
+    endif()
+    if(_prev STREQUAL "")
+      set(_la 0)
+      set(_lb 0)
+    endif()
+    string(APPEND _ch_axi "#define SC_LIGHT_${_pfx}_${_fup}_LSB(F) (${_la} + ${_lb} * (F))\n"
+                          "#define SC_LIGHT_${_pfx}_${_fup}_BITS(F) (${_wa} + ${_wb} * (F))\n")
+    math(EXPR _la "${_la} + ${_wa}")
+    math(EXPR _lb "${_lb} + ${_wb}")
+    set(_prev ${_fup})
+  endforeach()
+  string(APPEND _ch_axi "#define SC_LIGHT_${_pfx}_TDATA_BITS(F) (((${_la} + ${_lb} * (F)) + 7) / 8 * 8)\n")
+  string(APPEND _axvh_fields "localparam integer ${_pfx}_BITS = ${_pfx}_${_prev}_LSB + ${_pfx}_${_prev}_W;\n"
+                             "localparam integer ${_pfx}_TDATA = (${_pfx}_BITS + 7) / 8 * 8;  // padded to whole bytes\n")
+  string(APPEND _axuse ", ${_pfx}_BITS[0], ${_pfx}_TDATA[0]")
+  string(APPEND _axhpp_fields "inline constexpr std::array<AxisField, ${_nf}> k${_pfx}_fields{{\n${_tab}}};\n")
+endforeach()
+string(REPLACE "F" "f" _axcn "${_axwn}")
+string(REPLACE "F" "f" _axcp "${_axwp}")
+string(REPLACE "F" "f" _axcc "${_axwc}")
+string(REPLACE "F" "f" _axcf "${_axwf}")
+file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_RTL_DIR}/sc_light_axi.vh" CONTENT
+"// SPDX-License-Identifier: Apache-2.0
+// generated from config/configs.json (light.axi, light.registers[].needs) by cmake/ShadecoreConfigs.cmake — do not edit
+// The AXI view of the lighting core, included inside rtl/sc_light_axi.v (after FRAC): the capability bits a register
+// needs (-1: no register at that address) and the AXI4-Stream packing (fields LSB first; TDATA padded to bytes).
+${_axvh_need}localparam integer AXI_LIGHT_BASE = ${_axlight_base};  // slot 0's first per-light register; slot j at + LIGHT_STRIDE*j
+function integer axi_global_needs(input [${_labits}-1:0] w);
+  begin
+    case (w)
+${_axglob}      default: axi_global_needs = -1;
+    endcase
+  end
+endfunction
+function integer axi_light_needs(input integer off);  // off = address - AXI_LIGHT_BASE - LIGHT_STRIDE*j
+  begin
+    case (off)
+${_axlight}      default: axi_light_needs = -1;
+    endcase
+  end
+endfunction
+${_axvh_fields}localparam [0:0] unused_light_axi = ^{1'b0, AXI_LIGHT_BASE[0]${_axuse}};
+" @ONLY)
+file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/light_axi_map.hpp" CONTENT
+"// SPDX-License-Identifier: Apache-2.0
+// generated from config/configs.json (light.axi, light.registers[].needs) by cmake/ShadecoreConfigs.cmake — do not edit
+// The AXI view of the lighting core (rtl/sc_light_axi.v): register presence and the AXI4-Stream packing.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string_view>
+namespace shadecore {
+${_axhpp_need}inline constexpr uint32_t kAxiLightBase = ${_axlight_base};
+// a register of the map that is not reserved: its addresses exist when every capability bit of needs is built
+struct AxiRegNeeds { uint32_t addr; int count; bool per_light; unsigned needs; };
+inline constexpr AxiRegNeeds kAxiRegNeeds[] = {
+${_axtab}};
+enum class AxisWidth { normal, position, colour, flag };
+constexpr int axis_width(AxisWidth w, int f) {
+  return w == AxisWidth::normal ? ${_axcn} : w == AxisWidth::position ? ${_axcp} : w == AxisWidth::colour ? ${_axcc} : ${_axcf};
+}
+struct AxisField { std::string_view name; AxisWidth width; };
+${_axhpp_fields}}  // namespace shadecore
 " @ONLY)
 file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/configs_json.hpp" CONTENT
 "// SPDX-License-Identifier: Apache-2.0
@@ -750,6 +929,14 @@ file(CONFIGURE OUTPUT "${SHADECORE_GENERATED_DIR}/shadecore/shadecore_light_regs
 #define SC_LIGHT_REG_LIGHT(reg, j) ((uint32_t)(reg) + (uint32_t)(j) * SC_LIGHT_STRIDE)
 #define SC_LIGHT_MASK(bits) ((uint32_t)((((uint64_t)1) << (bits)) - 1u))
 
+/* The AXI view (rtl/sc_light_axi.v; config/configs.json light.axi; docs/handoff.md \"AXI view\"): the AXI4-Lite byte
+ * address of register address `word`; a write must carry WSTRB = 0xF; BRESP / RRESP SLVERR (2) where the core has
+ * no such register. A fragment on AXI4-Stream (S) and a colour (M): each field at bits [LSB, LSB + BITS) of TDATA,
+ * as functions of F; TUSER = the tag; TLAST travels with the fragment. */
+#define SC_LIGHT_AXI_ADDR(word) ((uint32_t)(word) << 2)
+#define SC_LIGHT_AXI_OKAY 0u
+#define SC_LIGHT_AXI_SLVERR 2u
+${_ch_axi}
 /* light_model fields */
 ${_ch_lm}
 /* light kinds (light_mode's kind field) */
@@ -830,3 +1017,6 @@ foreach(_src IN LISTS SHADECORE_LIGHT_SOURCES)
 endforeach()
 set(SHADECORE_RTL_FILES_sc_specular ${SHADECORE_RTL_SOURCES})
 set(SHADECORE_RTL_FILES_sc_light ${SHADECORE_LIGHT_SOURCES})
+_shadecore_json_list(SHADECORE_LIGHT_AXI_SOURCES rtl sc_light_axi files)   # the AXI wrapper (issue 39), then the core's
+list(APPEND SHADECORE_LIGHT_AXI_SOURCES ${SHADECORE_LIGHT_SOURCES})
+set(SHADECORE_RTL_FILES_sc_light_axi ${SHADECORE_LIGHT_AXI_SOURCES})

@@ -36,6 +36,10 @@ RTL = os.path.join(ROOT, "rtl")
 HARNESS = os.path.join(ROOT, "formal", "sc_formal_unit.v")
 CTRL_HARNESS = os.path.join(ROOT, "formal", "sc_formal_ctrl.v")
 LIGHT_HARNESS = os.path.join(ROOT, "formal", "sc_formal_light.v")
+# the AXI wrapper rtl/sc_light_axi.v around the core of a set (docs/formal.md §9)
+AXI_HARNESS = os.path.join(ROOT, "formal", "sc_formal_axi.v")
+AXI_SETS = ("diffuse", "gl_default")
+AXI_CONNECT = [("o_wstate", "dut.w_state_q"), ("o_rbusy", "dut.r_busy_q")]
 # The lighting core (docs/formal.md §7): a small and the full feature set. Their Verilog parameters and
 # latency come from the CLI (`shadecore light-sweep --json`: FeatureSet::verilog_params, LightCore::latency),
 # one source; --shadecore EXE or $SHADECORE names the binary (ctest passes the built one).
@@ -149,6 +153,18 @@ def light_jobs(cfg):
     out["light_inv.diffuse"] = dict(base, light="diffuse", depth=PROOF_DEPTH, reach=None,
                                     defines=["LIGHT_BMC", "LIGHT_INV"], connect=LIGHT_INV_CONNECT,
                                     keep_asserts="l_no_spurious l_count_bound l_reg_ready_idle i_*")
+    # the AXI wrapper (issue 39): its bus properties, the core inside abstracted as above; the core's own l_* are
+    # not in this harness (proved on the core's jobs)
+    axi_files = list(cfg["rtl"]["sc_light_axi"]["files"]) + [f for f in files if f not in cfg["rtl"]["sc_light_axi"]["files"]]
+    for fs in AXI_SETS:
+        out["axi.%s" % fs] = dict(top="sc_formal_axi", files=axi_files, harness=AXI_HARNESS, light=fs,
+                                  depth=PROOF_DEPTH, reach=None, connect=AXI_CONNECT, keep_asserts="a_* i_*",
+                                  # the read-back shadow and the register-existence ROMs (Yosys proc_rom) are cut too:
+                                  # z3 ran out of memory (> 14 GB) on their arrays; RDATA enters a real register
+                                  extra_cut="cutpoint t:$mem_v2; ",
+                                  # z3 (through yosys-smtbmc) did not finish even the 1-step base case of this small
+                                  # design (388 cells) in minutes; Yosys's own SAT k-induction proves it in seconds
+                                  engine="sat")
     return out
 
 
@@ -239,9 +255,18 @@ CTEST_MUTANTS = [("drop_transfer", "pipe_ctrl.d7"), ("spurious_after_reset", "pi
                  ("light_lost_output", "light_bmc.diffuse"), ("light_short_pass", "light_bmc.tput_l3"),
                  ("light_extra_pass", "light_bmc.tput_l3x2"),
                  ("light_write_in_flight", "light_inv.diffuse"), ("light_drop_transfer", "light_inv.diffuse"),
-                 ("light_spurious_after_reset", "light_inv.diffuse")]
+                 ("light_spurious_after_reset", "light_inv.diffuse"),
+                 # the AXI wrapper (docs/formal.md §9): each mutant edits a temporary copy of rtl/sc_light_axi.v
+                 ("axi_bvalid_in_reset", "axi.diffuse"), ("axi_tvalid_in_reset", "axi.diffuse"),
+                 ("axi_b_dropped", "axi.diffuse"), ("axi_r_dropped", "axi.diffuse"),
+                 ("axi_rdata_changes", "axi.diffuse"), ("axi_second_write", "axi.diffuse"),
+                 ("axi_second_read", "axi.diffuse"), ("axi_stream_during_write", "axi.diffuse"),
+                 ("axi_aw_without_w", "axi.diffuse"), ("axi_read_late", "axi.diffuse")]
 # BMC depth of a lighting mutant (default: the job's latency + 8, from reset)
 MUTANT_DEPTH = {"light_accept_in_reset": 4, "light_write_in_reset": 4, "light_accept_during_write": 4,
+                "axi_bvalid_in_reset": 6, "axi_tvalid_in_reset": 8, "axi_b_dropped": 6, "axi_r_dropped": 6,
+                "axi_rdata_changes": 6, "axi_second_write": 6, "axi_second_read": 6, "axi_stream_during_write": 6,
+                "axi_aw_without_w": 4, "axi_read_late": 6,
                 "light_extra_pass": 8,
                 # gl_default: a held colour needs a fragment through its 21-edge pipeline first
                 ("light_release_held", "light.gl_default"): 28}
@@ -309,6 +334,35 @@ MUTATIONS = {
     # no colour is ever presented (the passes leave the back unseen): every accepted fragment is lost
     "light_lost_output": ("sc_light.v", "assign out_valid_o = vb_q[NB-1] && out_last;",
                           "assign out_valid_o = vb_q[NB-1] && out_last && 1'b0;", ["l_live", "l_count_bound"]),
+    # the AXI wrapper (rtl/sc_light_axi.v): BVALID / M TVALID not held low in reset
+    "axi_bvalid_in_reset": ("sc_light_axi.v", "assign s_axil_bvalid_o = rst_ni && w_state_q == W_RESP;",
+                            "assign s_axil_bvalid_o = w_state_q == W_RESP;", ["a_reset"]),
+    "axi_tvalid_in_reset": ("sc_light_axi.v", "assign m_axis_tvalid_o = core_out_valid && rst_ni;",
+                            "assign m_axis_tvalid_o = core_out_valid;", ["a_reset"]),
+    # a write response withdrawn without BREADY / a read response without RREADY
+    "axi_b_dropped": ("sc_light_axi.v", "W_RESP: if (s_axil_bready_i) w_state_q <= W_IDLE;",
+                      "W_RESP: w_state_q <= W_IDLE;", ["a_b_hold", "a_w_one", "i_w"]),
+    "axi_r_dropped": ("sc_light_axi.v", "end else if (s_axil_rready_i) begin\n      r_busy_q <= 1'b0;",
+                      "end else begin\n      r_busy_q <= 1'b0;", ["a_r_hold", "i_r"]),
+    # RDATA reloads while the response waits (a new ARVALID while RVALID && !RREADY)
+    "axi_rdata_changes": ("sc_light_axi.v", "if (ar_take) r_data_q <= shadow[ar_word];",
+                          "if (s_axil_arvalid_i) r_data_q <= shadow[ar_word];", ["a_r_hold"]),
+    # a second write / read accepted while the first one's response is outstanding
+    "axi_second_write": ("sc_light_axi.v",
+                         "wire aw_take = rst_ni && w_state_q == W_IDLE && s_axil_awvalid_i && s_axil_wvalid_i;",
+                         "wire aw_take = rst_ni && w_state_q != W_CORE && s_axil_awvalid_i && s_axil_wvalid_i;",
+                         ["a_aw_free", "a_w_one", "i_w"]),
+    "axi_second_read": ("sc_light_axi.v", "assign s_axil_arready_o = rst_ni && !r_busy_q;",
+                        "assign s_axil_arready_o = rst_ni;", ["a_ar_free", "a_r_one", "i_r"]),
+    # fragments accepted between a write's acceptance and its response (the ordering rule broken)
+    "axi_stream_during_write": ("sc_light_axi.v", "assign stream_open     = w_state_q == W_IDLE;",
+                                "assign stream_open     = w_state_q != W_CORE;", ["a_order"]),
+    # AWREADY with AWVALID alone (the data not there yet)
+    "axi_aw_without_w": ("sc_light_axi.v", "assign s_axil_awready_o = aw_take;",
+                         "assign s_axil_awready_o = rst_ni && w_state_q == W_IDLE && s_axil_awvalid_i;", ["a_aw_w"]),
+    # a read not answered while ARVALID stays high after its acceptance (late, and withdrawn)
+    "axi_read_late": ("sc_light_axi.v", "assign s_axil_rvalid_o  = rst_ni && r_busy_q;",
+                      "assign s_axil_rvalid_o  = rst_ni && r_busy_q && !s_axil_arvalid_i;", ["a_r_next", "a_r_hold"]),
     # a pass is taken as its fragment's last when the input tag's bit 0 is set: fewer passes than lights
     "light_short_pass": ("sc_light.v", "wire pass_last  = (rem_next == {NLT{1'b0}});",
                          "wire pass_last  = (rem_next == {NLT{1'b0}}) || in_tag_i[0];", ["l_tput_busy"]),
@@ -352,7 +406,7 @@ LIGHT_CUT_MODULES = "*sc_light_lane* *sc_light_shade* *sc_normalize*"
 LIGHT_ABSTRACT = ("cutpoint %s; " % LIGHT_CUT_MODULES) + "flatten; " + \
     "select -set arith %s; select -set wide r:A_WIDTH>=8 r:B_WIDTH>=8 r:Y_WIDTH>=8; " \
     "select -set light c:*sc_light.v:*; select -set lightwide r:A_WIDTH>=12 r:B_WIDTH>=12 r:Y_WIDTH>=12; " \
-    "select -set harness c:*sc_formal_light.v:*; " \
+    "select -set harness c:*HARNESS_FILE:*; " \
     "select -set decode c:*sc_light_regfile.v:* t:$shr t:$shl t:$shift t:$shiftx %%u %%u %%u %%i; " \
     "cutpoint @arith @wide %%i @light @lightwide %%d %%d @harness %%d @decode %%d; " % _ARITH
 
@@ -398,11 +452,14 @@ def build_light_smt2(job, work, rtl_dir, abstract):
         # only these are checked (the rest of the bounded group is not inductive)
         keep = " ".join("c:%s" % a for a in job["keep_asserts"].split())
         drop = "chformal -assert -remove t:$assert %s %s; " % (keep, "%u " * (len(job["keep_asserts"].split()) - 1) + "%d")
-    conn = "".join("connect -set %s %s; " % c for c in job.get("connect", []))
+    conn = job.get("extra_cut", "") + "".join("connect -set %s %s; " % c for c in job.get("connect", []))
+    out_cmd = "write_rtlil %s" % os.path.join(work, "design.il") if job.get("engine") == "sat" else \
+        "write_smt2 -wires %s" % os.path.join(work, "design.smt2")
     script = ("read_verilog -formal -DFORMAL %s -I%s %s; chparam %s %s; prep -top %s; %s%s"
-              "opt_clean; async2sync; dffunmap; stat; write_smt2 -wires %s" %
+              "opt_clean; async2sync; dffunmap; stat; %s" %
               (defs, rtl_dir, " ".join(files), chp, job["top"], job["top"],
-               (LIGHT_ABSTRACT if abstract else "flatten; ") + conn, drop, os.path.join(work, "design.smt2")))
+               (LIGHT_ABSTRACT.replace("HARNESS_FILE", os.path.basename(job["harness"])) if abstract else "flatten; ") + conn,
+               drop, out_cmd))
     rc, out, dt = run(["yosys", "-q", "-l", os.path.join(work, "yosys.log"), "-p", script],
                       os.path.join(work, "yosys.out"), work)
     log = open(os.path.join(work, "yosys.log")).read()
@@ -430,12 +487,36 @@ def smtbmc(work, depth, induction, vcd=None):
     return passed, dt, k, out, failed
 
 
+def sat_induct(work, depth, vcd=None):
+    """The `sat` engine (jobs with engine="sat"): Yosys's own SAT-based k-induction on design.il —
+    `sat -tempinduct -prove-asserts -set-assumes -maxsteps N`: for k = 1..N the base case from the initial state
+    (the harness's f_first assumes reset in cycle 0; registers without an initial value are free there) and the
+    induction step of length k. Returns (base_ok, proved, seconds, k, output)."""
+    cmd = ["yosys", "-p", "read_rtlil %s; sat -tempinduct -prove-asserts -set-assumes -maxsteps %d%s" %
+           (os.path.join(work, "design.il"), depth, " -dump_vcd %s" % vcd if vcd else "")]
+    rc, out, dt = run(cmd, os.path.join(work, "sat.log"), work)
+    proved = rc == 0 and "Induction step proven: SUCCESS!" in out
+    base_ok = "model found for base case: FAIL" not in out and rc == 0
+    ks = re.findall(r"Trying induction with length (\d+)", out)
+    return base_ok, proved, dt, (int(ks[-1]) if ks and proved else None), out
+
+
 def prove(name, depth=None, abstract=True, keep=None):
     job = jobs()[name]
     depth = depth or job["depth"]
     work = keep or tempfile.mkdtemp(prefix="sc_formal_")
     os.makedirs(work, exist_ok=True)
     t_y, cells = build_smt2(job, work, RTL, abstract)
+    if job.get("engine") == "sat":
+        ok_b, ok_i, t_s, k, out = sat_induct(work, depth, os.path.join(work, "cex.vcd"))
+        res = dict(job=name, top=job["top"], params=job["params"], depth=depth, abstract=abstract, cells=cells,
+                   base=ok_b, induction=ok_i, k=k, t_yosys=round(t_y, 2), t_base=round(t_s, 2), t_induction=0.0,
+                   failed=[], work=work, engine="yosys sat -tempinduct",
+                   status="proved" if ok_i else ("base failed" if not ok_b else "induction failed"))
+        if keep is None and ok_i:
+            shutil.rmtree(work)
+            res["work"] = None
+        return res
     ok_b, t_b, _, out_b, fail_b = smtbmc(work, depth, False, os.path.join(work, "base.vcd"))
     ok_i, t_i, k, out_i, fail_i = (False, 0.0, None, "", [])
     if job.get("bmc_only"):
@@ -474,8 +555,17 @@ def mutant(name, mname, vcd=None, depth=None):
     open(path, "w").write(src.replace(old, new))
     if fname not in job["files"]:
         raise RuntimeError("mutation %s: job %s does not use rtl/%s" % (mname, name, fname))
-    build_smt2(job, work, rtl, True)
     vcd = vcd or os.path.join(work, "cex.vcd")
+    if job.get("engine") == "sat":
+        # only the assertions the mutant must break are kept: a base-case failure is then one of them failing
+        job = dict(job, keep_asserts=" ".join(expect))
+        build_smt2(job, work, rtl, True)
+        ok_b, _, t_b, _, out = sat_induct(work, depth or MUTANT_DEPTH.get(mname, 6), vcd)
+        have_vcd = os.path.exists(vcd) and "$enddefinitions" in open(vcd).read()
+        return dict(job=name, mutation=mname, base=ok_b, failed=[] if ok_b else ["one of " + " ".join(expect)],
+                    expected=expect, vcd=vcd if have_vcd else None, t_base=round(t_b, 2),
+                    killed=(not ok_b) and have_vcd, work=work)
+    build_smt2(job, work, rtl, True)
     # deep enough to reach a held output and the edge after it (the proof depth is what induction needs)
     if depth is None and "light" in job:
         depth = MUTANT_DEPTH.get((mname, name), MUTANT_DEPTH.get(mname, job["reach"]))

@@ -7,7 +7,9 @@
 // tags, latency, protocol), the scoreboard (every output against LightCore::eval, bit for bit, lost /
 // duplicated / reordered fragments), the options, the report and the exit status (tb_light_run.hpp).
 // Built on demand per feature set by `shadecore cosim --core lighting --harness bare` (cli/light_rtl.cpp)
-// into the same cache as the SystemC testbench.
+// into the same cache as the SystemC testbench. Built with SHADECORE_LIGHT_AXI=1 (target shadecore_light_axi,
+// `--harness axi` / `--axi`) it drives the core inside its AXI wrapper rtl/sc_light_axi.v through the bus model of
+// sim/tb_light_axi.hpp instead, with the same stimulus, driver, monitor and scoreboard.
 //
 //   shadecore_light_bare --mode random --count 1000000 --in-stall 0.3 --out-stall 0.3 --seed 7
 //
@@ -19,7 +21,12 @@
 #include <cstdint>
 #include <type_traits>
 
+#if SHADECORE_LIGHT_AXI
+#include "Vlight_axi.h"
+#include "tb_light_axi.hpp"
+#else
 #include "Vlight_bare.h"
+#endif
 #include "light_features.hpp"
 #include "tb_func_cov.hpp"
 #include "tb_light_logic.hpp"
@@ -56,6 +63,7 @@ struct BareOut {
   [[nodiscard]] T read() const { return f; }
 };
 
+#if !SHADECORE_LIGHT_AXI
 struct BarePins : LightPinOps<BarePins> {
   using M = Vlight_bare;
   explicit BarePins(M& t)
@@ -90,23 +98,50 @@ struct BarePins : LightPinOps<BarePins> {
     in_cr.commit(), in_cg.commit(), in_cb.commit();
     in_tag.commit(), out_ready.commit();
   }
+  void settled() {}
+  static void init(M& top) {
+    top.clk_i = 0;
+    top.rst_ni = 0;
+    top.reg_we_i = 0;
+    top.in_valid_i = 0;
+    top.out_ready_i = 0;
+  }
 };
+
+#endif
+
+// The model this harness drives: the bare core, or (SHADECORE_LIGHT_AXI, target shadecore_light_axi) the core inside
+// its AXI wrapper rtl/sc_light_axi.v through the bus model of tb_light_axi.hpp — the same driver, monitor and scoreboard.
+#if SHADECORE_LIGHT_AXI
+using Top = Vlight_axi;
+using Pins = AxiPins<Vlight_axi>;
+constexpr const char* kHarness = "axi";
+Pins make_pins(Top& t, const LightCore& core, const LightOptions& o, uint64_t timing_seed) {
+  return Pins(t, core.features(), core.format().frac, timing_seed, o.out_stall);
+}
+nlohmann::json pins_stats(const Pins& p) { return p.stats(); }
+#else
+using Top = Vlight_bare;
+using Pins = BarePins;
+constexpr const char* kHarness = "bare";
+Pins make_pins(Top& t, const LightCore& core, const LightOptions&, uint64_t) {
+  Pins p(t);
+  p.frac = core.format().frac;
+  return p;
+}
+nlohmann::json pins_stats(const Pins&) { return nullptr; }
+#endif
 
 LightHarnessStats run_bare(const LightOptions& o, const LightCore& core, LightStimulus& stim, int64_t reset_local,
                            uint64_t timing_seed, LightScoreboard& sb) {
   VerilatedContext ctx;
   if (kTraceBuild && o.trace.on()) ctx.traceEverOn(true);  // before the model is built
-  Vlight_bare top{&ctx};
-  top.clk_i = 0;
-  top.rst_ni = 0;
-  top.reg_we_i = 0;
-  top.in_valid_i = 0;
-  top.out_ready_i = 0;
-  BarePins pins(top);
-  pins.frac = core.format().frac;
-  using Drv = LightDriveLogic<BarePins>;
+  Top top{&ctx};
+  Pins::init(top);
+  Pins pins = make_pins(top, core, o, timing_seed);
+  using Drv = LightDriveLogic<Pins>;
   Drv drv(pins, stim, timing_seed, o.in_stall, o.out_stall, reset_local, o.reset_cycles, o.resend);
-  MonitorLogic<BarePins, LightScoreboard, Drv> mon(pins, sb, drv, o.inject, o.inject_at);
+  MonitorLogic<Pins, LightScoreboard, Drv> mon(pins, sb, drv, o.inject, o.inject_at);
   LightFuncCov fcov(core);  // coverage builds with --coverage: the functional model (tb_func_cov.hpp)
   if (kCoverageBuild && !o.coverage.empty()) {
     fcov.attach(&ctx);
@@ -131,6 +166,7 @@ LightHarnessStats run_bare(const LightOptions& o, const LightCore& core, LightSt
   }
 #endif
   top.eval();
+  pins.settled();
   for (;;) {
     const bool stop = mon.on_edge();  // pre-edge values
     drv.on_edge();                    // pre-edge values in, next inputs held in pend
@@ -148,6 +184,7 @@ LightHarnessStats run_bare(const LightOptions& o, const LightCore& core, LightSt
         fst->dump(t0);
         top.clk_i = 0;
         top.eval();
+        pins.settled();
         fst->dump(t0 + kTraceClockNs * ticks_per_ns / 2);
         if (stop) break;
         continue;
@@ -156,6 +193,7 @@ LightHarnessStats run_bare(const LightOptions& o, const LightCore& core, LightSt
 #endif
     top.clk_i = 0;
     top.eval();                       // settle on the new inputs
+    pins.settled();
     if (stop) break;
   }
 #if VM_TRACE_FST
@@ -164,12 +202,14 @@ LightHarnessStats run_bare(const LightOptions& o, const LightCore& core, LightSt
   top.final();
   write_coverage(&ctx, o.coverage);  // while the model (its counters) lives
   sb.model().sample = nullptr;
-  return light_harness_stats(mon, drv);
+  LightHarnessStats hs = light_harness_stats(mon, drv);
+  hs.extra = pins_stats(pins);
+  return hs;
 }
 
 }  // namespace
 }  // namespace shadecore::sim
 
 int main(int argc, char** argv) {
-  return shadecore::sim::light_harness_main(argc, argv, "bare", kLightFeaturesJson, shadecore::sim::run_bare);
+  return shadecore::sim::light_harness_main(argc, argv, shadecore::sim::kHarness, kLightFeaturesJson, shadecore::sim::run_bare);
 }

@@ -68,6 +68,7 @@ struct LightHarnessStats {
   uint64_t cycles = 0;
   bool watchdog = false;
   uint64_t resets = 0, replayed = 0;
+  nlohmann::json extra;  // the AXI harness's bus counts (sim/tb_light_axi.hpp), null otherwise
 };
 
 // The stats of a finished run, from its monitor (cycles(), watchdog_fired()) and driver (resets(), replayed()).
@@ -218,6 +219,10 @@ inline int light_run(const LightOptions& o, const FeatureSet& fs, const std::str
   if (sb.first_error_cycle_ != LightScoreboard::kNoError) j["first_error_cycle"] = sb.first_error_cycle_;
   else j["first_error_cycle"] = nullptr;
   if (mode == LightMode::Random) j["stimulus_digest"] = stim.digest();
+  if (!hs.extra.is_null()) {
+    j["axi"] = hs.extra;
+    if (!o.quiet) std::printf("cosim: AXI: %s\n", hs.extra.dump().c_str());
+  }
   std::printf("COSIM-RESULT %s\n", j.dump().c_str());
   std::fflush(stdout);
   return ok ? 0 : 2;

@@ -24,6 +24,7 @@
 #include "shadecore/configs.hpp"
 #include "shadecore/features.hpp"
 #include "shadecore/light.hpp"
+#include "shadecore/light_axi.hpp"
 #include "shadecore/light_regs.hpp"
 #include "shadecore_light_driver.h"
 
@@ -1061,3 +1062,66 @@ TEST(DriverBadInput, NullPointersIndicesBuffersAndConfigs) {
 }
 
 }  // namespace
+
+// The AXI view (rtl/sc_light_axi.v, issue 39): the C header's stream packing macros are the C++ packing of
+// shadecore/light_axi.hpp (both generated from config/configs.json light.axi) at every width F, and the register
+// existence rule answers as docs/handoff.md "AXI view" states it on sets with and without each capability.
+TEST(DriverHeader, AxiStreamPackingMatchesTheCpp) {
+  for (int f = SC_LIGHT_FRAC_MIN; f <= SC_LIGHT_FRAC_MAX; ++f) {
+    const int in_lsb[] = {SC_LIGHT_AXIS_IN_NX_LSB(f), SC_LIGHT_AXIS_IN_NY_LSB(f), SC_LIGHT_AXIS_IN_NZ_LSB(f),
+                          SC_LIGHT_AXIS_IN_PX_LSB(f), SC_LIGHT_AXIS_IN_PY_LSB(f), SC_LIGHT_AXIS_IN_PZ_LSB(f),
+                          SC_LIGHT_AXIS_IN_BACK_LSB(f), SC_LIGHT_AXIS_IN_CR_LSB(f), SC_LIGHT_AXIS_IN_CG_LSB(f),
+                          SC_LIGHT_AXIS_IN_CB_LSB(f)};
+    const int in_bits[] = {SC_LIGHT_AXIS_IN_NX_BITS(f), SC_LIGHT_AXIS_IN_NY_BITS(f), SC_LIGHT_AXIS_IN_NZ_BITS(f),
+                           SC_LIGHT_AXIS_IN_PX_BITS(f), SC_LIGHT_AXIS_IN_PY_BITS(f), SC_LIGHT_AXIS_IN_PZ_BITS(f),
+                           SC_LIGHT_AXIS_IN_BACK_BITS(f), SC_LIGHT_AXIS_IN_CR_BITS(f), SC_LIGHT_AXIS_IN_CG_BITS(f),
+                           SC_LIGHT_AXIS_IN_CB_BITS(f)};
+    ASSERT_EQ(kAXIS_IN_fields.size(), 10u);
+    for (size_t i = 0; i < kAXIS_IN_fields.size(); ++i) {
+      EXPECT_EQ(in_lsb[i], axis_lsb(kAXIS_IN_fields, kAXIS_IN_fields[i].name, f)) << kAXIS_IN_fields[i].name << " F=" << f;
+      EXPECT_EQ(in_bits[i], axis_width(kAXIS_IN_fields[i].width, f)) << kAXIS_IN_fields[i].name << " F=" << f;
+    }
+    // the fields the core's ports have: N (F+2), P (F+8), back (1), colour (F+1)
+    EXPECT_EQ(SC_LIGHT_AXIS_IN_NX_BITS(f), light_normal_bits(f));
+    EXPECT_EQ(SC_LIGHT_AXIS_IN_PX_BITS(f), light_pos_bits(f));
+    EXPECT_EQ(SC_LIGHT_AXIS_IN_CR_BITS(f), light_colour_bits(f));
+    EXPECT_EQ(SC_LIGHT_AXIS_IN_TDATA_BITS(f), axis_tdata_bits(kAXIS_IN_fields, f));
+    EXPECT_EQ(SC_LIGHT_AXIS_IN_TDATA_BITS(f) % 8, 0);
+    const int out_lsb[] = {SC_LIGHT_AXIS_OUT_R_LSB(f), SC_LIGHT_AXIS_OUT_G_LSB(f), SC_LIGHT_AXIS_OUT_B_LSB(f),
+                           SC_LIGHT_AXIS_OUT_SR_LSB(f), SC_LIGHT_AXIS_OUT_SG_LSB(f), SC_LIGHT_AXIS_OUT_SB_LSB(f)};
+    for (size_t i = 0; i < kAXIS_OUT_fields.size(); ++i)
+      EXPECT_EQ(out_lsb[i], axis_lsb(kAXIS_OUT_fields, kAXIS_OUT_fields[i].name, f)) << kAXIS_OUT_fields[i].name;
+    EXPECT_EQ(SC_LIGHT_AXIS_OUT_TDATA_BITS(f), axis_tdata_bits(kAXIS_OUT_fields, f));
+  }
+  EXPECT_EQ(SC_LIGHT_AXI_ADDR(SC_LIGHT_REG_LIGHT_MODE), 48u * 4u);
+}
+
+TEST(DriverHeader, AxiRegisterExistence) {
+  const FeatureSet diffuse = feature_set_named_or_file("diffuse");
+  const FeatureSet full = feature_set_named_or_file("full_shared");
+  // every address of the map is either a register (OKAY) or not (SLVERR); the gaps and the reserved back unit
+  // registers never are
+  for (const FeatureSet* fs : {&diffuse, &full}) {
+    for (uint32_t w : {9u, 15u, 31u, 291u, 295u, 299u, 303u, 304u, 511u}) EXPECT_FALSE(axi_reg_exists(*fs, w)) << w;
+    EXPECT_TRUE(axi_reg_exists(*fs, kReg_light_model));
+    EXPECT_TRUE(axi_reg_exists(*fs, kReg_light_mode));
+    EXPECT_TRUE(axi_reg_exists(*fs, kReg_light_position + 2));
+  }
+  // diffuse: no specular unit, one directional slot
+  EXPECT_FALSE(axi_reg_exists(diffuse, kReg_mat_n));
+  EXPECT_FALSE(axi_reg_exists(diffuse, kReg_mat_specular));
+  EXPECT_FALSE(axi_reg_exists(diffuse, kReg_light_kc));
+  EXPECT_FALSE(axi_reg_exists(diffuse, kReg_light_spot_cos));
+  EXPECT_FALSE(axi_reg_exists(diffuse, kReg_light_mode + kLightStride));  // slot 1 is not built
+  EXPECT_FALSE(axi_reg_exists(diffuse, kReg_back_mat_diffuse));
+  EXPECT_TRUE(axi_reg_exists(diffuse, kReg_mat_diffuse + 2));
+  // full_shared: eight slots of every kind, spot, two-sided, colour material
+  ASSERT_EQ(full.num_lights(), 8);
+  for (int j = 0; j < 8; ++j) {
+    EXPECT_TRUE(axi_reg_exists(full, kReg_light_spot_exponent + kLightStride * static_cast<uint32_t>(j))) << j;
+    EXPECT_TRUE(axi_reg_exists(full, kReg_light_kq + kLightStride * static_cast<uint32_t>(j))) << j;
+  }
+  EXPECT_TRUE(axi_reg_exists(full, kReg_back_mat_specular + 1));
+  EXPECT_TRUE(axi_reg_exists(full, kReg_colour_material));
+  EXPECT_EQ(axi_reg_exists(full, kReg_mat_coef), full.norm);
+}

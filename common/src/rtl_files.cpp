@@ -83,4 +83,20 @@ std::vector<std::string> light_includes() {
   return v;
 }
 
+std::vector<std::string> light_axi_files(const FeatureSet& fs) {
+  std::vector<std::string> v;
+  append(v, top("sc_light_axi").at("files"), "rtl.sc_light_axi.files");
+  for (const auto& f : light_files(fs))
+    if (std::find(v.begin(), v.end(), f) == v.end()) v.push_back(f);
+  return v;
+}
+
+std::vector<std::string> light_axi_includes() {
+  std::vector<std::string> v;
+  append(v, top("sc_light_axi").at("includes"), "rtl.sc_light_axi.includes");
+  for (const auto& f : light_includes())
+    if (std::find(v.begin(), v.end(), f) == v.end()) v.push_back(f);
+  return v;
+}
+
 }  // namespace shadecore::rtl

@@ -24,5 +24,9 @@ std::vector<std::string> specular_includes();
 // test rtl.lint.sc_light.random_combinations elaborates every list it draws with nothing else.)
 std::vector<std::string> light_files(const FeatureSet& fs);
 std::vector<std::string> light_includes();
+// The AXI wrapper rtl/sc_light_axi.v around the core of fs (config/configs.json "rtl" "sc_light_axi"): its files,
+// then light_files(fs); its includes, then light_includes().
+std::vector<std::string> light_axi_files(const FeatureSet& fs);
+std::vector<std::string> light_axi_includes();
 
 }  // namespace shadecore::rtl
