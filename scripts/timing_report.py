@@ -367,10 +367,18 @@ def to_row(r, s):
 
 def closes_with_mreg(rows):
     """A unit row that misses the target but whose pipelining-parameter row (<name>+mreg, the same width) meets it:
-    its reason leads with that design point (the same outputs, more cycles), and "closes_with" names it."""
+    its reason leads with that design point (the same outputs, more cycles), and "closes_with" names it. A row whose
+    +mreg row misses too (a lighting set) leads with how far the parameter gets it."""
     by = {(r["name"], r["width"]): r for r in rows}
     for r in rows:
         m = by.get((r["name"] + "+mreg", r["width"]))
+        if not r["met"] and m and not m["met"]:
+            # (a lighting set) the parameter brings it closer but not to the target: say how far, then why not
+            r["reason"] = (f"with the pipelining parameter MREG = 1 (row {m['name']}, the same outputs) it closes at "
+                           f"{m['period_ns']} ns instead of {r['period_ns']}, at {m['latency_cycles']} cycles instead of "
+                           f"{r['latency_cycles']} and {m['flops']:,} flip-flops instead of {r['flops']:,}; that row's "
+                           f"reason says what is left. Without it, it " + r["reason"])
+            continue
         if r["met"] or r["kind"] != "unit" or not m or not m["met"]:
             continue
         r["closes_with"] = m["name"]
