@@ -117,7 +117,7 @@ using Top = Vlight_axi;
 using Pins = AxiPins<Vlight_axi>;
 constexpr const char* kHarness = "axi";
 Pins make_pins(Top& t, const LightCore& core, const LightOptions& o, uint64_t timing_seed) {
-  return Pins(t, core.features(), core.format().frac, timing_seed, o.out_stall);
+  return Pins(t, core.features(), core.format().frac, timing_seed, o.out_stall, o.inject, o.inject_at);
 }
 nlohmann::json pins_stats(const Pins& p) { return p.stats(); }
 #else

@@ -19,7 +19,8 @@
 //   * AXI's reset rule: while rst_ni is low the wrapper's VALID and READY outputs are low; the bus model drops
 //     its transactions in flight and the driver sends what it had not seen taken again.
 // Every violation is a protocol error of the scoreboard (the run FAILs). The counts go to the COSIM-RESULT
-// line's "axi" object.
+// line's "axi" object. `--inject tlast | bresp | rdata` (with --inject-at N) corrupts the N-th observed TLAST, BRESP or
+// checked RDATA: the self-test that each of those checks can fail (ctest sim.light.axi.selftest_detects_*).
 #pragma once
 
 #include <cstdint>
@@ -84,8 +85,12 @@ inline bool axi_tlast_of(uint64_t tag) { return ((static_cast<uint32_t>(tag) * 0
 
 template <class M>  // the Verilated rtl/sc_light_axi.v (--cc)
 struct AxiPins : LightPinOps<AxiPins<M>> {
-  AxiPins(M& top, const FeatureSet& fs, int f, uint64_t seed, double stall)
-      : t(top), fs_(fs), rng_(seed * 0xA0761D6478BD642Full + 3), stall_(stall) {
+  // inject / inject_at: the self-test of the bus checks (--inject tlast | bresp | rdata): the inject_at-th colour's
+  // TLAST, write response's BRESP or checked read's RDATA is seen corrupted, so the run must FAIL on it.
+  AxiPins(M& top, const FeatureSet& fs, int f, uint64_t seed, double stall, const std::string& inject = "",
+          uint64_t inject_at = 0)
+      : t(top), fs_(fs), rng_(seed * 0xA0761D6478BD642Full + 3), stall_(stall),
+        inject_(inject == "tlast" ? 1 : inject == "bresp" ? 2 : inject == "rdata" ? 3 : 0), inject_at_(inject_at) {
     frac = f;
     const char* in_names[] = {"nx", "ny", "nz", "px", "py", "pz", "back", "cr", "cg", "cb"};
     for (int i = 0; i < 10; ++i) lsb_in_[i] = axis_lsb(kAXIS_IN_fields, in_names[i], frac);
@@ -157,8 +162,9 @@ struct AxiPins : LightPinOps<AxiPins<M>> {
         const Wr w = bq_.front();
         bq_.pop_front();
         const unsigned want = w.ok ? 0u : 2u;
-        if (t.s_axil_bresp_o != want)
-          sb.error("AXI: BRESP " + std::to_string(t.s_axil_bresp_o) + " for a write of address " + std::to_string(w.word) +
+        const unsigned bresp = t.s_axil_bresp_o ^ (injected(2) ? 2u : 0u);
+        if (bresp != want)
+          sb.error("AXI: BRESP " + std::to_string(bresp) + " for a write of address " + std::to_string(w.word) +
                        " (strobe " + std::to_string(w.strb) + "), expected " + std::to_string(want),
                    cycle);
         if (!w.ok) ++slverr_writes_;
@@ -183,8 +189,9 @@ struct AxiPins : LightPinOps<AxiPins<M>> {
                    cycle);
         const bool check = r.exists ? r.known : true;
         const uint32_t want_d = r.exists ? r.data : 0u;
-        if (check && t.s_axil_rdata_o != want_d)
-          sb.error("AXI: RDATA " + std::to_string(t.s_axil_rdata_o) + " at address " + std::to_string(r.word) +
+        const uint32_t rdata = t.s_axil_rdata_o ^ ((check && injected(3)) ? 1u : 0u);
+        if (check && rdata != want_d)
+          sb.error("AXI: RDATA " + std::to_string(rdata) + " at address " + std::to_string(r.word) +
                        ", the last word written there is " + std::to_string(want_d),
                    cycle);
         if (check) ++reads_checked_;
@@ -194,8 +201,9 @@ struct AxiPins : LightPinOps<AxiPins<M>> {
     if (this->in_valid.v && t.s_axis_tready_o && axi_tlast_of(in_tag.v)) ++tlast_in_;
     if (t.m_axis_tvalid_o && out_ready.v) {
       const bool want = axi_tlast_of(t.m_axis_tuser_o);
-      if (static_cast<bool>(t.m_axis_tlast_o) != want)
-        sb.error("AXI-Stream: TLAST " + std::to_string(t.m_axis_tlast_o) + " on the colour of tag " +
+      const bool tlast = static_cast<bool>(t.m_axis_tlast_o) != injected(1);
+      if (tlast != want)
+        sb.error("AXI-Stream: TLAST " + std::to_string(tlast) + " on the colour of tag " +
                      std::to_string(t.m_axis_tuser_o) + ", its fragment had " + std::to_string(want),
                  cycle);
       if (want) ++tlast_out_;
@@ -285,6 +293,8 @@ struct AxiPins : LightPinOps<AxiPins<M>> {
     uint32_t data;
   };
 
+  // true exactly once: at the inject_at-th event of the injected kind
+  bool injected(int kind) { return inject_ == kind && ++inject_seen_ == inject_at_; }
   bool chance(double p) { return p > 0 && std::uniform_real_distribution<double>(0.0, 1.0)(rng_) < p; }
   uint64_t pick(uint64_t n) { return std::uniform_int_distribution<uint64_t>(0, n - 1)(rng_); }
   uint32_t known_word() {
@@ -327,6 +337,9 @@ struct AxiPins : LightPinOps<AxiPins<M>> {
   FeatureSet fs_;
   std::mt19937_64 rng_;
   double stall_;
+  const int inject_;
+  const uint64_t inject_at_;
+  uint64_t inject_seen_ = 0;
   int lsb_in_[10] = {}, lsb_out_[6] = {};
   int in_bits_ = 0, in_tdata_ = 0, out_bits_ = 0, out_tdata_ = 0;
   std::vector<uint32_t> present_;

@@ -262,8 +262,10 @@ inline int light_harness_main(int argc, char** argv, const char* harness, const 
   auto* in_opt = app.add_option("--in", o.in_file, "stream: command file (shadecore/stimulus/light_stream.hpp)")->check(NonEmpty("path"));
   auto* out_opt = app.add_option("--out", o.out_file, "stream: write the RTL's colours here")->check(NonEmpty("path"));
   app.add_option("--show", o.show, "errors printed in full per kind")->check(Int(0, 1000000));
-  auto* inject_opt = app.add_option("--inject", o.inject, "self-test: corrupt one observed output (value | drop | dup); the run must FAIL")
-                         ->check(CLI::IsMember({"value", "drop", "dup"}));
+  auto* inject_opt = app.add_option("--inject", o.inject, "self-test: corrupt one observed output (value | drop | dup; the axi "
+                                                        "harness also tlast | bresp | rdata: one observed TLAST, BRESP or "
+                                                        "RDATA); the run must FAIL")
+                         ->check(CLI::IsMember({"value", "drop", "dup", "tlast", "bresp", "rdata"}));
   auto* inject_at_opt = app.add_option("--inject-at", o.inject_at, "self-test: which output transfer (1-based)")
                             ->check(UInt(1, uint64_t{1} << 40));
   app.add_option("--label", o.label, "the feature set's name, for the report")->check(NonEmpty("label"));
@@ -296,6 +298,8 @@ inline int light_harness_main(int argc, char** argv, const char* harness, const 
     if (o.mode == "stream" && !in_opt->count()) throw std::invalid_argument("--mode stream needs --in FILE");
     if (o.mode != "stream" && (in_opt->count() || out_opt->count())) throw std::invalid_argument("--in and --out apply to --mode stream only");
     if (inject_at_opt->count() && !inject_opt->count()) throw std::invalid_argument("--inject-at needs --inject");
+    if ((o.inject == "tlast" || o.inject == "bresp" || o.inject == "rdata") && std::string(harness) != "axi")
+      throw std::invalid_argument("--inject " + o.inject + " is the axi harness's (the bus model's checks)");
     if (const std::string e = coverage_option_error(o.coverage); !e.empty()) throw std::invalid_argument(e);
     if (const std::string e = trace_option_error(trace); !e.empty()) throw std::invalid_argument(e);
     if ((tfrom_opt->count() || tto_opt->count()) && trace.empty())
