@@ -20,8 +20,10 @@
 //                   a write is never overtaken by a fragment between its acceptance and its response)
 //   i_w, i_r        invariants tying the harness's counts to the wrapper's state (observed through wires that
 //                   scripts/formal.py connects after flattening): what makes the counts k-inductive
-// Not here: bounded write latency (it waits for the core to drain: the core's l_live, a bounded property), the
-// values (the co-simulation, sim/tb_light_axi.hpp, checks every register, response and colour).
+//   `ifdef AXI_BMC (bounded, BMC from reset; job axi_bmc.diffuse)
+//     a_b_bounded   with M TREADY high (assumed in this group), a write is answered within LMAX + 2 clocks of its
+//                   acceptance (the core drains first): bounded write latency while not stalled
+// Not here: the values (the co-simulation, sim/tb_light_axi.hpp, checks every register, response and colour).
 // Mutants: scripts/formal.py MUTATIONS axi_* edit a temporary copy of rtl/sc_light_axi.v.
 // Not a synthesizable module: only for `read_verilog -formal` (scripts/formal.py).
 // ============================================================================================
@@ -144,6 +146,34 @@ module sc_formal_axi #(
       end
     end
   end
+
+`ifdef AXI_BMC
+  // ---------------------------------------------------------------------------- bounded (job axi_bmc.*)
+  // With the colour stream never stalled (M TREADY high: assumed in this group only), a write accepted at an edge is
+  // answered (BVALID) within LMAX + 2 clocks: the core drains what is in flight (LightCore::latency() = LMAX), takes
+  // the write, and the response follows. A reset in between ends the wait. Not k-inductive at the ports alone (the
+  // drain depends on the core's internal pipeline, as the core's l_live): checked by BMC from reset.
+  localparam integer WMAX = LMAX + 2;
+  reg [7:0] f_wage;
+  reg       f_wpend;
+  always @(posedge clk_i) begin
+    if (!rst_ni || bvalid) begin
+      f_wpend <= 1'b0;
+      f_wage  <= 8'd0;
+    end else if (aw_acc) begin
+      f_wpend <= 1'b1;
+      f_wage  <= 8'd0;
+    end else if (f_wpend && f_wage != 8'hff) begin
+      f_wage <= f_wage + 8'd1;
+    end
+  end
+  always @* begin
+    assume (m_tready);
+    if (f_past && f_wpend) begin
+      a_b_bounded: assert (f_wage <= WMAX[7:0]);
+    end
+  end
+`endif
 endmodule
 
 `default_nettype wire
