@@ -35,8 +35,9 @@
 //   light.axi s_axis / m_axis: the fields LSB first, zero padding to whole bytes; the pad bits of S TDATA are
 //   ignored, those of M TDATA are 0); TUSER = the fragment tag (TAGW bits); TLAST travels with its fragment
 //   (the core runs with TAGW + 1 tag bits, the top one TLAST); no TKEEP/TSTRB (all bytes valid), no TID/TDEST.
-//   Order is kept (the core is in order). Handshake: TREADY of the slave is the core's in_ready_o, which depends
-//   combinationally on the master's TREADY (rtl/sc_light.v "Handshake"); TVALID and TDATA of the master are the
+//   Order is kept (the core is in order). Handshake: TREADY of the slave is the core's in_ready_o while no write is
+//   outstanding (the ordering rule above); in_ready_o depends combinationally on the master's TREADY (rtl/sc_light.v
+//   "Handshake"); TVALID and TDATA of the master are the
 //   core's output stage (held under backpressure). Latency: the core's (no register slices in this wrapper).
 // Reset: rst_ni synchronous, active low (the project convention, docs/spec.md §4): the core's fragments in flight
 //   are dropped, a write waiting for the core and a response not yet taken are cleared (the write may or may not
