@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <deque>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <unordered_map>
@@ -92,10 +93,19 @@ struct AxiPins : LightPinOps<AxiPins<M>> {
       : t(top), fs_(fs), rng_(seed * 0xA0761D6478BD642Full + 3), stall_(stall),
         inject_(inject == "tlast" ? 1 : inject == "bresp" ? 2 : inject == "rdata" ? 3 : 0), inject_at_(inject_at) {
     frac = f;
+    // each core-side signal's field, by name (config/configs.json light.axi decides the order)
     const char* in_names[] = {"nx", "ny", "nz", "px", "py", "pz", "back", "cr", "cg", "cb"};
-    for (int i = 0; i < 10; ++i) lsb_in_[i] = axis_lsb(kAXIS_IN_fields, in_names[i], frac);
+    for (int i = 0; i < 10; ++i) {
+      lsb_in_[i] = axis_lsb(kAXIS_IN_fields, in_names[i], frac);
+      w_in_[i] = axis_field_width(kAXIS_IN_fields, in_names[i], frac);
+      if (lsb_in_[i] < 0) throw std::logic_error(std::string("light.axi s_axis has no field ") + in_names[i]);
+    }
     const char* out_names[] = {"r", "g", "b", "sr", "sg", "sb"};
-    for (int i = 0; i < 6; ++i) lsb_out_[i] = axis_lsb(kAXIS_OUT_fields, out_names[i], frac);
+    for (int i = 0; i < 6; ++i) {
+      lsb_out_[i] = axis_lsb(kAXIS_OUT_fields, out_names[i], frac);
+      w_out_[i] = axis_field_width(kAXIS_OUT_fields, out_names[i], frac);
+      if (lsb_out_[i] < 0) throw std::logic_error(std::string("light.axi m_axis has no field ") + out_names[i]);
+    }
     in_bits_ = axis_bits(kAXIS_IN_fields, frac);
     in_tdata_ = axis_tdata_bits(kAXIS_IN_fields, frac);
     out_bits_ = axis_bits(kAXIS_OUT_fields, frac);
@@ -256,7 +266,7 @@ struct AxiPins : LightPinOps<AxiPins<M>> {
     if (in_valid.v) {
       const AxiVar* f[] = {&in_nx, &in_ny, &in_nz, &in_px, &in_py, &in_pz, &in_back, &in_cr, &in_cg, &in_cb};
       for (int i = 0; i < 10; ++i)
-        axi_port_set(t.s_axis_tdata_i, lsb_in_[i], axis_width(kAXIS_IN_fields[static_cast<size_t>(i)].width, frac), f[i]->v);
+        axi_port_set(t.s_axis_tdata_i, lsb_in_[i], w_in_[i], f[i]->v);
       if (in_tdata_ > in_bits_) axi_port_set(t.s_axis_tdata_i, in_bits_, in_tdata_ - in_bits_, rng_());
     }
     t.s_axis_tuser_i = static_cast<std::remove_reference_t<decltype(t.s_axis_tuser_i)>>(in_tag.v);
@@ -271,7 +281,7 @@ struct AxiPins : LightPinOps<AxiPins<M>> {
     out_tag.v = t.m_axis_tuser_o;
     AxiVal* o[] = {&out_r, &out_g, &out_b, &out_sr, &out_sg, &out_sb};
     for (int i = 0; i < 6; ++i)
-      o[i]->v = axi_port_get(t.m_axis_tdata_o, lsb_out_[i], axis_width(kAXIS_OUT_fields[static_cast<size_t>(i)].width, frac));
+      o[i]->v = axi_port_get(t.m_axis_tdata_o, lsb_out_[i], w_out_[i]);
     reg_ready.v = t.s_axil_bvalid_o && bready_ && !bq_.empty() && bq_.front().driver;
   }
 
@@ -340,7 +350,7 @@ struct AxiPins : LightPinOps<AxiPins<M>> {
   const int inject_;
   const uint64_t inject_at_;
   uint64_t inject_seen_ = 0;
-  int lsb_in_[10] = {}, lsb_out_[6] = {};
+  int lsb_in_[10] = {}, lsb_out_[6] = {}, w_in_[10] = {}, w_out_[6] = {};
   int in_bits_ = 0, in_tdata_ = 0, out_bits_ = 0, out_tdata_ = 0;
   std::vector<uint32_t> present_;
   std::unordered_map<uint32_t, uint32_t> shadow_;  // the last word accepted at each register address

@@ -47,7 +47,8 @@ inline bool axi_reg_exists(const FeatureSet& fs, uint32_t word) {
   return false;
 }
 
-// AXI4-Stream packing: the LSB of field `name` and the bits of all fields (before the padding to bytes).
+// AXI4-Stream packing: the LSB and the width of field `name` (-1: no such field) and the bits of all fields (before
+// the padding to bytes).
 template <class Fields>
 constexpr int axis_lsb(const Fields& fields, std::string_view name, int frac) {
   int lsb = 0;
@@ -55,6 +56,12 @@ constexpr int axis_lsb(const Fields& fields, std::string_view name, int frac) {
     if (f.name == name) return lsb;
     lsb += axis_width(f.width, frac);
   }
+  return -1;
+}
+template <class Fields>
+constexpr int axis_field_width(const Fields& fields, std::string_view name, int frac) {
+  for (const AxisField& f : fields)
+    if (f.name == name) return axis_width(f.width, frac);
   return -1;
 }
 template <class Fields>
