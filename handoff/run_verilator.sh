@@ -12,6 +12,10 @@
 #   RESET_AT=-1 ./run_verilator.sh     no reset in the middle of the stream
 #   VERILATOR_OBJ_DIR=dir ./run_verilator.sh  keep the build in dir and reuse it while the sources
 #                                      are older than it (default: a temporary directory)
+#   FILELIST=signoff/gates_verilator.f ./run_verilator.sh   another design file list: the mapped netlist
+#                                      and cell models Verilator reads (gate-level simulation, signoff/signoff.py);
+#                                      its lint warnings are shown, not fatal (the netlist is the tools' text);
+#                                      a build of its own (dir/gates)
 #   VECTORS=vectors/random.hex VCD=/tmp/a.vcd ./run_verilator.sh   one vector file; a waveform of the design's
 #                                      nets ($dumpvars through +vcd=, tb/tb_common.vh): VCD, or FST when the
 #                                      name ends in .fst; a build of its own (--trace / --trace-fst, in
@@ -37,24 +41,29 @@ plus=""
 [ -n "${IN_GAP:-}" ] && plus="$plus +in_gap=$IN_GAP"
 [ -n "${OUT_STALL:-}" ] && plus="$plus +out_stall=$OUT_STALL"
 [ -n "${RESET_AT:-}" ] && plus="$plus +reset_at=$RESET_AT"
-trace="" ; bdir=$obj   # the build used: $obj, or a trace build of its own under it
+filelist=${FILELIST:-filelist.f}
+[ -f "$filelist" ] || { echo "run_verilator.sh: FAIL: no such file list: $filelist"; exit 1; }
+warn=-Wall ; sub=""
+if [ "$filelist" != filelist.f ]; then warn="-Wno-fatal -Wno-lint -Wno-style" ; sub=/gates ; fi
+trace="" ; bdir=$obj$sub   # the build used: $obj, or a trace build of its own under it
 if [ -n "${VCD:-}" ]; then
   plus="$plus +vcd=$VCD"
   case "$VCD" in
-    *.fst) trace=--trace-fst ; bdir="$obj/trace-fst" ;;
-    *)     trace=--trace ; bdir="$obj/trace-vcd" ;;
+    *.fst) trace=--trace-fst ; bdir="$obj$sub/trace-fst" ;;
+    *)     trace=--trace ; bdir="$obj$sub/trace-vcd" ;;
   esac
-  mkdir -p "$bdir" || exit 1
 fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
-if [ -x "$bdir/Vtb" ] && [ -z "$(find rtl tb filelist.f -newer "$bdir/Vtb" 2>/dev/null | head -n 1)" ]; then
+mkdir -p "$bdir" || exit 1
+# shellcheck disable=SC2046
+if [ -x "$bdir/Vtb" ] && [ -z "$(find rtl tb "$filelist" $(grep -v '^[+-]' "$filelist") -newer "$bdir/Vtb" 2>/dev/null | head -n 1)" ]; then
   echo "run_verilator.sh: reusing $bdir/Vtb (sources unchanged)"
 else
   # -Wall without -Wno-fatal: every warning fails the build (the bundle, testbench included, lints clean).
-  echo "run_verilator.sh: verilator --binary -Wall $trace${trace:+ }-I tb -f filelist.f --top-module $tb tb/$tb.v"
+  echo "run_verilator.sh: verilator --binary $warn $trace${trace:+ }-I tb -f $filelist --top-module $tb tb/$tb.v"
   # shellcheck disable=SC2086
-  if ! verilator --binary -j "$jobs" -Wall $trace -Itb -f filelist.f --top-module "$tb" \
+  if ! verilator --binary -j "$jobs" $warn $trace -Itb -f "$filelist" --top-module "$tb" \
        -Mdir "$bdir" -o Vtb "tb/$tb.v" >"$log" 2>&1; then
     tail -n 40 "$log"
     echo "run_verilator.sh: FAIL: build failed"

@@ -329,6 +329,8 @@ def to_row(r, s):
            "results_per_clock": round(pw["results"] / pw["cycles"], 4) if pw else None,
            "gate_sim_vectors": gs["vectors"] if gs else None,
            "gate_sim_mismatches": gs["mismatches"] if gs else None,
+           # the simulator of the gate-level run (signoff.py --gatesim): icarus unless the row says otherwise
+           "gate_sim_simulator": gs.get("simulator", "icarus") if gs else None,
            "critical_path": f"{cp['start_reg']} -> {cp['end_reg']} ({cp['levels']} cells, "
                             f"{cp['arrival_ns']} ns derated)",
            "seconds": s["seconds"]}
@@ -403,6 +405,8 @@ def write_md(path, rows, meta, missing=()):
     for r in rows:
         lat = f"{r['latency_cycles']} / {r['latency_ns']}" if r.get("latency_cycles") is not None else "—"
         gs = (f"{r['gate_sim_vectors']} vectors, {r['gate_sim_mismatches']} mismatches"
+              + (f" ({r['gate_sim_simulator'].capitalize()})" if r.get("gate_sim_simulator", "icarus") != "icarus"
+                 else "")
               if r.get("gate_sim_vectors") is not None else r.get("reason_gate_sim", "—"))
         e = f"{r['energy_pj_per_result']:.1f}" if r.get("energy_pj_per_result") is not None else "—"
         wns = f"{r['wns_ns']:+.3f}" + ("" if r["met"] else " ✗")

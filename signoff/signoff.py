@@ -17,8 +17,12 @@ its results into BUNDLE/signoff/ (and BUNDLE/constraints.sdc with the measured c
            allowance for wires (no wire-load model in the library; placed and routed numbers in
            docs/timing.md). WNS/TNS at the target; Fmax by bisection on the period (every
            constraint scales with it) to 1 ps; the critical path named by its start and end registers.
-  gatesim  the bundle's own self-checking testbench on the mapped netlist and the library's cell
-           models (Icarus, zero-delay), every vector file: 0 mismatches and no X after reset.
+  gatesim  the bundle's own self-checking testbench on the mapped netlist, every vector file: 0 mismatches.
+           Icarus (4-state, zero-delay) on the library's cell models (no X after reset either) while the run is
+           small enough: cells x vectors <= ICARUS_MAX_WORK. Above it (full_shared: 230k cells x 13.9k vectors,
+           well over 1.5 h of Icarus here) Verilator (2-state) on cell models Yosys writes from the Liberty
+           file's own functions (`read_liberty` + `write_verilog`: Verilator 5.006 does not read the library's
+           UDP tables); the 4-state X check of those cores is the bundle's RTL run in Icarus. --gatesim chooses.
   power    a second gate-level run without input gaps or output stalls dumps a VCD of the
            netlist's nets; per net toggles per clock and time-high fraction go to OpenSTA
            (`sta::set_power_pin_activity` on each net's driver, `..._input_port_activity` on the inputs) and
@@ -49,6 +53,11 @@ DRIVE_CELL = "INVX1"
 IO_FRACTION = 0.3
 DERATE = 1.15
 CLOCK = "clk_i"
+# gatesim auto: Icarus while mapped cells x vectors stays at or below this (gl_default 160k x 2.9k and phong_point
+# 295k x 3.5k run in under 10 minutes of CPU here; full_shared's 230k x 13.9k, 3.2e9, ran at ~21 cycles per second
+# and took over 1.5 hours), Verilator above it
+ICARUS_MAX_WORK = 2e9
+VL_CELLS = "cells_verilator.v"
 # ABC's lean script (--abc lean): Yosys 0.23's own for `abc -liberty -D` without its SAT sweeping (`&fraig -x`, `scorr`) and the
 # retiming commands (a no-op on the combinational logic Yosys hands over): `&fraig -x` alone ran over 20 minutes on
 # a lighting core's 310k AND nodes of multiplier trees (where SAT sweeping finds little); `dc2` + `&dch -f` still
@@ -395,28 +404,70 @@ def fo4(a, sdir):
 
 
 # ------------------------------------------------------------------------------------------- gate sim
-def gate_filelist(a, sdir):
-    path = os.path.join(sdir, "gates.f")
+def gate_filelist(a, sdir, cells=CELLS, name="gates.f"):
+    path = os.path.join(sdir, name)
     with open(path, "w") as f:
-        f.write(f"signoff/netlist.v\nsignoff/lib/{CELLS}\n")
+        f.write(f"signoff/netlist.v\nsignoff/lib/{cells}\n")
     return path
 
 
-def gatesim(a, sdir):
-    env = dict(os.environ, FILELIST="signoff/gates.f")
+def gatesim_engine(a, cells):
+    """The simulator of the gate-level run and why: --gatesim, or by the size of the run (auto)."""
+    if a.gatesim != "auto":
+        return a.gatesim, f"--gatesim {a.gatesim}"
+    vectors = 0
+    for f in sorted(os.listdir(os.path.join(a.bundle, "vectors"))):
+        if f.endswith(".hex"):
+            vectors += sum(1 for x in open(os.path.join(a.bundle, "vectors", f)) if re.match(r"[0-9a-fA-F]", x))
+    work = cells * vectors
+    if work <= ICARUS_MAX_WORK:
+        return "icarus", f"{cells} cells x {vectors} vectors = {work:.3g} <= {ICARUS_MAX_WORK:.3g}"
+    return "verilator", f"{cells} cells x {vectors} vectors = {work:.3g} > {ICARUS_MAX_WORK:.3g}"
+
+
+def verilator_cells(a, sdir):
+    """Verilog models of the library's cells from its Liberty functions (Yosys read_liberty: each cell's `function`
+    and `ff`/`latch` groups as assigns and always blocks), for Verilator, which does not read the UDP tables of the
+    library's own models."""
+    out = os.path.join(sdir, "lib", VL_CELLS)
+    rc, text = run(["yosys", "-q", "-p", f"read_liberty {a.liberty}; write_verilog -noattr {out}.tmp"], sdir,
+                   os.path.join(sdir, "yosys_cells.log"), a.timeout)
+    if rc or not os.path.exists(out + ".tmp"):
+        die(f"yosys could not write cell models from {a.liberty}: {sdir}/yosys_cells.log")
+    with open(out + ".tmp") as f:
+        body = f.read()
+    with open(out, "w") as f:
+        f.write(f"// Cell models written by Yosys from {os.path.basename(a.liberty)}'s functions "
+                "(signoff/signoff.py, gate-level simulation in Verilator)\n/* verilator lint_off DECLFILENAME */\n"
+                + body)
+    os.remove(out + ".tmp")
+
+
+def gatesim(a, sdir, cells):
+    engine, why = gatesim_engine(a, cells)
+    if engine == "verilator":
+        if not shutil.which("verilator"):
+            die("verilator not found (scripts/setup.sh installs it); or --gatesim icarus")
+        verilator_cells(a, sdir)
+        flist = os.path.relpath(gate_filelist(a, sdir, VL_CELLS, "gates_verilator.f"), a.bundle)
+        cmd, env = ["./run_verilator.sh"], dict(os.environ, FILELIST=flist)
+    else:
+        flist = os.path.relpath(gate_filelist(a, sdir), a.bundle)
+        cmd, env = ["./run_icarus.sh"], dict(os.environ, FILELIST=flist)
     t0 = time.time()
-    p = subprocess.run(["./run_icarus.sh"], cwd=a.bundle, env=env, capture_output=True, text=True,
-                       timeout=a.timeout)
+    p = subprocess.run(cmd, cwd=a.bundle, env=env, capture_output=True, text=True, timeout=a.timeout)
     text = p.stdout + p.stderr
-    with open(os.path.join(sdir, "gatesim_icarus.log"), "w") as f:
-        f.write(f"# FILELIST=signoff/gates.f ./run_icarus.sh (the bundle's bench on the mapped netlist)\n"
+    with open(os.path.join(sdir, f"gatesim_{engine}.log"), "w") as f:
+        f.write(f"# FILELIST={flist} {cmd[0]} (the bundle's bench on the mapped netlist; {engine}: {why})\n"
                 f"# {time.time() - t0:.1f} s, exit {p.returncode}\n{text}")
-    vectors = sum(int(n) for n in re.findall(r"^PASS (\d+) vectors", text, re.M))
+    vectors = sum(int(n) for n in re.findall(r"^PASS (\d+) vectors \(", text, re.M))
     fails = len(re.findall(r"^FAIL", text, re.M))
-    passed = p.returncode == 0 and "run_icarus.sh: PASS" in text
+    passed = p.returncode == 0 and f"{cmd[0][2:]}: PASS" in text
     mism = len(re.findall(r"^FAIL vector \d+:", text, re.M))
-    log(f"gatesim: {'PASS' if passed else 'FAIL'} {vectors} vectors, {mism} mismatching ({time.time() - t0:.0f} s)")
-    return {"passed": passed, "vectors": vectors, "mismatches": mism if passed or mism else max(fails, 1)}
+    log(f"gatesim ({engine}: {why}): {'PASS' if passed else 'FAIL'} {vectors} vectors, {mism} mismatching "
+        f"({time.time() - t0:.0f} s)")
+    return {"passed": passed, "vectors": vectors, "mismatches": mism if passed or mism else max(fails, 1),
+            "simulator": engine, "simulator_why": why, "seconds": round(time.time() - t0, 1)}
 
 
 # ------------------------------------------------------------------------------------------- power
@@ -505,6 +556,7 @@ proc sc_port_act {name act duty} {
 def power(a, sdir, period):
     """Gate-level activity -> OpenSTA report_power; energy per result."""
     vcd = os.path.join(sdir, "activity.vcd")
+    gate_filelist(a, sdir)  # Icarus on the library's models, whichever simulator checked the netlist
     env = dict(os.environ, FILELIST="signoff/gates.f", IN_GAP="0", OUT_STALL="0", RESET_AT="-1",
                VCD=os.path.abspath(vcd), VECTORS="vectors/random.hex")
     t0 = time.time()
@@ -608,6 +660,10 @@ def main():
     ap.add_argument("--cells", default=None, help=f"the library's Verilog cell models (default {LIB_DIR}/{CELLS})")
     ap.add_argument("--steps", default="synth,sta,gatesim,power",
                     help="comma list of synth, sta, gatesim, power (default all; later steps need earlier results)")
+    ap.add_argument("--gatesim", choices=["auto", "icarus", "verilator"], default="auto",
+                    help="gate-level simulator: icarus (4-state, the library's models), verilator (2-state, models "
+                         "from the Liberty functions), auto (default: icarus while cells x vectors <= "
+                         f"{ICARUS_MAX_WORK:.0e})")
     ap.add_argument("--timeout", type=int, default=7200, help="seconds per tool run (default 7200)")
     ap.add_argument("--chparam", action="append", default=[], metavar="NAME=VALUE",
                     help="set a parameter of the top before elaboration (repeatable)")
@@ -681,8 +737,7 @@ def main():
             f"{st['fmax_mhz']} MHz ({st['fmax_period_ns']} ns), closes at {st['period_ns']} ns; worst path "
             f"{rep['start_reg']} -> {rep['end_reg']} ({rep['levels']} cells)")
     if "gatesim" in steps:
-        gate_filelist(a, sdir)
-        res["gatesim"] = gatesim(a, sdir)
+        res["gatesim"] = gatesim(a, sdir, res["synth"]["cells"])
     if "power" in steps and res.get("gatesim", {}).get("passed"):
         res["power"] = power(a, sdir, res["sta"]["period_ns"])
     with open(jpath + ".tmp", "w") as f:

@@ -14,7 +14,10 @@
 #    signoff/stages.py on it: the spliced register needs more pieces than the bundle's worst register, and on the bundle itself its
 #    worst endpoint is the WNS signoff.json reports (no register misses exactly when the target is met);
 # 4. the same netlist with one XOR cell of the datapath turned into an XNOR fails the gate-level
-#    simulation (`--steps gatesim`: exit 2, passed false, mismatches > 0).
+#    simulation (`--steps gatesim`: exit 2, passed false, mismatches > 0);
+# 5. the Verilator gate-level route (`--gatesim verilator`: the cell models Yosys writes from the Liberty functions),
+#    which auto takes for the largest runs: the bundle's netlist passes with the vectors Icarus counted, the mutant
+#    of 4 fails.
 # Exit 77 (ctest: skipped) with a note when yosys, sta, iverilog or qflow-tech-osu018 are missing.
 # Prints "test_signoff: PASS" and removes WORKDIR on success.
 set -u
@@ -113,6 +116,23 @@ cat "$work/mutant.log"
 [ $rc -eq 2 ] || fail "the mutated netlist's gate-level run exited $rc, expected 2"
 [ "$(jget "$m/signoff/signoff.json" "(not d['gatesim']['passed']) and d['gatesim']['mismatches'] > 0")" = True ] ||
   fail "the mutated netlist was not reported as failing: $(jget "$m/signoff/signoff.json" "d['gatesim']")"
+
+# 5. the same two netlists through Verilator (a small run: auto chose Icarus above)
+[ "$(jget "$j" "d['gatesim']['simulator']")" = icarus ] || fail "auto did not choose Icarus for a small run"
+if command -v verilator >/dev/null 2>&1; then
+  v="$work/vl"; cp -r "$b" "$v"
+  "$py" "$v/signoff/signoff.py" "$v" --steps gatesim --gatesim verilator >"$work/vl.log" 2>&1 ||
+    { cat "$work/vl.log"; fail "the netlist failed its Verilator gate-level run"; }
+  cat "$work/vl.log"
+  [ "$(jget "$v/signoff/signoff.json" "d['gatesim']['passed'] and d['gatesim']['simulator'] == 'verilator' and d['gatesim']['vectors'] == $(jget "$j" "d['gatesim']['vectors']")")" = True ] ||
+    fail "the Verilator gate-level run does not match Icarus's: $(jget "$v/signoff/signoff.json" "d['gatesim']")"
+  "$py" "$m/signoff/signoff.py" "$m" --steps gatesim --gatesim verilator >"$work/mutant_vl.log" 2>&1; rc=$?
+  cat "$work/mutant_vl.log"
+  [ $rc -eq 2 ] && [ "$(jget "$m/signoff/signoff.json" "d['gatesim']['mismatches'] > 0")" = True ] ||
+    fail "the mutated netlist passed in Verilator (exit $rc)"
+else
+  echo "test_signoff: note: verilator not installed, the Verilator gate-level route not tried"
+fi
 
 rm -rf "$work"
 echo "test_signoff: PASS"
