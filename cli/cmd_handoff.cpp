@@ -56,6 +56,9 @@ void run(HandoffArgs& ha) {
   // ---- validate everything before doing anything
   a.top_given = ha.sub->count("--top") > 0;
   a.count_given = ha.sub->count("--count") > 0;
+  if (a.no_sim && a.signoff != "off")
+    throw std::invalid_argument("--no-sim needs --signoff off (a sign-off simulates the netlist of a bundle whose own "
+                                "benches must pass first)");
   if (ha.core == "lighting") {
     // The feature set fixes the unit and the widths: the unit options do not apply.
     for (const char* opt : {"--variant", "--config", "--frac", "--guard", "--cutoff", "--norm", "--coef"})
@@ -90,6 +93,9 @@ void add_handoff(CLI::App& app) {
   sub->add_option("--count", l.count, "Random vectors (default 2000; lighting: random fragments, default 1000)");
   sub->add_option("--top", l.top, "Module name of the wrapper top (default shadecore_top; lighting: shadecore_light_top)")->check(cliargs::NonEmpty("module name"));
   sub->add_flag("--no-ice40", l.no_ice40, "Skip iCE40 place and route even where nextpnr-ice40/icetime are installed");
+  sub->add_flag("--no-sim", l.no_sim,
+                "Write the bundle without running its Icarus and Verilator benches (its summary says so; needs "
+                "--signoff off): the bundle's files for a script that compares them (scripts/timing_report.py)");
   sub->add_option("--synth", l.synth,
                   "Yosys generic synthesis: flat | hier (hierarchical, no flatten) | skip | auto (default: flat for "
                   "the specular unit; for the lighting core by size, docs/handoff.md)")->check(cliargs::NonEmpty("synthesis mode"));

@@ -108,6 +108,7 @@ struct BundleBase {
   // trees in hours; docs/signoff.md), keep for a lighting core with MREG = 1 (no AIG rewriting either)
   std::string signoff_abc = "full";
   std::string signoff_status = "not run";
+  bool no_sim = false;  // --no-sim: run_icarus.sh / run_verilator.sh not run at generation time
 };
 
 // The command's options shared by both cores (cli/cmd_handoff.cpp registers them).
@@ -121,6 +122,7 @@ struct Options {
   uint64_t count = 2000;     // random vectors (fragments for the lighting core)
   std::string top = "shadecore_top";
   bool no_ice40 = false;
+  bool no_sim = false;       // --no-sim: the bundle's benches not run (with --signoff off only)
   std::string synth = "auto";
   std::string signoff = "auto";  // OSU 0.18 um timing, gate-level simulation and power: auto | on | off
   double clock_target = 4.0;     // its target period, ns

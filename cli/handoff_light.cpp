@@ -618,6 +618,7 @@ void run_lighting(const Options& o) {
     b.seed = seed;
     b.synth = synth;
     b.signoff_mode = o.signoff;
+    b.no_sim = o.no_sim;
     b.signoff_target = o.clock_target;
     // keep (signoff.py ABC_KEEP) for the pipelined core: ABC's AIG rewriting turns the adders after its product
     // registers into carry chains (docs/signoff.md)

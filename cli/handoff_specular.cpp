@@ -363,6 +363,7 @@ void run_specular(const Options& a, const UnitSpec& spec) {
     b.seed = seed;
     b.synth = synth;
     b.signoff_mode = a.signoff;
+    b.no_sim = a.no_sim;
     b.signoff_target = a.clock_target;
     for (const auto& v : kVariants)  // config/configs.json variants[].signoff_abc (schlick_nr: lean)
       if (v.id == spec.variant) b.signoff_abc = std::string(v.signoff_abc);

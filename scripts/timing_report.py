@@ -144,6 +144,8 @@ def bundle(a, r, d, signoff="on"):
         cmd += ["--core", "lighting", "--features", r["set"]["name"]]
         if r.get("mreg"):
             cmd += ["--mreg", str(r["mreg"])]
+    if signoff == "off":  # the bundle's files only (inputs_sha): its benches ran when the row was measured
+        cmd.append("--no-sim")
     p = subprocess.run(cmd, capture_output=True, text=True, timeout=a.timeout)
     if p.returncode:
         raise Failure(f"{' '.join(cmd)} failed: {(p.stderr or p.stdout).strip().splitlines()[-1:]}")

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -348,6 +349,8 @@ TEST(HandoffCli, BadArgumentsGiveOneLineErrorsAndWriteNothing) {
   expect_one_line_error("handoff --top sc_cs16 --out " + (d / "b").string(), "clashes");
   expect_one_line_error("handoff --variant nosuch --out " + (d / "b").string(), "unknown variant");
   expect_one_line_error("handoff --config huge --out " + (d / "b").string(), "unknown config");
+  expect_one_line_error("handoff --no-sim --out " + (d / "b").string(), "--no-sim needs --signoff off");
+  expect_one_line_error("handoff --no-sim --signoff on --out " + (d / "b").string(), "--no-sim needs --signoff off");
   std::ofstream(d / "file") << "x";
   expect_one_line_error("handoff --out " + (d / "file").string(), "not a directory");
   fs::create_directories(d / "full");
@@ -398,6 +401,35 @@ TEST(HandoffLighting, DiffuseBundlePassesAndACorruptedCopyFails) {
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("run_icarus.sh: PASS"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("run_verilator.sh: PASS"), std::string::npos) << r.out;
+  {  // --no-sim writes the very same design files without running the benches (scripts/timing_report.py's check)
+    const fs::path ns = d / "ns";
+    const CliRun q = run_shell(std::string(SHADECORE_CLI) + " handoff --core lighting --features diffuse --count 60 --seed 9"
+                               " --synth skip --no-ice40 --signoff off --no-sim --out " + ns.string());
+    ASSERT_EQ(q.status, 0) << q.out << q.err;
+    EXPECT_NE(q.out.find("run_icarus.sh: not run at generation time (--no-sim)"), std::string::npos) << q.out;
+    EXPECT_EQ(q.out.find("PASS"), std::string::npos) << q.out;
+    const auto design = [](const fs::path& f) {  // without the "made by" lines (the command, --no-sim and --out in it)
+      std::istringstream in(slurp(f));
+      std::string line, out;
+      while (std::getline(in, line)) {
+        std::string low = line;
+        for (char& c : low) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (low.find("made by") == std::string::npos) out += line + "\n";
+      }
+      return out;
+    };
+    int compared = 0;
+    for (const auto& e : fs::recursive_directory_iterator(b)) {
+      const std::string rel = fs::relative(e.path(), b).string();
+      if (!e.is_regular_file() || !(rel.rfind("rtl/", 0) == 0 || rel.rfind("tb/", 0) == 0 ||
+                                    rel.rfind("vectors/", 0) == 0 || rel == "filelist.f"))
+        continue;
+      ASSERT_TRUE(fs::exists(ns / rel)) << rel;
+      EXPECT_EQ(design(e.path()), design(ns / rel)) << rel;
+      ++compared;
+    }
+    EXPECT_GT(compared, 8);
+  }
   for (const char* f : {"rtl/shadecore_light_top.v", "rtl/sc_light.v", "rtl/sc_delay.v", "rtl/sc_light_regs.vh",
                         "filelist.f", "constraints.sdc", "interface.md", "tb/tb_shadecore_light.v", "tb/tb_config.vh",
                         "tb/tb_dut.vh", "run_icarus.sh", "run_verilator.sh", "vectors/hard.hex", "vectors/random.hex",
