@@ -172,7 +172,7 @@ std::string format_vectors(const UnitSpec& spec, const VectorRequest& req, const
   if (req.mode == "random")
     s += fmt::format(", seed {}, n {}..{}, stimulus digest {}", req.seed, req.n_lo, req.n_hi, random_digest(v));
   if (req.mode == "exhaustive") s += fmt::format(", n {}..{}: every code 0..2^F, then -2^(F+1), -1, 2^F+1, 2^(F+1)-1", req.n_lo, req.n_hi);
-  if (req.mode == "hard") s += " (shadecore::hard_cases: input extremes, 1.0 +-2, thr +-2, the base zero +-2, 12 exponents)";
+  if (req.mode == "hard") s += " (shadecore::hard_cases: input extremes, 1.0 +-2, 1.0 + 2^k, thr +-2, the base zero +-2, 12 exponents)";
   s += fmt::format("; {} vectors\n", v.size());
   s += "// made by: " + command_line() + "\n";
   s += "// expected values: the bit-exact C model (cmodel/include/shadecore/unit.hpp), as the co-simulation\n";

@@ -28,6 +28,10 @@ Every other survivor needs a reason: scripts/mutation_reasons.json, keyed "<desi
 
 Results are cached per mutant (WORK/<design>/cache.json, written after each mutant, keyed by a fingerprint
 of the prepared design, the mutation list and the bench), so an interrupted run resumes where it stopped.
+The equivalence proofs depend on the prepared design and the mutation alone, not on the bench: they are kept
+apart in the cache ("proofs", keyed by the design, the mutation list, --eq-steps and the proof method), so new
+vectors re-run every mutant's simulations but reuse each survivor's proof or failed proof (a failed one only
+when it had at least the current --eq-timeout).
 
   scripts/mutation.py [--design D ...] [--count 300] [--seed 1] [--jobs 2]   all listed designs; docs/
   scripts/mutation.py --design cs16 --mutant 3 --expect killed               one mutant (ctest)
@@ -165,11 +169,13 @@ def cli_env(opts):
     return dict(os.environ, SHADECORE_ROOT=opts.src_dir)
 
 
-def make_bundle(opts, name, handoff_args, bundle):
+def make_bundle(opts, name, handoff_args, bundle, dry=False):
     cli, vec_seed, vec_count = opts.cli, opts.vec_seed, opts.vec_count
     cmd = [cli, "handoff"] + handoff_args + ["--seed", str(vec_seed), "--count", str(vec_count),
                                              "--no-ice40", "--synth", "skip", "--signoff", "off",
                                              "--out", bundle, "--force"]
+    if dry:  # the command only
+        return cmd
     stamp = os.path.join(bundle, ".mutation_cmd")
     key = " ".join(cmd[1:]) + " @" + opts.commit
     if os.path.isfile(stamp) and open(stamp).read() == key and \
@@ -396,7 +402,14 @@ def run_mutant(args):
                 break
         if res["status"] == "survived" and idx > 0 and ctx["eq_timeout"] > 0 and \
                 res.get("eq_method") != EQ_METHOD:
-            eq, why = equivalence(ctx, idx, mdir)
+            known = ctx.get("proofs", {}).get(str(idx))
+            if known and (known["equivalent"] or known["eq_timeout"] >= ctx["eq_timeout"]):
+                eq = "equivalent" if known["equivalent"] else "unknown"
+                why = known["why"] if known["why"].endswith("(proof reused)") else known["why"] + " (proof reused)"
+                res["eq_timeout"] = known["eq_timeout"]
+            else:
+                eq, why = equivalence(ctx, idx, mdir)
+                res["eq_timeout"] = ctx["eq_timeout"]
             res["equivalence"] = why
             res["eq_method"] = EQ_METHOD
             if eq == "equivalent":
@@ -435,14 +448,50 @@ def nice_init():
 # one design
 
 
-def load_cache(path, fp):
+def load_cache(path, fp, proof_key=None, harvested=None):
+    """The cache of a design: its results when the fingerprint matches, else empty results; the proofs when
+    their key matches (or `harvested`, proofs taken from an older cache that predates the proofs section)."""
+    c = None
     try:
         c = json.load(open(path))
-        if c.get("fingerprint") == fp:
-            return c
     except (OSError, ValueError):
         pass
-    return {"fingerprint": fp, "results": {}}
+    out = c if c is not None and c.get("fingerprint") == fp else {"fingerprint": fp, "results": {}}
+    proofs = (c or {}).get("proofs")
+    if not (proofs and proofs.get("key") == proof_key):
+        proofs = {"key": proof_key, "results": dict(harvested or {})}
+    out["proofs"] = proofs
+    return out
+
+
+def proof_of(r, eq_timeout):
+    """What a result says about its mutant's equivalence proof (None when no proof was tried)."""
+    if r.get("eq_method") != EQ_METHOD or "equivalence" not in r:
+        return None
+    return {"equivalent": r["status"] == "equivalent", "why": r["equivalence"],
+            "eq_timeout": r.get("eq_timeout", eq_timeout)}
+
+
+def harvest_proofs(wdir, cmd, eq_steps):
+    """The proofs of a cache written before the proofs section, when its results are verified to belong to the
+    files still in wdir (its fingerprint recomputed from the old design.il, mutation list and vectors): read
+    before the bundle and design.il are rewritten. Returns (design.il bytes, mutation list, {id: proof})."""
+    try:
+        c = json.load(open(os.path.join(wdir, "cache.json")))
+        il = open(os.path.join(wdir, "design.il"), "rb").read()
+        muts = [x.strip() for x in open(os.path.join(wdir, "mutations.txt")) if x.strip()]
+        vdir = os.path.join(wdir, "bundle", "vectors")
+        vecs = sorted(f for f in os.listdir(vdir) if f.endswith(".hex"))
+        order = [f for f in vecs if f.startswith("hard")] + [f for f in vecs if not f.startswith("hard")]
+        fp = sha(il, "\n".join(muts), " ".join(cmd[1:]), eq_steps,
+                 *[open(os.path.join(vdir, f), "rb").read() for f in order])
+    except (OSError, ValueError):
+        return None
+    if c.get("fingerprint") != fp or c.get("proofs"):
+        return None
+    eq_t = (c.get("meta") or {}).get("eq_timeout", 0)
+    got = {k: proof_of(r, eq_t) for k, r in c.get("results", {}).items()}
+    return il, muts, {k: v for k, v in got.items() if v}
 
 
 def save_cache(path, cache):
@@ -481,6 +530,8 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
     wdir = os.path.join(opts.work, name)
     os.makedirs(wdir, exist_ok=True)
     bundle = os.path.join(wdir, "bundle")
+    # an older cache's proofs, read before make_bundle and prepare rewrite the files they were made from
+    old = harvest_proofs(wdir, make_bundle(opts, name, handoff_args, bundle, dry=True), opts.eq_steps)
     cmd = make_bundle(opts, name, handoff_args, bundle)
     prep = prepare(name, bundle, unit, opts.count, opts.seed, wdir)
     vecs = sorted(f for f in os.listdir(os.path.join(bundle, "vectors")) if f.endswith(".hex"))
@@ -506,7 +557,11 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
         if not 1 <= i <= len(prep["mutations"]):
             raise ArgError("--mutant %d: %s has %d mutants" % (i, name, len(prep["mutations"])))
     cache_path = os.path.join(wdir, "cache.json")
-    cache = load_cache(cache_path, fp)
+    design_il = open(ctx["design_il"], "rb").read()
+    proof_key = sha(design_il, "\n".join(prep["mutations"]), opts.eq_steps, EQ_METHOD)
+    harvested = old[2] if old and old[0] == design_il and old[1] == prep["mutations"] else None
+    cache = load_cache(cache_path, fp, proof_key, harvested)
+    ctx["proofs"] = cache["proofs"]["results"]
     if opts.no_cache:
         cache.pop("baseline", None)
         for i in ids:
@@ -558,6 +613,8 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
         try:
             for r in pool.imap_unordered(run_mutant, [(ctx, i, cache["results"].get(str(i))) for i in todo]):
                 cache["results"][str(r["id"])] = r
+                if proof_of(r, opts.eq_timeout):
+                    cache["proofs"]["results"][str(r["id"])] = proof_of(r, opts.eq_timeout)
                 save_cache(cache_path, cache)
                 if r["status"] != "survived":
                     stale_v = os.path.join(wdir, "survivors", "m%03d_%s.v" % (r["id"], unit))

@@ -2,6 +2,7 @@
 // Hard cases and exhaustive properties of the bit-accurate cs16 model (docs/spec.md §2–3).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -289,6 +290,18 @@ TEST(HardCases, AllWithinSpec) {
       const uint32_t out = cs16_eval(cfg.format, Cutoff::ThetaCr, m, hc.code);
       ASSERT_LE(out, cfg.format.one());
       if (hc.code >= 0 && hc.code <= cfg.format.one()) check_bound(cfg.format, Cutoff::ThetaCr, m, hc.code);
+    }
+  }
+}
+
+// The clamp's compare `code > 1.0` is seen one bit at a time: 1.0 + 2^k for every k < F is a hard case.
+TEST(HardCases, EveryBitAboveOne) {
+  for (const auto& cfg : kConfigs) {
+    const auto cases = hard_cases(cfg.format);
+    for (int k = 0; k < cfg.format.frac; ++k) {
+      const int64_t code = cfg.format.one() + (int64_t{1} << k);
+      EXPECT_TRUE(std::any_of(cases.begin(), cases.end(), [code](const HardCase& h) { return h.code == code; }))
+          << cfg.name << " k=" << k;
     }
   }
 }

@@ -22,6 +22,8 @@ inline std::vector<int> hard_case_exponents() { return {16, 17, 25, 26, 27, 100,
 
 // For each exponent: the input extremes (most negative, −1, 0, 1), cos θ = 1 and one code either
 // side, the saturating maximum, the θcr threshold ±1 and the code where the base crosses 0, ±1.
+// For the first exponent also 1.0 + 2^k for every k < F: the clamp's compare `code > 1.0` sees one bit of the
+// code above 1.0 at a time (a compare that drops or flips bit k errs only at 1.0 + 2^k; docs/mutation.md).
 inline std::vector<HardCase> hard_cases(const Format& f) {
   std::vector<HardCase> v;
   const int64_t one = f.one();
@@ -34,6 +36,9 @@ inline std::vector<HardCase> hard_cases(const Format& f) {
                              base_zero - 1, base_zero, base_zero + 1, base_zero + 2};
     for (int64_t c : codes)
       if (c >= f.in_min() && c <= f.in_max()) v.push_back({n, c});
+    if (n == hard_case_exponents().front())
+      for (int k = 2; k < f.frac; ++k)  // 1.0 + 1 and 1.0 + 2 are in the list above
+        if (one + (int64_t{1} << k) <= f.in_max()) v.push_back({n, one + (int64_t{1} << k)});
   }
   return v;
 }
