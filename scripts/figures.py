@@ -53,6 +53,16 @@ def footer(command):
     return f"{command} | {machine()} | {datetime.date.today().isoformat()}"
 
 
+def gate_sim_text(row, missing="—"):
+    """The gate-level column of a docs/timing.json row (docs/timing.md, docs/tradeoffs.md): records and mismatches,
+    and the simulator where it is not Icarus (signoff.py --gatesim: Verilator for the largest netlists)."""
+    if row.get("gate_sim_vectors") is None:
+        return missing
+    sim = row.get("gate_sim_simulator") or "icarus"
+    return (f"{row['gate_sim_vectors']} vectors, {row['gate_sim_mismatches']} mismatches"
+            + ("" if sim == "icarus" else f" ({sim.capitalize()})"))
+
+
 def text_problems(fig, dpi=None, slack=0.5):
     """The text boxes of `fig` as drawn (every Text artist the renderer actually draws: titles, axis labels,
     tick labels, annotations, legend entries, the footer) and what is wrong with them: pairs whose window

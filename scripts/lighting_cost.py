@@ -201,8 +201,7 @@ def standard_cell_markdown(path=os.path.join(ROOT, "docs", "timing.json")):
          "cells | energy (pJ/fragment) | gate-level sim | critical path |", "|---|---|---|---|---|---|---|---|---|---|"]
     for t in rows:
         lat = f"{t['latency_cycles']} / {t['latency_ns']}" if t.get("latency_cycles") is not None else "—"
-        gs = (f"{t['gate_sim_vectors']} vectors, {t['gate_sim_mismatches']} mismatches"
-              if t.get("gate_sim_vectors") is not None else "—")
+        gs = figures_mod().gate_sim_text(t)
         meets = "yes" if t["met"] else f"no (WNS {t['wns_ns']:+.3f})"
         L.append(f"| {t['name']} | {t['period_ns']} | {meets} | {lat} | "
                  f"{t['results_per_s']:,} | {t['area_um2']:,} | {t['cells']:,} | "
@@ -211,6 +210,13 @@ def standard_cell_markdown(path=os.path.join(ROOT, "docs", "timing.json")):
     if missing:
         L += ["", "Not measured in that run: " + ", ".join(m.split(":")[1] for m in missing) + "."]
     return L + [""]
+
+
+def figures_mod():
+    """scripts/figures.py (imported on use: the measuring steps run without matplotlib)."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import figures
+    return figures
 
 
 def _label(r):

@@ -406,10 +406,7 @@ def write_md(path, rows, meta, missing=()):
           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lat = f"{r['latency_cycles']} / {r['latency_ns']}" if r.get("latency_cycles") is not None else "—"
-        gs = (f"{r['gate_sim_vectors']} vectors, {r['gate_sim_mismatches']} mismatches"
-              + (f" ({r['gate_sim_simulator'].capitalize()})" if r.get("gate_sim_simulator", "icarus") != "icarus"
-                 else "")
-              if r.get("gate_sim_vectors") is not None else r.get("reason_gate_sim", "—"))
+        gs = figures.gate_sim_text(r, r.get("reason_gate_sim", "—"))
         e = f"{r['energy_pj_per_result']:.1f}" if r.get("energy_pj_per_result") is not None else "—"
         wns = f"{r['wns_ns']:+.3f}" + ("" if r["met"] else " ✗")
         L.append(f"| {r['name']} ({r['kind']}) | {r['width']} | {r['contract']} | {lat} | {r['period_ns']} | {wns} | "
