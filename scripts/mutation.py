@@ -479,6 +479,20 @@ def proof_of(r, eq_timeout):
             "eq_timeout": r.get("eq_timeout", eq_timeout)}
 
 
+def vector_files(bundle):
+    """A bundle's vector files (paths relative to it): the directed ones (hard*.hex) and the others."""
+    vecs = sorted(f for f in os.listdir(os.path.join(bundle, "vectors")) if f.endswith(".hex"))
+    return (["vectors/" + f for f in vecs if f.startswith("hard")],
+            ["vectors/" + f for f in vecs if not f.startswith("hard")])
+
+
+def fingerprint(design_il, mutations, cmd, eq_steps, bundle, vectors):
+    """What a cached result depends on: the prepared design, the mutation list, the handoff command, --eq-steps and
+    the bench's vector files (a new stage re-runs the survivors in it only)."""
+    return sha(design_il, "\n".join(mutations), " ".join(cmd[1:]), eq_steps,
+               *[open(os.path.join(bundle, v), "rb").read() for v in vectors])
+
+
 def harvest_proofs(wdir, cmd, eq_steps):
     """The proofs of a cache written before the proofs section, when its results are verified to belong to the
     files still in wdir (its fingerprint recomputed from the old design.il, mutation list and vectors): read
@@ -487,11 +501,8 @@ def harvest_proofs(wdir, cmd, eq_steps):
         c = json.load(open(os.path.join(wdir, "cache.json")))
         il = open(os.path.join(wdir, "design.il"), "rb").read()
         muts = [x.strip() for x in open(os.path.join(wdir, "mutations.txt")) if x.strip()]
-        vdir = os.path.join(wdir, "bundle", "vectors")
-        vecs = sorted(f for f in os.listdir(vdir) if f.endswith(".hex"))
-        order = [f for f in vecs if f.startswith("hard")] + [f for f in vecs if not f.startswith("hard")]
-        fp = sha(il, "\n".join(muts), " ".join(cmd[1:]), eq_steps,
-                 *[open(os.path.join(vdir, f), "rb").read() for f in order])
+        hard, rand = vector_files(os.path.join(wdir, "bundle"))
+        fp = fingerprint(il, muts, cmd, eq_steps, os.path.join(wdir, "bundle"), hard + rand)
     except (OSError, ValueError):
         return None
     if c.get("fingerprint") != fp or c.get("proofs"):
@@ -541,9 +552,7 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
     old = harvest_proofs(wdir, make_bundle(opts, name, handoff_args, bundle, dry=True), opts.eq_steps)
     cmd = make_bundle(opts, name, handoff_args, bundle)
     prep = prepare(name, bundle, unit, opts.count, opts.seed, wdir)
-    vecs = sorted(f for f in os.listdir(os.path.join(bundle, "vectors")) if f.endswith(".hex"))
-    hard = ["vectors/" + f for f in vecs if f.startswith("hard")]
-    rand = ["vectors/" + f for f in vecs if not f.startswith("hard")]
+    hard, rand = vector_files(bundle)
     extra = make_extra(opts, name, handoff_args, wdir) if "extra" in opts.stages else []
     stages = [s for s in STAGES if s in opts.stages and not (s == "hard" and not hard)
               and not (s == "random" and not rand) and not (s == "extra" and not extra)]
@@ -552,8 +561,7 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
                eq_steps=opts.eq_steps, tmp=os.path.join(wdir, "tmp"), timeouts={})
     os.makedirs(ctx["tmp"], exist_ok=True)
     # the fingerprint: what a cached result depends on (a new stage re-runs the survivors in it only)
-    fp = sha(open(ctx["design_il"], "rb").read(), "\n".join(prep["mutations"]), " ".join(cmd[1:]),
-             opts.eq_steps, *[open(os.path.join(bundle, v), "rb").read() for v in hard + rand])
+    fp = fingerprint(open(ctx["design_il"], "rb").read(), prep["mutations"], cmd, opts.eq_steps, bundle, hard + rand)
     if getattr(opts, "pick", None):
         hit = [i for i, m in enumerate(prep["mutations"], 1) if re.search(opts.pick, m)]
         if not hit:
