@@ -74,6 +74,7 @@ void run(HandoffArgs& ha) {
   }
   if (ha.core != "specular") throw std::invalid_argument("unknown --core '" + ha.core + "' (known: specular, lighting)");
   if (!a.features.empty()) throw std::invalid_argument("--features applies to --core lighting only");
+  if (a.axi) throw std::invalid_argument("--axi applies to --core lighting only (the AXI wrapper is the lighting core's)");
   run_specular(a, resolve_unit(*ha.unit));
 }
 
@@ -96,6 +97,9 @@ void add_handoff(CLI::App& app) {
   sub->add_flag("--no-sim", l.no_sim,
                 "Write the bundle without running its Icarus and Verilator benches (its summary says so; needs "
                 "--signoff off): the bundle's files for a script that compares them (scripts/timing_report.py)");
+  sub->add_flag("--axi", l.axi,
+                "--core lighting: the core behind its AXI wrapper rtl/sc_light_axi.v (AXI4-Lite registers, AXI4-Stream "
+                "fragments and colours; docs/handoff.md \"The AXI view\"), with the testbench driving it through AXI");
   sub->add_option("--synth", l.synth,
                   "Yosys generic synthesis: flat | hier (hierarchical, no flatten) | skip | auto (default: flat for "
                   "the specular unit; for the lighting core by size, docs/handoff.md)")->check(cliargs::NonEmpty("synthesis mode"));

@@ -73,7 +73,7 @@ struct Port {
 struct Widths {
   int frac, tagw, coefw;
 };
-// A symbolic width of config/interface.json ("F+1", "F+2", "F+8", "TAGW", "COEFW", a number).
+// A symbolic width of config/interface.json ("F+1", "F+2", "F+8", "TAGW", "COEFW", "AXIS_IN", "AXIS_OUT", a number).
 int eval_width(const std::string& expr, const Widths& w);
 // A port list of config/interface.json ("ports": sc_specular, "light_ports": sc_light), read at run time.
 nlohmann::json interface_ports(const std::string& key);
@@ -123,6 +123,7 @@ struct Options {
   std::string top = "shadecore_top";
   bool no_ice40 = false;
   bool no_sim = false;       // --no-sim: the bundle's benches not run (with --signoff off only)
+  bool axi = false;          // lighting: --axi, the core behind its AXI wrapper rtl/sc_light_axi.v
   std::string synth = "auto";
   std::string signoff = "auto";  // OSU 0.18 um timing, gate-level simulation and power: auto | on | off
   double clock_target = 4.0;     // its target period, ns

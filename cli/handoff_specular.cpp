@@ -140,8 +140,9 @@ std::string tb_config_vh(const Bundle& b, size_t maxvec) {
       "localparam integer TAGW         = {tagw};\n"
       "localparam integer LATENCY      = {lat};        // advancing edges from acceptance to the taking edge\n"
       "localparam integer LATENCY_MIN  = {latmin};        // under output backpressure (ENERGY = 1 can close up)\n"
-      "localparam integer MAXVEC       = {maxvec};     // the largest vector file in vectors/\n"
-      "localparam integer NVEC_DEFAULT = {nhard};      // vectors in vectors/hard.hex (the default file)\n"
+      "localparam integer LATENCY_SLACK = 0;        // every vector's latency is LATENCY\n"
+      "localparam integer MAXREC       = {maxvec};     // vectors in the largest vector file in vectors/\n"
+      "localparam integer NREC_DEFAULT = {nhard};      // vectors in vectors/hard.hex (the default file)\n"
       "localparam integer TB_SEED      = {seed};  // random input gaps / backpressure (+seed= overrides)\n",
       fmt::arg("desc", s.describe()), fmt::arg("top", b.top), fmt::arg("F", s.format.frac), fmt::arg("outw", s.out_bits()),
       fmt::arg("coefw", s.coef_bits()), fmt::arg("tagw", b.tagw), fmt::arg("lat", b.latency),

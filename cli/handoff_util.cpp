@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "handoff_bundle.hpp"
+#include "shadecore/light_axi.hpp"
 #include "unit_spec.hpp"
 
 #ifndef SHADECORE_SOURCE_DIR
@@ -128,6 +129,9 @@ int eval_width(const std::string& expr, const Widths& w) {
   if (expr == "F+8") return w.frac + 8;
   if (expr == "TAGW") return w.tagw;
   if (expr == "COEFW") return w.coefw;
+  // the AXI wrapper's TDATA widths (config/configs.json light.axi, generated into light_axi_map.hpp)
+  if (expr == "AXIS_IN") return axis_tdata_bits(kAXIS_IN_fields, w.frac);
+  if (expr == "AXIS_OUT") return axis_tdata_bits(kAXIS_OUT_fields, w.frac);
   if (!expr.empty() && expr.find_first_not_of("0123456789") == std::string::npos) return std::stoi(expr);
   throw std::runtime_error("config/interface.json: unknown width '" + expr + "'");
 }

@@ -44,7 +44,7 @@
 // tb_dut.vh (the instance of the wrapper top). Run-time options (plusargs):
 //   +vectors=FILE   vector file (default vectors/hard.hex)
 //   +nvec=N         number of records in FILE (required unless the default file is used; <= MAXREC)
-//   +seed=S         seed of the input gaps and backpressure (default SEED)
+//   +seed=S         seed of the input gaps and backpressure (default TB_SEED, tb_config.vh)
 //   +in_gap=P       percent of cycles with in_valid_i low while a fragment waits (default IN_GAP_PCT)
 //   +out_stall=P    percent of cycles with out_ready_i low (default OUT_STALL_PCT)
 //   +reset_at=K     rst_ni pulse after K accepted fragments (-1: none; default: half of the records)
@@ -55,7 +55,6 @@ module tb_shadecore_light;
 
 `include "tb_config.vh"
 
-  parameter integer SEED          = TB_SEED;  // recorded by shadecore handoff in tb_config.vh
   parameter integer IN_GAP_PCT    = 20;
   parameter integer OUT_STALL_PCT = 20;
   parameter integer RESET_CYCLES  = 3;      // length of each reset pulse
@@ -63,14 +62,11 @@ module tb_shadecore_light;
   parameter integer WATCHDOG      = 20000;  // cycles without any transfer = hang
 
   localparam integer RW = 16;               // words per record
+  localparam WHAT = "colour";
 
   // ---------------------------------------------------------------------------- clock and DUT pins
   reg                 clk;
   reg                 rst_n;
-  reg                 reg_we;
-  reg  [8:0]          reg_addr;
-  reg  [31:0]         reg_data;
-  wire                reg_ready;
   reg                 in_valid;
   wire                in_ready;
   reg  [FRAC+1:0]     in_nx, in_ny, in_nz;
@@ -82,6 +78,55 @@ module tb_shadecore_light;
   reg                 out_ready;
   wire [FRAC:0]       out_r, out_g, out_b, out_sr, out_sg, out_sb;
   wire [TAGW-1:0]     out_tag;
+`ifdef TB_AXI
+  // The core behind rtl/sc_light_axi.v: registers through AXI4-Lite (each write's response taken, then the
+  // register read back), fragments and colours through AXI4-Stream (TDATA packed as rtl/sc_light_axi.vh says,
+  // TUSER the tag, TLAST carried with its fragment and checked on its colour).
+`include "sc_light_axi.vh"
+  localparam integer PAYW = 6 * (FRAC + 1) + 1;
+  reg                 s_axil_awvalid, s_axil_wvalid, s_axil_bready, s_axil_arvalid, s_axil_rready;
+  wire                s_axil_awready, s_axil_wready, s_axil_bvalid, s_axil_arready, s_axil_rvalid;
+  reg  [10:0]         s_axil_awaddr, s_axil_araddr;
+  reg  [31:0]         s_axil_wdata;
+  reg  [3:0]          s_axil_wstrb;
+  wire [1:0]          s_axil_bresp, s_axil_rresp;
+  wire [31:0]         s_axil_rdata;
+  wire                s_axis_tvalid = in_valid;
+  wire                s_axis_tready;
+  reg  [AXIS_IN_TDATA-1:0] s_axis_tdata;
+  wire [TAGW-1:0]     s_axis_tuser = in_tag;
+  reg                 s_axis_tlast;
+  wire                m_axis_tvalid;
+  wire                m_axis_tready = out_ready;
+  wire [AXIS_OUT_TDATA-1:0] m_axis_tdata;
+  wire [TAGW-1:0]     m_axis_tuser;
+  wire                m_axis_tlast;
+  assign in_ready  = s_axis_tready;
+  assign out_valid = m_axis_tvalid;
+  assign out_tag   = m_axis_tuser;
+  assign out_r  = m_axis_tdata[AXIS_OUT_R_LSB +: AXIS_OUT_R_W];
+  assign out_g  = m_axis_tdata[AXIS_OUT_G_LSB +: AXIS_OUT_G_W];
+  assign out_b  = m_axis_tdata[AXIS_OUT_B_LSB +: AXIS_OUT_B_W];
+  assign out_sr = m_axis_tdata[AXIS_OUT_SR_LSB +: AXIS_OUT_SR_W];
+  assign out_sg = m_axis_tdata[AXIS_OUT_SG_LSB +: AXIS_OUT_SG_W];
+  assign out_sb = m_axis_tdata[AXIS_OUT_SB_LSB +: AXIS_OUT_SB_W];
+  wire [PAYW-1:0]     out_payload = {m_axis_tlast, out_r, out_g, out_b, out_sr, out_sg, out_sb};
+  wire unused_tb_pad = &{1'b0, m_axis_tdata};
+  // the write (and read-back) of the current record: W_SEND AW/W presented, W_RESP accepted and waiting for B,
+  // W_READ AR presented, W_DATA waiting for R. After one in four OKAY writes, before the read-back, a write of junk
+  // data to the same address with a partial WSTRB (junk_w): SLVERR, and the read-back still returns the record's word.
+  localparam integer W_IDLE = 0, W_SEND = 1, W_RESP = 2, W_READ = 3, W_DATA = 4;
+  integer wr_st, w_delay;
+  reg     aw_done, w_done, junk_w, junk_plan;
+  reg [31:0] jrng;   // its own stream (AXI-Lite delays, BREADY/RREADY, junk): rng's gaps and stalls as bare
+`else
+  localparam integer PAYW = 6 * (FRAC + 1);
+  reg                 reg_we;
+  reg  [8:0]          reg_addr;
+  reg  [31:0]         reg_data;
+  wire                reg_ready;
+  wire [PAYW-1:0]     out_payload = {out_r, out_g, out_b, out_sr, out_sg, out_sb};
+`endif
 
   initial begin
     clk = 1'b0;
@@ -90,94 +135,186 @@ module tb_shadecore_light;
 
 `include "tb_dut.vh"
 
-  // ---------------------------------------------------------------------------- vectors
-  reg [31:0] mem [0:RW*MAXREC-1];
-  reg [8*1024-1:0] vec_file;
-
-  // In flight: record index and advance count at acceptance, oldest first (a ring).
-  localparam integer QCAP = 256;
-  integer q_rec [0:QCAP-1];
-  integer q_adv [0:QCAP-1];
-  integer q_head, q_count;
-
-  // ---------------------------------------------------------------------------- state
-  integer nrec, nfrag, nwrite, seed, in_gap, out_stall, reset_at;
-  integer cyc, adv, idle, tail, checked, accepted, dropped, resets, writes;
-  integer next_rec, cur, rst_left, lat, e, k;
-  reg     have, cur_w, valid_q, mid_done, held, done;
-  reg [31:0] rng, w;
+  // ---------------------------------------------------------------------------- bench state
+  integer nwrite, writes;
+  reg     cur_w, started;
+  reg [31:0] w;
   // w holds one 32-bit vector word; every field taken from it is narrower (at most FRAC+8 bits or TAGW).
-  wire unused_tb_w = &{1'b0, w};
-  reg [TAGW-1:0] held_tag;
-  reg [6*FRAC+5:0] held_rgb;   // primary and secondary colour
+  wire unused_tb_w = &{1'b0, w, started};   // started: the bare core's reset pulse needs no action
   reg [31:0] er, eg, eb, esr, esg, esb;
 
-  `include "tb_common.vh"  // xs32 (xorshift32), fail_exit
+  `include "tb_common.vh"  // the stream skeleton: vectors, ring, checks, reset, gaps, backpressure
 
-  // Checks one colour taken at this edge with `adv_at` advancing edges counted.
-  task take_result;
-    input integer adv_at;
+  // TLAST of record r: every fifth record and the last record (a packet boundary the colour must carry).
+  function tlast_of(input integer r);
     begin
-      if (q_count == 0) begin
-        $display("FAIL cycle %0d: colour with tag 0x%h but nothing in flight (duplicated or spurious)",
-                 cyc, out_tag);
-        fail_exit;
-      end
-      e = q_rec[q_head];
-      if (out_tag !== e[TAGW-1:0]) begin
-        $display("FAIL cycle %0d: colour tag 0x%h, expected 0x%h of vector %0d (lost, duplicated or reordered)",
-                 cyc, out_tag, e[TAGW-1:0], e);
-        fail_exit;
-      end
-      er = mem[RW*e+7];
-      eg = mem[RW*e+8];
-      eb = mem[RW*e+9];
-      esr = mem[RW*e+10];
-      esg = mem[RW*e+11];
-      esb = mem[RW*e+12];
+      tlast_of = (r % 5) == 4 || r == nrec - 1;
+    end
+  endfunction
+
+  // The colours of record e (tb_common.vh take_result).
+  task check_value(input integer r);
+    begin
+      er = mem[RW*r+7];
+      eg = mem[RW*r+8];
+      eb = mem[RW*r+9];
+      esr = mem[RW*r+10];
+      esg = mem[RW*r+11];
+      esb = mem[RW*r+12];
       if (out_r !== er[FRAC:0] || out_g !== eg[FRAC:0] || out_b !== eb[FRAC:0] ||
           out_sr !== esr[FRAC:0] || out_sg !== esg[FRAC:0] || out_sb !== esb[FRAC:0] ||
           (er >> (FRAC+1)) != 32'd0 || (eg >> (FRAC+1)) != 32'd0 || (eb >> (FRAC+1)) != 32'd0 ||
           (esr >> (FRAC+1)) != 32'd0 || (esg >> (FRAC+1)) != 32'd0 || (esb >> (FRAC+1)) != 32'd0) begin
         $display("FAIL vector %0d: N=(0x%h 0x%h 0x%h) P=(0x%h 0x%h 0x%h) expected rgb 0x%h 0x%h 0x%h + 0x%h 0x%h 0x%h got 0x%h 0x%h 0x%h + 0x%h 0x%h 0x%h (cycle %0d)",
-                 e, mem[RW*e+1], mem[RW*e+2], mem[RW*e+3], mem[RW*e+4], mem[RW*e+5], mem[RW*e+6],
+                 r, mem[RW*r+1], mem[RW*r+2], mem[RW*r+3], mem[RW*r+4], mem[RW*r+5], mem[RW*r+6],
                  er, eg, eb, esr, esg, esb, out_r, out_g, out_b, out_sr, out_sg, out_sb, cyc);
         fail_exit;
       end
-      lat = adv_at - q_adv[q_head];
-      w   = mem[RW*e] >> 4;   // this fragment's latency without backpressure
-      if (lat > w + LATENCY_SLACK || lat < LATENCY_MIN || w > LATENCY || (out_stall == 0 && lat != w)) begin
-        $display("FAIL vector %0d: latency %0d advancing cycles, expected %0d..%0d (%0d without backpressure)",
-                 e, lat, LATENCY_MIN, w + LATENCY_SLACK, w);
+`ifdef TB_AXI
+      if (m_axis_tlast !== tlast_of(r)) begin
+        $display("FAIL vector %0d: TLAST %b, sent with %b (cycle %0d)", r, m_axis_tlast, tlast_of(r), cyc);
         fail_exit;
       end
-      checked = checked + 1;
-      q_head  = (q_head + 1) % QCAP;
-      q_count = q_count - 1;
+`endif
     end
   endtask
 
+  // This fragment's latency without backpressure (its passes and unit depend on the registers).
+  function integer nominal_latency(input integer r);
+    begin
+      nominal_latency = mem[RW*r] >> 4;
+    end
+  endfunction
+
+`ifdef TB_AXI
+  // An edge with rst_n low: every VALID and READY the wrapper drives is low; a write not yet read back is sent
+  // again after the reset (the wrapper clears a write it had not answered: the master resends it).
+  task axi_reset_edge;
+    begin
+      if (s_axil_awready !== 1'b0 || s_axil_wready !== 1'b0 || s_axil_bvalid !== 1'b0 || s_axil_arready !== 1'b0 ||
+          s_axil_rvalid !== 1'b0 || m_axis_tvalid !== 1'b0) begin
+        $display("FAIL cycle %0d: an AXI VALID or READY output is not low while rst_ni is low", cyc);
+        fail_exit;
+      end
+      wr_st  = W_IDLE;
+      junk_w = 1'b0;
+    end
+  endtask
+
+  // An edge out of reset: the AXI4-Lite handshakes of the current write record, checked against the ordering rule
+  // (no fragment accepted from the write's acceptance to its response; the response only once nothing is in flight).
+  task axi_edge;
+    begin
+      if (s_axil_awready === 1'bx || s_axil_wready === 1'bx || s_axil_bvalid === 1'bx || s_axil_arready === 1'bx ||
+          s_axil_rvalid === 1'bx) begin
+        $display("FAIL cycle %0d: an AXI4-Lite VALID or READY output is X after reset", cyc);
+        fail_exit;
+      end
+      if (wr_st == W_RESP && in_ready) begin
+        $display("FAIL cycle %0d: s_axis_tready_o is high while a register write awaits its response", cyc);
+        fail_exit;
+      end
+      if (s_axil_bvalid) begin
+        if (wr_st != W_RESP) begin
+          $display("FAIL cycle %0d: BVALID with no write accepted", cyc);
+          fail_exit;
+        end
+        w = mem[RW*cur+3];   // the response the address gets (0 OKAY, 2 SLVERR; written by shadecore handoff --axi)
+        if (w == 32'd0 && !junk_w && q_count > 0) begin
+          $display("FAIL cycle %0d: a register write answered OKAY with %0d fragment(s) in flight", cyc, q_count);
+          fail_exit;
+        end
+        if (s_axil_bready) begin
+          if (junk_w) w = 32'd2;  // a partial strobe
+          if (s_axil_bresp !== w[1:0]) begin
+            $display("FAIL vector %0d: BRESP %b for a write to address 0x%0h%0s, expected %b", cur, s_axil_bresp,
+                     mem[RW*cur+1], junk_w ? " with a partial WSTRB" : "", w[1:0]);
+            fail_exit;
+          end
+          wr_st  = (junk_plan && !junk_w && w == 32'd0) ? W_IDLE : W_READ;
+          junk_w = wr_st == W_IDLE;
+          idle   = 0;
+        end
+      end
+      if (s_axil_rvalid) begin
+        if (wr_st != W_DATA) begin
+          $display("FAIL cycle %0d: RVALID with no read accepted", cyc);
+          fail_exit;
+        end
+        if (s_axil_rready) begin
+          w = mem[RW*cur+3];
+          if (s_axil_rresp !== w[1:0] || s_axil_rdata !== (w == 32'd0 ? mem[RW*cur+2] : 32'd0)) begin
+            $display("FAIL vector %0d: address 0x%0h read back 0x%h (RRESP %b), written 0x%h (expected RRESP %b)", cur,
+                     mem[RW*cur+1], s_axil_rdata, s_axil_rresp, mem[RW*cur+2], w[1:0]);
+            fail_exit;
+          end
+          writes = writes + 1;
+          have   = 1'b0;
+          wr_st  = W_IDLE;
+          idle   = 0;
+        end
+      end
+      if (s_axil_awvalid && s_axil_awready) aw_done = 1'b1;
+      if (s_axil_wvalid && s_axil_wready) w_done = 1'b1;
+      if (wr_st == W_SEND && aw_done && w_done) begin
+        wr_st = W_RESP;
+        idle  = 0;
+      end
+      if (s_axil_arvalid && s_axil_arready) wr_st = W_DATA;
+    end
+  endtask
+
+  // Drive side of the current write record: AW and W (W after a random 0..2-cycle delay), BREADY and RREADY with
+  // the bench's output backpressure, junk on the address and data lines whenever their VALID is low.
+  task axi_drive;
+    begin
+      jrng = xs32(jrng);
+      s_axil_awaddr = jrng[10:0];
+      s_axil_araddr = jrng[21:11];
+      jrng = xs32(jrng);
+      s_axil_wdata  = jrng;
+      s_axil_wstrb  = 4'hF;
+      s_axil_awvalid = 1'b0;
+      s_axil_wvalid  = 1'b0;
+      s_axil_arvalid = 1'b0;
+      if (have && cur_w && rst_left == 0) begin
+        if (wr_st == W_IDLE) begin
+          wr_st   = W_SEND;
+          aw_done = 1'b0;
+          w_done  = 1'b0;
+          w_delay = (jrng[31:30] == 2'd3) ? 0 : {30'd0, jrng[31:30]};
+          if (!junk_w) junk_plan = jrng[29:28] == 2'd0;
+        end
+        if (junk_w) s_axil_wstrb = (jrng[27:24] == 4'hF) ? 4'h7 : jrng[27:24];
+        w = mem[RW*cur+1];
+        if (wr_st == W_SEND) begin
+          s_axil_awvalid = !aw_done;
+          if (!aw_done) s_axil_awaddr = {w[8:0], 2'b00};
+          if (w_delay > 0) w_delay = w_delay - 1;
+          else begin
+            s_axil_wvalid = !w_done;
+            if (!w_done && !junk_w) s_axil_wdata = mem[RW*cur+2];
+          end
+        end
+        if (wr_st == W_READ) begin
+          s_axil_arvalid = 1'b1;
+          s_axil_araddr  = {w[8:0], 2'b00};
+        end
+      end
+      jrng = xs32(jrng);
+      s_axil_bready = (jrng % 100) >= out_stall;
+      jrng = xs32(jrng);
+      s_axil_rready = (jrng % 100) >= out_stall;
+    end
+  endtask
+`endif
+
   // ---------------------------------------------------------------------------- the run
   initial begin
-    if (!$value$plusargs("vectors=%s", vec_file)) vec_file = "vectors/hard.hex";
-    if (!$value$plusargs("nvec=%d", nrec)) nrec = NREC_DEFAULT;
-    if (!$value$plusargs("seed=%d", seed)) seed = SEED;
-    if (!$value$plusargs("in_gap=%d", in_gap)) in_gap = IN_GAP_PCT;
-    if (!$value$plusargs("out_stall=%d", out_stall)) out_stall = OUT_STALL_PCT;
-    if (nrec < 1 || nrec > MAXREC) begin
-      $display("FAIL +nvec=%0d out of range 1..%0d (MAXREC in tb_config.vh)", nrec, MAXREC);
-      fail_exit;
-    end
-    for (e = 0; e < RW * nrec; e = e + 1) mem[e] = 32'bx;
-    $readmemh(vec_file, mem, 0, RW * nrec - 1);
+    read_vectors;
     nfrag = 0;
     nwrite = 0;
     for (e = 0; e < nrec; e = e + 1) begin
-      for (k = 0; k < RW; k = k + 1)
-        if (^mem[RW*e+k] === 1'bx) begin
-          $display("FAIL vector file has fewer than %0d records or a malformed word (record %0d word %0d)", nrec, e, k);
-          fail_exit;
-        end
       if ((mem[RW*e][3:0] == 4'd1 || mem[RW*e][3:0] == 4'd3) && (mem[RW*e] >> 4) != 32'd0) nfrag = nfrag + 1;
       else if (mem[RW*e] == 32'd0) nwrite = nwrite + 1;
       else begin
@@ -185,47 +322,51 @@ module tb_shadecore_light;
         fail_exit;
       end
     end
-    if (!$value$plusargs("reset_at=%d", reset_at)) reset_at = nfrag / 2;
-
-    rng = (seed == 0) ? 32'h1234_5678 : seed;
-    cyc = 0; adv = 0; idle = 0; tail = 0; checked = 0; accepted = 0; dropped = 0; resets = 0; writes = 0;
-    next_rec = 0; cur = 0; rst_left = RESET_CYCLES; q_head = 0; q_count = 0;
-    have = 1'b0; cur_w = 1'b0; valid_q = 1'b0; mid_done = 1'b0; held = 1'b0; done = 1'b0;
-    held_tag = 0; held_rgb = 0;
-    rst_n = 1'b0; reg_we = 1'b0; reg_addr = 9'd0; reg_data = 32'd0;
-    in_valid = 1'b0; in_nx = 0; in_ny = 0; in_nz = 0; in_px = 0; in_py = 0; in_pz = 0; in_tag = 0; in_back = 0;
+    start_stream;
+    writes = 0; cur_w = 1'b0;
+    in_nx = 0; in_ny = 0; in_nz = 0; in_px = 0; in_py = 0; in_pz = 0; in_tag = 0; in_back = 0;
     in_cr = 0; in_cg = 0; in_cb = 0;
-    out_ready = 1'b0;
+`ifdef TB_AXI
+    jrng = rng ^ 32'h9e37_79b9;
+    wr_st = W_IDLE; w_delay = 0; aw_done = 1'b0; w_done = 1'b0; junk_w = 1'b0; junk_plan = 1'b0;
+    s_axil_awvalid = 1'b0; s_axil_wvalid = 1'b0; s_axil_arvalid = 1'b0; s_axil_bready = 1'b0; s_axil_rready = 1'b0;
+    s_axil_awaddr = 0; s_axil_araddr = 0; s_axil_wdata = 0; s_axil_wstrb = 4'hF;
+    s_axis_tdata = 0; s_axis_tlast = 1'b0;
+`else
+    reg_we = 1'b0; reg_addr = 9'd0; reg_data = 32'd0;
+`endif
 
     while (!done) begin
       @(posedge clk);
       // ------------------------------------------------ what crossed the ports at this edge
       // (pre-edge values: the DUT's registers update with <=, this process drives 1 time unit later)
       cyc = cyc + 1;
-      if (held && (!out_valid || out_tag !== held_tag || {out_r, out_g, out_b, out_sr, out_sg, out_sb} !== held_rgb)) begin
-        $display("FAIL cycle %0d: output changed while held back by out_ready_i low (tag 0x%h -> 0x%h)",
-                 cyc, held_tag, out_tag);
-        fail_exit;
-      end
+      check_held;
       if (!rst_n) begin
+`ifdef TB_AXI
+        if (in_ready !== 1'b0) begin
+          $display("FAIL cycle %0d: s_axis_tready_o is not low while rst_ni is low", cyc);
+          fail_exit;
+        end
+        axi_reset_edge;
+`else
         if (in_ready !== 1'b0 || reg_ready !== 1'b0) begin
           $display("FAIL cycle %0d: in_ready_o or reg_ready_o is not low while rst_ni is low", cyc);
           fail_exit;
         end
-        if (out_valid && out_ready) take_result(adv + 1);  // a colour taken at a reset edge counts
-        // Fragments in flight are dropped: present the records again from the oldest of them (no
-        // write can lie between them: a write is taken only when nothing is in flight).
-        if (q_count > 0) begin
-          next_rec = q_rec[q_head];
-          dropped  = dropped + q_count;
-          have     = 1'b0;
-        end
-        q_count = 0;
-        held    = 1'b0;
+`endif
+        reset_edge;
       end else begin
         if (!out_valid || out_ready) adv = adv + 1;
-        if (out_valid === 1'bx || in_ready === 1'bx || reg_ready === 1'bx) begin
-          $display("FAIL cycle %0d: out_valid_o, in_ready_o or reg_ready_o is X after reset", cyc);
+        if (out_valid === 1'bx || in_ready === 1'bx) begin
+          $display("FAIL cycle %0d: out_valid_o or in_ready_o is X after reset", cyc);
+          fail_exit;
+        end
+`ifdef TB_AXI
+        axi_edge;
+`else
+        if (reg_ready === 1'bx) begin
+          $display("FAIL cycle %0d: reg_ready_o is X after reset", cyc);
           fail_exit;
         end
         if (reg_we && in_ready) begin
@@ -236,71 +377,39 @@ module tb_shadecore_light;
           $display("FAIL cycle %0d: reg_ready_o is high with %0d fragment(s) in flight", cyc, q_count);
           fail_exit;
         end
-        if (out_valid && out_ready) begin
-          take_result(adv);
-          idle = 0;
-        end
         if (reg_we && reg_ready) begin
           writes = writes + 1;
           have   = 1'b0;
           idle   = 0;
         end
-        if (in_valid && in_ready) begin
-          q_rec[(q_head + q_count) % QCAP] = cur;
-          q_adv[(q_head + q_count) % QCAP] = adv;
-          q_count  = q_count + 1;
-          accepted = accepted + 1;
-          have     = 1'b0;
-          valid_q  = 1'b0;
-          idle     = 0;
-        end
-        held     = out_valid && !out_ready;
-        held_tag = out_tag;
-        held_rgb = {out_r, out_g, out_b, out_sr, out_sg, out_sb};
+`endif
+        stream_edge;
       end
-      idle = idle + 1;
-      if (idle > WATCHDOG) begin
-        $display("FAIL watchdog: no transfer for %0d cycles (%0d of %0d fragments checked)", WATCHDOG, checked, nfrag);
-        fail_exit;
-      end
+      watchdog;
 
       // ------------------------------------------------ drive the next edge
       // 1 time unit after the edge, so neither the DUT nor the checks above see the new values at it.
       #1;
-      if (rst_left > 0) rst_left = rst_left - 1;
-      if (rst_left == 0 && !mid_done && reset_at >= 0 && accepted >= reset_at) begin
-        rst_left = RESET_CYCLES;
-        mid_done = 1'b1;
-        resets   = resets + 1;
-      end
-      rst_n = (rst_left == 0);
-
-      if (!have && next_rec < nrec) begin
-        have     = 1'b1;
-        cur      = next_rec;
-        next_rec = next_rec + 1;
-        cur_w    = (mem[RW*cur] == 32'd0);
-        valid_q  = 1'b0;
-      end
+      drive_reset(started);
+      cur_w = have && mem[RW*cur] == 32'd0;
+`ifdef TB_AXI
+      // AXI's reset rule: TVALID drops with rst_ni, so a colour held at the edge before a reset pulse need not stay
+      if (started) held = 1'b0;
+      axi_drive;
+      if (cur_w) valid_q = 1'b0;
+`else
       reg_we = 1'b0;
-      if (have && cur_w) begin
+      if (cur_w) begin
         // Held until taken (reg_we_i && reg_ready_o): the core drains its fragments first.
         w        = mem[RW*cur+1];
         reg_addr = w[8:0];
         reg_data = mem[RW*cur+2];
         reg_we   = 1'b1;
         valid_q  = 1'b0;
-      end else if (have) begin
-        if (rst_left != 0) begin
-          valid_q = 1'b0;  // AXI-Stream: no valid while in reset
-        end else if (!valid_q) begin
-          rng     = xs32(rng);
-          valid_q = (rng % 100) >= in_gap;
-        end
-        // else: once raised, in_valid_i stays high until the fragment is taken
-      end else begin
-        valid_q = 1'b0;
       end
+`endif
+      else if (have) drive_valid;
+      else valid_q = 1'b0;
       in_valid = valid_q;
       if (valid_q) begin
         w = mem[RW*cur+1]; in_nx = w[FRAC+1:0];
@@ -314,24 +423,38 @@ module tb_shadecore_light;
         w = mem[RW*cur+13]; in_cr = w[FRAC:0];
         w = mem[RW*cur+14]; in_cg = w[FRAC:0];
         w = mem[RW*cur+15]; in_cb = w[FRAC:0];
+`ifdef TB_AXI
+        s_axis_tdata = 0;
+        s_axis_tdata[AXIS_IN_NX_LSB +: AXIS_IN_NX_W] = in_nx;
+        s_axis_tdata[AXIS_IN_NY_LSB +: AXIS_IN_NY_W] = in_ny;
+        s_axis_tdata[AXIS_IN_NZ_LSB +: AXIS_IN_NZ_W] = in_nz;
+        s_axis_tdata[AXIS_IN_PX_LSB +: AXIS_IN_PX_W] = in_px;
+        s_axis_tdata[AXIS_IN_PY_LSB +: AXIS_IN_PY_W] = in_py;
+        s_axis_tdata[AXIS_IN_PZ_LSB +: AXIS_IN_PZ_W] = in_pz;
+        s_axis_tdata[AXIS_IN_BACK_LSB] = in_back;
+        s_axis_tdata[AXIS_IN_CR_LSB +: AXIS_IN_CR_W] = in_cr;
+        s_axis_tdata[AXIS_IN_CG_LSB +: AXIS_IN_CG_W] = in_cg;
+        s_axis_tdata[AXIS_IN_CB_LSB +: AXIS_IN_CB_W] = in_cb;
+        s_axis_tlast = tlast_of(cur);
+`endif
       end
-      rng       = xs32(rng);
-      out_ready = (rng % 100) >= out_stall;
+      drive_ready;
 
       // ------------------------------------------------ done: watch TAIL more cycles
-      if (next_rec == nrec && !have && q_count == 0) begin
-        tail = tail + 1;
-        if (tail > TAIL) begin
-          if (checked != nfrag || writes != nwrite) begin
-            $display("FAIL end of stream: %0d of %0d fragments checked, %0d of %0d writes taken",
-                     checked, nfrag, writes, nwrite);
-            fail_exit;
-          end
-          // (printed here, not after the loop: Verilator 5.006 prints stale values there)
-          $display("PASS %0d vectors (%0d fragments checked, %0d register writes, %0d cycles, %0d reset(s), %0d dropped and resent, seed %0d)",
-                   nrec, checked, writes, cyc, resets, dropped, seed);
-          done = 1'b1;
+      watch_tail;
+      if (done) begin
+        if (writes != nwrite) begin
+          $display("FAIL end of stream: %0d of %0d register writes taken", writes, nwrite);
+          fail_exit;
         end
+        // (printed here, not after the loop: Verilator 5.006 prints stale values there)
+`ifdef TB_AXI
+        $display("PASS %0d vectors (%0d fragments checked with TLAST, %0d register writes through AXI4-Lite, each response checked and the word read back, %0d cycles, %0d reset(s), %0d dropped and resent, seed %0d)",
+                 nrec, checked, writes, cyc, resets, dropped, seed);
+`else
+        $display("PASS %0d vectors (%0d fragments checked, %0d register writes, %0d cycles, %0d reset(s), %0d dropped and resent, seed %0d)",
+                 nrec, checked, writes, cyc, resets, dropped, seed);
+`endif
       end
     end
     $finish;
