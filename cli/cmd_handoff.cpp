@@ -50,7 +50,8 @@ struct HandoffArgs {
 void run(HandoffArgs& ha) {
   Options& a = ha.light;
   if (ha.print_port_table) {
-    fmt::print("{}", ha.core == "lighting" ? light_port_table() : specular_port_table());
+    if (a.axi && ha.core != "lighting") throw std::invalid_argument("--axi applies to --core lighting only");
+    fmt::print("{}", ha.core == "lighting" ? light_port_table(a.axi) : specular_port_table());
     return;
   }
   // ---- validate everything before doing anything

@@ -141,7 +141,7 @@ void run_lighting(const Options& o);
 std::string lighting_vectors(const FeatureSet& fset, const std::string& mode, uint64_t count, uint64_t seed,
                              size_t* records = nullptr, size_t* fragments = nullptr);
 // The port table of sc_light from config/interface.json "light_ports" (symbolic widths).
-std::string light_port_table();
+std::string light_port_table(bool axi = false);  // axi: rtl/sc_light_axi.v's ("light_axi_ports")
 
 SynthMode parse_synth(const std::string& text, SynthMode auto_mode);
 void check_top_name(const std::string& top, const std::string& tb);  // a Verilog identifier, no clash

@@ -599,12 +599,12 @@ input and output delays of 30 % of the period as stated assumptions.
 
 }  // namespace
 
-std::string light_port_table() {
+std::string light_port_table(bool axi) {
   std::string s = "| port | dir | width | meaning |\n|---|---|---|---|\n";
-  for (const auto& p : load_light_ports()) {
+  for (const auto& p : load_light_ports(axi)) {
     const std::string w = p.at("width");
     s += fmt::format("| `{}` | {} | {} | {} |\n", p.at("name").get<std::string>(), p.at("dir").get<std::string>(),
-                     w == "TAGW" ? "`TAGW`" : w, p.at("meaning").get<std::string>());
+                     w == "TAGW" || w.rfind("AXIS_", 0) == 0 ? "`" + w + "`" : w, p.at("meaning").get<std::string>());
   }
   return s;
 }

@@ -22,6 +22,7 @@
 #include "shadecore/features.hpp"
 #include "shadecore/units/hard_cases.hpp"
 #include "shadecore/light.hpp"
+#include "shadecore/light_axi.hpp"
 #include "shadecore/unit.hpp"
 
 namespace fs = std::filesystem;
@@ -343,6 +344,8 @@ TEST(HandoffCli, BadArgumentsGiveOneLineErrorsAndWriteNothing) {
   expect_one_line_error("handoff", "--out DIR is required");
   expect_one_line_error("handoff --core nosuch --out " + (d / "b").string(), "unknown --core");
   expect_one_line_error("handoff --features diffuse --out " + (d / "b").string(), "applies to --core lighting only");
+  expect_one_line_error("handoff --axi --out " + (d / "b").string(), "--axi applies to --core lighting only");
+  expect_one_line_error("handoff --axi --print-port-table", "--axi applies to --core lighting only");
   expect_one_line_error("handoff --synth sometimes --out " + (d / "b").string(), "unknown --synth");
   expect_one_line_error("handoff --tagw 0 --out " + (d / "b").string(), "--tagw");
   expect_one_line_error("handoff --top 9x --out " + (d / "b").string(), "not a Verilog identifier");
@@ -518,10 +521,69 @@ TEST(HandoffLighting, DiffuseBundlePassesAndACorruptedCopyFails) {
   fs::remove_all(d);
 }
 
+// The core behind its AXI wrapper (--axi, issue 39): the bundle's bench drives AXI4-Lite and AXI4-Stream and both
+// delivered simulators pass; the write records carry the response each address gets (axi_reg_exists); and a wrapper
+// that breaks a bus rule fails the bench naming it: TLAST not carried, the stream open while a write waits, a
+// partial-strobe write reaching the read-back shadow, an OKAY response before the core drained.
+TEST(HandoffLighting, AxiBundlePassesAndBusMutantsFail) {
+  const fs::path d = temp_dir("hla");
+  const fs::path b = d / "ha", vobj = d / "vobj";
+  const CliRun r = run_shell("VERILATOR_OBJ_DIR=" + vobj.string() + " " + SHADECORE_CLI +
+                             " handoff --core lighting --features diffuse --axi --count 200 --seed 9 --synth skip --no-ice40"
+                             " --signoff off --out " + b.string());
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("run_icarus.sh: PASS"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("run_verilator.sh: PASS"), std::string::npos) << r.out;
+  EXPECT_NE(slurp(b / "rtl" / "shadecore_light_top.v").find("  sc_light_axi #("), std::string::npos);
+  EXPECT_NE(slurp(b / "tb" / "tb_config.vh").find("`define TB_AXI"), std::string::npos);
+  EXPECT_NE(slurp(b / "reports" / "sim_icarus.log").find("fragments checked with TLAST"), std::string::npos);
+  const std::string md = slurp(b / "interface.md");
+  EXPECT_NE(md.find("### The AXI view"), std::string::npos) << md;
+  EXPECT_NE(md.find("| `s_axis_tdata_i` | in | 184 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| `m_axis_tdata_o` | out | 104 |"), std::string::npos) << md;
+  // every write record's fourth word is the response of its address in this build; both kinds occur
+  const shadecore::FeatureSet fs = shadecore::feature_set_named_or_file("diffuse");
+  int okay = 0, slverr = 0;
+  for (const char* v : {"hard.hex", "random.hex"}) {
+    std::ifstream in(b / "vectors" / v);
+    for (std::string line; std::getline(in, line);) {
+      if (line.rfind("//", 0) == 0) continue;
+      std::vector<uint64_t> w;
+      ASSERT_TRUE(read_record(line, w)) << line;
+      if (w[0] != 0) continue;
+      const bool exists = shadecore::axi_reg_exists(fs, static_cast<uint32_t>(w[1]));
+      EXPECT_EQ(w[3], exists ? 0u : 2u) << line;
+      (exists ? okay : slverr) += 1;
+    }
+  }
+  EXPECT_GT(okay, 20);
+  EXPECT_GT(slverr, 5);
+  // the bus mutants: each a one-line edit of the bundle's wrapper (the edit must apply), run in Icarus
+  const std::vector<std::pair<std::string, std::string>> mutants = {
+      {"s/assign m_axis_tlast_o  = o_tag\\[TAGW\\];/assign m_axis_tlast_o = 1'b0;/", ": TLAST 0, sent with 1"},
+      {"s/assign stream_open     = w_state_q == W_IDLE;/assign stream_open = w_state_q != W_CORE;/",
+       "s_axis_tready_o is high while a register write awaits its response"},
+      {"s/if (aw_take \\&\\& aw_ok) shadow/if (aw_take) shadow/", "read back"},
+      {"s/W_CORE: if (core_reg_ready) w_state_q <= W_RESP;/W_CORE: w_state_q <= W_RESP;/", "answered OKAY with"}};
+  int k = 0;
+  for (const auto& [edit, why] : mutants) {
+    const fs::path m = d / ("m" + std::to_string(k++));
+    ASSERT_EQ(run_shell("cp -rp " + b.string() + " " + m.string() + " && sed -i \"" + edit + "\" " +
+                        (m / "rtl" / "sc_light_axi.v").string()).status, 0);
+    ASSERT_NE(slurp(m / "rtl" / "sc_light_axi.v"), slurp(b / "rtl" / "sc_light_axi.v")) << edit;
+    const CliRun f = run_shell("./run_icarus.sh", m.string());
+    EXPECT_NE(f.status, 0) << edit << "\n" << f.out;
+    EXPECT_NE(f.out.find(why), std::string::npos) << edit << "\n" << f.out;
+  }
+  fs::remove_all(d);
+}
+
 // config/interface.json (the README table's and every interface.md's source) lists exactly the ports
-// of rtl/sc_specular.v ("ports") and of rtl/sc_light.v ("light_ports"), in order, with their directions.
+// of rtl/sc_specular.v ("ports"), rtl/sc_light.v ("light_ports") and rtl/sc_light_axi.v ("light_axi_ports"), in order,
+// with their directions.
 TEST(HandoffCli, PortTableMatchesTheRtl) {
-  for (const auto& [args, file] : {std::pair<std::string, std::string>{"", "sc_specular.v"}, {" --core lighting", "sc_light.v"}}) {
+  for (const auto& [args, file] : {std::pair<std::string, std::string>{"", "sc_specular.v"}, {" --core lighting", "sc_light.v"},
+                                   {" --core lighting --axi", "sc_light_axi.v"}}) {
     const CliRun r = run_cli("handoff --print-port-table" + args);
     ASSERT_EQ(r.status, 0) << r.err;
     std::vector<std::string> table, rtl;
