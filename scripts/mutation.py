@@ -16,6 +16,12 @@ unit's file is that mutant (every other module unchanged), cheapest check first:
   seed2    every vector file, SEED=2 RESET_AT=5 (other gaps / backpressure, an early reset)
   extra    more vectors from the CLI (`shadecore vectors ... --mode random`, no C++ change): units, three
            files with n in 16..31, 32..127 and 128..1024 (seeds 11, 12, 13); lighting, one file of seed 11
+  exhaustive  units that take a fragment every clock (not schlick_iter): the mutant Verilated with the bare
+           harness sim/bare_main.cpp (sc_specular around it, no SystemC) and run on EVERY input code of every
+           n = 16..1024 (`--all-codes`: 1009 x 2^(F+2) fragments), each output and its latency compared with
+           the C model; the first mismatch (n, code) is the witness. A survivor of it computes the same function
+           as the C model on the unit's whole input domain (recorded; not counted as equivalent, which needs a
+           proof of every state and input)
 
 each bounded in time (timeout = max(--min-timeout, --timeout-factor x the unmutated design's time)).
 A bench failure kills the mutant; a stage that runs out of time makes it "timeout" (counted apart).
@@ -74,7 +80,9 @@ NO_BENCH = {
     "table256": "no handoff bench for the table RAM (the bundle cannot be made for a table unit)",
     "table1024": "no handoff bench for the table RAM (the bundle cannot be made for a table unit)",
 }
-STAGES = ["hard", "random", "nogap", "seed2", "extra"]
+STAGES = ["hard", "random", "nogap", "seed2", "extra", "exhaustive"]
+# Units the exhaustive stage cannot take: the bare harness presents a fragment every clock.
+NO_EXHAUSTIVE = {"schlick_iter": "takes one fragment per F+4 clocks; the bare harness presents one every clock"}
 EQ_METHOD = 6  # equivalence(): 6 = constant bit, combinational SAT, equiv_*, with memories mapped to logic first; an
 #                older method's survivor is tried again. 4 and 5 (a one-step `sat -seq 1` in (a)) proved a mutant the
 #                bench kills (schlick_div m115 of 2026-12-06): their "equivalent" results are void and re-run.
@@ -305,7 +313,49 @@ def stage_env(ctx, stage, fl):
     return env
 
 
+def exhaustive(ctx, fl, timeout):
+    """The exhaustive stage: the design of filelist `fl` (the mutant in place of the unit) Verilated with the bare
+    harness, every input code of every n = 16..1024. Returns (rc, line, seconds) as simulate(): rc None on a
+    timeout, 0 when every output equals the C model's, else the harness's first-mismatch (witness) line."""
+    b = ctx["bare"]
+    mdir = os.path.join(os.path.dirname(fl), "bare")
+    incdirs, files = [], []
+    for line in open(fl):
+        line = line.strip()
+        if line.startswith("+incdir+"):
+            incdirs.append(os.path.join(ctx["bundle"], line[len("+incdir+"):]))
+        elif line and not line.startswith(("//", "#")):
+            files.append(line if os.path.isabs(line) else os.path.join(ctx["bundle"], line))
+    build = b["build"]
+    cflags = " ".join(["-O2", "-std=c++17", '-DSHADECORE_BARE_CONFIG=\\"%s\\"' % b["config"],
+                       "-DSHADECORE_BARE_MREG=0", "-DSHADECORE_BARE_VARIANT=%d" % b["variant"]] +
+                      ["-I" + os.path.join(ROOT, d) for d in ("cmodel/include", "stimulus/include", "common/include")] +
+                      ["-I" + os.path.join(build, "generated")])
+    libs = " ".join(os.path.join(build, l) for l in ("cmodel/libshadecore_cmodel.a", "common/libshadecore_common.a"))
+    cmd = (["verilator", "--cc", "--exe", "--build", "-j", "1", "-O3", "--x-assign", "fast", "--x-initial", "fast",
+            "-Wno-fatal", "-Wno-lint", "-Wno-style", "--top-module", "sc_specular", "--prefix", "Vbare_cs16",
+            "-Mdir", mdir, "-o", "bare", "-GVARIANT=%d" % b["variant"], "-GFRAC=%d" % b["frac"],
+            "-GGUARD=%d" % b["guard"], "-GCUTOFF=0", "-GTAGW=%d" % b["tagw"], "-GMREG=0"] +
+           ["-I" + d for d in incdirs] + files + [os.path.join(ROOT, "sim", "bare_main.cpp"),
+                                                   "-CFLAGS", cflags, "-LDFLAGS", libs])
+    t0 = time.time()
+    rc, out, _ = run(cmd, cwd=os.path.dirname(fl), timeout=timeout)
+    if rc is None:
+        return None, "", time.time() - t0
+    if rc != 0:
+        raise RuntimeError("the exhaustive stage's Verilator build failed:\n" + out[-2000:])
+    rc, out, _ = run([os.path.join(mdir, "bare"), "--n", "16..1024", "--all-codes", "--no-progress"],
+                     cwd=os.path.dirname(fl), timeout=max(1, timeout - (time.time() - t0)))
+    lines = [ln for ln in (out or "").splitlines() if ln.startswith("bare:")]
+    first = [ln for ln in lines if "first mismatch" in ln]
+    stats = [ln for ln in lines if " sent, " in ln]
+    line = "exhaustive: " + (first[0][len("bare: "):] if first else stats[0][len("bare: "):] if stats else "no result")
+    return rc, line, time.time() - t0
+
+
 def simulate(ctx, stage, fl, timeout):
+    if stage == "exhaustive":
+        return exhaustive(ctx, fl, timeout)
     rc, out, secs = run(["sh", "./run_icarus.sh"], cwd=ctx["bundle"], env=stage_env(ctx, stage, fl),
                         timeout=timeout)
     fail = [ln for ln in out.splitlines() if ln.startswith("FAIL")]
@@ -543,6 +593,25 @@ def make_extra(opts, name, handoff_args, wdir):
     return files
 
 
+def bare_params(opts, handoff_args, bundle):
+    """What the exhaustive stage builds for a unit design (variant id, width, the bundle's TAGW, the build tree), or
+    None: a lighting design, or a unit the bare harness cannot feed (NO_EXHAUSTIVE)."""
+    if "--variant" not in handoff_args:
+        return None
+    variant = handoff_args[handoff_args.index("--variant") + 1]
+    config = handoff_args[handoff_args.index("--config") + 1] if "--config" in handoff_args else "default"
+    if variant in NO_EXHAUSTIVE:
+        return None
+    cj = json.load(open(os.path.join(ROOT, "config", "configs.json")))
+    v = [x for x in cj["variants"] if x["name"] == variant]
+    c = [x for x in cj["configs"] if x["name"] == config]
+    m = re.search(r"TAGW\s*=\s*(\d+)", open(os.path.join(bundle, "tb", "tb_config.vh")).read())
+    if not v or not c or not m:
+        raise RuntimeError("exhaustive stage: cannot find variant %s, config %s or TAGW in the bundle" % (variant, config))
+    return {"variant": v[0]["id"], "config": config, "frac": c[0]["frac"], "guard": c[0]["guard"],
+            "tagw": int(m.group(1)), "build": os.path.dirname(os.path.dirname(os.path.abspath(opts.cli)))}
+
+
 def run_design(opts, name, handoff_args, unit_opt, only=None):
     unit = unit_module(handoff_args, unit_opt)
     wdir = os.path.join(opts.work, name)
@@ -554,10 +623,12 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
     prep = prepare(name, bundle, unit, opts.count, opts.seed, wdir)
     hard, rand = vector_files(bundle)
     extra = make_extra(opts, name, handoff_args, wdir) if "extra" in opts.stages else []
+    bare = bare_params(opts, handoff_args, bundle) if "exhaustive" in opts.stages else None
     stages = [s for s in STAGES if s in opts.stages and not (s == "hard" and not hard)
-              and not (s == "random" and not rand) and not (s == "extra" and not extra)]
+              and not (s == "random" and not rand) and not (s == "extra" and not extra)
+              and not (s == "exhaustive" and not bare)]
     ctx = dict(prep, unit=unit, bundle=bundle, wdir=wdir, design_il=os.path.join(wdir, "design.il"),
-               hard=hard, random=rand, extra=extra, stages=stages, eq_timeout=opts.eq_timeout,
+               hard=hard, random=rand, extra=extra, bare=bare, stages=stages, eq_timeout=opts.eq_timeout,
                eq_steps=opts.eq_steps, tmp=os.path.join(wdir, "tmp"), timeouts={})
     os.makedirs(ctx["tmp"], exist_ok=True)
     # the fingerprint: what a cached result depends on (a new stage re-runs the survivors in it only)
