@@ -3,7 +3,8 @@
 """ctest coverage.mutation (issue 36, docs/mutation.md): scripts/mutation.py refuses bad arguments with one line
 on stderr and a non-zero exit, and one mutant of cs16 known to be killed (the first of `mutate -list 300 -seed 1`
 that ties or inverts a bit of the result register out_spec_o; at the time of writing m012, bit 4 tied to 1) is
-killed by the handoff bench again (a fresh bundle, no cache; ~40 s).
+killed by the handoff bench again (a fresh bundle, no cache; ~40 s); a schlick_nr mutant equivalent for every input
+is proved so; a cs16 datapath mutant is killed by the exhaustive stage alone, its witness named (~1 min).
 
   tests/mutation_check.py --build BUILD_DIR [--work DIR]"""
 import argparse
@@ -17,6 +18,8 @@ SCRIPT = os.path.join(os.path.dirname(HERE), "scripts", "mutation.py")
 # hold 0, 1.0 and values between); the first such mutant of the list, so the check survives RTL changes.
 PICK = r"-mode (const0|const1|inv) .*-wire out_spec_o "
 EQUIV_PICK = r"-mode const0 -module sc_schlick_nr -cell \$logic_not\$rtl/sc_schlick_front\.vh:22\S* -port A "
+# A bit of a squaring's register tied (cs16's x1 = x0^2): the exhaustive stage alone must kill it and name a witness.
+EXH_PICK = r"-mode (const0|const1) .*-wire g_ref\.sq1 "
 
 
 def main():
@@ -55,6 +58,15 @@ def main():
     print(p.stdout.strip())
     if p.returncode != 0:
         print("FAIL: the schlick_nr mutant matching %s is not proved equivalent" % EQUIV_PICK)
+        fails += 1
+    # The exhaustive stage by itself (the bare harness on every input code of every n): a datapath mutant is killed
+    # with its first mismatch named.
+    p = subprocess.run([sys.executable, SCRIPT, "--design", "cs16", "--pick", EXH_PICK, "--stages", "exhaustive",
+                        "--eq-timeout", "0", "--expect", "killed", "--no-cache", "--cli", cli, "--work", work],
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True, timeout=600)
+    print(p.stdout.strip())
+    if p.returncode != 0 or "exhaustive: first mismatch: n " not in p.stdout:
+        print("FAIL: the cs16 mutant matching %s is not killed by the exhaustive stage with a witness" % EXH_PICK)
         fails += 1
     print("mutation_check: %s" % ("PASS" if not fails else "FAIL (%d)" % fails))
     return 1 if fails else 0
