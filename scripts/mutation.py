@@ -764,7 +764,9 @@ def summarise(d, reasons=None):
     c = {k: 0 for k in ("killed", "survived", "timeout", "equivalent", "error")}
     by_stage = {}
     cls = {"all": 0, "contract": 0, "other": 0}
+    exh = 0   # survivors of the exhaustive stage: the C model's function on the whole input domain
     for r in d["results"]:
+        exh += r["status"] == "survived" and "exhaustive" in r.get("stages", [])
         c[r["status"]] = c.get(r["status"], 0) + 1
         if r["status"] == "killed":
             by_stage[r["stage"]] = by_stage.get(r["stage"], 0) + 1
@@ -773,7 +775,7 @@ def summarise(d, reasons=None):
     total = len(d["results"])
     denom = total - c["equivalent"]
     denom2 = denom - cls["all"] - cls["contract"]
-    return dict(c, total=total, killed_by_stage=by_stage, survivors_by_reason=cls,
+    return dict(c, total=total, killed_by_stage=by_stage, survivors_by_reason=cls, survived_exhaustive=exh,
                 score=round(100.0 * c["killed"] / denom, 2) if denom else None,
                 score_reasoned=round(100.0 * c["killed"] / denom2, 2) if denom2 else None)
 
@@ -847,7 +849,11 @@ def write_report(opts, designs, md_path, json_path):
          "cheapest first: `hard` (the directed vectors), `random`, `nogap` (every vector, no input gaps and no "
          "backpressure: exact latency), `seed2` (other gaps and backpressure, a reset after 5 vectors), `extra` "
          "(more random vectors from `shadecore vectors`: for a unit 3 × %d with n in 16..31, 32..127, "
-         "128..1024, seeds 11, 12, 13; for the lighting core one file of seed 11 — no C++ change); each "
+         "128..1024, seeds 11, 12, 13; for the lighting core one file of seed 11 — no C++ change), `exhaustive` "
+         "(units that take a fragment every clock: the mutant Verilated with the bare harness `sim/bare_main.cpp` "
+         "and run on every F+2-bit input code of every n = 16..1024 against the C model, its first mismatch the "
+         "witness; a survivor of it computes the C model's function on the unit's whole input domain, which is "
+         "recorded but is not a proof of equivalence); each "
          "stage is time-bounded (max(%d s, %g × the unmutated time)). A survivor counts as *equivalent* only "
          "when Yosys proves it, each proof bounded by the design's equivalence bound: (0) for a tie to 0 or 1, the "
          "bit is that constant in the original from every state (`sat -seq 1 -prove`), else (a) a miter of original and "
@@ -932,10 +938,12 @@ def write_report(opts, designs, md_path, json_path):
             why = reasons.get(key)
             if why is None and r["status"] == "survived":
                 missing += 1
-            L.append("- m%03d %s — %s%s%s" % (
+            exh = ("; exhaustive stage: equal to the C model on every input code of every n = 16..1024"
+                   if r["status"] == "survived" and "exhaustive" in r.get("stages", []) else "")
+            L.append("- m%03d %s — %s%s%s%s" % (
                 r["id"], r["status"], describe(r["mutation"]),
                 ("; " + r["equivalence"]) if r.get("equivalence") else
-                ("; equivalence not attempted yet" if r["status"] == "survived" else ""),
+                ("; equivalence not attempted yet" if r["status"] == "survived" else ""), exh,
                 ("; " + r["detail"]) if r["status"] != "survived" and r.get("detail") else ""))
             L.append("  - reason: %s" % (why or "(none written yet)"))
             L.append("  - `%s`" % r["mutation"])
