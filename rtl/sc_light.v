@@ -66,7 +66,9 @@
 //   MREG          0/1, the pipelining parameter (feature-set key mreg; needs SHARE = 1): 1 cuts every
 //                 product of the vector normalisers with a register (rtl/sc_normalize.v, NL 10 -> 18), each
 //                 dot product of the lanes over D = MREG_DOT cycles (rtl/sc_mul_reg.v LAT), each product stage
-//                 of the back over DB = MREG_BACK more (rtl/sc_light_shade.v), and passes MREG to the specular
+//                 of the back over DB = MREG_BACK more (rtl/sc_light_shade.v), registers the lanes' N (N̂ or N,
+//                 MREG_N stages after the normalize-mode choice) and diff (before its clamp's output, not after),
+//                 and passes MREG to the specular
 //                 units (their mreg_stages); the same outputs, more latency (config/configs.json light.latency;
 //                 docs/signoff.md "Fifth round")                                         (default 0)
 //   At least one of AMBIENT, DIFFUSE, UNITS must be non-zero.
@@ -117,7 +119,7 @@
 //               ANY_PL = ANY_ATT | (NEED_N & some slot can be point)
 //               the normalisations N (NEED_N & NORMALIZE), V (LV), L (ANY_PL), H (UNITS & BLINN) that
 //               exist are numbered k = 0, 1, ... in that order: K_V, K_L, K_H; S = SHARE
-//               T_NN = (NEED_N & NORMALIZE) ? NL : 0      N̂
+//               T_NN = ((NEED_N & NORMALIZE) ? NL : 0) + MREG_N·MREG   N̂ or N (registered after the choice with MREG)
 //               T_V  = LV ? K_V mod S + NL : 0             V̂
 //               T_L  = ANY_PL ? K_L mod S + NL : 0         L̂ of point lights
 //               D    = MREG_DOT·MREG (2 with MREG): registers inside each of the lanes' dot products
@@ -316,7 +318,8 @@ module sc_light #(
   localparam integer NOPS  = K_H + OP_H;
   localparam integer NPOOL = (NOPS + SH - 1) / SH;                        // shared sc_normalize instances
   // front pipeline: the time (enabled edges after the issue) at which each value is registered
-  localparam integer T_NN  = (OP_N != 0) ? NL : 0;                        // N̂ (0: the input N)
+  localparam integer T_N0  = (OP_N != 0) ? NL : 0;                        // N̂ (0: the input N) chosen
+  localparam integer T_NN  = T_N0 + ((NEED_N != 0) ? MREG_N * MREG : 0);  // ... and registered (MREG)
   localparam integer T_V   = (LV != 0) ? (K_V % SH) + NL : 0;             // V̂ (0: constant)
   localparam integer T_L   = (ANY_PL != 0) ? (K_L % SH) + NL : 0;         // L̂ of point lights
   localparam integer T_A   = sc_max(T_NN, T_L);                             // N̂·L operands
@@ -717,7 +720,7 @@ module sc_light #(
   wire [3*NV-1:0] nn_a, nn_b, nn_p;
   generate
     if (NEED_N != 0) begin : g_nn
-      wire [3*NV-1:0] nn0;
+      wire [3*NV-1:0] nn_c, nn0;
       wire [3*NW-1:0] n_raw;     // N as given (through the normaliser's delay line with NORMALIZE)
       wire [3*NV-1:0] n_raw_v;   // N·2^SGUARD
       for (gi = 0; gi < 3; gi = gi + 1) begin : g_nv
@@ -729,20 +732,25 @@ module sc_light #(
       end
       if (NORMALIZE != 0 && SH > 1) begin : g_pool_n
         // N̂ from the shared normalisers (op 0), N as given delayed beside it
-        sc_delay #(.W(3*NW), .DEPTH(T_NN)) u_dly_nraw (
+        sc_delay #(.W(3*NW), .DEPTH(T_N0)) u_dly_nraw (
             .clk_i(clk_i), .en_i(adv_f), .d_i(n_in), .q_o(n_raw));
-        assign nn0 = norm_mode ? pool_nhat : n_raw_v;
+        assign nn_c = norm_mode ? pool_nhat : n_raw_v;
       end else if (NORMALIZE != 0) begin : g_norm_n
         wire [3*NV-1:0] n_norm;
         sc_normalize #(.FRAC(VF), .VW(NW), .MREG(MREG)) u_norm_n (
             .clk_i(clk_i), .en_i(adv_f), .v_i(n_in), .u_o(n_norm), .v_o(n_raw));
-        assign nn0 = norm_mode ? n_norm : n_raw_v;
+        assign nn_c = norm_mode ? n_norm : n_raw_v;
         wire unused_pool_n = &{1'b0, pool_nhat};
       end else begin : g_raw_n
         assign n_raw = n_in;
-        assign nn0 = n_raw_v;
+        assign nn_c = n_raw_v;
         wire unused_norm_mode = &{1'b0, norm_mode, pool_nhat};
       end
+      // MREG: the choice registered (T_NN − T_N0 = MREG_N stages) before the lanes' dot products, so that
+      // their trees start at flip-flops: not behind the normalize-mode select (a 3·NV fan-out) nor, with no
+      // normaliser, behind the input N's own arrival (docs/signoff.md "Ninth round")
+      sc_delay #(.W(3*NV), .DEPTH(T_NN - T_N0)) u_dly_nn0 (
+          .clk_i(clk_i), .en_i(adv_f), .d_i(nn_c), .q_o(nn0));
       sc_delay #(.W(3*NV), .DEPTH(T_A - T_NN)) u_dly_nn_a (
           .clk_i(clk_i), .en_i(adv_f), .d_i(nn0), .q_o(nn_a));
       if (HAS_B != 0) begin : g_nn_b

@@ -530,7 +530,14 @@ module sc_light_lane #(
       localparam integer NSW = NDW - SG;   // ⌊ndl / 2^SG⌋: F fraction bits
       wire          neg   = ndl_q[NDW-1];
       wire [CL-1:0] diff1;
-      sc_clamp01 #(.IW(NSW), .FRAC(FRAC)) u_clamp_diff (.d_i(ndl_q[NDW-1:SG]), .q_o(diff1));
+      // MREG (D != 0): the clamp takes ndl before its register and diff1 gets its own CL flip-flops beside
+      // ndl_q, so that a set whose back takes diff at once (no units) starts the diffuse products' trees at a
+      // flip-flop, not behind the clamp; the same value at the same stage
+      wire [NSW-1:0] clamp_in = (D != 0) ? ndl_d[NDW-1:SG] : ndl_q[NDW-1:SG];
+      wire [CL-1:0]  clamp_q;
+      sc_clamp01 #(.IW(NSW), .FRAC(FRAC)) u_clamp_diff (.d_i(clamp_in), .q_o(clamp_q));
+      sc_delay #(.W(CL), .DEPTH((D != 0) ? 1 : 0)) u_dly_clamp (
+          .clk_i(clk_i), .en_i(en_i), .d_i(clamp_q), .q_o(diff1));
       wire          f1    = !neg && (ndl_q != {NDW{1'b0}});
       if (DIFFUSE != 0) begin : g_diff
         sc_delay #(.W(CL), .DEPTH(T_F - T_A - 1 - D)) u_dly_diff (

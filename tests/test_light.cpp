@@ -928,8 +928,10 @@ TEST(LightModes, MregLengthensThePathThroughTheNormalisersAndTheUnits) {
   const LightCore c0(base), c1(m);
   LightRegs r;
   r.mat_unit = static_cast<uint32_t>(VariantId::cs16);
-  // (the back without attenuation: B1 and B2 one stage more each)
-  EXPECT_EQ(c1.latency(r) - c0.latency(r), kMregNormalize + kMregDot + 2 * kMregBack + mreg_stages(VariantId::cs16));
+  // (the back without attenuation: B1 and B2 one stage more each; N̂ registered once more before N̂·L, which with
+  // directional lights and an infinite viewer is what sets the front's length)
+  EXPECT_EQ(c1.latency(r) - c0.latency(r),
+            kMregNormalize + kMregN + kMregDot + 2 * kMregBack + mreg_stages(VariantId::cs16));
   // a point light's L̂, then Ĥ = normalise(L̂ + V̂): two in series
   FeatureSet p = base, pm;
   p.slots = {kind_bit(LightKind::Point)};

@@ -506,7 +506,8 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   const int S = fs.share;
   const int op_n = (need_n && fs.normalize) ? 1 : 0, op_v = lv ? 1 : 0, op_l = any_pl ? 1 : 0;
   const int k_v = op_n, k_l = op_n + op_v, k_h = op_n + op_v + op_l;
-  const int t_nn = op_n ? NL : 0;                                     // N̂
+  // N̂ (or N), with MREG registered after the normalize-mode choice before the lanes' dot products
+  const int t_nn = (op_n ? NL : 0) + (need_n ? kMregN * fs.mreg : 0);
   const int t_v = lv ? k_v % S + NL : 0;                              // V̂
   const int t_l = any_pl ? k_l % S + NL : 0;                          // L̂ of point lights
   const int t_a = std::max(t_nn, t_l);                                // N̂·L operands
