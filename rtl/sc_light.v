@@ -124,7 +124,7 @@
 //               T_L  = ANY_PL ? K_L mod S + NL : 0         L̂ of point lights
 //               D    = MREG_DOT·MREG (2 with MREG): registers inside each of the lanes' dot products
 //               T_A  = max(T_NN, T_L)                      N̂·L → diff, f at T_A+1+D
-//               T_H  = the first t >= max(T_L, T_V) with t ≡ K_H (mod S);  T_RV = max(T_A+2+2D, T_V)
+//               T_H  = the first t >= max(T_L, T_V, T_NN − NL) with t ≡ K_H (mod S);  T_RV = max(T_A+2+2D, T_V)
 //               T_XB = T_H+NL+1+D (BLINN), T_XP = LV ? T_RV+1+D : T_A+2+2D (PHONG)   unit input x
 //               T_ATT = T_L+3+D+RL (+1 with SHARE > 1)     att (point_att)
 //               T_SP = T_L+2+D+SPOT_EXP_BITS               the spot factor (sc_powi, one stage per exponent bit;
@@ -323,7 +323,7 @@ module sc_light #(
   localparam integer T_V   = (LV != 0) ? (K_V % SH) + NL : 0;             // V̂ (0: constant)
   localparam integer T_L   = (ANY_PL != 0) ? (K_L % SH) + NL : 0;         // L̂ of point lights
   localparam integer T_A   = sc_max(T_NN, T_L);                             // N̂·L operands
-  localparam integer T_H0  = sc_max(T_L, T_V);
+  localparam integer T_H0  = sc_max(sc_max(T_L, T_V), T_NN - NL);     // (N̂ registered after the choice: Ĥ not before it)
   localparam integer T_H   = T_H0 + (((K_H % SH) - (T_H0 % SH)) + SH) % SH;   // H = L + V (Blinn)
   localparam integer T_RV  = sc_max(T_A + 2 + 2 * D, T_V);                  // R·V operands (Phong, local viewer)
   localparam integer T_XB  = T_H + NL + 1 + D;                            // x, Blinn

@@ -511,7 +511,7 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   const int t_v = lv ? k_v % S + NL : 0;                              // V̂
   const int t_l = any_pl ? k_l % S + NL : 0;                          // L̂ of point lights
   const int t_a = std::max(t_nn, t_l);                                // N̂·L operands
-  const int t_h0 = std::max(t_l, t_v);
+  const int t_h0 = std::max({t_l, t_v, t_nn - NL});                  // Ĥ not before N̂ (MREG registers N̂ once more)
   const int t_h = t_h0 + ((k_h % S - t_h0 % S) + S) % S;              // H = L + V
   const int t_rv = std::max(t_a + 2 + 2 * D, t_v);                    // R·V operands
   int t_x = 0;                                                        // the unit input x
