@@ -297,14 +297,56 @@ def inputs_of(a, r, d):
 def revalidate(a, r, hit):
     """A row whose key no longer matches (a source of the binary, config/configs.json, the RTL changed): the bundle
     again without the sign-off; if it is the one the row was measured on (inputs_sha) under the same flow and
-    target, the row still holds. Returns the entry's "inputs" when it does, else None."""
+    target, the row still holds. Returns (the entry's "inputs", None) when it does.
+    With --equiv-from REV, a bundle whose rtl/ changed is carried when (1) the bundle written now, with each of its
+    rtl/ files that git has at REV replaced by that version, is byte for byte the bundle the row was measured on
+    (inputs_sha: so tb/, vectors/ and the I/O constraints did not change, and REV's RTL is what was mapped), and
+    (2) signoff/equiv.py proves that RTL and the current one equivalent for this configuration. Returns (inputs,
+    the carry record) then; (None, why not) otherwise."""
     if r["table"] or not hit["signoff"].get("inputs"):
-        return None
+        return None, "no recorded inputs"
+    rec = hit["signoff"]["inputs"]
     with tempfile.TemporaryDirectory(prefix="shadecore_revalidate.") as tmp:
         d = os.path.join(tmp, "b")
         bundle(a, r, d, signoff="off")
         now = inputs_of(a, r, d)
-    return now if now == hit["signoff"]["inputs"] else None
+        if now == rec:
+            return now, None
+        if not a.equiv_from:
+            return None, "its bundle changed"
+        if now["flow"] != rec["flow"] or now["target"] != rec["target"]:
+            return None, "the flow or the target changed"
+        rev = git("rev-parse", "--verify", a.equiv_from + "^{commit}").strip()
+        old = os.path.join(tmp, "at_rev")
+        shutil.copytree(d, old, symlinks=True)
+        for f in sorted(os.listdir(os.path.join(old, "rtl"))):
+            if subprocess.run(["git", "-C", ROOT, "cat-file", "-e", f"{rev}:rtl/{f}"], capture_output=True).returncode == 0:
+                with open(os.path.join(old, "rtl", f), "w") as out:
+                    out.write(git("show", f"{rev}:rtl/{f}"))
+        if inputs_sha(old) != rec["bundle"]:
+            return None, f"the bundle with the RTL of {rev[:10]} is not the one measured (another revision, or tb/, " \
+                         "vectors/ or the I/O constraints changed too)"
+        jp = os.path.join(tmp, "equiv.json")
+        p = subprocess.run(["/usr/bin/python3", EQUIV, old, d, "--json", jp, "--timeout", str(a.timeout)],
+                           capture_output=True, text=True)
+        if not os.path.exists(jp):
+            return None, (p.stderr or p.stdout).strip().splitlines()[-1] if (p.stderr or p.stdout).strip() else "equiv.py failed"
+        e = json.load(open(jp))
+        if not e["proven"]:
+            return None, f"its RTL is not proven equivalent to {rev[:10]}'s ({e['unproven']} of {e['equiv_cells']} unproven)"
+        carry = {"from_rev": rev, "measured_bundle": rec["bundle"], "equiv_cells": e["equiv_cells"],
+                 "seconds": e["seconds"], "tool": e["yosys"], "date": datetime.date.today().isoformat()}
+        return now, carry
+
+
+def git(*args):
+    p = subprocess.run(["git", "-C", ROOT] + list(args), capture_output=True, text=True)
+    if p.returncode:
+        raise Failure(f"git {' '.join(args)}: {p.stderr.strip()}")
+    return p.stdout
+
+
+EQUIV = os.path.join(ROOT, "signoff", "equiv.py")
 
 
 def backfill_inputs(a, r):
@@ -336,6 +378,8 @@ def to_row(r, s):
            "critical_path": f"{cp['start_reg']} -> {cp['end_reg']} ({cp['levels']} cells, "
                             f"{cp['arrival_ns']} ns derated)",
            "seconds": s["seconds"]}
+    if s.get("carried"):
+        out["carried"] = s["carried"]
     if out["latency_cycles"] is not None:
         out["latency_ns"] = round(out["latency_cycles"] * out["period_ns"], 2)
     rpc = out["results_per_clock"] if out["results_per_clock"] else 1.0
@@ -419,6 +463,18 @@ def write_md(path, rows, meta, missing=()):
     if miss:
         L += ["", "Rows that miss the target, and what it would take:", ""]
         L += [f"- **{r['name']}**: {r['reason']}." for r in miss]
+    carried = [r for r in rows if r.get("carried")]
+    if carried:
+        L += ["", "Carried by equivalence, not mapped again (`--revalidate --equiv-from REV`): these rows' numbers are "
+              "those of the netlist mapped from the RTL of the revision named, which signoff/equiv.py (Yosys "
+              "equiv_make, equiv_struct, equiv_simple, equiv_induct) proved equivalent, for the row's configuration, to "
+              "the RTL the current sources write; the bundle is otherwise byte for byte the one measured (tb/, "
+              "vectors/, I/O constraints). Mapping the current RTL again may differ in the last digits (the names "
+              "Yosys and ABC see changed), not in function.", ""]
+        L += [f"- **{r['name']}**: measured on the RTL of `{r['carried'][0]['from_rev'][:10]}`"
+              + "".join(f"; the RTL of `{c['from_rev'][:10]}` proven equivalent to the next on {c['date']} "
+                        f"({c['equiv_cells']:,} paired signals, {c['seconds']} s)" for c in r["carried"]) + "."
+              for r in carried]
     if missing:
         L += ["", "Not measured in this report (no current cached result; docs/signoff.md says why): "
               + ", ".join(f"`{m}`" for m in missing) + "."]
@@ -528,6 +584,10 @@ def main():
                     help="rows whose key changed: write the bundle again (no sign-off) and keep the row when it is the "
                          "bundle it was measured on (rtl, tb, vectors, I/O constraints) under the same flow; cached "
                          "rows get that record if they lack it")
+    ap.add_argument("--equiv-from", default=None, metavar="REV",
+                    help="with --revalidate: carry a row whose bundle's RTL changed when the bundle with git REV's "
+                         "rtl/ files is the one it was measured on and signoff/equiv.py proves the two RTLs "
+                         "equivalent for the row's configuration (the row says so in the report)")
     ap.add_argument("--from-bundle", default=None, metavar="DIR",
                     help="take the one --only row from DIR, a bundle signed off to the end (e.g. resumed with "
                          "signoff/signoff.py DIR --steps gatesim,power), when these sources write that very bundle")
@@ -535,6 +595,8 @@ def main():
     ap.add_argument("--cached-only", action="store_true",
                     help="write the report from the cached rows only; list the others as not measured")
     a = ap.parse_args()
+    if a.equiv_from and not a.revalidate:
+        raise Failure("--equiv-from REV goes with --revalidate")
     cfg = json.load(open(os.path.join(ROOT, "config", "configs.json")))
     a.shadecore = os.path.join(a.build, "cli", "shadecore")
     if not os.access(a.shadecore, os.X_OK):
@@ -569,12 +631,18 @@ def main():
         cached = hit is not None and hit["key"] == key
         if a.revalidate and hit is not None and not r["table"]:
             if not cached:
-                inp = revalidate(a, r, hit)
-                if inp:
+                inp, why = revalidate(a, r, hit)
+                if inp and why:  # carried by equivalence: the new bundle's inputs, and how it got here
+                    sg = dict(hit["signoff"], inputs=inp, carried=hit["signoff"].get("carried", []) + [why])
+                    hit, cached = dict(hit, key=key, signoff=sg), True
+                    store(cache_path, row_id(r), hit)
+                elif inp:
                     hit, cached = dict(hit, key=key), True
                     store(cache_path, row_id(r), hit)
-                print(f"timing_report: {row_id(r)}: " + ("the same bundle: re-validated" if inp else
-                      "not re-validated (its bundle changed, or it has no recorded inputs)"), flush=True)
+                print(f"timing_report: {row_id(r)}: " + (
+                      f"the RTL of {why['from_rev'][:10]} it was measured on is proven equivalent to this one "
+                      f"({why['equiv_cells']} paired signals, {why['seconds']} s): carried" if inp and why else
+                      "the same bundle: re-validated" if inp else f"not re-validated ({why})"), flush=True)
             elif not hit["signoff"].get("inputs"):
                 hit = dict(hit, signoff=dict(hit["signoff"], inputs=backfill_inputs(a, r)))
                 store(cache_path, row_id(r), hit)
