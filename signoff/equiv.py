@@ -6,7 +6,8 @@
 GOLD and GATE are bundle directories (rtl/ and filelist.f, as `shadecore handoff` writes them). Each side is read
 (every .v of its filelist.f, its rtl/ as the include path), elaborated from the top (default: the module the bundle's
 filelist.f lists last), then `proc; flatten; memory; opt_clean`. equiv_make pairs the signals of the two designs by
-name, equiv_struct merges the cells that are the same on both sides, equiv_simple (-seq 2) and equiv_induct prove the
+name, equiv_struct -icells merges the cells (internal ones too) that are the same on both sides, equiv_simple (-seq 2)
+and equiv_induct prove the
 rest; equiv_status -assert fails on any unproven pair. The two tops must have the same ports (names and widths): a port
 present on one side only would have no pair and so no proof.
 
@@ -134,7 +135,7 @@ def main():
                     "design -copy-from gate -as gate gate\n"
                     "equiv_make gold gate equiv\n"
                     "hierarchy -top equiv\n"
-                    "equiv_struct\n"
+                    "equiv_struct -icells\n"
                     "equiv_simple -seq 2\n"
                     "equiv_induct\n"
                     "equiv_status -assert\n")
