@@ -320,7 +320,7 @@ def revalidate(a, r, hit):
         old = os.path.join(tmp, "at_rev")
         shutil.copytree(d, old, symlinks=True)
         for f in sorted(os.listdir(os.path.join(old, "rtl"))):
-            if subprocess.run(["git", "-C", ROOT, "cat-file", "-e", f"{rev}:rtl/{f}"], capture_output=True).returncode == 0:
+            if git_has(rev, f"rtl/{f}"):
                 with open(os.path.join(old, "rtl", f), "w") as out:
                     out.write(git("show", f"{rev}:rtl/{f}"))
         if inputs_sha(old) != rec["bundle"]:
@@ -344,6 +344,10 @@ def git(*args):
     if p.returncode:
         raise Failure(f"git {' '.join(args)}: {p.stderr.strip()}")
     return p.stdout
+
+
+def git_has(rev, path):
+    return subprocess.run(["git", "-C", ROOT, "cat-file", "-e", f"{rev}:{path}"], capture_output=True).returncode == 0
 
 
 EQUIV = os.path.join(ROOT, "signoff", "equiv.py")
@@ -405,8 +409,10 @@ def to_row(r, s):
             lat = cfg["light"]["latency"]
             out["reason"] += ("; the lighting core's pipelining parameter MREG (row <set>+mreg) registers the "
                               f"normalisers' products ({lat['normalize']} -> {lat['normalize'] + lat['mreg_normalize']} "
-                              "cycles) and passes MREG to the units; the dot products, the attenuation and reciprocal, "
-                              "the shade and accumulator products have no register inside yet")
+                              f"cycles), each dot product ({lat['mreg_dot']} more), each product stage of the back "
+                              f"({lat['mreg_back']} more) and the lanes' N before the dot products ({lat['mreg_n']} more), "
+                              "and passes MREG to the units; the reciprocal (sc_recip), the spot power chain (sc_powi) "
+                              "and the energy stage (sc_energy) have no register inside yet")
     if gs is None:
         out["reason_gate_sim"] = ("no gate-level run: the handoff bench cannot load a table RAM"
                                   if r["table"] else "not run")

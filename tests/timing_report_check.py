@@ -5,6 +5,7 @@ synthesised): what of a bundle decides its row (inputs_sha), which RTL files key
 and when --from-bundle takes a row from a bundle signed off outside the report."""
 import json
 import os
+import shutil
 import sys
 import tempfile
 import types
@@ -66,8 +67,62 @@ class RtlOf(unittest.TestCase):
 class Revalidate(unittest.TestCase):
     def test_a_row_without_recorded_inputs_or_a_table_row_is_not_revalidated(self):
         a = types.SimpleNamespace()
-        self.assertIsNone(tr.revalidate(a, {"table": True}, {"signoff": {"inputs": {"bundle": "x"}}}))
-        self.assertIsNone(tr.revalidate(a, {"table": False}, {"signoff": {}}))
+        self.assertIsNone(tr.revalidate(a, {"table": True}, {"signoff": {"inputs": {"bundle": "x"}}})[0])
+        self.assertIsNone(tr.revalidate(a, {"table": False}, {"signoff": {}})[0])
+
+
+WIRE = "module top (input wire clk_i, input wire a, output reg y);\n  always @(posedge clk_i) y <= {};\nendmodule\n"
+
+
+@unittest.skipUnless(shutil.which("yosys"), "yosys is not installed")
+class EquivFrom(unittest.TestCase):
+    """--revalidate --equiv-from REV: a row whose bundle's RTL changed is carried only when the bundle with REV's RTL is
+    the measured one byte for byte and signoff/equiv.py proves the two RTLs equivalent (real Yosys, a one-flop top)."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.addCleanup(self.tmp.cleanup)
+        self.now_rtl, self.rev_rtl = WIRE.format("~~a"), WIRE.format("a")
+        self.vec = "0001\n"
+
+        def write(d, rtl):
+            bundle(d, "c", vec=self.vec)
+            open(os.path.join(d, "rtl", "top.v"), "w").write(rtl)
+        measured = os.path.join(self.tmp.name, "measured")
+        write(measured, self.rev_rtl)
+        self.hit = {"signoff": {"inputs": {"bundle": tr.inputs_sha(measured), "flow": tr.sha_tree(tr.FLOW),
+                                           "target": 4.0}}}
+        self.patch("bundle", lambda a, r, d, signoff="on": write(d, self.now_rtl))
+        self.patch("git", lambda *args: "f" * 40 + "\n" if args[0] == "rev-parse" else self.rev_rtl)
+        self.patch("git_has", lambda rev, path: path == "rtl/top.v")
+        self.a = types.SimpleNamespace(target=4.0, equiv_from="HEAD~1", timeout=120)
+        self.r = {"table": False, "kind": "lighting", "name": "x", "config": {"name": "default"}}
+
+    def patch(self, name, f):
+        old = getattr(tr, name)
+        setattr(tr, name, f)
+        self.addCleanup(setattr, tr, name, old)
+
+    def test_an_equivalent_rtl_is_carried_with_its_record(self):
+        inp, carry = tr.revalidate(self.a, self.r, self.hit)
+        self.assertIsNotNone(inp)
+        self.assertNotEqual(inp["bundle"], self.hit["signoff"]["inputs"]["bundle"])
+        self.assertEqual(carry["from_rev"], "f" * 40)
+        self.assertGreater(carry["equiv_cells"], 0)
+
+    def test_another_function_another_stimulus_or_no_equiv_from_is_not(self):
+        self.now_rtl = WIRE.format("~a")
+        inp, why = tr.revalidate(self.a, self.r, self.hit)
+        self.assertIsNone(inp)
+        self.assertIn("not proven equivalent", why)
+        self.now_rtl = WIRE.format("~~a")
+        self.vec = "0002\n"   # the vectors changed too: the bundle with REV's RTL is not the measured one
+        inp, why = tr.revalidate(self.a, self.r, self.hit)
+        self.assertIsNone(inp)
+        self.assertIn("is not the one measured", why)
+        self.vec = "0001\n"
+        self.a.equiv_from = None
+        self.assertEqual(tr.revalidate(self.a, self.r, self.hit), (None, "its bundle changed"))
 
 
 class FromBundle(unittest.TestCase):
