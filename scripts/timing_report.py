@@ -478,7 +478,7 @@ def write_md(path, rows, meta, missing=()):
               "vectors/, I/O constraints). Mapping the current RTL again may differ in the last digits (the names "
               "Yosys and ABC see changed), not in function.", ""]
         L += [f"- **{r['name']}**: measured on the RTL of `{r['carried'][0]['from_rev'][:10]}`"
-              + "".join(f"; the RTL of `{c['from_rev'][:10]}` proven equivalent to the next on {c['date']} "
+              + "".join(f"; that RTL proven equivalent to the then-current one on {c['date']} "
                         f"({c['equiv_cells']:,} paired signals, {c['seconds']} s)" for c in r["carried"]) + "."
               for r in carried]
     if missing:
