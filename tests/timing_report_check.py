@@ -64,6 +64,22 @@ class RtlOf(unittest.TestCase):
             self.assertTrue(os.path.isfile(os.path.join(ROOT, f)), f)
 
 
+ROW = {"table": False, "kind": "lighting", "name": "x", "config": {"name": "default"}}
+
+
+class Patching(unittest.TestCase):
+    """A scratch directory and timing_report functions replaced for one test."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.addCleanup(self.tmp.cleanup)
+
+    def patch(self, name, f):
+        old = getattr(tr, name)
+        setattr(tr, name, f)
+        self.addCleanup(setattr, tr, name, old)
+
+
 class Revalidate(unittest.TestCase):
     def test_a_row_without_recorded_inputs_or_a_table_row_is_not_revalidated(self):
         a = types.SimpleNamespace()
@@ -75,13 +91,12 @@ WIRE = "module top (input wire clk_i, input wire a, output reg y);\n  always @(p
 
 
 @unittest.skipUnless(shutil.which("yosys"), "yosys is not installed")
-class EquivFrom(unittest.TestCase):
+class EquivFrom(Patching):
     """--revalidate --equiv-from REV: a row whose bundle's RTL changed is carried only when the bundle with REV's RTL is
     the measured one byte for byte and signoff/equiv.py proves the two RTLs equivalent (real Yosys, a one-flop top)."""
 
     def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.addCleanup(self.tmp.cleanup)
+        super().setUp()
         self.now_rtl, self.rev_rtl = WIRE.format("~~a"), WIRE.format("a")
         self.vec = "0001\n"
 
@@ -96,12 +111,7 @@ class EquivFrom(unittest.TestCase):
         self.patch("git", lambda *args: "f" * 40 + "\n" if args[0] == "rev-parse" else self.rev_rtl)
         self.patch("git_has", lambda rev, path: path == "rtl/top.v")
         self.a = types.SimpleNamespace(target=4.0, equiv_from="HEAD~1", timeout=120)
-        self.r = {"table": False, "kind": "lighting", "name": "x", "config": {"name": "default"}}
-
-    def patch(self, name, f):
-        old = getattr(tr, name)
-        setattr(tr, name, f)
-        self.addCleanup(setattr, tr, name, old)
+        self.r = ROW
 
     def test_an_equivalent_rtl_is_carried_with_its_record(self):
         inp, carry = tr.revalidate(self.a, self.r, self.hit)
@@ -125,12 +135,11 @@ class EquivFrom(unittest.TestCase):
         self.assertEqual(tr.revalidate(self.a, self.r, self.hit), (None, "its bundle changed"))
 
 
-class FromBundle(unittest.TestCase):
+class FromBundle(Patching):
     """--from-bundle takes a row only from the bundle these sources write, signed off to the end by this flow."""
 
     def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.addCleanup(self.tmp.cleanup)
+        super().setUp()
         self.d = os.path.join(self.tmp.name, "kept")
         bundle(self.d, "shadecore handoff --out /kept --signoff on", sdc_period="14.450")
         open(os.path.join(self.d, "tb", "tb_config.vh"), "w").write("localparam integer LATENCY = 37;\n")
@@ -147,12 +156,7 @@ class FromBundle(unittest.TestCase):
                    or open(os.path.join(d, "tb", "tb_config.vh"), "w").write("localparam integer LATENCY = 37;\n"))
         self.patch("stages_of", lambda d, r: None)
         self.a = types.SimpleNamespace(target=4.0)
-        self.r = {"table": False, "kind": "lighting", "name": "x", "config": {"name": "default"}}
-
-    def patch(self, name, f):
-        old = getattr(tr, name)
-        setattr(tr, name, f)
-        self.addCleanup(setattr, tr, name, old)
+        self.r = ROW
 
     def write(self):
         json.dump(self.s, open(os.path.join(self.d, "signoff", "signoff.json"), "w"))
