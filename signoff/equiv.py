@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """Formal equivalence of two handoff bundles' RTL (Yosys 0.23 equiv_make / equiv_struct / equiv_simple / equiv_induct).
 
     signoff/equiv.py GOLD GATE [--top NAME] [--json OUT] [--timeout S]
