@@ -151,6 +151,17 @@ module tb_shadecore;
           $display("FAIL cycle %0d: out_valid_o or in_ready_o is X after reset", cyc);
           fail_exit;
         end
+        // in_ready_o as every unit's header states it (rst_ni && (!out_valid_o || out_ready_i), && !busy for the
+        // iterative divider): high whenever nothing is in flight, and high at an edge that takes the only
+        // fragment's result (the next one may enter at that very edge: its issue interval, not one clock more)
+        if (q_count == 0 && in_ready !== 1'b1) begin
+          $display("FAIL cycle %0d: in_ready_o is low with nothing in flight", cyc);
+          fail_exit;
+        end
+        if (q_count == 1 && out_valid && out_ready && in_ready !== 1'b1) begin
+          $display("FAIL cycle %0d: in_ready_o is low at the edge that takes the only fragment in flight", cyc);
+          fail_exit;
+        end
         stream_edge;
       end
       watchdog;
