@@ -537,10 +537,14 @@ def vector_files(bundle):
 
 
 def fingerprint(design_il, mutations, cmd, eq_steps, bundle, vectors):
-    """What a cached result depends on: the prepared design, the mutation list, the handoff command, --eq-steps and
-    the bench's vector files (a new stage re-runs the survivors in it only)."""
+    """What a cached result depends on: the prepared design, the mutation list, the handoff command, --eq-steps,
+    the bench's vector files and the bench itself (every file of the bundle's tb/: a check added to the bench must
+    run the mutants again; a new stage re-runs the survivors in it only)."""
+    tb = os.path.join(bundle, "tb")
+    benches = sorted(os.path.relpath(os.path.join(d, f), tb) for d, _, fs in os.walk(tb) for f in fs)
     return sha(design_il, "\n".join(mutations), " ".join(cmd[1:]), eq_steps,
-               *[open(os.path.join(bundle, v), "rb").read() for v in vectors])
+               *[open(os.path.join(bundle, v), "rb").read() for v in vectors],
+               *[b.encode() + b"\0" + open(os.path.join(tb, b), "rb").read() for b in benches])
 
 
 def harvest_proofs(wdir, cmd, eq_steps):
