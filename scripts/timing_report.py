@@ -331,7 +331,8 @@ def revalidate(a, r, hit):
                            capture_output=True, text=True)
         if not os.path.exists(jp):
             return None, (p.stderr or p.stdout).strip().splitlines()[-1] if (p.stderr or p.stdout).strip() else "equiv.py failed"
-        e = json.load(open(jp))
+        with open(jp) as fj:
+            e = json.load(fj)
         if not e["proven"]:
             return None, f"its RTL is not proven equivalent to {rev[:10]}'s ({e['unproven']} of {e['equiv_cells']} unproven)"
         carry = {"from_rev": rev, "measured_bundle": rec["bundle"], "equiv_cells": e["equiv_cells"],
@@ -473,7 +474,7 @@ def write_md(path, rows, meta, missing=()):
     if carried:
         L += ["", "Carried by equivalence, not mapped again (`--revalidate --equiv-from REV`): these rows' numbers are "
               "those of the netlist mapped from the RTL of the revision named, which signoff/equiv.py (Yosys "
-              "equiv_make, equiv_struct, equiv_simple, equiv_induct) proved equivalent, for the row's configuration, to "
+              "equiv_make, equiv_struct -icells, equiv_simple, equiv_induct) proved equivalent, for the row's configuration, to "
               "the RTL the current sources write; the bundle is otherwise byte for byte the one measured (tb/, "
               "vectors/, I/O constraints). Mapping the current RTL again may differ in the last digits (the names "
               "Yosys and ABC see changed), not in function.", ""]
