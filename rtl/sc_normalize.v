@@ -19,7 +19,8 @@
 //         adder (rtl/sc_mul_stage.v, rtl/sc_mul_reg.v) and S1's sum after one more register:
 //         LATENCY 10 -> 18, the same outputs (config/configs.json light.normalize_latency and
 //         light.mreg_stages.normalize). The subtractions of S4 and S7 and the rounding add of S10
-//         then go inside the products' trees as addends ("MREG = 1" below).
+//         then go inside the products' trees as addends ("MREG = 1" below). S7's product (31 × 30 at
+//         F = 21, the deepest tree) is two half-height products summed over its two edges instead.
 //
 // Ports : clk_i             clock, all flops on the rising edge
 //         en_i              enable (the embedding pipeline's global enable)
@@ -336,37 +337,53 @@ module sc_normalize #(
 
   // ---------------------------------------------------------------------------- S7: c1 = 3 − m·a1
   wire [MW+R+1:0] ma1;
-  wire [R:0]      y_7;
-  wire [KW-1:0]   k_7;
-  wire [R+1:0]    c1_d;
+  wire [R+1:0]  s7_c_q;
+  wire [R:0]    s7_y_q;
+  wire [KW-1:0] s7_k_q;
   generate
     if (MREG != 0) begin : g_c1_fold
-      // as S4: Kc − m·a1 = m·~a1 + (Kc + m)
-      sc_mul_stage #(.AW(MW + 1), .BW(R + 3), .PW(MW + R + 2), .SIGNED(1), .ADD(1), .CW(R + MB + 2), .MREG(1),
-                     .SW(R + 1 + KW)) u_ma1 (
-          .clk_i(clk_i), .en_i(en_i), .a_i({1'b0, s6_m_q}), .b_i(~{1'b0, s6_a_q}),
-          .c_i({2'b11, {(R-3){1'b0}}, s6_km_q}),
-          .side_i({s6_y_q, s6_k_q}), .p_o(ma1), .side_o({y_7, k_7}));
-      assign c1_d = ma1[MB+R+1:MB];
+      // as S4: Kc − m·a1 = m·b + (Kc + m), b = ~{0, a1} (signed, R+3 bits). Its 31 × 30 tree alone is
+      // deeper than a 4.0 ns stage in the cell flow, so b is split, b = b_hi·2^H1 + b_lo, and the product is
+      // the sum of two half-height products, m·b_lo + (m·2^H1)·b_hi (rtl/sc_mul_reg.v N = 2, LAT = 2): each
+      // half's tree to two carry-save rows | register | the four rows reduced and added | register. That
+      // last register is S7's (s7_c_q), so S7 keeps its two edges and the outputs are those of one product.
+      localparam integer H1  = (R + 3) / 2;          // low bits of b (unsigned)
+      localparam integer BWX = H1 + 1;               // b_lo zero-extended, b_hi sign-extended (R+3−H1 <= H1+1)
+      localparam integer AWX = MW + 1 + H1;          // {0, m} and {0, m}·2^H1, signed, both non-negative
+      wire [R+2:0] b1 = ~{1'b0, s6_a_q};
+      wire [BWX-1:0] b_lo = {1'b0, b1[H1-1:0]};
+      wire [BWX-1:0] b_hi = {{(BWX-(R+3-H1)){b1[R+2]}}, b1[R+2:H1]};
+      wire [AWX-1:0] a_lo = {{(H1+1){1'b0}}, s6_m_q};
+      wire [AWX-1:0] a_hi = {1'b0, s6_m_q, {H1{1'b0}}};
+      sc_mul_reg #(.AW(AWX), .BW(BWX), .PW(MW + R + 2), .SIGNED(1), .ADD(1), .CW(R + MB + 2), .N(2), .LAT(2))
+          u_ma1 (.clk_i(clk_i), .en_i(en_i), .a_i({a_hi, a_lo}), .b_i({b_hi, b_lo}),
+                 .c_i({2'b11, {(R-3){1'b0}}, s6_km_q}), .p_o(ma1));
+      sc_delay #(.W(R + 1 + KW), .DEPTH(2)) u_side7 (
+          .clk_i(clk_i), .en_i(en_i), .d_i({s6_y_q, s6_k_q}), .q_o({s7_y_q, s7_k_q}));
+      assign s7_c_q = ma1[MB+R+1:MB];
     end else begin : g_c1_sub
+      wire [R:0]    y_7;
+      wire [KW-1:0] k_7;
       sc_mul_stage #(.AW(MW), .BW(R + 2), .PW(MW + R + 2), .MREG(0), .SW(R + 1 + KW)) u_ma1 (
           .clk_i(clk_i), .en_i(en_i), .a_i(s6_m_q), .b_i(s6_a_q), .c_i(1'b0),
           .side_i({s6_y_q, s6_k_q}), .p_o(ma1), .side_o({y_7, k_7}));
-      assign c1_d = THREE_R - ma1[MB+R+1:MB];
       wire unused_km = &{1'b0, s6_km_q};
+      reg  [R+1:0]  c_q;
+      reg  [R:0]    y_q;
+      reg  [KW-1:0] k_q;
+      always @(posedge clk_i) begin
+        if (en_i) begin
+          c_q <= THREE_R - ma1[MB+R+1:MB];
+          y_q <= y_7;
+          k_q <= k_7;
+        end
+      end
+      assign s7_c_q = c_q;
+      assign s7_y_q = y_q;
+      assign s7_k_q = k_q;
     end
   endgenerate
   wire unused_ma1 = &{1'b0, ma1[MW+R+1:MB+R+2], ma1[MB-1:0]};
-  reg  [R+1:0]  s7_c_q;
-  reg  [R:0]    s7_y_q;
-  reg  [KW-1:0] s7_k_q;
-  always @(posedge clk_i) begin
-    if (en_i) begin
-      s7_c_q <= c1_d;
-      s7_y_q <= y_7;
-      s7_k_q <= k_7;
-    end
-  end
 
   // ---------------------------------------------------------------------------- S8: y2
   wire [2*R+2:0] yc1;
