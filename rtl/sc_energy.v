@@ -16,6 +16,10 @@
 //             1 = the coefficient arrives with each fragment on in_coef_i (used when chained
 //                 behind a unit that carries it in its tag, see rtl/sc_specular.v)  (default 0)
 //   TAGW      width of the opaque tag that travels with each fragment, >= 1   (default 8)
+//   MREG      0 or 1, the pipelining parameter (default 0): 1 forms N1's product with the rounding
+//             constant as its addend through rtl/sc_mul_reg.v, so that the cell flow puts N1's register
+//             between the product's tree and its final adder and N2 is that adder alone. The same
+//             latency and outputs.
 //
 // Ports : docs/spec.md §4 convention (clk_i, rst_ni synchronous active-low, AXI-Stream style
 //         valid/ready, TAGW tag sideband), plus
@@ -53,7 +57,8 @@ module sc_energy #(
     parameter integer FRAC     = 16,
     parameter integer COEFW    = FRAC + 8,
     parameter integer COEF_SRC = 0,
-    parameter integer TAGW     = 8
+    parameter integer TAGW     = 8,
+    parameter integer MREG     = 0
 ) (
     input  wire              clk_i,
     input  wire              rst_ni,
@@ -92,6 +97,9 @@ module sc_energy #(
     if (TAGW < 1) begin : g_check_tagw
       sc_energy_error_illegal_TAGW_must_be_at_least_1 u_error ();
     end
+    if (MREG != 0 && MREG != 1) begin : g_check_mreg
+      sc_energy_error_illegal_MREG_must_be_0_or_1 u_error ();
+    end
   endgenerate
 
   localparam [PW-1:0] HALF = {{(PW-F){1'b0}}, 1'b1, {(F-1){1'b0}}};  // 2^(F-1)
@@ -121,31 +129,38 @@ module sc_energy #(
   endgenerate
 
   // ---------------------------------------------------------------------------- N1: exact product
-  // coef split at 17 bits (spec·coef = spec·c_lo + spec·c_hi·2^17, exact): each part fits one DSP48E1
-  // tile (25 × 18) for F <= 23, where a tool splitting the wider operand (Yosys 0.23) spends four
-  localparam integer CL = 17;
-  wire [PW-1:0] p_d;
+  // MREG = 0: N1 registers the product, N2 adds the rounding constant. MREG = 1: N1 registers
+  // spec·coef + 2^(F−1) (rtl/sc_mul_reg.v: its tree in N1, its final adder in N2), N2 takes the slice.
+  wire [PW-1:0] r_d;   // spec·coef + 2^(F−1) at N2 (< 2^(F+COEFW): no carry out of PW bits)
+  reg [TAGW-1:0] n1_tag_q;
+  always @(posedge clk_i) begin
+    if (adv) n1_tag_q <= in_tag_i;
+  end
   generate
-    if (COEFW > CL) begin : g_split
-      wire [F+CL:0]       plo = {{CL{1'b0}}, in_spec_i} * {{(F+1){1'b0}}, coef[CL-1:0]};
-      wire [F+COEFW-CL:0] phi = {{(COEFW-CL){1'b0}}, in_spec_i} * {{(F+1){1'b0}}, coef[COEFW-1:CL]};
-      assign p_d = {{(COEFW-CL){1'b0}}, plo} + {phi, {CL{1'b0}}};
-    end else begin : g_whole
-      assign p_d = {{COEFW{1'b0}}, in_spec_i} * {{(F+1){1'b0}}, coef};
+    if (MREG != 0) begin : g_mreg
+      sc_mul_reg #(.AW(F + 1), .BW(COEFW), .PW(PW), .SIGNED(0), .ADD(1), .CW(F)) u_p (
+          .clk_i(clk_i), .en_i(adv), .a_i(in_spec_i), .b_i(coef), .c_i(HALF[F-1:0]), .p_o(r_d));
+    end else begin : g_comb
+      // coef split at 17 bits (spec·coef = spec·c_lo + spec·c_hi·2^17, exact): each part fits one DSP48E1
+      // tile (25 × 18) for F <= 23, where a tool splitting the wider operand (Yosys 0.23) spends four
+      localparam integer CL = 17;
+      wire [PW-1:0] p_d;
+      if (COEFW > CL) begin : g_split
+        wire [F+CL:0]       plo = {{CL{1'b0}}, in_spec_i} * {{(F+1){1'b0}}, coef[CL-1:0]};
+        wire [F+COEFW-CL:0] phi = {{(COEFW-CL){1'b0}}, in_spec_i} * {{(F+1){1'b0}}, coef[COEFW-1:CL]};
+        assign p_d = {{(COEFW-CL){1'b0}}, plo} + {phi, {CL{1'b0}}};
+      end else begin : g_whole
+        assign p_d = {{COEFW{1'b0}}, in_spec_i} * {{(F+1){1'b0}}, coef};
+      end
+      reg [PW-1:0] n1_p_q;
+      always @(posedge clk_i) begin
+        if (adv) n1_p_q <= p_d;
+      end
+      assign r_d = n1_p_q + HALF;
     end
   endgenerate
 
-  reg [PW-1:0]   n1_p_q;
-  reg [TAGW-1:0] n1_tag_q;
-  always @(posedge clk_i) begin
-    if (adv) begin
-      n1_p_q   <= p_d;
-      n1_tag_q <= in_tag_i;
-    end
-  end
-
   // ---------------------------------------------------------------------------- N2: round half up
-  wire [PW-1:0] r_d = n1_p_q + HALF;  // < 2^(F+COEFW): no carry out of PW bits
   // r_d >> F fits COEFW bits; bit PW-1 is always 0 and bits F-1..0 are rounded away.
   wire unused_r = &{1'b0, r_d[PW-1], r_d[F-1:0]};
 

@@ -958,7 +958,7 @@ module sc_light #(
         wire sel_valid = |(u_out_valid_all[8*j +: 8] & unit_sel);
         if (SNORM != 0) begin : g_snorm
           sc_energy #(
-              .FRAC(VF), .COEFW(VF + 8), .COEF_SRC(0), .TAGW(UTAG)
+              .FRAC(VF), .COEFW(VF + 8), .COEF_SRC(0), .TAGW(UTAG), .MREG(MREG)
           ) u_norm (
               .clk_i(clk_i), .rst_ni(rst_ni), .mat_we_i(mat_we_u), .mat_coef_i(mat_coef_u),
               .in_valid_i(sel_valid), .in_ready_o(n_in_ready), .in_spec_i(spec_sel),

@@ -266,7 +266,11 @@ module sc_light_lane #(
   endgenerate
   assign idx_o = idx_s[3*T_F +: 3];
   wire [2:0] idx_0 = idx_s[2:0];
-  wire [2:0] idx_l = idx_s[3*T_L +: 3];
+  // MREG with T_L >= 1: the slot's kind and position are read one stage before T_L and the directional L and
+  // the kind test registered, so that T_L's N̂·L product starts from registers (the registers of the slots
+  // hold while a fragment is in flight: reg_ready_o of rtl/sc_light.v)
+  localparam integer PRE_L = (MREG != 0 && T_L >= 1) ? 1 : 0;
+  wire [2:0] idx_l = idx_s[3*(T_L-PRE_L) +: 3];
   wire [1:0] kind_l = kind_i[2*idx_l +: 2];
   wire [3*PW-1:0] pos_0 = pos_i[3*PW*idx_0 +: 3*PW];
   wire [3*PW-1:0] pos_l = pos_i[3*PW*idx_l +: 3*PW];
@@ -312,14 +316,19 @@ module sc_light_lane #(
       end else begin : g_ld
         assign ld_w = pd_s;
       end
+      wire [LW-1:0]    ld_l;   // ld_w at T_L
+      wire             dir_l;  // the slot is directional, at T_L
+      sc_delay #(.W(LW + 1), .DEPTH(PRE_L)) u_dly_ld (
+          .clk_i(clk_i), .en_i(en_i), .d_i({kind_l == KIND_DIRECTIONAL[1:0], ld_w}), .q_o({dir_l, ld_l}));
       if (CAN_DIR != 0 && POINT_L != 0) begin : g_both
-        assign l[gi*LW +: LW] = (kind_l == KIND_DIRECTIONAL[1:0]) ? ld_w : lp_w;
+        assign l[gi*LW +: LW] = dir_l ? ld_l : lp_w;
       end else if (CAN_DIR != 0) begin : g_dir
-        assign l[gi*LW +: LW] = ld_w;
+        assign l[gi*LW +: LW] = ld_l;
+        wire unused_dir = &{1'b0, dir_l};
         wire unused_lp = &{1'b0, lp_w};
       end else begin : g_pt
         assign l[gi*LW +: LW] = lp_w;
-        wire unused_ld = &{1'b0, ld_w};
+        wire unused_ld = &{1'b0, ld_l, dir_l};
       end
     end
     if (CAN_DIR == 0 || POINT_L == 0) begin : g_kind_unused

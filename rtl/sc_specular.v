@@ -209,7 +209,8 @@ module sc_specular #(
           .FRAC    (FRAC),
           .COEFW   (COEFW),
           .COEF_SRC(1),
-          .TAGW    (TAGW)
+          .TAGW    (TAGW),
+          .MREG    (MREG)
       ) u_energy (
           .clk_i      (clk_i),
           .rst_ni     (rst_ni),
