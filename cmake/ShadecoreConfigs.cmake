@@ -292,6 +292,7 @@ string(JSON _llat_mn GET "${_cfg_json}" light latency mreg_normalize)
 string(JSON _llat_md GET "${_cfg_json}" light latency mreg_dot)
 string(JSON _llat_mb GET "${_cfg_json}" light latency mreg_back)
 string(JSON _llat_mnn GET "${_cfg_json}" light latency mreg_n)
+string(JSON _llat_mp GET "${_cfg_json}" light latency mreg_p)
 string(JSON _nk LENGTH "${_cfg_json}" light light_kinds)
 math(EXPR _lastk "${_nk} - 1")
 set(_kenum "")
@@ -335,7 +336,7 @@ set(_rtab "")
 set(_ch_regs "")      # the C header's lines (shadecore_light_regs.h)
 set(_ch_reglist "")
 set(_reg_fmts "")     # name=format, checked against light.formats below
-set(_ruse "MAX_LIGHTS[0], LIGHT_STRIDE[0], REG_ADDR_BITS[0], SPOT_EXP_BITS[0], LOW_N_BITS[0], LIGHT_MODEL_BITS[0], NORMALIZE_LATENCY[0], RECIP_LATENCY[0], MREG_NORMALIZE[0], MREG_DOT[0], MREG_BACK[0], MREG_N[0]")
+set(_ruse "MAX_LIGHTS[0], LIGHT_STRIDE[0], REG_ADDR_BITS[0], SPOT_EXP_BITS[0], LOW_N_BITS[0], LIGHT_MODEL_BITS[0], NORMALIZE_LATENCY[0], RECIP_LATENCY[0], MREG_NORMALIZE[0], MREG_DOT[0], MREG_BACK[0], MREG_N[0], MREG_P[0]")
 foreach(i RANGE ${_lastr})
   string(JSON _rname GET "${_cfg_json}" light registers ${i} name)
   string(JSON _raddr GET "${_cfg_json}" light registers ${i} addr)
@@ -393,6 +394,7 @@ inline constexpr int kMregNormalize = ${_llat_mn};       // cycles the lighting 
 inline constexpr int kMregDot = ${_llat_md};             // ... and to each of the lanes' dot products
 inline constexpr int kMregBack = ${_llat_mb};            // ... and to each product stage of the back
 inline constexpr int kMregN = ${_llat_mnn};              // ... and registers the lanes' N (N̂ or N) before the dot products
+inline constexpr int kMregP = ${_llat_mp};               // ... and P_j − P and −P before the L and V normalisers
 ${_lmhpp}${_rhpp}// reserved: laid out for the GL-completeness issue, no register in this core (a write is ignored)
 struct RegInfo { std::string_view name; uint32_t addr; int count; std::string_view format; bool per_light; bool reserved; };
 inline constexpr std::array<RegInfo, ${_nr}> kRegisters{{
@@ -418,6 +420,7 @@ localparam integer MREG_NORMALIZE = ${_llat_mn};
 localparam integer MREG_DOT = ${_llat_md};
 localparam integer MREG_BACK = ${_llat_mb};
 localparam integer MREG_N = ${_llat_mnn};
+localparam integer MREG_P = ${_llat_mp};
 ${_lmvh}${_kvh}${_rvh}// every name above, so that a module using a few of them lints clean (Verilator's unused pattern)
 localparam [0:0] unused_light_regs = ^{1'b0, ${_ruse}${_kusestr}};
 " @ONLY)

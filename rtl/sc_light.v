@@ -120,8 +120,8 @@
 //               the normalisations N (NEED_N & NORMALIZE), V (LV), L (ANY_PL), H (UNITS & BLINN) that
 //               exist are numbered k = 0, 1, ... in that order: K_V, K_L, K_H; S = SHARE
 //               T_NN = ((NEED_N & NORMALIZE) ? NL : 0) + MREG_N·MREG   N̂ or N (registered after the choice with MREG)
-//               T_V  = LV ? K_V mod S + NL : 0             V̂
-//               T_L  = ANY_PL ? K_L mod S + NL : 0         L̂ of point lights
+//               T_V  = LV ? K_V mod S + NL + MREG_P·MREG : 0      V̂ (MREG: −P registered first)
+//               T_L  = ANY_PL ? K_L mod S + NL + MREG_P·MREG : 0  L̂ of point lights (MREG: P_j − P registered first)
 //               D    = MREG_DOT·MREG (2 with MREG): registers inside each of the lanes' dot products
 //               T_A  = max(T_NN, T_L)                      N̂·L → diff, f at T_A+1+D
 //               T_H  = the first t >= max(T_L, T_V, T_NN − NL) with t ≡ K_H (mod S);  T_RV = max(T_A+2+2D, T_V)
@@ -320,8 +320,9 @@ module sc_light #(
   // front pipeline: the time (enabled edges after the issue) at which each value is registered
   localparam integer T_N0  = (OP_N != 0) ? NL : 0;                        // N̂ (0: the input N) chosen
   localparam integer T_NN  = T_N0 + ((NEED_N != 0) ? MREG_N * MREG : 0);  // ... and registered (MREG)
-  localparam integer T_V   = (LV != 0) ? (K_V % SH) + NL : 0;             // V̂ (0: constant)
-  localparam integer T_L   = (ANY_PL != 0) ? (K_L % SH) + NL : 0;         // L̂ of point lights
+  localparam integer MRP   = MREG_P * MREG;                               // −P, P_j − P registered (MREG)
+  localparam integer T_V   = (LV != 0) ? (K_V % SH) + NL + MRP : 0;       // V̂ (0: constant)
+  localparam integer T_L   = (ANY_PL != 0) ? (K_L % SH) + NL + MRP : 0;   // L̂ of point lights
   localparam integer T_A   = sc_max(T_NN, T_L);                             // N̂·L operands
   localparam integer T_H0  = sc_max(sc_max(T_L, T_V), T_NN - NL);     // (N̂ registered after the choice: Ĥ not before it)
   localparam integer T_H   = T_H0 + (((K_H % SH) - (T_H0 % SH)) + SH) % SH;   // H = L + V (Blinn)
@@ -790,8 +791,10 @@ module sc_light #(
         assign v_norm = pool_vhat;
       end else begin : g_own_v
         wire [3*(PW+1)-1:0] mp_pass_unused;
+        wire [3*(PW+1)-1:0] mp_q;   // −P, registered with MREG (an input's subtraction and S1's squares in one stage miss 4.0 ns)
+        sc_delay #(.W(3*(PW+1)), .DEPTH(MRP)) u_dly_mp (.clk_i(clk_i), .en_i(adv_f), .d_i(mp), .q_o(mp_q));
         sc_normalize #(.FRAC(VF), .VW(PW+1), .MREG(MREG)) u_norm_v (
-            .clk_i(clk_i), .en_i(adv_f), .v_i(mp), .u_o(v_norm), .v_o(mp_pass_unused));
+            .clk_i(clk_i), .en_i(adv_f), .v_i(mp_q), .u_o(v_norm), .v_o(mp_pass_unused));
         wire unused_pool_v = &{1'b0, pool_vhat};
       end
       wire [3*NV-1:0] v0 = lv_mode ? v_norm : V_INF;

@@ -295,8 +295,13 @@ module sc_light_lane #(
       end else begin : g_own_l
         assign lv_o = {3*(PW+1){1'b0}};
         wire unused_lhat = &{1'b0, lhat_i};
+        // MREG: P_j − P registered first (MREG_P; an input's subtraction and S1's squares in one stage miss
+        // 4.0 ns); T_L of rtl/sc_light.v counts it
+        wire [3*(PW+1)-1:0] dv_q;
+        sc_delay #(.W(3*(PW+1)), .DEPTH(MREG_P * MREG)) u_dly_dvq (
+            .clk_i(clk_i), .en_i(en_i), .d_i(dv), .q_o(dv_q));
         sc_normalize #(.FRAC(VF), .VW(PW+1), .MREG(MREG)) u_norm_l (
-            .clk_i(clk_i), .en_i(en_i), .v_i(dv), .u_o(l_pt), .v_o(dv_d));
+            .clk_i(clk_i), .en_i(en_i), .v_i(dv_q), .u_o(l_pt), .v_o(dv_d));
       end
     end else begin : g_no_point
       assign l_pt = {3*NW{1'b0}};

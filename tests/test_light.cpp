@@ -932,14 +932,14 @@ TEST(LightModes, MregLengthensThePathThroughTheNormalisersAndTheUnits) {
   // directional lights and an infinite viewer is what sets the front's length)
   EXPECT_EQ(c1.latency(r) - c0.latency(r),
             kMregNormalize + kMregN + kMregDot + 2 * kMregBack + mreg_stages(VariantId::cs16));
-  // a point light's L̂, then Ĥ = normalise(L̂ + V̂): two in series
+  // a point light's P_j − P registered (kMregP), its L̂, then Ĥ = normalise(L̂ + V̂): two in series
   FeatureSet p = base, pm;
   p.slots = {kind_bit(LightKind::Point)};
   pm = p;
   pm.mreg = 1;
   r.light[0].mode = light_mode_word(true, LightKind::Point);
   EXPECT_EQ(LightCore(pm).latency(r) - LightCore(p).latency(r),
-            2 * kMregNormalize + kMregDot + 2 * kMregBack + mreg_stages(VariantId::cs16));
+            kMregP + 2 * kMregNormalize + kMregDot + 2 * kMregBack + mreg_stages(VariantId::cs16));
   // (that the RTL computes the same colours at that latency is the co-simulation's: ctest sim.light.mreg.*)
 }
 

@@ -508,8 +508,9 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   const int k_v = op_n, k_l = op_n + op_v, k_h = op_n + op_v + op_l;
   // N̂ (or N), with MREG registered after the normalize-mode choice before the lanes' dot products
   const int t_nn = (op_n ? NL : 0) + (need_n ? kMregN * fs.mreg : 0);
-  const int t_v = lv ? k_v % S + NL : 0;                              // V̂
-  const int t_l = any_pl ? k_l % S + NL : 0;                          // L̂ of point lights
+  // V̂ and L̂ of point lights: with MREG, −P and P_j − P registered (kMregP) before their normalisers
+  const int t_v = lv ? k_v % S + NL + kMregP * fs.mreg : 0;
+  const int t_l = any_pl ? k_l % S + NL + kMregP * fs.mreg : 0;
   const int t_a = std::max(t_nn, t_l);                                // N̂·L operands
   const int t_h0 = std::max({t_l, t_v, t_nn - NL});                  // Ĥ not before N̂ (MREG registers N̂ once more)
   const int t_h = t_h0 + ((k_h % S - t_h0 % S) + S) % S;              // H = L + V
