@@ -19,7 +19,8 @@ A row also records what of its bundle decided it (rtl/, tb/, vectors/, the I/O c
 flow's hash; --revalidate rewrites the bundle of a row whose key changed and keeps the row when that bundle is
 the one it was measured on (a source that does not change bundles, a new field in configs.json). --from-bundle
 takes a row from a bundle signed off outside the report (an interrupted run resumed step by step), on the same
-condition.
+condition; with --equiv-from REV also a bundle written from REV's RTL, which signoff/equiv.py proves equivalent to
+the RTL these sources write (recorded as carried).
 Long (hours from an empty cache on 2 cores; a lighting set with 8 lights takes the longest); run by hand.
 """
 import argparse
@@ -175,14 +176,22 @@ def from_bundle(a, r, d):
         own = os.path.join(d, "signoff", os.path.basename(f))
         if not (os.path.isfile(own) and open(own, "rb").read() == open(os.path.join(ROOT, f), "rb").read()):
             raise Failure(f"--from-bundle: {d} was signed off by another {f} than this checkout's")
-    now = None
+    now, carry = None, None
     with tempfile.TemporaryDirectory(prefix="shadecore_revalidate.") as tmp:
         fresh = os.path.join(tmp, "b")
         bundle(a, r, fresh, signoff="off")
         now = inputs_of(a, r, fresh)
-    if inputs_sha(d) != now["bundle"]:
+        if inputs_sha(d) != now["bundle"] and getattr(a, "equiv_from", None):
+            # written by the sources of REV for rtl/: carried as --revalidate --equiv-from carries a cached row
+            now, carry = equiv_carry(a, fresh, inputs_sha(d), tmp)
+            if now is None:
+                raise Failure(f"--from-bundle --equiv-from {a.equiv_from}: {d}: {carry}")
+    if inputs_sha(d) != now["bundle"] and carry is None:
         raise Failure(f"--from-bundle: {d} is not the bundle these sources write for {row_id(r)} "
-                      "(rtl/, tb/, vectors/ or the I/O constraints differ): measure the row instead")
+                      "(rtl/, tb/, vectors/ or the I/O constraints differ): measure the row instead, or name the "
+                      "revision whose RTL it was written from (--equiv-from REV)")
+    if carry is not None:
+        s["carried"] = [carry]
     tbc = os.path.join(d, "tb", "tb_config.vh")
     m = re.search(r"localparam integer LATENCY\s*=\s*(\d+)", open(tbc).read()) if os.path.exists(tbc) else None
     s["latency_cycles"] = int(m.group(1)) if m else None
@@ -316,28 +325,37 @@ def revalidate(a, r, hit):
             return None, "its bundle changed"
         if now["flow"] != rec["flow"] or now["target"] != rec["target"]:
             return None, "the flow or the target changed"
-        rev = git("rev-parse", "--verify", a.equiv_from + "^{commit}").strip()
-        old = os.path.join(tmp, "at_rev")
-        shutil.copytree(d, old, symlinks=True)
-        for f in sorted(os.listdir(os.path.join(old, "rtl"))):
-            if git_has(rev, f"rtl/{f}"):
-                with open(os.path.join(old, "rtl", f), "w") as out:
-                    out.write(git("show", f"{rev}:rtl/{f}"))
-        if inputs_sha(old) != rec["bundle"]:
-            return None, f"the bundle with the RTL of {rev[:10]} is not the one measured (another revision, or tb/, " \
-                         "vectors/ or the I/O constraints changed too)"
-        jp = os.path.join(tmp, "equiv.json")
-        p = subprocess.run(["/usr/bin/python3", EQUIV, old, d, "--json", jp, "--timeout", str(a.timeout)],
-                           capture_output=True, text=True)
-        if not os.path.exists(jp):
-            return None, (p.stderr or p.stdout).strip().splitlines()[-1] if (p.stderr or p.stdout).strip() else "equiv.py failed"
-        with open(jp) as fj:
-            e = json.load(fj)
-        if not e["proven"]:
-            return None, f"its RTL is not proven equivalent to {rev[:10]}'s ({e['unproven']} of {e['equiv_cells']} unproven)"
-        carry = {"from_rev": rev, "measured_bundle": rec["bundle"], "equiv_cells": e["equiv_cells"],
-                 "seconds": e["seconds"], "tool": e["yosys"], "date": datetime.date.today().isoformat()}
-        return now, carry
+        return equiv_carry(a, d, rec["bundle"], tmp)
+
+
+def equiv_carry(a, d, measured, tmp):
+    """--equiv-from REV: the bundle d written now from these sources, with each of its rtl/ files that git has at REV
+    replaced by that version, must hash to `measured` (the bundle a row was measured on), and signoff/equiv.py must
+    prove REV's RTL and the current one equivalent for this configuration. Returns (inputs of d, the carry record),
+    or (None, why not)."""
+    now = inputs_of(a, None, d)
+    rev = git("rev-parse", "--verify", a.equiv_from + "^{commit}").strip()
+    old = os.path.join(tmp, "at_rev")
+    shutil.copytree(d, old, symlinks=True)
+    for f in sorted(os.listdir(os.path.join(old, "rtl"))):
+        if git_has(rev, f"rtl/{f}"):
+            with open(os.path.join(old, "rtl", f), "w") as out:
+                out.write(git("show", f"{rev}:rtl/{f}"))
+    if inputs_sha(old) != measured:
+        return None, f"the bundle with the RTL of {rev[:10]} is not the one measured (another revision, or tb/, " \
+                     "vectors/ or the I/O constraints changed too)"
+    jp = os.path.join(tmp, "equiv.json")
+    p = subprocess.run(["/usr/bin/python3", EQUIV, old, d, "--json", jp, "--timeout", str(a.timeout)],
+                       capture_output=True, text=True)
+    if not os.path.exists(jp):
+        return None, (p.stderr or p.stdout).strip().splitlines()[-1] if (p.stderr or p.stdout).strip() else "equiv.py failed"
+    with open(jp) as fj:
+        e = json.load(fj)
+    if not e["proven"]:
+        return None, f"its RTL is not proven equivalent to {rev[:10]}'s ({e['unproven']} of {e['equiv_cells']} unproven)"
+    carry = {"from_rev": rev, "measured_bundle": measured, "equiv_cells": e["equiv_cells"],
+             "seconds": e["seconds"], "tool": e["yosys"], "date": datetime.date.today().isoformat()}
+    return now, carry
 
 
 def git(*args):
@@ -594,7 +612,8 @@ def main():
     ap.add_argument("--equiv-from", default=None, metavar="REV",
                     help="with --revalidate: carry a row whose bundle's RTL changed when the bundle with git REV's "
                          "rtl/ files is the one it was measured on and signoff/equiv.py proves the two RTLs "
-                         "equivalent for the row's configuration (the row says so in the report)")
+                         "equivalent for the row's configuration (the row says so in the report); with "
+                         "--from-bundle: take a bundle written from REV's RTL on the same condition")
     ap.add_argument("--from-bundle", default=None, metavar="DIR",
                     help="take the one --only row from DIR, a bundle signed off to the end (e.g. resumed with "
                          "signoff/signoff.py DIR --steps gatesim,power), when these sources write that very bundle")
@@ -602,8 +621,8 @@ def main():
     ap.add_argument("--cached-only", action="store_true",
                     help="write the report from the cached rows only; list the others as not measured")
     a = ap.parse_args()
-    if a.equiv_from and not a.revalidate:
-        raise Failure("--equiv-from REV goes with --revalidate")
+    if a.equiv_from and not (a.revalidate or a.from_bundle):
+        raise Failure("--equiv-from REV goes with --revalidate or --from-bundle")
     cfg = json.load(open(os.path.join(ROOT, "config", "configs.json")))
     a.shadecore = os.path.join(a.build, "cli", "shadecore")
     if not os.access(a.shadecore, os.X_OK):

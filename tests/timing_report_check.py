@@ -134,6 +134,38 @@ class EquivFrom(Patching):
         self.a.equiv_from = None
         self.assertEqual(tr.revalidate(self.a, self.r, self.hit), (None, "its bundle changed"))
 
+    def kept(self):
+        """A bundle written from REV's RTL and signed off to the end (a run started before the RTL changed)."""
+        d = os.path.join(self.tmp.name, "kept")
+        bundle(d, "c", vec=self.vec)
+        open(os.path.join(d, "rtl", "top.v"), "w").write(self.rev_rtl)
+        os.makedirs(os.path.join(d, "signoff"))
+        for f in tr.FLOW:
+            shutil.copyfile(os.path.join(ROOT, f), os.path.join(d, "signoff", os.path.basename(f)))
+        json.dump({"target_ns": 4.0, "synth": {"cells": 1}, "sta": {"wns_ns": 0.1}, "gatesim": {"passed": True},
+                   "power": {"power_mw": 1.0}}, open(os.path.join(d, "signoff", "signoff.json"), "w"))
+        self.patch("stages_of", lambda d, r: None)
+        return d
+
+    def test_from_bundle_takes_a_bundle_of_an_equivalent_earlier_rtl_as_carried(self):
+        d = self.kept()
+        s = tr.from_bundle(self.a, self.r, d)
+        self.assertEqual(s["carried"][0]["from_rev"], "f" * 40)
+        self.assertEqual(s["carried"][0]["measured_bundle"], tr.inputs_sha(d))
+        self.assertNotEqual(s["inputs"]["bundle"], tr.inputs_sha(d))   # the bundle these sources write now
+
+    def test_from_bundle_refuses_another_function_or_no_equiv_from(self):
+        d = self.kept()
+        self.now_rtl = WIRE.format("~a")
+        with self.assertRaises(tr.Failure) as e:
+            tr.from_bundle(self.a, self.r, d)
+        self.assertIn("not proven equivalent", str(e.exception))
+        self.now_rtl = WIRE.format("~~a")
+        self.a.equiv_from = None
+        with self.assertRaises(tr.Failure) as e:
+            tr.from_bundle(self.a, self.r, d)
+        self.assertIn("is not the bundle these sources write", str(e.exception))
+
 
 class FromBundle(Patching):
     """--from-bundle takes a row only from the bundle these sources write, signed off to the end by this flow."""
