@@ -19,8 +19,9 @@ A row also records what of its bundle decided it (rtl/, tb/, vectors/, the I/O c
 flow's hash; --revalidate rewrites the bundle of a row whose key changed and keeps the row when that bundle is
 the one it was measured on (a source that does not change bundles, a new field in configs.json). --from-bundle
 takes a row from a bundle signed off outside the report (an interrupted run resumed step by step), on the same
-condition; with --equiv-from REV also a bundle written from REV's RTL, which signoff/equiv.py proves equivalent to
-the RTL these sources write (recorded as carried).
+condition; with --equiv-from REV also a bundle written from REV's RTL, and with --equiv one written from its own
+(an edit after the run started), which signoff/equiv.py proves equivalent to the RTL these sources write (recorded
+as carried).
 Long (hours from an empty cache on 2 cores; a lighting set with 8 lights takes the longest); run by hand.
 """
 import argparse
@@ -186,6 +187,11 @@ def from_bundle(a, r, d):
             now, carry = equiv_carry(a, fresh, inputs_sha(d), tmp)
             if now is None:
                 raise Failure(f"--from-bundle --equiv-from {a.equiv_from}: {d}: {carry}")
+        elif inputs_sha(d) != now["bundle"] and getattr(a, "equiv", False):
+            # its own rtl/ is what was mapped (a run started before an edit that was never committed as such)
+            now, carry = equiv_carry(a, fresh, inputs_sha(d), tmp, rtl_from=os.path.join(d, "rtl"))
+            if now is None:
+                raise Failure(f"--from-bundle --equiv: {d}: {carry}")
     if inputs_sha(d) != now["bundle"] and carry is None:
         raise Failure(f"--from-bundle: {d} is not the bundle these sources write for {row_id(r)} "
                       "(rtl/, tb/, vectors/ or the I/O constraints differ): measure the row instead, or name the "
@@ -328,21 +334,29 @@ def revalidate(a, r, hit):
         return equiv_carry(a, d, rec["bundle"], tmp)
 
 
-def equiv_carry(a, d, measured, tmp):
+def equiv_carry(a, d, measured, tmp, rtl_from=None):
     """--equiv-from REV: the bundle d written now from these sources, with each of its rtl/ files that git has at REV
     replaced by that version, must hash to `measured` (the bundle a row was measured on), and signoff/equiv.py must
     prove REV's RTL and the current one equivalent for this configuration. Returns (inputs of d, the carry record),
-    or (None, why not)."""
+    or (None, why not). With rtl_from (--from-bundle --equiv: the signed-off bundle's own rtl/), that directory's
+    files take the place of REV's: the rest of the bundle must be the one written now."""
     now = inputs_of(a, None, d)
-    rev = git("rev-parse", "--verify", a.equiv_from + "^{commit}").strip()
     old = os.path.join(tmp, "at_rev")
     shutil.copytree(d, old, symlinks=True)
-    for f in sorted(os.listdir(os.path.join(old, "rtl"))):
-        if git_has(rev, f"rtl/{f}"):
-            with open(os.path.join(old, "rtl", f), "w") as out:
-                out.write(git("show", f"{rev}:rtl/{f}"))
+    if rtl_from:
+        rev = None
+        shutil.rmtree(os.path.join(old, "rtl"))
+        shutil.copytree(rtl_from, os.path.join(old, "rtl"), symlinks=True)
+        what = "its own RTL"
+    else:
+        rev = git("rev-parse", "--verify", a.equiv_from + "^{commit}").strip()
+        for f in sorted(os.listdir(os.path.join(old, "rtl"))):
+            if git_has(rev, f"rtl/{f}"):
+                with open(os.path.join(old, "rtl", f), "w") as out:
+                    out.write(git("show", f"{rev}:rtl/{f}"))
+        what = f"the RTL of {rev[:10]}"
     if inputs_sha(old) != measured:
-        return None, f"the bundle with the RTL of {rev[:10]} is not the one measured (another revision, or tb/, " \
+        return None, f"the bundle with {what} is not the one measured (another revision, or tb/, " \
                      "vectors/ or the I/O constraints changed too)"
     jp = os.path.join(tmp, "equiv.json")
     p = subprocess.run(["/usr/bin/python3", EQUIV, old, d, "--json", jp, "--timeout", str(a.timeout)],
@@ -352,8 +366,9 @@ def equiv_carry(a, d, measured, tmp):
     with open(jp) as fj:
         e = json.load(fj)
     if not e["proven"]:
-        return None, f"its RTL is not proven equivalent to {rev[:10]}'s ({e['unproven']} of {e['equiv_cells']} unproven)"
-    carry = {"from_rev": rev, "measured_bundle": measured, "equiv_cells": e["equiv_cells"],
+        whose = f"{rev[:10]}'s" if rev else "the bundle's"
+        return None, f"its RTL is not proven equivalent to {whose} ({e['unproven']} of {e['equiv_cells']} unproven)"
+    carry = {"from_rev": rev or "bundle", "measured_bundle": measured, "equiv_cells": e["equiv_cells"],
              "seconds": e["seconds"], "tool": e["yosys"], "date": datetime.date.today().isoformat()}
     return now, carry
 
@@ -490,13 +505,16 @@ def write_md(path, rows, meta, missing=()):
         L += [f"- **{r['name']}**: {r['reason']}." for r in miss]
     carried = [r for r in rows if r.get("carried")]
     if carried:
-        L += ["", "Carried by equivalence, not mapped again (`--revalidate --equiv-from REV`): these rows' numbers are "
-              "those of the netlist mapped from the RTL of the revision named, which signoff/equiv.py (Yosys "
+        L += ["", "Carried by equivalence, not mapped again (`--revalidate --equiv-from REV`, or `--from-bundle DIR "
+              "--equiv` for a bundle signed off from RTL edited since): these rows' numbers are "
+              "those of the netlist mapped from the RTL of the revision named (or of the bundle), which signoff/equiv.py (Yosys "
               "equiv_make, equiv_struct -icells, equiv_simple, equiv_induct) proved equivalent, for the row's configuration, to "
               "the RTL the current sources write; the bundle is otherwise byte for byte the one measured (tb/, "
               "vectors/, I/O constraints). Mapping the current RTL again may differ in the last digits (the names "
               "Yosys and ABC see changed), not in function.", ""]
-        L += [f"- **{r['name']}**: measured on the RTL of `{r['carried'][0]['from_rev'][:10]}`"
+        L += [f"- **{r['name']}**: measured on "
+              + ("the RTL of the bundle it was signed off in (an edit later)" if r["carried"][0]["from_rev"] == "bundle"
+                 else f"the RTL of `{r['carried'][0]['from_rev'][:10]}`")
               + "".join(f"; that RTL proven equivalent to the then-current one on {c['date']} "
                         f"({c['equiv_cells']:,} paired signals, {c['seconds']} s)" for c in r["carried"]) + "."
               for r in carried]
@@ -614,6 +632,10 @@ def main():
                          "rtl/ files is the one it was measured on and signoff/equiv.py proves the two RTLs "
                          "equivalent for the row's configuration (the row says so in the report); with "
                          "--from-bundle: take a bundle written from REV's RTL on the same condition")
+    ap.add_argument("--equiv", action="store_true",
+                    help="with --from-bundle: take a bundle signed off from RTL that differs from what these sources "
+                         "write (an edit after the run started) when the rest of the bundle is the one written now and "
+                         "signoff/equiv.py proves its rtl/ equivalent to the current (recorded as carried)")
     ap.add_argument("--from-bundle", default=None, metavar="DIR",
                     help="take the one --only row from DIR, a bundle signed off to the end (e.g. resumed with "
                          "signoff/signoff.py DIR --steps gatesim,power), when these sources write that very bundle")
@@ -623,6 +645,8 @@ def main():
     a = ap.parse_args()
     if a.equiv_from and not (a.revalidate or a.from_bundle):
         raise Failure("--equiv-from REV goes with --revalidate or --from-bundle")
+    if a.equiv and not a.from_bundle:
+        raise Failure("--equiv goes with --from-bundle")
     cfg = json.load(open(os.path.join(ROOT, "config", "configs.json")))
     a.shadecore = os.path.join(a.build, "cli", "shadecore")
     if not os.access(a.shadecore, os.X_OK):

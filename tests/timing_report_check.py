@@ -154,6 +154,23 @@ class EquivFrom(Patching):
         self.assertEqual(s["carried"][0]["measured_bundle"], tr.inputs_sha(d))
         self.assertNotEqual(s["inputs"]["bundle"], tr.inputs_sha(d))   # the bundle these sources write now
 
+    def test_from_bundle_equiv_takes_its_own_rtl_when_only_the_rtl_differs(self):
+        d = self.kept()
+        open(os.path.join(d, "rtl", "top.v"), "a").write("// an edit never committed\n")
+        self.a.equiv_from, self.a.equiv = None, True
+        s = tr.from_bundle(self.a, self.r, d)
+        self.assertEqual(s["carried"][0]["from_rev"], "bundle")
+        self.assertEqual(s["carried"][0]["measured_bundle"], tr.inputs_sha(d))
+        self.now_rtl = WIRE.format("~a")
+        with self.assertRaises(tr.Failure) as e:
+            tr.from_bundle(self.a, self.r, d)
+        self.assertIn("not proven equivalent", str(e.exception))
+        self.now_rtl = WIRE.format("~~a")
+        open(os.path.join(d, "vectors", "hard.hex"), "a").write("0003\n")   # and something beside the RTL differs
+        with self.assertRaises(tr.Failure) as e:
+            tr.from_bundle(self.a, self.r, d)
+        self.assertIn("with its own RTL is not the one measured", str(e.exception))
+
     def test_from_bundle_refuses_another_function_or_no_equiv_from(self):
         d = self.kept()
         self.now_rtl = WIRE.format("~a")
