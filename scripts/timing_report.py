@@ -727,6 +727,9 @@ def main():
               f"gate sim {row.get('gate_sim_mismatches')} mismatches{' (cached)' if cached else ''}", flush=True)
     if a.dry_run:
         return
+    if not out_rows:
+        raise Failure("no row to report: none of " + ", ".join(missing) + " has a current cached result "
+                      "(nothing written)")
     closes_with_mreg(out_rows)
     cmdline = "scripts/timing_report.py" + "".join(f" {x}" for x in sys.argv[1:])
     info = {"command": cmdline, "machine": figures.machine(), "date": datetime.date.today().isoformat(),
