@@ -454,9 +454,9 @@ def to_row(r, s):
 
 
 def closes_with_mreg(rows):
-    """A unit row that misses the target but whose pipelining-parameter row (<name>+mreg, the same width) meets it:
-    its reason leads with that design point (the same outputs, more cycles), and "closes_with" names it. A row whose
-    +mreg row misses too (a lighting set) leads with how far the parameter gets it."""
+    """A row (a unit or a lighting set) that misses the target but whose pipelining-parameter row (<name>+mreg, the
+    same width) meets it: its reason leads with that design point (the same outputs, more cycles), and "closes_with"
+    names it. A row whose +mreg row misses too leads with how far the parameter gets it."""
     by = {(r["name"], r["width"]): r for r in rows}
     for r in rows:
         m = by.get((r["name"] + "+mreg", r["width"]))
@@ -467,7 +467,7 @@ def closes_with_mreg(rows):
                            f"{r['latency_cycles']} and {m['flops']:,} flip-flops instead of {r['flops']:,}; that row's "
                            f"reason says what is left. Without it, it " + r["reason"])
             continue
-        if r["met"] or r["kind"] != "unit" or not m or not m["met"]:
+        if r["met"] or not m or not m["met"]:
             continue
         r["closes_with"] = m["name"]
         r["reason"] = (f"closes with the pipelining parameter MREG = 1: row {m['name']} (the same outputs) meets "
@@ -515,8 +515,10 @@ def write_md(path, rows, meta, missing=()):
         L += [f"- **{r['name']}**: measured on "
               + ("the RTL of the bundle it was signed off in (an edit later)" if r["carried"][0]["from_rev"] == "bundle"
                  else f"the RTL of `{r['carried'][0]['from_rev'][:10]}`")
-              + "".join(f"; that RTL proven equivalent to the then-current one on {c['date']} "
-                        f"({c['equiv_cells']:,} paired signals, {c['seconds']} s)" for c in r["carried"]) + "."
+              + "; carried by proof: " + ", then ".join(
+                  ("that RTL" if c["from_rev"] == "bundle" else f"`{c['from_rev'][:10]}`'s RTL")
+                  + f" proven equivalent to the then-current one on {c['date']} "
+                  f"({c['equiv_cells']:,} paired signals, {c['seconds']} s)" for c in r["carried"]) + "."
               for r in carried]
     if missing:
         L += ["", "Not measured in this report (no current cached result; docs/signoff.md says why): "

@@ -245,7 +245,7 @@ class FromBundle(Patching):
 
 
 class ClosesWithMreg(unittest.TestCase):
-    """A unit row that misses the target leads its reason with its +mreg row only when that row meets it."""
+    """A row that misses the target leads its reason with its +mreg row of the same width when that row meets it."""
 
     @staticmethod
     def row(name, met, kind="unit", width="default (F=16, G=5)", period=4.9, lat=7, flops=275):
@@ -261,12 +261,14 @@ class ClosesWithMreg(unittest.TestCase):
         self.assertIn("misses 4.0 ns by 0.9 ns", rows[0]["reason"])
         self.assertNotIn("closes_with", rows[1])
 
-    def test_another_width_or_a_lighting_row_is_not(self):
+    def test_another_width_is_not_a_lighting_set_is(self):
         rows = [self.row("cs16", False, width="narrow (F=10, G=5)"), self.row("cs16+mreg", True),
                 self.row("gl_default", False, kind="lighting"), self.row("gl_default+mreg", True, kind="lighting")]
         tr.closes_with_mreg(rows)
-        self.assertFalse(any("closes_with" in r for r in rows))
-        self.assertTrue(all(r["reason"] == "misses 4.0 ns by 0.9 ns" for r in rows))
+        self.assertNotIn("closes_with", rows[0])
+        self.assertEqual(rows[0]["reason"], "misses 4.0 ns by 0.9 ns")
+        self.assertEqual(rows[2]["closes_with"], "gl_default+mreg")
+        self.assertTrue(rows[2]["reason"].startswith("closes with the pipelining parameter MREG = 1: row gl_default+mreg"))
 
     def test_an_mreg_row_that_misses_too_says_how_far_it_gets(self):
         rows = [self.row("gl_default", False, kind="lighting", period=9.5, lat=21, flops=4365),
