@@ -25,7 +25,8 @@ unit's file is that mutant (every other module unchanged), cheapest check first:
 
 each bounded in time (timeout = max(--min-timeout, --timeout-factor x the unmutated design's time)).
 A bench failure kills the mutant; a stage that runs out of time makes it "timeout" (counted apart).
-A survivor is "equivalent" only when Yosys proves it (each proof bounded by --eq-timeout; see equivalence()):
+A survivor is "equivalent" only when Yosys proves it (each proof bounded by --eq-timeout seconds of CPU time, not of
+the wall clock, so that the machine's load does not decide it; see equivalence()):
 (0) a tied bit that is that constant already, (a) combinational SAT of a miter with every flip-flop exposed as a port pair, else (b) equiv_make of the
 original and the mutant (same-named nets paired, the mutated wire left out), equiv_simple -seq N,
 equiv_induct -seq N, `equiv_status -assert`. --eq-timeout 0 skips it; a later run with a bound adds it to
@@ -53,6 +54,7 @@ import multiprocessing
 import os
 import platform
 import re
+import resource
 import shutil
 import signal
 import subprocess
@@ -87,6 +89,10 @@ EQ_METHOD = 6  # equivalence(): 6 = constant bit, combinational SAT, equiv_*, wi
 #                older method's survivor is tried again. 4 and 5 (a one-step `sat -seq 1` in (a)) proved a mutant the
 #                bench kills (schlick_div m115 of 2026-12-06): their "equivalent" results are void and re-run.
 VOID_METHODS = (4, 5)
+# What bounds a proof: "cpu" = --eq-timeout seconds of the prover's CPU time (RLIMIT_CPU; a wall-clock guard of ten
+# times that plus a minute beside it), so that a loaded machine does not turn a proof into "not proved". Proofs made
+# under the earlier wall-clock bound (no "eq_bound") that did not succeed are tried again; their successes stand.
+EQ_BOUND = "cpu"
 
 
 class ArgError(Exception):
@@ -120,15 +126,21 @@ def sha(*parts):
 CHILD = [None]  # the running child's process group (killed when a worker is terminated)
 
 
-def run(cmd, cwd=None, env=None, timeout=None):
-    """Run cmd in its own process group; returns (rc or None on timeout, output, seconds)."""
+def run(cmd, cwd=None, env=None, timeout=None, cpu=None):
+    """Run cmd in its own process group; returns (rc or None on timeout, output, seconds). With cpu, the child gets
+    that many seconds of CPU time (RLIMIT_CPU) and running past it counts as a timeout too."""
     t0 = time.time()
+
+    def limit():
+        resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 5))
     p = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                         start_new_session=True)
+                         start_new_session=True, preexec_fn=limit if cpu else None)
     CHILD[0] = p.pid
     try:
         out, _ = p.communicate(timeout=timeout)
         CHILD[0] = None
+        if cpu and p.returncode in (-signal.SIGXCPU, -signal.SIGKILL):
+            return None, out.decode(errors="replace"), time.time() - t0
         return p.returncode, out.decode(errors="replace"), time.time() - t0
     except subprocess.TimeoutExpired:
         try:
@@ -392,7 +404,7 @@ def equivalence(ctx, idx, mdir):
                      "sat -verify -seq 1 -prove mutation_check_w[%s] 1'b%s\n"
                      % (ctx["design_il"], unit, f["wire"], f["wirebit"], f["mode"][-1]))
         logf = os.path.join(mdir, "const.log")
-        rc, out, secs = run(["yosys", "-q", "-l", logf, ys], cwd=mdir, timeout=ctx["eq_timeout"])
+        rc, out, secs = run(["yosys", "-q", "-l", logf, ys], cwd=mdir, **proof_bound(ctx))
         logtxt = open(logf).read() if os.path.isfile(logf) else ""
         if rc == 0 and "no model found: SUCCESS!" in logtxt:
             return "equivalent", "the tied bit %s[%s] is %s in every state already (sat -seq 1 -prove, %.0f s)" % (
@@ -406,7 +418,7 @@ def equivalence(ctx, idx, mdir):
                 "hierarchy -top miter\nopt -fast\nopt_merge -share_all\nopt_clean\nsat -verify -prove trigger 0 miter\n"
                 % (ctx["design_il"], unit, mut, unit))
     logf = os.path.join(mdir, "comb.log")
-    rc, out, secs = run(["yosys", "-q", "-l", logf, ys], cwd=mdir, timeout=ctx["eq_timeout"])
+    rc, out, secs = run(["yosys", "-q", "-l", logf, ys], cwd=mdir, **proof_bound(ctx))
     logtxt = open(logf).read() if os.path.isfile(logf) else ""
     if rc == 0 and "no model found: SUCCESS!" in logtxt:
         return "equivalent", "combinational SAT with the flip-flops as ports: proved (%.0f s)" % secs
@@ -424,14 +436,19 @@ def equivalence(ctx, idx, mdir):
                 "equiv_simple -seq %d\nequiv_induct -seq %d\nequiv_status -assert\n"
                 % (ctx["design_il"], unit, mut, unit, bl, n, n))
     logf = os.path.join(mdir, "equiv.log")
-    rc, out, secs = run(["yosys", "-q", "-l", logf, ys], cwd=mdir, timeout=ctx["eq_timeout"])
+    rc, out, secs = run(["yosys", "-q", "-l", logf, ys], cwd=mdir, **proof_bound(ctx))
     logtxt = open(logf).read() if os.path.isfile(logf) else ""
     if rc == 0 and "Equivalence successfully proven!" in logtxt:
         return "equivalent", "equiv_simple/equiv_induct -seq %d: every pair proved (%.0f s)" % (n, secs)
     m = re.search(r"Of those cells (\d+) are proven and (\d+) are unproven", logtxt)
     tries.append("equiv_*: %s" % ("timed out" if rc is None else "%s of %d pairs unproven"
                                   % (m.group(2), int(m.group(1)) + int(m.group(2))) if m else "rc %s" % rc))
-    return "unknown", "not proved within %d s each (%s)" % (ctx["eq_timeout"], "; ".join(tries))
+    return "unknown", "not proved within %d CPU s each (%s)" % (ctx["eq_timeout"], "; ".join(tries))
+
+
+def proof_bound(ctx):
+    """The bound of one proof (EQ_BOUND): CPU seconds, and a wall-clock guard."""
+    return {"cpu": ctx["eq_timeout"], "timeout": 10 * ctx["eq_timeout"] + 60}
 
 
 def run_mutant(args):
@@ -458,9 +475,10 @@ def run_mutant(args):
                 res.update(status="killed", stage=stage, detail=line[:300])
                 break
         if res["status"] == "survived" and idx > 0 and ctx["eq_timeout"] > 0 and \
-                res.get("eq_method") != EQ_METHOD:
+                (res.get("eq_method") != EQ_METHOD or res.get("eq_bound") != EQ_BOUND):
             known = ctx.get("proofs", {}).get(str(idx))
-            if known and (known["equivalent"] or known["eq_timeout"] >= ctx["eq_timeout"]):
+            if known and (known["equivalent"] or (known["eq_timeout"] >= ctx["eq_timeout"]
+                                                  and known.get("eq_bound") == EQ_BOUND)):
                 eq = "equivalent" if known["equivalent"] else "unknown"
                 why = known["why"] if known["why"].endswith("(proof reused)") else known["why"] + " (proof reused)"
                 res["eq_timeout"] = known["eq_timeout"]
@@ -469,6 +487,7 @@ def run_mutant(args):
                 res["eq_timeout"] = ctx["eq_timeout"]
             res["equivalence"] = why
             res["eq_method"] = EQ_METHOD
+            res["eq_bound"] = EQ_BOUND
             if eq == "equivalent":
                 res["status"] = "equivalent"
         if res["status"] == "survived" and idx > 0:
@@ -526,7 +545,7 @@ def proof_of(r, eq_timeout):
     if r.get("eq_method") != EQ_METHOD or "equivalence" not in r:
         return None
     return {"equivalent": r["status"] == "equivalent", "why": r["equivalence"],
-            "eq_timeout": r.get("eq_timeout", eq_timeout)}
+            "eq_timeout": r.get("eq_timeout", eq_timeout), "eq_bound": r.get("eq_bound")}
 
 
 def vector_files(bundle):
@@ -682,7 +701,7 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
             return True
         return r["status"] == "error" or (r["status"] == "survived" and (
             any(st not in r.get("stages", STAGES[:4]) for st in stages) or
-            (opts.eq_timeout > 0 and r.get("eq_method") != EQ_METHOD)))
+            (opts.eq_timeout > 0 and (r.get("eq_method") != EQ_METHOD or r.get("eq_bound") != EQ_BOUND))))
     todo = [i for i in ids if str(i) not in cache["results"] or stale(cache["results"][str(i)])]
     done = len(ids) - len(todo)
     if done:
@@ -859,7 +878,8 @@ def write_report(opts, designs, md_path, json_path):
          "witness; a survivor of it computes the C model's function on the unit's whole input domain, which is "
          "recorded but is not a proof of equivalence); each "
          "stage is time-bounded (max(%d s, %g × the unmutated time)). A survivor counts as *equivalent* only "
-         "when Yosys proves it, each proof bounded by the design's equivalence bound: (0) for a tie to 0 or 1, the "
+         "when Yosys proves it, each proof bounded by the design's equivalence bound in CPU seconds (since 2026-12-07; "
+         "wall-clock before, which a loaded machine could turn into 'not proved'): (0) for a tie to 0 or 1, the "
          "bit is that constant in the original from every state (`sat -seq 1 -prove`), else (a) a miter of original and "
          "mutant with every flip-flop exposed as a port pair (`dffunmap; expose -evert-dff; miter -equiv; "
          "opt_merge; sat -prove trigger 0`: the same next state and outputs from every state), else (b) "
@@ -990,7 +1010,7 @@ def main(argv):
     ap.add_argument("--vec-count", type=int, default=2000, help="handoff --count, default 2000")
     ap.add_argument("--min-timeout", type=float, default=20.0, help="seconds, lower bound of a stage's time limit")
     ap.add_argument("--timeout-factor", type=float, default=5.0, help="stage time limit / unmutated time, default 5")
-    ap.add_argument("--eq-timeout", type=int, default=30, help="seconds for the equivalence proof (0: skip)")
+    ap.add_argument("--eq-timeout", type=int, default=30, help="CPU seconds for each equivalence proof (0: skip)")
     ap.add_argument("--eq-steps", type=int, default=8, help="equiv_simple/equiv_induct -seq N, default 8")
     ap.add_argument("--md", default=os.path.join(ROOT, "docs", "mutation.md"))
     ap.add_argument("--json", default=os.path.join(ROOT, "docs", "mutation.json"))
