@@ -91,7 +91,8 @@ EQ_METHOD = 6  # equivalence(): 6 = constant bit, combinational SAT, equiv_*, wi
 VOID_METHODS = (4, 5)
 # What bounds a proof: "cpu" = --eq-timeout seconds of the prover's CPU time (RLIMIT_CPU; a wall-clock guard of ten
 # times that plus a minute beside it), so that a loaded machine does not turn a proof into "not proved". Proofs made
-# under the earlier wall-clock bound (no "eq_bound") that did not succeed are tried again; their successes stand.
+# under the earlier wall-clock bound (no "eq_bound") that did not succeed are tried again, and so is a survivor
+# whose proof had a smaller bound than this run's; successes stand.
 EQ_BOUND = "cpu"
 
 
@@ -475,7 +476,8 @@ def run_mutant(args):
                 res.update(status="killed", stage=stage, detail=line[:300])
                 break
         if res["status"] == "survived" and idx > 0 and ctx["eq_timeout"] > 0 and \
-                (res.get("eq_method") != EQ_METHOD or res.get("eq_bound") != EQ_BOUND):
+                (res.get("eq_method") != EQ_METHOD or res.get("eq_bound") != EQ_BOUND
+                 or res.get("eq_timeout", 0) < ctx["eq_timeout"]):
             known = ctx.get("proofs", {}).get(str(idx))
             if known and (known["equivalent"] or (known["eq_timeout"] >= ctx["eq_timeout"]
                                                   and known.get("eq_bound") == EQ_BOUND)):
@@ -701,7 +703,8 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
             return True
         return r["status"] == "error" or (r["status"] == "survived" and (
             any(st not in r.get("stages", STAGES[:4]) for st in stages) or
-            (opts.eq_timeout > 0 and (r.get("eq_method") != EQ_METHOD or r.get("eq_bound") != EQ_BOUND))))
+            (opts.eq_timeout > 0 and (r.get("eq_method") != EQ_METHOD or r.get("eq_bound") != EQ_BOUND
+                                      or r.get("eq_timeout", 0) < opts.eq_timeout))))
     todo = [i for i in ids if str(i) not in cache["results"] or stale(cache["results"][str(i)])]
     done = len(ids) - len(todo)
     if done:
