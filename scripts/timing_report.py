@@ -444,9 +444,11 @@ def to_row(r, s):
             out["reason"] += ("; the lighting core's pipelining parameter MREG (row <set>+mreg) registers the "
                               f"normalisers' products ({lat['normalize']} -> {lat['normalize'] + lat['mreg_normalize']} "
                               f"cycles), each dot product ({lat['mreg_dot']} more), each product stage of the back "
-                              f"({lat['mreg_back']} more) and the lanes' N before the dot products ({lat['mreg_n']} more), "
-                              "and passes MREG to the units; the reciprocal (sc_recip), the spot power chain (sc_powi) "
-                              "and the energy stage (sc_energy) have no register inside yet")
+                              f"({lat['mreg_back']} more), the lanes' N before the dot products ({lat['mreg_n']} more) "
+                              f"and P before the L and V normalisers ({lat['mreg_p']} more), and passes MREG to the units "
+                              "and the energy stage; the attenuation's q = kc + kl·d + kq·d² (its slot multiplexer and "
+                              "products), the reciprocal (sc_recip) and the spot power chain (sc_powi) have no register "
+                              "inside yet")
     if gs is None:
         out["reason_gate_sim"] = ("no gate-level run: the handoff bench cannot load a table RAM"
                                   if r["table"] else "not run")
