@@ -447,6 +447,12 @@ def equivalence(ctx, idx, mdir):
     return "unknown", "not proved within %d CPU s each (%s)" % (ctx["eq_timeout"], "; ".join(tries))
 
 
+def needs_proof(r, eq_timeout):
+    """A survivor's proof is (re)tried when it was made by another method, under the old wall-clock bound, or with a
+    smaller bound than eq_timeout."""
+    return r.get("eq_method") != EQ_METHOD or r.get("eq_bound") != EQ_BOUND or r.get("eq_timeout", 0) < eq_timeout
+
+
 def proof_bound(ctx):
     """The bound of one proof (EQ_BOUND): CPU seconds, and a wall-clock guard."""
     return {"cpu": ctx["eq_timeout"], "timeout": 10 * ctx["eq_timeout"] + 60}
@@ -475,9 +481,7 @@ def run_mutant(args):
             if rc != 0:
                 res.update(status="killed", stage=stage, detail=line[:300])
                 break
-        if res["status"] == "survived" and idx > 0 and ctx["eq_timeout"] > 0 and \
-                (res.get("eq_method") != EQ_METHOD or res.get("eq_bound") != EQ_BOUND
-                 or res.get("eq_timeout", 0) < ctx["eq_timeout"]):
+        if res["status"] == "survived" and idx > 0 and ctx["eq_timeout"] > 0 and needs_proof(res, ctx["eq_timeout"]):
             known = ctx.get("proofs", {}).get(str(idx))
             if known and (known["equivalent"] or (known["eq_timeout"] >= ctx["eq_timeout"]
                                                   and known.get("eq_bound") == EQ_BOUND)):
@@ -703,8 +707,7 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
             return True
         return r["status"] == "error" or (r["status"] == "survived" and (
             any(st not in r.get("stages", STAGES[:4]) for st in stages) or
-            (opts.eq_timeout > 0 and (r.get("eq_method") != EQ_METHOD or r.get("eq_bound") != EQ_BOUND
-                                      or r.get("eq_timeout", 0) < opts.eq_timeout))))
+            (opts.eq_timeout > 0 and needs_proof(r, opts.eq_timeout))))
     todo = [i for i in ids if str(i) not in cache["results"] or stale(cache["results"][str(i)])]
     done = len(ids) - len(todo)
     if done:

@@ -68,6 +68,19 @@ def main():
     if p.returncode != 0 or "exhaustive: first mismatch: n " not in p.stdout:
         print("FAIL: the cs16 mutant matching %s is not killed by the exhaustive stage with a witness" % EXH_PICK)
         fails += 1
+    # The proofs' bound is CPU time (a busy child stopped at its CPU limit counts as a timeout, however loaded the
+    # machine), and a survivor is proved again when its proof was wall-clock bounded or had a smaller bound.
+    sys.path.insert(0, os.path.dirname(SCRIPT))
+    import mutation  # noqa: E402
+    rc, _, secs = mutation.run(["sh", "-c", "while :; do :; done"], timeout=60, cpu=1)
+    ok = rc is None and secs < 30
+    rc2, out2, _ = mutation.run(["sh", "-c", "echo done"], timeout=60, cpu=1)
+    ok = ok and rc2 == 0 and out2.strip() == "done"
+    base = {"eq_method": mutation.EQ_METHOD, "eq_bound": mutation.EQ_BOUND, "eq_timeout": 30}
+    ok = ok and not mutation.needs_proof(base, 30) and mutation.needs_proof(base, 60) \
+        and mutation.needs_proof(dict(base, eq_bound=None), 30) and mutation.needs_proof(dict(base, eq_method=5), 30)
+    print("%s CPU-bounded proofs: a busy child stopped after %.1f s (1 CPU s), re-proof rule" % ("ok  " if ok else "FAIL", secs))
+    fails += not ok
     print("mutation_check: %s" % ("PASS" if not fails else "FAIL (%d)" % fails))
     return 1 if fails else 0
 
