@@ -112,7 +112,7 @@
 //             product's truncation, docs/spec.md §10.4).
 //
 // Latency   : per pass LATENCY_P advancing edges from its issue to the colour (out_ready_i high):
-//               NL = 10 + 8·MREG (sc_normalize), RL = 7 (sc_recip) (config/configs.json light.latency, through
+//               NL = 10 + 8·MREG (sc_normalize), RL = 7 (sc_recip; 11 with MREG) (config/configs.json light.latency, through
 //               sc_light_regs.vh), NEED_N = DIFFUSE | UNITS,
 //               LV = UNITS & LOCAL_VIEWER, ANY_ATT = some slot can be point_att or spot,
 //               ANY_SPOT = some slot can be spot,
@@ -127,6 +127,7 @@
 //               T_H  = the first t >= max(T_L, T_V, T_NN − NL) with t ≡ K_H (mod S);  T_RV = max(T_A+2+2D, T_V)
 //               T_XB = T_H+NL+1+D (BLINN), T_XP = LV ? T_RV+1+D : T_A+2+2D (PHONG)   unit input x
 //               T_ATT = T_L+3+D+RL (+1 with SHARE > 1)     att (point_att)
+//                       + (MREG_ATT + MREG_RECIP)·MREG     (q's and sc_recip's products over two edges each)
 //               T_SP = T_L+2+D+SPOT_EXP_BITS               the spot factor (sc_powi, one stage per exponent bit;
 //                                                          SPOT_EXP_BITS = 8, sc_light_regs.vh)
 //               T_X  = max(T_XB, T_XP) of the reflections that exist
@@ -332,7 +333,7 @@ module sc_light #(
   localparam integer T_X   = sc_max((HAS_B != 0) ? T_XB : 0, (HAS_P != 0) ? T_XP : 0);
   // att (point_att; T_L = NL with SHARE 1); with SHARE > 1 q takes one stage more, its three products at
   // three stages sharing one multiplier (rtl/sc_light_lane.v)
-  localparam integer T_ATT = T_L + 3 + D + RL + ((SH > 1) ? 1 : 0);
+  localparam integer T_ATT = T_L + 3 + D + RL + ((SH > 1) ? 1 : 0) + (MREG_ATT + MREG_RECIP) * MREG;
   localparam integer SPEB  = SPOT_EXP_BITS;                                // spot exponent bits (sc_powi stages)
   localparam integer T_SP  = T_L + 2 + D + SPEB;                           // the spot factor
   localparam integer LNB   = LOW_N_BITS;                                 // the low-shininess chain's stages

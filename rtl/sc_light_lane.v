@@ -412,12 +412,51 @@ module sc_light_lane #(
       always @(posedge clk_i) begin
         if (en_i) a1_d_q <= d_d;
       end
+      localparam integer MQ = MREG_ATT * MREG;   // q's extra stages (MREG, SHARE = 1)
       wire [QW-1:0] q_d;
-      reg  [QW-1:0] q_q;   // q at T_L+3 (SH = 1) or T_L+4 (SH > 1)
+      reg  [QW-1:0] q_q;   // q at T_L+3+D+MQ (SH = 1) or T_L+4 (SH > 1)
       always @(posedge clk_i) begin
         if (en_i) q_q <= q_d;
       end
-      if (SH == 1) begin : g_q3
+      if (SH == 1 && MQ != 0) begin : g_q5
+        // MREG: the same q over MQ = 2 more edges, each product through rtl/sc_mul_reg.v (LAT = 2), with the
+        // slot's kl, kc (and kq) read a stage early and registered, so that no slot multiplexer and no
+        // separate adder stands in front of a tree. kc + ⌊kl·d / 2^F⌋ = ⌊(kl·d + kc·2^F) / 2^F⌋ and
+        // q = s + ⌊kq·dd / 2^F⌋ = ⌊(kq·dd + s·2^F) / 2^F⌋ exactly (kc·2^F and s·2^F are multiples of 2^F):
+        //   A2 (T_L+1+D, two edges): dd = ⌊d·d / 2^F⌋, s = ⌊(kl·d + kc·2^F) / 2^F⌋
+        //   A3 (T_L+3+D, two edges): q = ⌊(kq·⌊dd / 2^F⌋ + s·2^F) / 2^F⌋ mod 2^QW (sc_mul_reg LAT = 1: its
+        //   register on the tree's carry-save rows, its adder in front of q_q)
+        wire [2:0] idx_a0 = idx_s[3*(T_L+D) +: 3];
+        wire [2:0] idx_q2 = idx_s[3*(T_L+2+D) +: 3];
+        wire unused_idx_a = &{1'b0, idx_a1, idx_a2};
+        reg [PW-1:0] kl_q, kc_q, kq_q;
+        always @(posedge clk_i) begin
+          if (en_i) begin
+            kl_q <= katt_i[(3*idx_a0 + 1)*PW +: PW];
+            kc_q <= katt_i[(3*idx_a0 + 0)*PW +: PW];
+            kq_q <= katt_i[(3*idx_q2 + 2)*PW +: PW];
+          end
+        end
+        localparam integer KW = PW + DW + 1;   // kl·d + kc·2^F < 2^(PW+DW) + 2^(PW+F)
+        // d·d is a square: sc_mul_reg LAT = 1 (the cell flow maps a square with one register) and dd's own
+        // register after it, the same two edges as LAT = 2
+        wire [2*DW-1:0] dd_p;
+        wire [KW-1:0]   s_p;
+        sc_mul_reg #(.AW(DW), .BW(DW), .PW(2*DW), .LAT(1)) u_dd (
+            .clk_i(clk_i), .en_i(en_i), .a_i(a1_d_q), .b_i(a1_d_q), .c_i(1'b0), .p_o(dd_p));
+        reg [DDW-1:0] a3_dd_q;
+        always @(posedge clk_i) begin
+          if (en_i) a3_dd_q <= dd_p[2*DW-1:F];
+        end
+        sc_mul_reg #(.AW(PW), .BW(DW), .PW(KW), .ADD(1), .CW(PW+F), .LAT(2)) u_s (
+            .clk_i(clk_i), .en_i(en_i), .a_i(kl_q), .b_i(a1_d_q), .c_i({kc_q, {F{1'b0}}}), .p_o(s_p));
+        wire [QW+F-1:0] q_p;
+        sc_mul_reg #(.AW(PW), .BW(DDW), .PW(QW+F), .ADD(1), .CW(KW), .LAT(1)) u_q (
+            .clk_i(clk_i), .en_i(en_i), .a_i(kq_q), .b_i(a3_dd_q), .c_i({s_p[KW-1:F], {F{1'b0}}}),
+            .p_o(q_p));
+        wire unused_q = &{1'b0, dd_p[F-1:0], s_p[F-1:0], q_p[F-1:0]};
+        assign q_d = q_p[QW+F-1:F];
+      end else if (SH == 1) begin : g_q3
         // A2: dd = ⌊d² / 2^F⌋, kld = ⌊kl·d / 2^F⌋; A3: q = kc + kld + ⌊kq·dd / 2^F⌋
         wire [PW-1:0] kl = katt_i[(3*idx_a1 + 1)*PW +: PW];
         wire [PW-1:0] kc = katt_i[(3*idx_a2 + 0)*PW +: PW];
@@ -478,9 +517,10 @@ module sc_light_lane #(
       end
       // att = 1/q at T_ATT for point_att, 2^F for the other kinds; then to T_F
       wire [FRAC+7:0] att_r;
-      // q at T_L+3 (+1 with SH > 1): the recip's products share multipliers over SH stages by the phase
-      // (rtl/sc_recip.v)
-      sc_recip #(.FRAC(FRAC), .QW(QW), .SH(SH), .PH0((T_L + 3 + D + ((SH > 1) ? 1 : 0)) % SH)) u_recip (
+      // q at T_L+3+D+MQ (+1 with SH > 1): the recip's products share multipliers over SH stages by the
+      // phase (rtl/sc_recip.v); with MREG each of its products takes two edges (MREG_RECIP more)
+      sc_recip #(.FRAC(FRAC), .QW(QW), .SH(SH), .PH0((T_L + 3 + D + ((SH > 1) ? 1 : 0)) % SH),
+                 .MREG(MREG)) u_recip (
           .clk_i(clk_i), .en_i(en_i), .q_i(q_q), .ph_i(ph_i), .att_o(att_r));
       wire [1:0] kind_t = kind_i[2*idx_t +: 2];
       wire [FRAC+7:0] att_k = (kind_t == KIND_POINT_ATT[1:0] || kind_t == KIND_SPOT[1:0]) ? att_r : ATT_ONE;

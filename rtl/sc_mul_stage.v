@@ -5,8 +5,8 @@
 //            combinationally; with MREG = 1 the product goes through rtl/sc_mul_reg.v (its register between the
 //            partial-product tree and the final adder in the cell flow) and p_o is that of the operands one
 //            enabled edge ago. A sideband (the values a pipeline stage carries beside its product) is delayed by
-//            the same MREG edges, so side_o stays aligned with p_o. The lighting core's normaliser and reciprocal
-//            (rtl/sc_normalize.v, rtl/sc_recip.v) are written once with it for both values of their MREG.
+//            the same MREG edges, so side_o stays aligned with p_o. The lighting core's normaliser (rtl/sc_normalize.v)
+//            is written once with it for both values of its MREG.
 //
 // Parameters (illegal values stop elaboration with a message, in Icarus, Verilator and Yosys):
 //   AW, BW, PW, SIGNED, ADD, CW   as rtl/sc_mul_reg.v; ADD = 1 needs MREG = 1 (defaults 8, 8, 16, 0, 0, 1)

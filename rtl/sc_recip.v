@@ -17,6 +17,12 @@
 //         Newton–Raphson products (S2..S5) share ⌈4/SH⌉ multipliers (rtl/sc_mul_pool.v), chosen by ph_i (default 1)
 //   PH0   0..SH-1: ph_i ≡ PH0 + k (mod SH) while a pass's q is k stages past q_i (the pass at q_i
 //         itself at PH0)                                                               (default 0)
+//   MREG  0 or 1, the lighting core's pipelining parameter (SH = 1 only): each Newton–Raphson product
+//         (S3..S6) takes two edges through rtl/sc_mul_reg.v (LAT = 2: its tree | register | its adder |
+//         register), and g = 2^(R+1) − e is folded into the next product as y·~e + y (e < 2^(R+1), so
+//         ~e + 1 = g over R+1 bits): no subtractor is left between two trees. The same att, 4 edges
+//         later (config/configs.json light.latency mreg_recip; the shared datapath below is then
+//         unused and removed by synthesis)                                             (default 0)
 //
 // Ports : clk_i             clock, all flops on the rising edge
 //         en_i              enable (the embedding pipeline's global enable)
@@ -25,7 +31,7 @@
 //         att_o[F+7:0]      att = round_half_up(2^F / (q/2^F)), F fraction bits, saturated to
 //                           ATT_MAX = 2^(F+8) − 1 (q = 0 and every q < 2^(F−8) give ATT_MAX)
 //
-// Latency : LATENCY = 7 enabled edges (stages S1..S7).
+// Latency : LATENCY = 7 enabled edges (stages S1..S7); 11 with MREG = 1.
 //
 // Datapath (R = F+8 fraction bits of the reciprocal, P = 6 index bits, T = 10 table fraction bits,
 // QWF = max(QW, R+1)):
@@ -49,7 +55,8 @@ module sc_recip #(
     parameter integer FRAC = 16,
     parameter integer QW   = 43,
     parameter integer SH   = 1,
-    parameter integer PH0  = 0
+    parameter integer PH0  = 0,
+    parameter integer MREG = 0
 ) (
     input  wire              clk_i,
     input  wire              en_i,
@@ -79,6 +86,9 @@ module sc_recip #(
     end
     if (SH < 1 || SH > 4 || PH0 < 0 || PH0 >= SH) begin : g_check_sh
       sc_recip_error_illegal_SH_1_to_4_and_PH0_0_to_SH_minus_1 u_error ();
+    end
+    if (MREG != 0 && (MREG != 1 || SH != 1)) begin : g_check_mreg
+      sc_recip_error_illegal_MREG_0_or_1_and_1_needs_SH_1 u_error ();
     end
   endgenerate
 
@@ -262,20 +272,64 @@ module sc_recip #(
       .b_i({{(MB-TT){1'b0}}, s2_y0_q, {(MB-TT){1'b0}}, s3_y0_q, s5_y1_q, s4_y1_q}),
       .sel_i(psel), .p_o(pp));
 
+  // ---------------------------------------------------------------------------- MREG: S3..S6 over two edges each
+  wire [R:0]     y2_6;    // y2, sh and sat at S7's input
+  wire [SHW-1:0] sh_6;
+  wire           sat_6;
+  generate
+    if (MREG == 0) begin : g_one
+      assign y2_6  = s6_y2_q;
+      assign sh_6  = s6_sh_q;
+      assign sat_6 = s6_sat_q;
+    end else begin : g_mreg
+      wire unused_one = &{1'b0, s6_y2_q, s6_sh_q, s6_sat_q, ph_i};
+      // S3: e0 = ⌊mt·y0 / 2^T⌋
+      wire [R+T:0] me0_p;
+      sc_mul_reg #(.AW(R+1), .BW(T), .PW(R+T+1), .LAT(2)) u_e0 (
+          .clk_i(clk_i), .en_i(en_i), .a_i(s2_mt_q), .b_i(s2_y0_q), .c_i(1'b0), .p_o(me0_p));
+      wire unused_me0 = &{1'b0, me0_p[T-1:0]};
+      // S4: y1 = ⌊y0·g0 / 2^T⌋, y0·g0 = y0·~e0 + y0
+      wire [T-1:0] my0_4;
+      sc_delay #(.W(T), .DEPTH(2)) u_dly_y0 (.clk_i(clk_i), .en_i(en_i), .d_i(s2_y0_q), .q_o(my0_4));
+      wire [R+T+1:0] my1_p;
+      sc_mul_reg #(.AW(R+1), .BW(T), .PW(R+T+2), .ADD(1), .CW(T), .LAT(2)) u_y1 (
+          .clk_i(clk_i), .en_i(en_i), .a_i(~me0_p[R+T:T]), .b_i(my0_4), .c_i(my0_4), .p_o(my1_p));
+      wire [R:0] my1 = my1_p[R+T:T];
+      wire unused_my1 = &{1'b0, my1_p[R+T+1], my1_p[T-1:0]};
+      // S5: e1 = ⌊mt·y1 / 2^R⌋ (< 2^(R+1): mt < 2^(R+1), y1 < 2^R)
+      wire [R:0] mmt_5;
+      sc_delay #(.W(R+1), .DEPTH(4)) u_dly_mt (.clk_i(clk_i), .en_i(en_i), .d_i(s2_mt_q), .q_o(mmt_5));
+      wire [2*R+1:0] me1_p;
+      sc_mul_reg #(.AW(R+1), .BW(R+1), .PW(2*R+2), .LAT(2)) u_e1 (
+          .clk_i(clk_i), .en_i(en_i), .a_i(mmt_5), .b_i(my1), .c_i(1'b0), .p_o(me1_p));
+      wire unused_me1 = &{1'b0, me1_p[2*R+1], me1_p[R-1:0]};
+      // S6: y2 = ⌊y1·g1 / 2^R⌋, y1·g1 = y1·~e1 + y1
+      wire [R:0] my1_6;
+      sc_delay #(.W(R+1), .DEPTH(2)) u_dly_y1 (.clk_i(clk_i), .en_i(en_i), .d_i(my1), .q_o(my1_6));
+      wire [2*R+1:0] my2_p;
+      sc_mul_reg #(.AW(R+1), .BW(R+1), .PW(2*R+2), .ADD(1), .CW(R+1), .LAT(2)) u_y2 (
+          .clk_i(clk_i), .en_i(en_i), .a_i(~me1_p[2*R:R]), .b_i(my1_6), .c_i(my1_6), .p_o(my2_p));
+      wire unused_my2 = &{1'b0, my2_p[2*R+1], my2_p[R-1:0]};   // y2 < 2^R
+      assign y2_6 = my2_p[2*R:R];
+      sc_delay #(.W(SHW+1), .DEPTH(8)) u_dly_sh (
+          .clk_i(clk_i), .en_i(en_i), .d_i({s2_sat_q, s2_sh_q}), .q_o({sat_6, sh_6}));
+    end
+  endgenerate
+
   // ---------------------------------------------------------------------------- S7: round, saturate
   // barrel shifter: {y2, 0} >> sh (stage b shifts right by 2^b when sh bit b is set)
   reg [R+1:0] z_d;
   integer     rb;
   always @* begin
-    z_d = {s6_y2_q, 1'b0};
+    z_d = {y2_6, 1'b0};
     for (rb = 0; rb < SHW; rb = rb + 1) begin
-      if (s6_sh_q[rb]) z_d = z_d >> (1 << rb);
+      if (sh_6[rb]) z_d = z_d >> (1 << rb);
     end
   end
   wire [R+1:0] a_p = z_d + {{(R+1){1'b0}}, 1'b1};          // no carry out: z <= 2^(R+2) − 2
   wire [R:0]   a_d = a_p[R+1:1];
   wire unused_a = &{1'b0, a_p[0]};
-  wire [R:0]   att_d = (s6_sat_q || a_d > ATT_MAX) ? ATT_MAX : a_d;
+  wire [R:0]   att_d = (sat_6 || a_d > ATT_MAX) ? ATT_MAX : a_d;
   wire unused_att = &{1'b0, att_d[R]};                     // <= ATT_MAX < 2^R
 
   reg [F+7:0] s7_att_q;

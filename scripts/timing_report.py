@@ -445,10 +445,10 @@ def to_row(r, s):
                               f"normalisers' products ({lat['normalize']} -> {lat['normalize'] + lat['mreg_normalize']} "
                               f"cycles), each dot product ({lat['mreg_dot']} more), each product stage of the back "
                               f"({lat['mreg_back']} more), the lanes' N before the dot products ({lat['mreg_n']} more) "
-                              f"and P before the L and V normalisers ({lat['mreg_p']} more), and passes MREG to the units "
-                              "and the energy stage; the attenuation's q = kc + kl·d + kq·d² (its slot multiplexer and "
-                              "products), the reciprocal (sc_recip) and the spot power chain (sc_powi) have no register "
-                              "inside yet")
+                              f"and P before the L and V normalisers ({lat['mreg_p']} more), the attenuation's q = kc + "
+                              f"kl·d + kq·d² ({lat['mreg_att']} more) and the reciprocal sc_recip's products "
+                              f"({lat['mreg_recip']} more), and passes MREG to the units and the energy stage; the spot "
+                              "power chain (sc_powi) has no register inside yet")
     if gs is None:
         out["reason_gate_sim"] = ("no gate-level run: the handoff bench cannot load a table RAM"
                                   if r["table"] else "not run")

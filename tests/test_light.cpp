@@ -940,6 +940,15 @@ TEST(LightModes, MregLengthensThePathThroughTheNormalisersAndTheUnits) {
   r.light[0].mode = light_mode_word(true, LightKind::Point);
   EXPECT_EQ(LightCore(pm).latency(r) - LightCore(p).latency(r),
             kMregP + 2 * kMregNormalize + kMregDot + 2 * kMregBack + mreg_stages(VariantId::cs16));
+  // an attenuated point light on a diffuse-only core: the attenuation sets the front's length (P_j − P registered,
+  // L̂, the distance's dot product, q's two products and sc_recip's four), and the back has B3 too
+  FeatureSet a = named("diffuse"), am;
+  a.slots = {kind_bit(LightKind::PointAtt)};
+  am = a;
+  am.mreg = 1;
+  r.light[0].mode = light_mode_word(true, LightKind::PointAtt);
+  EXPECT_EQ(LightCore(am).latency(r) - LightCore(a).latency(r),
+            kMregP + kMregNormalize + kMregDot + kMregAtt + kMregRecip + 3 * kMregBack);
   // (that the RTL computes the same colours at that latency is the co-simulation's: ctest sim.light.mreg.*)
 }
 

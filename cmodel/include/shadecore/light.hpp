@@ -520,7 +520,8 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   if (fs.phong) t_x = std::max(t_x, lv ? t_rv + 1 + D : t_a + 2 + 2 * D);
   // att (distance, q, 1/q; t_l = NL at share 1); at share > 1 q takes a stage more (its three products at
   // three stages, one shared multiplier)
-  const int t_att = t_l + 3 + D + RL + (S > 1 ? 1 : 0);
+  // MREG: q's two products and sc_recip's four each over two edges (kMregAtt, kMregRecip)
+  const int t_att = t_l + 3 + D + RL + (S > 1 ? 1 : 0) + (kMregAtt + kMregRecip) * fs.mreg;
   int t_f = 1;
   if (need_n) t_f = std::max(t_f, t_a + 1 + D);
   if (fs.specular) t_f = std::max(t_f, t_x);
