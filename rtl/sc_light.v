@@ -68,6 +68,8 @@
 //                 dot product of the lanes over D = MREG_DOT cycles (rtl/sc_mul_reg.v LAT), each product stage
 //                 of the back over DB = MREG_BACK more (rtl/sc_light_shade.v), registers the lanes' N (N̂ or N,
 //                 MREG_N stages after the normalize-mode choice) and diff (before its clamp's output, not after),
+//                 P_j − P and −P before the L and V normalisers (MREG_P), cuts the attenuation's q over MREG_ATT
+//                 and sc_recip's products over MREG_RECIP more (rtl/sc_light_lane.v, rtl/sc_recip.v),
 //                 and passes MREG to the specular
 //                 units (their mreg_stages); the same outputs, more latency (config/configs.json light.latency;
 //                 docs/signoff.md "Fifth round")                                         (default 0)
