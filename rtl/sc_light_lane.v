@@ -413,6 +413,11 @@ module sc_light_lane #(
         if (en_i) a1_d_q <= d_d;
       end
       localparam integer MQ = MREG_ATT * MREG;   // q's extra stages (MREG, SHARE = 1)
+      // the cuts below make q MREG_ATT = 2 and sc_recip MREG_RECIP = 4 edges longer; configs.json states them for the
+      // schedule (T_ATT here and the C model's light_pipe): another value there stops elaboration, not the co-simulation
+      if (MREG != 0 && (MREG_ATT != 2 || MREG_RECIP != 4)) begin : g_check_mreg_att
+        sc_light_lane_error_light_latency_mreg_att_must_be_2_and_mreg_recip_4 u_error ();
+      end
       wire [QW-1:0] q_d;
       reg  [QW-1:0] q_q;   // q at T_L+3+D+MQ (SH = 1) or T_L+4 (SH > 1)
       always @(posedge clk_i) begin
