@@ -60,7 +60,9 @@
 // MREG = 1: each product's final adder is after its register, so nothing else may follow it in its
 // stage. S4 and S7 form c = ⌊(Kc − m·a)/2^MB⌋ with Kc = 3·2^(R+MB) + 2^MB − 1 (= 3·2^R − ⌊m·a/2^MB⌋
 // exactly), as the signed product m·~a (= −m·a − m) plus the addend Kc + m, whose low part
-// m + 2^MB − 1 is added at S3 and travels with m. S9 adds 2^(HW+4−k) to v_i·y2 in its tree, so that
+// m + 2^MB − 1 is added at S3 and travels with m. Both products are split in two half-height trees
+// (b = ~a = b_hi·2^H + b_lo: m·b_lo + (m·2^H)·b_hi), S4's each to its own register and adder with one
+// more adder in front of S4's register, S7's through one rtl/sc_mul_reg.v (N = 2, LAT = 2). S9 adds 2^(HW+4−k) to v_i·y2 in its tree, so that
 // S10 is the shift alone: (p + 2^(HW+4−k))·2^k = p·2^k + 2^(HW+4). For s = 0 the
 // table index is 0 and y2 is meaningless, but every p_i = 0, so u = 0 as the C model's early return.
 // ============================================================================================
@@ -258,12 +260,25 @@ module sc_normalize #(
   wire [R+1:0]     c0_d;   // b < 2^(R+1) for every m in range
   generate
     if (MREG != 0) begin : g_c0_fold
-      // Kc − m·a0 = m·~a0 + (Kc + m) (signed, modulo 2^(MW+AW)); c0 is its bits [MB+R+1 : MB]
-      sc_mul_stage #(.AW(MW + 1), .BW(AW + 1), .PW(MW + AW), .SIGNED(1), .ADD(1), .CW(R + MB + 2), .MREG(1),
+      // Kc − m·a0 = m·~a0 + (Kc + m) (signed, modulo 2^(MW+AW)); c0 is its bits [MB+R+1 : MB]. As S7's c1 below,
+      // the tree is split in two half-height ones, b = ~{0, a0} = b_hi·2^H0 + b_lo: m·b_lo + (Kc + m) (u_ma0, which
+      // carries the sideband) and (m·2^H0)·b_hi (u_ma0h), each to two carry-save rows | register | its adder; the
+      // two sums are added in front of s4_c_q. The same c0 at the same stage; the first edge one Dadda level less.
+      localparam integer H0   = (AW + 1) / 2;        // low bits of b (unsigned)
+      localparam integer BWX0 = H0 + 1;              // b_lo zero-extended, b_hi sign-extended (AW+1−H0 <= H0+1)
+      localparam integer AWX0 = MW + 1 + H0;         // {0, m}·2^H0, signed, non-negative
+      wire [AW:0]        b0    = ~{1'b0, s3_a0_q};
+      wire [BWX0-1:0]    b0_lo = {1'b0, b0[H0-1:0]};
+      wire [BWX0-1:0]    b0_hi = {{(BWX0-(AW+1-H0)){b0[AW]}}, b0[AW:H0]};
+      wire [MW+AW-1:0]   ma0_lo, ma0_hi;
+      sc_mul_stage #(.AW(MW + 1), .BW(BWX0), .PW(MW + AW), .SIGNED(1), .ADD(1), .CW(R + MB + 2), .MREG(1),
                      .SW(T + MW + KW + MB + 3)) u_ma0 (
-          .clk_i(clk_i), .en_i(en_i), .a_i({1'b0, s3_m_q}), .b_i(~{1'b0, s3_a0_q}),
+          .clk_i(clk_i), .en_i(en_i), .a_i({1'b0, s3_m_q}), .b_i(b0_lo),
           .c_i({2'b11, {(R-3){1'b0}}, s3_km_q}),
-          .side_i({s3_y0_q, s3_m_q, s3_k_q, s3_km_q}), .p_o(ma0), .side_o({y0_4, m_4, k_4, km_4}));
+          .side_i({s3_y0_q, s3_m_q, s3_k_q, s3_km_q}), .p_o(ma0_lo), .side_o({y0_4, m_4, k_4, km_4}));
+      sc_mul_reg #(.AW(AWX0), .BW(BWX0), .PW(MW + AW), .SIGNED(1), .LAT(1)) u_ma0h (
+          .clk_i(clk_i), .en_i(en_i), .a_i({1'b0, s3_m_q, {H0{1'b0}}}), .b_i(b0_hi), .c_i(1'b0), .p_o(ma0_hi));
+      assign ma0  = ma0_lo + ma0_hi;
       assign c0_d = ma0[MB+R+1:MB];
     end else begin : g_c0_sub
       sc_mul_stage #(.AW(MW), .BW(AW), .PW(MW + AW), .MREG(0), .SW(T + MW + KW + MB + 3)) u_ma0 (
