@@ -115,8 +115,8 @@ void add_handoff(CLI::App& app) {
                   "The pipelining parameter MREG (cs16, schlick_div, schlick_nr, cs16_faithful, cs16_compact: "
                   "config/configs.json variants[].mreg_stages): 1 puts a register inside each product (cs16 latency "
                   "7 -> 12, schlick_div 20 -> 21, schlick_nr 10 -> 16, the cs16 forms 5 -> 11; the same outputs; "
-                  "docs/signoff.md), default 0; with --core lighting it replaces the feature set's key mreg (share 1: "
-                  "the normalisers' products registered, 10 -> 18 cycles each, and the units' MREG)");
+                  "docs/signoff.md), default 0; with --core lighting it replaces the feature set's key mreg (every "
+                  "share: the normalisers' products registered, 10 -> 18 cycles each, and the units' MREG)");
   sub->add_option("--core", a->core, "Which core: specular (default) or lighting")->check(cliargs::NonEmpty("core"));
   sub->add_option("--features", l.features, "Lighting core feature set: a name of config/configs.json \"feature_sets\" "
                                             "or a JSON file (with --core lighting)")->check(cliargs::NonEmpty("feature set"));

@@ -635,8 +635,6 @@ void run_lighting(const Options& o) {
   FeatureSet fs = feature_set_named_or_file(o.features);
   if (o.mreg >= 0) {
     if (o.mreg > 1) throw std::invalid_argument(fmt::format("--mreg {} out of range (0 or 1)", o.mreg));
-    if (o.mreg == 1 && fs.share != 1)
-      throw std::invalid_argument(fmt::format("--mreg 1 needs share 1; feature set '{}' has share {}", fs.name, fs.share));
     fs.mreg = o.mreg;
   }
   if (o.out.empty()) throw std::invalid_argument("--out DIR is required");

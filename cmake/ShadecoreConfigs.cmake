@@ -295,6 +295,7 @@ string(JSON _llat_mnn GET "${_cfg_json}" light latency mreg_n)
 string(JSON _llat_mp GET "${_cfg_json}" light latency mreg_p)
 string(JSON _llat_ma GET "${_cfg_json}" light latency mreg_att)
 string(JSON _llat_mr GET "${_cfg_json}" light latency mreg_recip)
+string(JSON _llat_mpw GET "${_cfg_json}" light latency mreg_powi)
 string(JSON _nk LENGTH "${_cfg_json}" light light_kinds)
 math(EXPR _lastk "${_nk} - 1")
 set(_kenum "")
@@ -338,7 +339,7 @@ set(_rtab "")
 set(_ch_regs "")      # the C header's lines (shadecore_light_regs.h)
 set(_ch_reglist "")
 set(_reg_fmts "")     # name=format, checked against light.formats below
-set(_ruse "MAX_LIGHTS[0], LIGHT_STRIDE[0], REG_ADDR_BITS[0], SPOT_EXP_BITS[0], LOW_N_BITS[0], LIGHT_MODEL_BITS[0], NORMALIZE_LATENCY[0], RECIP_LATENCY[0], MREG_NORMALIZE[0], MREG_DOT[0], MREG_BACK[0], MREG_N[0], MREG_P[0], MREG_ATT[0], MREG_RECIP[0]")
+set(_ruse "MAX_LIGHTS[0], LIGHT_STRIDE[0], REG_ADDR_BITS[0], SPOT_EXP_BITS[0], LOW_N_BITS[0], LIGHT_MODEL_BITS[0], NORMALIZE_LATENCY[0], RECIP_LATENCY[0], MREG_NORMALIZE[0], MREG_DOT[0], MREG_BACK[0], MREG_N[0], MREG_P[0], MREG_ATT[0], MREG_RECIP[0], MREG_POWI[0]")
 foreach(i RANGE ${_lastr})
   string(JSON _rname GET "${_cfg_json}" light registers ${i} name)
   string(JSON _raddr GET "${_cfg_json}" light registers ${i} addr)
@@ -399,6 +400,7 @@ inline constexpr int kMregN = ${_llat_mnn};              // ... and registers th
 inline constexpr int kMregP = ${_llat_mp};               // ... and P_j − P and −P before the L and V normalisers
 inline constexpr int kMregAtt = ${_llat_ma};             // ... and to the attenuation's q (its two product stages)
 inline constexpr int kMregRecip = ${_llat_mr};           // ... and to rtl/sc_recip.v (its four Newton–Raphson products)
+inline constexpr int kMregPowi = ${_llat_mpw};            // ... and to each stage of the power chains (rtl/sc_powi.v)
 ${_lmhpp}${_rhpp}// reserved: laid out for the GL-completeness issue, no register in this core (a write is ignored)
 struct RegInfo { std::string_view name; uint32_t addr; int count; std::string_view format; bool per_light; bool reserved; };
 inline constexpr std::array<RegInfo, ${_nr}> kRegisters{{
@@ -427,6 +429,7 @@ localparam integer MREG_N = ${_llat_mnn};
 localparam integer MREG_P = ${_llat_mp};
 localparam integer MREG_ATT = ${_llat_ma};
 localparam integer MREG_RECIP = ${_llat_mr};
+localparam integer MREG_POWI = ${_llat_mpw};
 ${_lmvh}${_kvh}${_rvh}// every name above, so that a module using a few of them lints clean (Verilator's unused pattern)
 localparam [0:0] unused_light_regs = ^{1'b0, ${_ruse}${_kusestr}};
 " @ONLY)

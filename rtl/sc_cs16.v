@@ -19,13 +19,15 @@
 //          (rtl/sc_mul_pool.v, squaring k at stage k; each squarer takes the one valid stage of its
 //          group) and a fragment is accepted only SHARE stages behind the one ahead (rtl/sc_pipe_ctrl.v
 //          GAP): one fragment per SHARE clocks, the same outputs and latency.           (default 1)
-//   MREG   0 or 1 (SHARE = 1): the pipelining parameter. 1 puts a register inside each of the five
+//   MREG   0 or 1: the pipelining parameter. 1 puts a register inside each of the five
 //          products (n·d and the four squarings: rtl/sc_mul_reg.v, a DSP block's M register, in the
 //          reference form; rtl/sc_square.v REG = 1, rtl/sc_sum_reg.v, in FORM = 1; the standard-cell flow
 //          places it between the carry-save tree and the final adder), so each product spans two clocks;
 //          FORM = 1 also gains an input register S0 (the port's code, the cut tests and the material, so no
 //          logic sits between the input ports and a product): LATENCY = 12 (reference) or 11 (FORM = 1),
-//          the same outputs.                                                                (default 0)
+//          the same outputs. With SHARE > 1 (reference form) the four squarings go through one
+//          rtl/sc_mul_pool.v with LAT = 1 (its registers are M2..M5): squarings two stages apart share a
+//          squarer when 2·|k − k'| < SHARE, so share 4 has two squarers, share 2 four.    (default 0)
 //
 // Ports : docs/spec.md §4 (clk_i, rst_ni synchronous active-low, AXI-Stream style valid/ready).
 //
@@ -132,9 +134,6 @@ module sc_cs16 #(
     end
     if (MREG != 0 && MREG != 1) begin : g_check_mreg
       sc_cs16_error_illegal_MREG_must_be_0_or_1 u_error ();
-    end
-    if (MREG != 0 && SHARE != 1) begin : g_check_mreg_form
-      sc_cs16_error_illegal_MREG_1_needs_SHARE_1 u_error ();
     end
   endgenerate
 
@@ -274,7 +273,31 @@ module sc_cs16 #(
       wire [4*XW-1:0] sq_in = {s4_x_q, s3_x_q, s2_x_q, s1_x_q[W:0]};
       wire [4*2*XW-1:0] sq;   // squaring k's x·x at [2k·XW +: 2XW]
       wire [4*TAGW-1:0] tag_m;  // the tag of S(k+1) beside squaring k's product at [k·TAGW +: TAGW]
-      if (MREG != 0) begin : g_sq_m
+      if (MREG != 0 && SHARE > 1) begin : g_sq_ms
+        // MREG at SHARE > 1: the four squarings through one rtl/sc_mul_pool.v with LAT = 1 (each instance's register
+        // is M(k+2)), signed (S1's signed x, the others with a 0 on top). Squaring k reads S(k+1), pipeline stage
+        // 2k+2, so squarings are two stages apart and two of them may share a squarer only when 2·|k − k'| < SHARE
+        // (GAP keeps fragments SHARE stages apart, not a multiple of it): the pool is given the squarings' own index
+        // k as its stage and ⌈SHARE/2⌉ as its SH, so each instance holds consecutive k within that window.
+        localparam integer SHM  = (SHARE + 1) / 2;
+        localparam integer XS   = XW + 1;
+        localparam [63:0]  SQ_S = {32'd0, XS[7:0], XS[7:0], XS[7:0], XS[7:0]};
+        wire [4*2*XS-1:0] sqs;
+        sc_mul_pool #(
+            .NOP(4), .SH(SHM), .ON(15), .ST({32'd0, 8'd3, 8'd2, 8'd1, 8'd0}), .AW(SQ_S), .BW(SQ_S),
+            .AMX(XS), .BMX(XS), .SIGNED(1), .LAT(1)
+        ) u_sq (
+            .clk_i(clk_i), .en_i(adv),
+            .a_i({1'b0, s4_x_q, 1'b0, s3_x_q, 1'b0, s2_x_q, s1_x_q}),
+            .b_i({1'b0, s4_x_q, 1'b0, s3_x_q, 1'b0, s2_x_q, s1_x_q}),
+            .sel_i({v_stage[8], v_stage[6], v_stage[4], v_stage[2]}), .p_o(sqs));
+        for (k = 0; k < 4; k = k + 1) begin : g_k
+          assign sq[k*2*XW +: 2*XW] = sqs[k*2*XS +: 2*XW];
+        end
+        wire unused_sqs = &{1'b0, sqs, sq_in, v_stage};   // the pool reads the stage registers directly
+        sc_delay #(.W(4 * TAGW), .DEPTH(1)) u_dly_tag (
+            .clk_i(clk_i), .en_i(adv), .d_i({s4_tag_q, s3_tag_q, s2_tag_q, s1_tag_q}), .q_o(tag_m));
+      end else if (MREG != 0) begin : g_sq_m
         // squaring 0 of the signed S1 (W+2 bits; the square <= 2^(2W) fits the same 2W+2 bits), 1..3 unsigned
         sc_mul_reg #(.AW(XW + 1), .BW(XW + 1), .PW(2 * XW), .SIGNED(1)) u_sq0 (
             .clk_i(clk_i), .en_i(adv), .a_i(s1_x_q), .b_i(s1_x_q), .c_i(1'b0), .p_o(sq[0 +: 2*XW]));
@@ -292,7 +315,7 @@ module sc_cs16 #(
             .NOP(4), .SH(SHARE), .ON(15), .ST({32'd0, 8'd4, 8'd3, 8'd2, 8'd1}), .AW(SQ_W), .BW(SQ_W),
             .AMX(XW), .BMX(XW), .SIGNED(0)
         ) u_sq (
-            .a_i(sq_in), .b_i(sq_in), .sel_i(v_stage[4:1]), .p_o(sq));
+            .clk_i(clk_i), .en_i(adv), .a_i(sq_in), .b_i(sq_in), .sel_i(v_stage[4:1]), .p_o(sq));
         assign tag_m = {s4_tag_q, s3_tag_q, s2_tag_q, s1_tag_q};
       end
       wire [2*W+1:0] sq1 = sq[0*2*XW +: 2*XW];

@@ -63,16 +63,20 @@
 //                 tag widens by 3·(F+1) bits) and the scene term is formed per fragment    (default 0)
 //   CHANNELS      1 (mono: channel 0 only, out_g_o = out_b_o = 0) or 3 (RGB)           (default 3)
 //   TAGW          width of the opaque fragment tag, >= 1                               (default 8)
-//   MREG          0/1, the pipelining parameter (feature-set key mreg; needs SHARE = 1): 1 cuts every
+//   MREG          0/1, the pipelining parameter (feature-set key mreg; every SHARE): 1 cuts every
 //                 product of the vector normalisers with a register (rtl/sc_normalize.v, NL 10 -> 18), each
 //                 dot product of the lanes over D = MREG_DOT cycles (rtl/sc_mul_reg.v LAT), each product stage
 //                 of the back over DB = MREG_BACK more (rtl/sc_light_shade.v), registers the lanes' N (N̂ or N,
 //                 MREG_N stages after the normalize-mode choice) and diff (before its clamp's output, not after),
 //                 P_j − P and −P before the L and V normalisers (MREG_P), cuts the attenuation's q over MREG_ATT
 //                 and sc_recip's products over MREG_RECIP more (rtl/sc_light_lane.v, rtl/sc_recip.v),
-//                 and passes MREG to the specular
+//                 cuts each stage of the spot and low-shininess power chains over MREG_POWI more
+//                 (rtl/sc_powi.v), and passes MREG to the specular
 //                 units (their mreg_stages); the same outputs, more latency (config/configs.json light.latency;
-//                 docs/signoff.md "Fifth round")                                         (default 0)
+//                 docs/signoff.md "Fifth round"). With SHARE > 1: cs16's squarings in a pool of registered
+//                 squarers (rtl/sc_mul_pool.v LAT), schlick_nr's, sc_recip's and q's products unshared with
+//                 their registers, the dot products unshared (as at SHARE = 1); V and L enter the shared
+//                 normalisers at E_V, E_L (below)                                        (default 0)
 //   At least one of AMBIENT, DIFFUSE, UNITS must be non-zero.
 //
 // Ports (docs/spec.md §4 convention: all flops on the rising edge of clk_i; rst_ni synchronous,
@@ -122,19 +126,21 @@
 //               the normalisations N (NEED_N & NORMALIZE), V (LV), L (ANY_PL), H (UNITS & BLINN) that
 //               exist are numbered k = 0, 1, ... in that order: K_V, K_L, K_H; S = SHARE
 //               T_NN = ((NEED_N & NORMALIZE) ? NL : 0) + MREG_N·MREG   N̂ or N (registered after the choice with MREG)
-//               T_V  = LV ? K_V mod S + NL + MREG_P·MREG : 0      V̂ (MREG: −P registered first)
-//               T_L  = ANY_PL ? K_L mod S + NL + MREG_P·MREG : 0  L̂ of point lights (MREG: P_j − P registered first)
+//               E(k) = k mod S + (k mod S < MRP ? S : 0), MRP = MREG_P·MREG   the entry stage of normalisation k
+//                      (MREG: −P and P_j − P registered first; S = 1: MRP)
+//               T_V  = LV ? E(K_V) + NL : 0                  V̂
+//               T_L  = ANY_PL ? E(K_L) + NL : 0              L̂ of point lights
 //               D    = MREG_DOT·MREG (2 with MREG): registers inside each of the lanes' dot products
 //               T_A  = max(T_NN, T_L)                      N̂·L → diff, f at T_A+1+D
 //               T_H  = the first t >= max(T_L, T_V, T_NN − NL) with t ≡ K_H (mod S);  T_RV = max(T_A+2+2D, T_V)
 //               T_XB = T_H+NL+1+D (BLINN), T_XP = LV ? T_RV+1+D : T_A+2+2D (PHONG)   unit input x
-//               T_ATT = T_L+3+D+RL (+1 with SHARE > 1)     att (point_att)
+//               T_ATT = T_L+3+D+RL (+1 with SHARE > 1 and MREG = 0)   att (point_att)
 //                       + (MREG_ATT + MREG_RECIP)·MREG     (q's and sc_recip's products over two edges each)
-//               T_SP = T_L+2+D+SPOT_EXP_BITS               the spot factor (sc_powi, one stage per exponent bit;
-//                                                          SPOT_EXP_BITS = 8, sc_light_regs.vh)
+//               T_SP = T_L+2+D+SPOT_EXP_BITS·PS            the spot factor (sc_powi, PS = 1 + MREG_POWI·MREG
+//                                                          stages per exponent bit; SPOT_EXP_BITS = 8, sc_light_regs.vh)
 //               T_X  = max(T_XB, T_XP) of the reflections that exist
 //               T_F  = max(1, NEED_N ? T_A+1+D : 0, UNITS ? T_X : 0, ANY_ATT ? T_ATT : 0,
-//                          ANY_SPOT ? max(T_ATT, T_SP)+1 : 0, LOW_N ? T_X+LOW_N_BITS : 0)
+//                          ANY_SPOT ? max(T_ATT, T_SP)+1 : 0, LOW_N ? T_X+LOW_N_BITS·PS : 0)
 //               (with S = 1 every op enters at stage 0: T_V = T_L = NL, T_H = max(T_L, T_V))
 //               NB   = 3 + ANY_ATT + DB·(2 + ANY_ATT), DB = MREG_BACK·MREG (each product stage of the back)
 //               LATENCY_P = T_F + (UNITS ? L_unit : 0) + NB, L_unit = the material's unit's
@@ -324,8 +330,12 @@ module sc_light #(
   localparam integer T_N0  = (OP_N != 0) ? NL : 0;                        // N̂ (0: the input N) chosen
   localparam integer T_NN  = T_N0 + ((NEED_N != 0) ? MREG_N * MREG : 0);  // ... and registered (MREG)
   localparam integer MRP   = MREG_P * MREG;                               // −P, P_j − P registered (MREG)
-  localparam integer T_V   = (LV != 0) ? (K_V % SH) + NL + MRP : 0;       // V̂ (0: constant)
-  localparam integer T_L   = (ANY_PL != 0) ? (K_L % SH) + NL + MRP : 0;   // L̂ of point lights
+  // V and L enter their normaliser at E_V, E_L: K mod SH, or SH edges later when that is below MRP (−P and P_j − P
+  // registered first, every op keeping its phase); with SH = 1, MRP
+  localparam integer E_V   = (K_V % SH) + (((K_V % SH) < MRP) ? SH : 0);
+  localparam integer E_L   = (K_L % SH) + (((K_L % SH) < MRP) ? SH : 0);
+  localparam integer T_V   = (LV != 0) ? E_V + NL : 0;                    // V̂ (0: constant)
+  localparam integer T_L   = (ANY_PL != 0) ? E_L + NL : 0;                // L̂ of point lights
   localparam integer T_A   = sc_max(T_NN, T_L);                             // N̂·L operands
   localparam integer T_H0  = sc_max(sc_max(T_L, T_V), T_NN - NL);     // (N̂ registered after the choice: Ĥ not before it)
   localparam integer T_H   = T_H0 + (((K_H % SH) - (T_H0 % SH)) + SH) % SH;   // H = L + V (Blinn)
@@ -333,18 +343,19 @@ module sc_light #(
   localparam integer T_XB  = T_H + NL + 1 + D;                            // x, Blinn
   localparam integer T_XP  = (LV != 0) ? T_RV + 1 + D : T_A + 2 + 2 * D;  // x, Phong
   localparam integer T_X   = sc_max((HAS_B != 0) ? T_XB : 0, (HAS_P != 0) ? T_XP : 0);
-  // att (point_att; T_L = NL with SHARE 1); with SHARE > 1 q takes one stage more, its three products at
-  // three stages sharing one multiplier (rtl/sc_light_lane.v)
-  localparam integer T_ATT = T_L + 3 + D + RL + ((SH > 1) ? 1 : 0) + (MREG_ATT + MREG_RECIP) * MREG;
+  // att (point_att; T_L = NL with SHARE 1); with SHARE > 1 (without MREG) q takes one stage more, its three
+  // products at three stages sharing one multiplier (rtl/sc_light_lane.v); MREG cuts q and sc_recip instead
+  localparam integer T_ATT = T_L + 3 + D + RL + ((SH > 1 && MREG == 0) ? 1 : 0) + (MREG_ATT + MREG_RECIP) * MREG;
   localparam integer SPEB  = SPOT_EXP_BITS;                                // spot exponent bits (sc_powi stages)
-  localparam integer T_SP  = T_L + 2 + D + SPEB;                           // the spot factor
+  localparam integer MPW   = MREG_POWI * MREG;                             // each sc_powi stage's extra edge
+  localparam integer T_SP  = T_L + 2 + D + SPEB * (1 + MPW);               // the spot factor
   localparam integer LNB   = LOW_N_BITS;                                 // the low-shininess chain's stages
   localparam integer HAS_LO = (SPECULAR != 0 && LOW_N != 0) ? 1 : 0;      // x^n for n < 2^LNB (low_shininess)
   localparam integer HAS_SEP = (SPECULAR != 0 && SEP_SPEC != 0) ? 1 : 0;   // the secondary colour (separate_specular)
   localparam integer T_F   = sc_max(sc_max(sc_max(sc_max(1, (NEED_N != 0) ? T_A + 1 + D : 0),
                                   sc_max((SPECULAR != 0) ? T_X : 0, (ANY_ATT != 0) ? T_ATT : 0)),
                                   (ANY_SPOT != 0) ? sc_max(T_ATT, T_SP) + 1 : 0),
-                                  (HAS_LO != 0) ? T_X + LNB : 0);
+                                  (HAS_LO != 0) ? T_X + LNB * (1 + MPW) : 0);
   localparam integer NB    = (ANY_ATT != 0) ? 4 + 3 * DB : 3 + 2 * DB;    // back pipeline stages
   // channel-serial back (SHARE >= 4, RGB, units): a pass enters the back as three items, channels 0, 1, 2 on
   // consecutive back-advancing edges, through one set of colour multipliers (rtl/sc_light_shade.v CSER):
@@ -396,8 +407,8 @@ module sc_light #(
     if (LANES < 1 || LANES > LIGHTS) begin : g_check_lanes
       sc_light_error_illegal_LANES_legal_range_is_1_to_LIGHTS u_error ();
     end
-    if ((MREG != 0 && MREG != 1) || (MREG != 0 && SHARE != 1) || MREG_DOT < 1 || MREG_DOT > 2) begin : g_check_mreg
-      sc_light_error_illegal_MREG_must_be_0_or_1_and_1_needs_SHARE_1 u_error ();
+    if ((MREG != 0 && MREG != 1) || MREG_DOT < 1 || MREG_DOT > 2) begin : g_check_mreg
+      sc_light_error_illegal_MREG_must_be_0_or_1_and_MREG_DOT_1_or_2 u_error ();
     end
     if (SHARE < 1 || SHARE > 4) begin : g_check_share
       sc_light_error_illegal_SHARE_legal_range_is_1_to_4 u_error ();
@@ -1104,7 +1115,7 @@ module sc_light #(
       wire [4*3*VWX-1:0] ops;   // op k's vector at its entry stage, components sign-extended to VWX
       wire [3*(PW+1)-1:0] mp_e;  // −P at V's entry stage
       if (OP_V != 0) begin : g_op_v
-        sc_delay #(.W(3*(PW+1)), .DEPTH(K_V % SH)) u_dly_mp (
+        sc_delay #(.W(3*(PW+1)), .DEPTH(E_V)) u_dly_mp (
             .clk_i(clk_i), .en_i(adv_f), .d_i(mp_w), .q_o(mp_e));
       end else begin : g_no_op_v
         assign mp_e = {3*(PW+1){1'b0}};
@@ -1122,7 +1133,7 @@ module sc_light #(
       end
       wire [3*(PW+1)-1:0] lv_e;   // P_j − P at its entry stage
       if (OP_L != 0) begin : g_op_l
-        sc_delay #(.W(3*(PW+1)), .DEPTH(K_L % SH)) u_dly_lv (
+        sc_delay #(.W(3*(PW+1)), .DEPTH(E_L)) u_dly_lv (
             .clk_i(clk_i), .en_i(adv_f), .d_i(lv_all[3*(PW+1)-1:0]), .q_o(lv_e));
         for (gi = 0; gi < 3; gi = gi + 1) begin : g_c
           wire [PW:0] e = lv_e[gi*(PW+1) +: PW+1];

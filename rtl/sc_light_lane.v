@@ -18,19 +18,20 @@
 //   spot   (CAN_SPOT, kind spot) S1 (T_L+1) sdl = ⌊−(L̂·ŝ) / 2^VF⌋, ŝ the spot direction register
 //          (F+2 bits) · 2^SG; S2 (T_L+2) in = sdl >= the spot cos register, x = clamp(sdl, 0,
 //          2^VF); rtl/sc_powi.v x^e at VF over 8 stages (0 outside the
-//          cone) → T_SP = T_L+10; att · spot registered at max(T_ATT, T_SP)+1 (⌊att·spot / 2^VF⌋ for spot)
+//          cone; with MREG two edges per stage) → T_SP = T_L+2+D+8·(1+MREG_POWI·MREG); att · spot registered at max(T_ATT, T_SP)+1 (⌊att·spot / 2^VF⌋ for spot)
 //   ndl    ⌊N̂·L / 2^VF⌋ → diff = clamp(⌊ndl / 2^SG⌋, 0, 2^F), f = ndl > 0
 //   x      Blinn: Ĥ = sc_normalize(L̂ + V̂), x = ⌊N̂·Ĥ / 2^VF⌋; Phong: R = ⌊ndl·N̂ / 2^(VF−1)⌋ − L̂,
 //          x = ⌊R·V̂ / 2^VF⌋ (= R_z when only V = (0, 0, 1) exists); saturated to the unit's VF+2-bit
 //          word, at T_X = max(T_XB, T_XP) of the reflections that exist (phong_i chooses when both do),
 //          then delayed to T_F
 //   low    (LOW_N, rtl/sc_light.v's low_shininess) rtl/sc_powi.v x_lo = clamp(x, 0, 2^VF)^n at VF over LNB
-//          stages from T_X (lo_e_i = the low bits of the shininess register; exact chain, x^0 = 1), to T_F
+//          stages from T_X (two edges each with MREG; lo_e_i = the low bits of the shininess register; exact chain,
+//          x^0 = 1), to T_F
 // Parameters: FRAC, SG, NLT (slots), capabilities CAN_DIR / CAN_PT (point, point_att or spot) / CAN_ATT
 //             (point_att or spot) / CAN_SPOT, NEED_N,
 //             SPECULAR, DIFFUSE, BLINN, PHONG, LV, and the stage times of rtl/sc_light.v's header
-//             (T_L, T_A, T_H, T_RV, T_XB, T_XP, T_ATT, T_SP = T_L+2+SEB, T_F); SEB (spot exponent bits,
-//             SPOT_EXP_BITS); LOW_N, LNB (LOW_N_BITS: the low-shininess chain's stages, T_F >= T_X+LNB);
+//             (T_L, T_A, T_H, T_RV, T_XB, T_XP, T_ATT, T_SP = T_L+2+D+SEB·(1+MREG_POWI·MREG), T_F); SEB (spot exponent bits,
+//             SPOT_EXP_BITS); LOW_N, LNB (LOW_N_BITS: the low-shininess chain's stages, T_F >= T_X+LNB·(1+MREG_POWI·MREG));
 //             SH (SHARE of rtl/sc_light.v: the lane's
 //             dot-product multipliers are shared by ops whose stages differ mod SH, chosen by the
 //             phase ph_i; "dot-product multipliers" below); EXT_NORM = 1 (rtl/sc_light.v's SHARE > 1):
@@ -108,6 +109,7 @@ module sc_light_lane #(
 );
 
 `include "sc_light_regs.vh"
+  localparam integer MPW = MREG_POWI * MREG;   // each power-chain stage's extra edge (rtl/sc_powi.v MREG)
   localparam integer D = MREG_DOT * MREG;   // the dot products' (and R's products') extra stages (rtl/sc_light.v)
   localparam integer DL = (D > 0) ? D : 1;  // their sc_mul_reg's latency (LAT)
 
@@ -232,7 +234,7 @@ module sc_light_lane #(
       sc_mul_pool #(
           .NOP(NOP), .SH(SH), .ON(OP_ON), .ST(OP_ST), .AW(OP_AW), .BW(OP_BW), .AMX(NW), .BMX(BMX), .SIGNED(1)
       ) u_mul (
-          .a_i(a_c), .b_i(b_c), .sel_i(op_sel), .p_o(p_c));
+          .clk_i(clk_i), .en_i(en_i), .a_i(a_c), .b_i(b_c), .sel_i(op_sel), .p_o(p_c));
     end
     end
     for (k = 0; k < NOP; k = k + 1) begin : g_op_off
@@ -344,8 +346,12 @@ module sc_light_lane #(
   // ---------------------------------------------------------------------------- spot factor (spot)
   wire [VF:0]   spot_f;    // the spot factor at T_SP (VF fraction bits, <= 2^VF)
   generate
-    if (CAN_SPOT != 0 && T_SP != T_L + 2 + D + SEB) begin : g_check_tsp
-      sc_light_lane_error_T_SP_must_be_T_L_plus_2_plus_D_plus_SEB u_error ();
+    if (CAN_SPOT != 0 && T_SP != T_L + 2 + D + SEB * (1 + MPW)) begin : g_check_tsp
+      sc_light_lane_error_T_SP_must_be_T_L_plus_2_plus_D_plus_SEB_times_1_plus_MREG_POWI_MREG u_error ();
+    end
+    // rtl/sc_powi.v with MREG takes two edges per stage; configs.json's mreg_powi states it for the schedule
+    if (MREG != 0 && MREG_POWI != 1) begin : g_check_mreg_powi
+      sc_light_lane_error_light_latency_mreg_powi_must_be_1 u_error ();
     end
     if (CAN_SPOT != 0) begin : g_spot
       wire [2:0] idx_s1 = idx_s[3*(T_L+1) +: 3];
@@ -380,7 +386,7 @@ module sc_light_lane #(
       wire [VF:0]    sx;
       sc_clamp01 #(.IW(SDW), .FRAC(VF)) u_clamp_sx (.d_i(sdl_q), .q_o(sx));
       localparam integer PH0 = (T_L + 2 + D) % SH;
-      sc_powi #(.FRAC(VF), .EB(SEB), .SH(SH), .PH0(PH0)) u_powi (
+      sc_powi #(.FRAC(VF), .EB(SEB), .SH(SH), .PH0(PH0), .MREG(MREG)) u_powi (
           .clk_i(clk_i), .en_i(en_i), .x_i(sx), .e_i(sexp_i[SEB*idx_s2 +: SEB]), .zero_i(!in_cone),
           .ph_i(ph_i), .r_o(spot_f));
     end else begin : g_no_spot
@@ -412,18 +418,18 @@ module sc_light_lane #(
       always @(posedge clk_i) begin
         if (en_i) a1_d_q <= d_d;
       end
-      localparam integer MQ = MREG_ATT * MREG;   // q's extra stages (MREG, SHARE = 1)
+      localparam integer MQ = MREG_ATT * MREG;   // q's extra stages (MREG, at every SHARE)
       // the cuts below make q MREG_ATT = 2 and sc_recip MREG_RECIP = 4 edges longer; configs.json states them for the
       // schedule (T_ATT here and the C model's light_pipe): another value there stops elaboration, not the co-simulation
       if (MREG != 0 && (MREG_ATT != 2 || MREG_RECIP != 4)) begin : g_check_mreg_att
         sc_light_lane_error_light_latency_mreg_att_must_be_2_and_mreg_recip_4 u_error ();
       end
       wire [QW-1:0] q_d;
-      reg  [QW-1:0] q_q;   // q at T_L+3+D+MQ (SH = 1) or T_L+4 (SH > 1)
+      reg  [QW-1:0] q_q;   // q at T_L+3+D+MQ (MREG, or SH = 1) or T_L+4 (SH > 1 without MREG)
       always @(posedge clk_i) begin
         if (en_i) q_q <= q_d;
       end
-      if (SH == 1 && MQ != 0) begin : g_q5
+      if (MQ != 0) begin : g_q5
         // MREG: the same q over MQ = 2 more edges, each product through rtl/sc_mul_reg.v (LAT = 2), with the
         // slot's kl, kc (and kq) read a stage early and registered, so that no slot multiplexer and no
         // separate adder stands in front of a tree. kc + ⌊kl·d / 2^F⌋ = ⌊(kl·d + kc·2^F) / 2^F⌋ and
@@ -502,6 +508,7 @@ module sc_light_lane #(
             .AW({40'd0, DW[7:0], DDW[7:0], DW[7:0]}), .BW({40'd0, PW[7:0], PW[7:0], DW[7:0]}),
             .AMX(AM), .BMX(BM), .SIGNED(0)
         ) u_mul_att (
+            .clk_i(clk_i), .en_i(en_i),
             .a_i({{(AM-DW){1'b0}}, a3_d_q, a2_dd_q, {(AM-DW){1'b0}}, a1_d_q}),
             .b_i({{(BM-PW){1'b0}}, kl, {(BM-PW){1'b0}}, kq, a1_d_q}),
             .sel_i(asel), .p_o(ap));
@@ -522,9 +529,9 @@ module sc_light_lane #(
       end
       // att = 1/q at T_ATT for point_att, 2^F for the other kinds; then to T_F
       wire [FRAC+7:0] att_r;
-      // q at T_L+3+D+MQ (+1 with SH > 1): the recip's products share multipliers over SH stages by the
-      // phase (rtl/sc_recip.v); with MREG each of its products takes two edges (MREG_RECIP more)
-      sc_recip #(.FRAC(FRAC), .QW(QW), .SH(SH), .PH0((T_L + 3 + D + ((SH > 1) ? 1 : 0)) % SH),
+      // q at T_L+3+D+MQ (+1 with SH > 1 without MREG): the recip's products share multipliers over SH stages by
+      // the phase (rtl/sc_recip.v); with MREG each of its products takes two edges (MREG_RECIP more), unshared
+      sc_recip #(.FRAC(FRAC), .QW(QW), .SH(SH), .PH0((T_L + 3 + D + MQ + ((SH > 1 && MQ == 0) ? 1 : 0)) % SH),
                  .MREG(MREG)) u_recip (
           .clk_i(clk_i), .en_i(en_i), .q_i(q_q), .ph_i(ph_i), .att_o(att_r));
       wire [1:0] kind_t = kind_i[2*idx_t +: 2];
@@ -737,14 +744,14 @@ module sc_light_lane #(
         .clk_i(clk_i), .en_i(en_i), .d_i(x_t), .q_o(x_o));
     // x^n for a shininess below the units' range: the exact chain on clamp(x, 0, 1) from T_X, LNB stages
     if (SPECULAR != 0 && LOW_N != 0) begin : g_low
-      if (T_F < T_X + LNB) begin : g_check_tlo
-        sc_light_lane_error_T_F_must_be_at_least_T_X_plus_LNB u_error ();
+      if (T_F < T_X + LNB * (1 + MPW)) begin : g_check_tlo
+        sc_light_lane_error_T_F_must_be_at_least_T_X_plus_LNB_times_1_plus_MREG_POWI_MREG u_error ();
       end
       wire [VF:0] lx, lo_r;
       sc_clamp01 #(.IW(NW), .FRAC(VF)) u_clamp_lx (.d_i(x_t), .q_o(lx));
-      sc_powi #(.FRAC(VF), .EB(LNB), .SH(SH), .PH0(T_X % SH)) u_powi_lo (
+      sc_powi #(.FRAC(VF), .EB(LNB), .SH(SH), .PH0(T_X % SH), .MREG(MREG)) u_powi_lo (
           .clk_i(clk_i), .en_i(en_i), .x_i(lx), .e_i(lo_e_i), .zero_i(1'b0), .ph_i(ph_i), .r_o(lo_r));
-      sc_delay #(.W(VF+1), .DEPTH(T_F - T_X - LNB)) u_dly_lo (
+      sc_delay #(.W(VF+1), .DEPTH(T_F - T_X - LNB * (1 + MPW))) u_dly_lo (
           .clk_i(clk_i), .en_i(en_i), .d_i(lo_r), .q_o(lo_o));
     end else begin : g_no_low
       assign lo_o = {(VF+1){1'b0}};

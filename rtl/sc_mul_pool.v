@@ -26,7 +26,11 @@
 //   AW, BW op o's operand widths at bits [8o +: 8], 1..64 each
 //   AMX, BMX  the port slot widths: >= every AW(o), BW(o)
 //   SIGNED 1: operands and products are two's complement; 0: unsigned
-// Ports : a_i[o*AMX +: AW(o)], b_i[o*BMX +: BW(o)] op o's operands (higher slot bits ignored);
+//   LAT    0: combinational products; 1: each instance is an rtl/sc_mul_reg.v (LAT = 1, the register between
+//          its tree and its final adder, clocked with en_i): op o's product is read one enabled edge after
+//          its operands, at stage ST(o) + 1, the same sharing rule (the pipelining parameter MREG at share > 1)
+// Ports : clk_i, en_i (LAT = 1: the instances' registers; unused with LAT = 0)
+//         a_i[o*AMX +: AW(o)], b_i[o*BMX +: BW(o)] op o's operands (higher slot bits ignored);
 //         sel_i[o] op o's pass is at its stage (SH > 1); p_o[o*PMX +: AW(o)+BW(o)] its product
 //         (PMX = AMX + BMX; the slot's higher bits are the extension).
 // ============================================================================================
@@ -41,8 +45,11 @@ module sc_mul_pool #(
     parameter [63:0]  BW     = 64'h0101010101010101,
     parameter integer AMX    = 2,
     parameter integer BMX    = 2,
-    parameter integer SIGNED = 0
+    parameter integer SIGNED = 0,
+    parameter integer LAT    = 0
 ) (
+    input  wire                     clk_i,
+    input  wire                     en_i,
     input  wire [NOP*AMX-1:0]       a_i,
     input  wire [NOP*BMX-1:0]       b_i,
     input  wire [NOP-1:0]           sel_i,
@@ -108,6 +115,9 @@ module sc_mul_pool #(
     if (SH < 1 || SH > 4) begin : g_check_sh
       sc_mul_pool_error_illegal_SH_legal_range_is_1_to_4 u_error ();
     end
+    if (LAT != 0 && LAT != 1) begin : g_check_lat
+      sc_mul_pool_error_illegal_LAT_must_be_0_or_1 u_error ();
+    end
     for (o = 0; o < NOP; o = o + 1) begin : g_check_op
       if (mp_on(o) != 0 && (mp_fld(AW, o) < 1 || mp_fld(AW, o) > AMX || mp_fld(BW, o) < 1 || mp_fld(BW, o) > BMX))
       begin : g_check_w
@@ -167,7 +177,10 @@ module sc_mul_pool #(
           end
         end
         wire [IA+IB-1:0] p;
-        if (SIGNED != 0) begin : g_s
+        if (LAT != 0) begin : g_r
+          sc_mul_reg #(.AW(IA), .BW(IB), .PW(IA + IB), .SIGNED(SIGNED)) u_mul (
+              .clk_i(clk_i), .en_i(en_i), .a_i(a_s), .b_i(b_s), .c_i(1'b0), .p_o(p));
+        end else if (SIGNED != 0) begin : g_s
           assign p = $signed(a_s) * $signed(b_s);
         end else begin : g_u
           assign p = a_s * b_s;
@@ -187,7 +200,7 @@ module sc_mul_pool #(
       end
     end
   endgenerate
-  wire unused_in = &{1'b0, a_i, b_i, sel_i};   // slot bits above an op's width; sel_i with SH = 1
+  wire unused_in = &{1'b0, a_i, b_i, sel_i, clk_i, en_i};   // slot bits above an op's width; sel_i with SH = 1; clk/en with LAT = 0
 
 endmodule
 

@@ -18,8 +18,12 @@
 //   SH    stages per pass (the core's SHARE), 1..4: the EB products r·p and the EB−1 squarings share
 //         multipliers over SH consecutive stages (rtl/sc_mul_pool.v), chosen by the phase ph_i
 //   PH0   the phase (mod SH) at which a pass is at stage 0                  (default 0)
+//   MREG  0/1, the lighting core's pipelining parameter: 1 registers each stage's two products between
+//         their trees and their adders (rtl/sc_mul_pool.v LAT = 1, r and e waiting beside them), so a
+//         stage takes two edges: EB·(1 + MREG) in all (config/configs.json light.latency mreg_powi = 1 per
+//         stage), the same r                                                     (default 0)
 // Ports : clk_i, en_i (the pipeline's enable); x_i[FRAC:0], e_i[EB-1:0], zero_i at stage 0;
-//         ph_i[1:0] the phase; r_o[FRAC:0] EB enabled edges later.
+//         ph_i[1:0] the phase; r_o[FRAC:0] EB·(1 + MREG) enabled edges later.
 // ============================================================================================
 `default_nettype none
 
@@ -27,7 +31,8 @@ module sc_powi #(
     parameter integer FRAC = 16,
     parameter integer EB   = 8,
     parameter integer SH   = 1,
-    parameter integer PH0  = 0
+    parameter integer PH0  = 0,
+    parameter integer MREG = 0
 ) (
     input  wire            clk_i,
     input  wire            en_i,
@@ -49,6 +54,9 @@ module sc_powi #(
     if (SH < 1 || SH > 4) begin : g_check_sh
       sc_powi_error_illegal_SH_legal_range_is_1_to_4 u_error ();
     end
+    if (MREG != 0 && MREG != 1) begin : g_check_mreg
+      sc_powi_error_illegal_MREG_must_be_0_or_1 u_error ();
+    end
   endgenerate
 
   localparam integer W  = FRAC + 1;
@@ -57,12 +65,16 @@ module sc_powi #(
   localparam integer SHC = (SH < 1) ? 1 : ((SH > 4) ? 4 : SH);
   localparam integer EBC = (EB < 2) ? 2 : ((EB > 8) ? 8 : EB);
 
-  // op o at stage o (mod SH, from PH0), every operand W bits
+  localparam integer MR = (MREG != 0) ? 1 : 0;
+  // op o at stage o·(1 + MREG) (mod SH, from PH0), every operand W bits
   function [63:0] st_pack(input integer n);
-    integer o;
+    integer o, t;
     begin
       st_pack = 64'd0;
-      for (o = 0; o < n; o = o + 1) st_pack = st_pack | ({56'd0, o[7:0]} << (8 * o));
+      for (o = 0; o < n; o = o + 1) begin
+        t = o * (1 + MR);   // < 256
+        st_pack = st_pack | ({32'd0, t} << (8 * o));
+      end
     end
   endfunction
   localparam [63:0] ST_M = st_pack(EBC);
@@ -80,7 +92,7 @@ module sc_powi #(
   genvar k;
   generate
     for (k = 0; k < EBC; k = k + 1) begin : g_sel
-      localparam integer RI = (PH0 + k) % SHC;
+      localparam integer RI = (PH0 + k * (1 + MR)) % SHC;
       assign sel[k] = (SHC == 1) || (ph_i == RI[1:0]);
       assign ma[k*W +: W] = r_s[k*W +: W];
       assign mb[k*W +: W] = p_s[k*W +: W];
@@ -90,12 +102,14 @@ module sc_powi #(
     end
   endgenerate
   sc_mul_pool #(
-      .NOP(EBC), .SH(SHC), .ON(255), .ST(ST_M), .AW(WW), .BW(WW), .AMX(W), .BMX(W), .SIGNED(0)
+      .NOP(EBC), .SH(SHC), .ON(255), .ST(ST_M), .AW(WW), .BW(WW), .AMX(W), .BMX(W), .SIGNED(0), .LAT(MR)
   ) u_mul_r (
+      .clk_i(clk_i), .en_i(en_i),
       .a_i(ma), .b_i(mb), .sel_i(sel), .p_o(mp));
   sc_mul_pool #(
-      .NOP(EBC - 1), .SH(SHC), .ON(255), .ST(ST_M), .AW(WW), .BW(WW), .AMX(W), .BMX(W), .SIGNED(0)
+      .NOP(EBC - 1), .SH(SHC), .ON(255), .ST(ST_M), .AW(WW), .BW(WW), .AMX(W), .BMX(W), .SIGNED(0), .LAT(MR)
   ) u_mul_p (
+      .clk_i(clk_i), .en_i(en_i),
       .a_i(mb[0 +: (EBC-1)*W]), .b_i(mb[0 +: (EBC-1)*W]), .sel_i(sel[EBC-2:0]), .p_o(sp[0 +: (EBC-1)*PW]));
   assign sp[(EBC-1)*PW +: PW] = {PW{1'b0}};
 
@@ -103,8 +117,13 @@ module sc_powi #(
     for (k = 0; k < EBC; k = k + 1) begin : g_st
       wire [PW-1:0] rp = mp[k*PW +: PW];
       wire [PW-1:0] pp = sp[k*PW +: PW];
-      // values <= 2^FRAC: ⌊product / 2^FRAC⌋ <= 2^FRAC fits W bits
-      wire [W-1:0] r_n = e_s[k*EB + k] ? rp[FRAC +: W] : r_s[k*W +: W];
+      // values <= 2^FRAC: ⌊product / 2^FRAC⌋ <= 2^FRAC fits W bits. MREG: the products come one edge after
+      // their operands, r and e wait beside them (M register of stage k)
+      wire [W-1:0]  r_k;
+      wire [EB-1:0] e_k;
+      sc_delay #(.W(W + EB), .DEPTH(MR)) u_dly_m (
+          .clk_i(clk_i), .en_i(en_i), .d_i({r_s[k*W +: W], e_s[k*EB +: EB]}), .q_o({r_k, e_k}));
+      wire [W-1:0] r_n = e_k[k] ? rp[FRAC +: W] : r_k;
       wire unused_p = &{1'b0, rp[PW-1:FRAC+W], rp[FRAC-1:0], pp[PW-1:FRAC+W], pp[FRAC-1:0]};
       wire unused_pl = (k + 1 < EBC) ? 1'b0 : &{1'b0, pp};   // the last stage squares nothing
       reg [W-1:0] r_q;
@@ -117,7 +136,7 @@ module sc_powi #(
         always @(posedge clk_i) begin
           if (en_i) begin
             p_q <= pp[FRAC +: W];
-            e_q <= e_s[k*EB +: EB];
+            e_q <= e_k;
           end
         end
         assign r_s[(k+1)*W +: W]   = r_q;
@@ -125,6 +144,7 @@ module sc_powi #(
         assign e_s[(k+1)*EB +: EB] = e_q;
       end else begin : g_last
         assign r_o = r_q;
+        wire unused_e = &{1'b0, e_k};   // the last stage reads bit EB−1 only
       end
     end
   endgenerate

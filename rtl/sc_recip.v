@@ -17,12 +17,13 @@
 //         Newton–Raphson products (S2..S5) share ⌈4/SH⌉ multipliers (rtl/sc_mul_pool.v), chosen by ph_i (default 1)
 //   PH0   0..SH-1: ph_i ≡ PH0 + k (mod SH) while a pass's q is k stages past q_i (the pass at q_i
 //         itself at PH0)                                                               (default 0)
-//   MREG  0 or 1, the lighting core's pipelining parameter (SH = 1 only): each Newton–Raphson product
+//   MREG  0 or 1, the lighting core's pipelining parameter: each Newton–Raphson product
 //         (S3..S6) takes two edges through rtl/sc_mul_reg.v (LAT = 2: its tree | register | its adder |
 //         register), and g = 2^(R+1) − e is folded into the next product as y·~e + y (e < 2^(R+1), so
 //         ~e + 1 = g over R+1 bits): no subtractor is left between two trees. The same att, 4 edges
 //         later (config/configs.json light.latency mreg_recip; the shared datapath below is then
-//         unused and removed by synthesis)                                             (default 0)
+//         unused and removed by synthesis; with SH > 1 the four products are then not shared and ph_i
+//         is not read)                                                                 (default 0)
 //
 // Ports : clk_i             clock, all flops on the rising edge
 //         en_i              enable (the embedding pipeline's global enable)
@@ -87,8 +88,8 @@ module sc_recip #(
     if (SH < 1 || SH > 4 || PH0 < 0 || PH0 >= SH) begin : g_check_sh
       sc_recip_error_illegal_SH_1_to_4_and_PH0_0_to_SH_minus_1 u_error ();
     end
-    if (MREG != 0 && (MREG != 1 || SH != 1)) begin : g_check_mreg
-      sc_recip_error_illegal_MREG_0_or_1_and_1_needs_SH_1 u_error ();
+    if (MREG != 0 && MREG != 1) begin : g_check_mreg
+      sc_recip_error_illegal_MREG_must_be_0_or_1 u_error ();
     end
   endgenerate
 
@@ -268,6 +269,7 @@ module sc_recip #(
       .BW({32'd0, TT[7:0], TT[7:0], R1[7:0], R1[7:0]}),
       .AMX(MA), .BMX(MB), .SIGNED(0)
   ) u_mul (
+      .clk_i(clk_i), .en_i(en_i),
       .a_i({{(MA-R1){1'b0}}, s2_mt_q, s3_g_q, s5_g_q, {(MA-R1){1'b0}}, s4_mt_q}),
       .b_i({{(MB-TT){1'b0}}, s2_y0_q, {(MB-TT){1'b0}}, s3_y0_q, s5_y1_q, s4_y1_q}),
       .sel_i(psel), .p_o(pp));

@@ -17,14 +17,15 @@
 //          e1, y2, c·y2 and y1, one for e0 and n·d), each taking the one valid stage of its group, and a
 //          fragment is accepted only SHARE stages behind the one ahead (rtl/sc_pipe_ctrl.v GAP): one
 //          fragment per SHARE clocks, the same outputs and latency                  (default 1)
-//   MREG   0 or 1 (SHARE = 1): the pipelining parameter. 1 makes each of the six products an rtl/sc_mul_reg.v
+//   MREG   0 or 1: the pipelining parameter. 1 makes each of the six products an rtl/sc_mul_reg.v
 //          (a DSP block's M register; the standard-cell flow places it between the carry-save tree and the
 //          final adder), M1..M6 after S0, S3..S7, the other stage data beside it: LATENCY = 16, the same
 //          outputs. Forms that leave each stage after a register its adder alone: Dc = (1 − n)·c + n·2^F
 //          (1 − n from the material register; no subtractor behind the input ports), each Newton step's
 //          g = 2 − e as K + (−mt)·y (K = 2^(R+1+s) + 2^s − 1 the addend, −mt carried from S3), and S9's rounding
 //          "+ 1" as the last product's addend 2^(R−1+10−s) (S9 a shift only:
-//          ⌊(p + 2^k) / 2^(k+1)⌋ = ((p >> k) + 1) >> 1)                                        (default 0)
+//          ⌊(p + 2^k) / 2^(k+1)⌋ = ((p >> k) + 1) >> 1). With SHARE > 1 the six products are not shared
+//          (their addends and signs have no form in the pool; SHARE still spaces the fragments, GAP)  (default 0)
 //   (no GUARD: the reciprocal carries R = F + 6 fraction bits; mat_thr_i is not used)
 //
 // Ports : docs/spec.md §4 (clk_i, rst_ni synchronous active-low, AXI-Stream style valid/ready).
@@ -99,9 +100,6 @@ module sc_schlick_nr #(
     end
     if (MREG != 0 && MREG != 1) begin : g_check_mreg
       sc_schlick_nr_error_illegal_MREG_must_be_0_or_1 u_error ();
-    end
-    if (MREG != 0 && SHARE != 1) begin : g_check_mreg_share
-      sc_schlick_nr_error_illegal_MREG_1_needs_SHARE_1 u_error ();
     end
   endgenerate
 
@@ -205,7 +203,7 @@ module sc_schlick_nr #(
           .BW({16'd0, NN[7:0], TT[7:0], TT[7:0], F1[7:0], R1[7:0], R1[7:0]}),
           .AMX(MA), .BMX(MB), .SIGNED(0)
       ) u_mul (
-          .a_i(pa), .b_i(pb),
+          .clk_i(clk_i), .en_i(adv), .a_i(pa), .b_i(pb),
           .sel_i({v_stage[0], v_stage[3], v_stage[4], v_stage[7], v_stage[6], v_stage[5]}), .p_o(pp));
       wire unused_v_rest = &{1'b0, v_stage[9:8], v_stage[2:1], s7_rnd_w, s0_omn_q, s3_mtc_w, s5_mtc_w};
     end

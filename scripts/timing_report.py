@@ -447,8 +447,9 @@ def to_row(r, s):
                               f"({lat['mreg_back']} more), the lanes' N before the dot products ({lat['mreg_n']} more) "
                               f"and P before the L and V normalisers ({lat['mreg_p']} more), the attenuation's q = kc + "
                               f"kl·d + kq·d² ({lat['mreg_att']} more) and the reciprocal sc_recip's products "
-                              f"({lat['mreg_recip']} more), and passes MREG to the units and the energy stage; the spot "
-                              "power chain (sc_powi) has no register inside yet")
+                              f"({lat['mreg_recip']} more), each stage of the spot and low-shininess power chains "
+                              f"sc_powi ({lat['mreg_powi']} more each), and passes MREG to the units and the energy "
+                              "stage, at every share")
     if gs is None:
         out["reason_gate_sim"] = ("no gate-level run: the handoff bench cannot load a table RAM"
                                   if r["table"] else "not run")

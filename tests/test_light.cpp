@@ -709,7 +709,8 @@ TEST(FeatureSets, StrictParsing) {
   bad(R"({"lights": ["point", "point"], "lanes": 2, "share": 2})", "'share' 2 needs 'lanes' 1");
   bad(R"({"mreg": 2})", "'mreg' must be 0 or 1");
   bad(R"({"mreg": true})", "'mreg' must be 0 or 1");
-  bad(R"({"mreg": 1, "share": 2})", "'mreg' 1 needs 'share' 1");
+  // the pipelining parameter at share > 1 (issue 35: full_shared + mreg): accepted, its latency grows as at share 1
+  EXPECT_EQ(feature_set_from_json(json::parse(R"({"mreg": 1, "share": 2})"), "t").mreg, 1);
   bad(R"({"specular": ["cs16", "cs16"]})", "named twice");
   bad(R"({"specular": ["cs16", "none"]})", "none cannot be listed");
   bad(R"({"specular": ["schlick_iter", "cs16"]})", "cannot share a core");
@@ -949,7 +950,37 @@ TEST(LightModes, MregLengthensThePathThroughTheNormalisersAndTheUnits) {
   r.light[0].mode = light_mode_word(true, LightKind::PointAtt);
   EXPECT_EQ(LightCore(am).latency(r) - LightCore(a).latency(r),
             kMregP + kMregNormalize + kMregDot + kMregAtt + kMregRecip + 3 * kMregBack);
-  // (that the RTL computes the same colours at that latency is the co-simulation's: ctest sim.light.mreg.*)
+  // the same light at share 2 (q's extra shared stage at share > 1 gives way to the MREG cuts, hence the − 1). Without
+  // GL_NORMALIZE, L is normalisation 0 of the pass: its phase-0 entry comes before P_j − P's register, so it enters a
+  // full turn (2 edges) later instead of kMregP; with GL_NORMALIZE it is normalisation 1, entering at phase 1 after
+  // that register: no extra edge at all
+  FeatureSet a2 = a, a2m;
+  a2.share = 2;
+  a2m = a2;
+  a2m.mreg = 1;
+  ASSERT_FALSE(a2.normalize);
+  EXPECT_EQ(LightCore(a2m).latency(r) - LightCore(a2).latency(r),
+            2 + kMregNormalize + kMregDot + kMregAtt + kMregRecip - 1 + 3 * kMregBack);
+  FeatureSet n2 = a2, n2m;
+  n2.normalize = true;
+  n2m = n2;
+  n2m.mreg = 1;
+  EXPECT_EQ(LightCore(n2m).latency(r) - LightCore(n2).latency(r),
+            kMregNormalize + kMregDot + kMregAtt + kMregRecip - 1 + 3 * kMregBack);
+  // a spot light: the spot factor's power chain takes 1 + kMregPowi edges per exponent bit, the attenuation
+  // its cuts; att · spot is registered one stage after the later of the two (at every share)
+  FeatureSet sp = named("diffuse"), spm;
+  sp.slots = {kind_bit(LightKind::Spot)};
+  spm = sp;
+  spm.mreg = 1;
+  r.light[0].mode = light_mode_word(true, LightKind::Spot);
+  const int att0 = 3 + kRecipLatency, spot0 = 2 + kSpotExpBits;
+  const int att1 = 3 + kMregDot + kRecipLatency + kMregAtt + kMregRecip;
+  const int spot1 = 2 + kMregDot + kSpotExpBits * (1 + kMregPowi);
+  EXPECT_EQ(LightCore(spm).latency(r) - LightCore(sp).latency(r),
+            kMregP + kMregNormalize + std::max(att1, spot1) - std::max(att0, spot0) + 3 * kMregBack);
+  // (that the RTL computes the same colours at that latency is the co-simulation's: ctest sim.light.mreg.*,
+  // sim.light.share2_mreg.*, sim.light.full_shared_mreg.*)
 }
 
 // The lighting core's legal ranges in features.hpp state config/configs.json "limits" (generated

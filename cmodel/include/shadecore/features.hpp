@@ -79,7 +79,7 @@ struct FeatureSet {
                                         // pass share ⌈ops/share⌉ normalisers (docs/lighting.md §2.1); > 1 needs lanes 1
   int spec_guard = kSpecGuardDefault;   // extra fraction bits of the specular path: N̂, V̂, L̂, Ĥ, R, x and the
                                         // unit run at F + spec_guard fraction bits (docs/lighting.md §7)
-  int mreg = 0;                         // the pipelining parameter MREG of rtl/sc_light.v (0/1; 1 needs share 1):
+  int mreg = 0;                         // the pipelining parameter MREG of rtl/sc_light.v (0/1, every share):
                                         // registers inside the normalisers' products (kMregNormalize more
                                         // cycles each) and the units' MREG; the same results
 
@@ -336,8 +336,6 @@ inline FeatureSet feature_set_from_json(const nlohmann::json& j, const std::stri
   if (fs.lanes > fs.num_lights()) fs.lanes = fs.num_lights();
   if (fs.share > 1 && fs.lanes != 1)
     fs_fail(where, "'share' " + std::to_string(fs.share) + " needs 'lanes' 1 (the shared normalisers serve one lane)");
-  if (fs.mreg != 0 && fs.share != 1)
-    fs_fail(where, "'mreg' 1 needs 'share' 1 (the shared multipliers have no product registers)");
   if (fs.specular && fs.has_unit(VariantId::schlick_iter) && fs.units().size() > 1)
     fs_fail(where, "schlick_iter (one fragment per F+4 clocks) cannot share a core with other units");
   return fs;

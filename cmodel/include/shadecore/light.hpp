@@ -508,9 +508,12 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   const int k_v = op_n, k_l = op_n + op_v, k_h = op_n + op_v + op_l;
   // N̂ (or N), with MREG registered after the normalize-mode choice before the lanes' dot products
   const int t_nn = (op_n ? NL : 0) + (need_n ? kMregN * fs.mreg : 0);
-  // V̂ and L̂ of point lights: with MREG, −P and P_j − P registered (kMregP) before their normalisers
-  const int t_v = lv ? k_v % S + NL + kMregP * fs.mreg : 0;
-  const int t_l = any_pl ? k_l % S + NL + kMregP * fs.mreg : 0;
+  // V̂ and L̂ of point lights: with MREG, −P and P_j − P registered (kMregP) before their normalisers; op k enters
+  // at k mod S, or S edges later when that is below the register (every op keeps its phase; S = 1: kMregP)
+  const int mrp = kMregP * fs.mreg;
+  const auto entry = [S, mrp](int k) { return k % S + (k % S < mrp ? S : 0); };
+  const int t_v = lv ? entry(k_v) + NL : 0;
+  const int t_l = any_pl ? entry(k_l) + NL : 0;
   const int t_a = std::max(t_nn, t_l);                                // N̂·L operands
   const int t_h0 = std::max({t_l, t_v, t_nn - NL});                  // Ĥ not before N̂ (MREG registers N̂ once more)
   const int t_h = t_h0 + ((k_h % S - t_h0 % S) + S) % S;              // H = L + V
@@ -518,19 +521,21 @@ inline LightPipe light_pipe(const FeatureSet& fs) {
   int t_x = 0;                                                        // the unit input x
   if (fs.blinn) t_x = std::max(t_x, t_h + NL + 1 + D);
   if (fs.phong) t_x = std::max(t_x, lv ? t_rv + 1 + D : t_a + 2 + 2 * D);
-  // att (distance, q, 1/q; t_l = NL at share 1); at share > 1 q takes a stage more (its three products at
-  // three stages, one shared multiplier)
-  // MREG: q's two products and sc_recip's four each over two edges (kMregAtt, kMregRecip)
-  const int t_att = t_l + 3 + D + RL + (S > 1 ? 1 : 0) + (kMregAtt + kMregRecip) * fs.mreg;
+  // att (distance, q, 1/q; t_l = NL at share 1); at share > 1 without MREG q takes a stage more (its three
+  // products at three stages, one shared multiplier)
+  // MREG: q's two products and sc_recip's four each over two edges (kMregAtt, kMregRecip), at every share
+  const int t_att = t_l + 3 + D + RL + (S > 1 && fs.mreg == 0 ? 1 : 0) + (kMregAtt + kMregRecip) * fs.mreg;
+  // the power chains (rtl/sc_powi.v): one stage per exponent bit, kMregPowi more each with MREG
+  const int powi_stage = 1 + kMregPowi * fs.mreg;
   int t_f = 1;
   if (need_n) t_f = std::max(t_f, t_a + 1 + D);
   if (fs.specular) t_f = std::max(t_f, t_x);
   // low_shininess: the chain takes x at t_x, kLowNBits stages (rtl/sc_light_lane.v)
-  if (fs.specular && fs.low_shininess) t_f = std::max(t_f, t_x + kLowNBits);
+  if (fs.specular && fs.low_shininess) t_f = std::max(t_f, t_x + kLowNBits * powi_stage);
   if (any_att) t_f = std::max(t_f, t_att);
   // spot: ŝ·L̂ at t_l+1, sdl registered at t_l+2, then kSpotExpBits chain stages (rtl/sc_powi.v); att · spot
   // registered one stage after both are there
-  if (any_spot) t_f = std::max(t_f, std::max(t_att, t_l + 2 + D + kSpotExpBits) + 1);
+  if (any_spot) t_f = std::max(t_f, std::max(t_att, t_l + 2 + D + kSpotExpBits * powi_stage) + 1);
   // The back: colour products, attenuation, sum, accumulator. With share >= 4 on an RGB core with units it
   // is channel-serial (rtl/sc_light.v CSER): a pass enters it as three items, one per channel, on
   // consecutive edges, so its colour is out two edges later.
