@@ -548,14 +548,28 @@ module sc_light_lane #(
         sc_delay #(.W(VF+1), .DEPTH(T_SA - T_SP)) u_dly_sp_sa (
             .clk_i(clk_i), .en_i(en_i), .d_i(spot_f), .q_o(sp_sa));
         // ⌊att·spot / 2^VF⌋ <= att (spot <= 2^VF)
-        wire [FRAC+VF+8:0] as_p = {{(VF+1){1'b0}}, att_sa} * {{(FRAC+8){1'b0}}, sp_sa};
-        wire unused_as = &{1'b0, as_p[FRAC+VF+8], as_p[VF-1:0]};
-        reg [FRAC+7:0] att_sa_q;
-        always @(posedge clk_i) begin
-          if (en_i) att_sa_q <= (kind_sa == KIND_SPOT[1:0]) ? as_p[VF +: FRAC+8] : att_sa;
+        wire [FRAC+7:0] att_sa_w;   // registered at T_SA+1
+        if (MREG != 0) begin : g_as_m
+          // MREG: the product with its register (rtl/sc_mul_reg.v, the adder after it, in front of the delay
+          // registers to T_F) and the kind's choice in front of the tree instead of after it: a light that is not
+          // a spot multiplies by 2^VF, ⌊att·2^VF / 2^VF⌋ = att. The same value at the same stage
+          wire [VF:0]        s_x = (kind_sa == KIND_SPOT[1:0]) ? sp_sa : {1'b1, {VF{1'b0}}};
+          wire [FRAC+VF+8:0] as_q;
+          sc_mul_reg #(.AW(FRAC+8), .BW(VF+1), .PW(FRAC+VF+9), .LAT(1)) u_as (
+              .clk_i(clk_i), .en_i(en_i), .a_i(att_sa), .b_i(s_x), .c_i(1'b0), .p_o(as_q));
+          wire unused_as = &{1'b0, as_q[FRAC+VF+8], as_q[VF-1:0]};
+          assign att_sa_w = as_q[VF +: FRAC+8];
+        end else begin : g_as
+          wire [FRAC+VF+8:0] as_p = {{(VF+1){1'b0}}, att_sa} * {{(FRAC+8){1'b0}}, sp_sa};
+          wire unused_as = &{1'b0, as_p[FRAC+VF+8], as_p[VF-1:0]};
+          reg [FRAC+7:0] att_sa_q;
+          always @(posedge clk_i) begin
+            if (en_i) att_sa_q <= (kind_sa == KIND_SPOT[1:0]) ? as_p[VF +: FRAC+8] : att_sa;
+          end
+          assign att_sa_w = att_sa_q;
         end
         sc_delay #(.W(FRAC+8), .DEPTH(T_F - T_SA - 1)) u_dly_att (
-            .clk_i(clk_i), .en_i(en_i), .d_i(att_sa_q), .q_o(att_f));
+            .clk_i(clk_i), .en_i(en_i), .d_i(att_sa_w), .q_o(att_f));
       end else begin : g_att_plain
         wire unused_spot_f = &{1'b0, spot_f};
         sc_delay #(.W(FRAC+8), .DEPTH(T_F - T_ATT)) u_dly_att (
