@@ -980,7 +980,7 @@ TEST(LightModes, MregLengthensThePathThroughTheNormalisersAndTheUnits) {
   EXPECT_EQ(LightCore(spm).latency(r) - LightCore(sp).latency(r),
             kMregP + kMregNormalize + std::max(att1, spot1) - std::max(att0, spot0) + 3 * kMregBack);
   // (that the RTL computes the same colours at that latency is the co-simulation's: ctest sim.light.mreg.*,
-  // sim.light.share2_mreg.*, sim.light.full_shared_mreg.*)
+  // sim.light.share3_mreg.*, sim.light.full_shared_mreg.*)
 }
 
 // The lighting core's legal ranges in features.hpp state config/configs.json "limits" (generated
