@@ -211,14 +211,27 @@ POOL_INST = {
     2: "  sc_mul_pool #(.NOP(2), .SH(2), .ON(3), .ST(64'h0100), .AW(64'h0404), .BW(64'h0404), .AMX(4), .BMX(4))\n"
        "    u_two (.a_i(a), .b_i(b), .sel_i(s), .p_o(p[31:16]));",
 }
-CANON = "sc_mul_pool__{AMX=4,AW=1028,BMX=4,BW=1028,NOP=2,ON=3,SH=%d,SIGNED=0,ST=256}"
+CANON = "sc_mul_pool__{AMX=4,AW=1028,BMX=4,BW=1028,LAT=0,NOP=2,ON=3,SH=%d,SIGNED=0,ST=256}"
+
+
+def pool_lines(pool_v):
+    """The lines of rtl/sc_mul_pool.v the parameterisation checks name, found by their text (not hard-coded numbers:
+    the file grows): mp_fld's function line, mp_on's, and `if (mp_on(j) != 0)` in mp_inst."""
+    text = open(pool_v).read().splitlines()
+
+    def find(needle):
+        hits = [i + 1 for i, ln in enumerate(text) if needle in ln]
+        if len(hits) != 1:
+            raise SystemExit("coverage_check: %r is on %d lines of %s, expected 1" % (needle, len(hits), pool_v))
+        return hits[0]
+    return find("function integer mp_fld("), find("function integer mp_on("), find("if (mp_on(j) != 0)")
 
 
 def params_quick(sc, root, work):
     """Waivers keyed to a parameterisation (docs/coverage.md "Parameterisations"). A design holding rtl/sc_mul_pool.v
     at share 1 (u_one) and share 2 (u_two) through `verilator --xml-only` (the map a coverage build keeps), twice with
     the instances in the other order so Verilator's __piN numbers swap; hand-made databases of each build's points
-    (sc_mul_pool.v:54, mp_fld: dead at SH = 1, hit at SH = 2; the `else` of line 67, dead while every op is on)
+    (mp_fld's line: dead at SH = 1, hit at SH = 2; the `else` of mp_inst's `if (mp_on(j) != 0)`, dead while every op is on)
     through `shadecore coverage --params-map`."""
     verilator = shutil.which("verilator")
     if not verilator:
@@ -246,13 +259,15 @@ def params_quick(sc, root, work):
     check(pi["a"]["u_one"] == pi["b"]["u_two"] and pi["a"]["u_two"] == pi["b"]["u_one"] and "__pi" in pi["a"]["u_one"],
           "Verilator numbers the parameterisations per build: %s in one, %s in the other" % (pi["a"], pi["b"]))
 
+    lf, lo, li = pool_lines(pool_v)
+
     def pool_points(tag, inst, counts):
         mod = pi[tag][inst]
         h = "TOP.cov_params_top." + inst
-        return [(key(f=pool_v, l=54, n=20, page="v_line/" + mod, o="block", S="54-55", h=h), counts[0]),   # mp_fld
-                (key(f=pool_v, l=57, n=20, page="v_line/" + mod, o="block", S="57-58", h=h), counts[1]),   # mp_on
-                (key(f=pool_v, l=67, n=9, page="v_branch/" + mod, o="if", S="67-70,73", h=h), counts[2]),
-                (key(f=pool_v, l=67, n=10, page="v_branch/" + mod, o="else", h=h), counts[3])]
+        return [(key(f=pool_v, l=lf, n=20, page="v_line/" + mod, o="block", S="%d-%d" % (lf, lf + 1), h=h), counts[0]),  # mp_fld
+                (key(f=pool_v, l=lo, n=20, page="v_line/" + mod, o="block", S="%d-%d" % (lo, lo + 1), h=h), counts[1]),  # mp_on
+                (key(f=pool_v, l=li, n=9, page="v_branch/" + mod, o="if", S="%d-%d,%d" % (li, li + 3, li + 6), h=h), counts[2]),
+                (key(f=pool_v, l=li, n=10, page="v_branch/" + mod, o="else", h=h), counts[3])]
     # share 1: mp_fld never runs; share 2: it does; the else of `if (mp_on(j) != 0)` never (ON = 3 = both ops on)
     da, db = os.path.join(work, "pa.dat"), os.path.join(work, "pb.dat")
     write_dat(da, pool_points("a", "u_one", (0, 10, 10, 0)) + pool_points("a", "u_two", (7, 10, 10, 0)))
@@ -297,9 +312,9 @@ def params_quick(sc, root, work):
     r = run([sc, "coverage", os.path.join(outs["a"], "coverage.dat"), os.path.join(outs["b"], "coverage.dat"), "--waivers", wf,
              "--out", oab, "--no-html"])
     ab = parse_dat(os.path.join(oab, "coverage.dat")) if r.returncode == 0 else {}
-    line54 = {fields(k)["page"]: c for k, c in ab.items() if fields(k).get("l") == "54"}
-    check(r.returncode == 0 and len(ab) == 8 and line54 == {"v_line/" + CANON % 1: 0, "v_line/" + CANON % 2: 10},
-          "two builds with swapped __piN numbers merge into the same 8 points (mp_fld at SH=2: 7 + 3): %s" % line54)
+    line_fld = {fields(k)["page"]: c for k, c in ab.items() if fields(k).get("l") == str(lf)}
+    check(r.returncode == 0 and len(ab) == 8 and line_fld == {"v_line/" + CANON % 1: 0, "v_line/" + CANON % 2: 10},
+          "two builds with swapped __piN numbers merge into the same 8 points (mp_fld at SH=2: 7 + 3): %s" % line_fld)
 
     def refused(waivers, needle, what, dats=(da,), extra=("--params-map", xml["a"])):
         w2 = os.path.join(work, "pw_%d.json" % len(os.listdir(work)))
@@ -313,22 +328,22 @@ def params_quick(sc, root, work):
               "%s: exit 1, one line naming it, nothing written (%r)" % (what, lines[-1] if lines else ""))
 
     base = dict(good[0])
-    refused([dict(base, id="share2", params={"SH": 2})], "waiver 'share2' claims line sc_mul_pool.v:54",
+    refused([dict(base, id="share2", params={"SH": 2})], "waiver 'share2' claims line sc_mul_pool.v:%d" % lf,
             "the same point waived at share 2, where it is hit")
     refused([dict(base, id="stale-p", function="mp_gone")], "waiver 'stale-p' (sc_mul_pool line, SH=1) matches nothing",
             "a params waiver whose parameterisation is there but which matches none of its points")
     refused([dict(base, id="typo", params={"SHARE": 1})], "waiver 'typo': params: sc_mul_pool has no parameter 'SHARE' (its "
-            "parameters: AMX, AW, BMX, BW, NOP, ON, SH, SIGNED, ST)", "an unknown parameter name")
+            "parameters: AMX, AW, BMX, BW, LAT, NOP, ON, SH, SIGNED, ST)", "an unknown parameter name")
     refused([dict(base, id="raw")], "waiver 'raw' is keyed to parameters (SH=1), but the database's sc_mul_pool points carry "
             "no parameterisation", "a params waiver on a database without parameterisations", extra=())
     for bad, needle in (([1], '"params" must be an object'), ({}, '"params" must be an object'),
                         ({"SH": 1.5}, "params: SH must be an integer or a string"), ({"S H": 1}, "is not a parameter name")):
         refused([dict(base, id="bad", params=bad)], needle, "params %s refused" % json.dumps(bad))
     other = os.path.join(work, "pother.dat")
-    write_dat(other, [(key(f=pool_v, l=57, n=20, page="v_line/sc_mul_pool__pi9", o="block", h="TOP.cov_params_top.u_one"), 1)])
+    write_dat(other, [(key(f=pool_v, l=lo, n=20, page="v_line/sc_mul_pool__pi9", o="block", h="TOP.cov_params_top.u_one"), 1)])
     refused([], "module sc_mul_pool__pi9 is not in the parameterisation map", "a database of another build", dats=(other,))
     wrong = os.path.join(work, "pwrong.dat")
-    write_dat(wrong, [(key(f=pool_v, l=57, n=20, page="v_line/" + pi["a"]["u_one"], o="block", h="TOP.cov_params_top.u_two"), 1)])
+    write_dat(wrong, [(key(f=pool_v, l=lo, n=20, page="v_line/" + pi["a"]["u_one"], o="block", h="TOP.cov_params_top.u_two"), 1)])
     refused([], "has no instance u_two of %s" % pi["a"]["u_one"], "a point the map places in another module", dats=(wrong,))
 
 
@@ -336,7 +351,8 @@ def params_run(sc, root, work):
     """The share-tied waiver on real coverage builds (ctest coverage.params, label long: two lighting coverage cores,
     ~2 min each the first time, then cached): `cosim --core lighting --coverage` of `diffuse` (share 1) and of the same
     set at share 2 write canonical databases (the map beside each build); merged with the project's waivers, mp_fld
-    (sc_mul_pool.v:54) is waived at SH = 1 and counted — hit — at SH = 2."""
+    (its line in sc_mul_pool.v) is waived at SH = 1 and counted — hit — at SH = 2."""
+    lf = pool_lines(os.path.join(root, "rtl", "sc_mul_pool.v"))[0]
     base = json.load(open(os.path.join(root, "config", "configs.json")))
     s2 = dict(next(f for f in base["feature_sets"] if f["name"] == "diffuse"), name="diffuse_share2", share=2)
     s2f = os.path.join(work, "diffuse_share2.json")
@@ -366,14 +382,14 @@ def params_run(sc, root, work):
     fld = {}
     for k, c in parse_dat(os.path.join(o, "coverage.dat")).items():
         fl = fields(k)
-        if fl["page"].startswith("v_line/sc_mul_pool__") and fl.get("l") == "54":
+        if fl["page"].startswith("v_line/sc_mul_pool__") and fl.get("l") == str(lf):
             sh = [x.split("=")[1] for x in fl["page"][fl["page"].index("{") + 1:-1].split(",") if x.startswith("SH=")][0]
             fld[sh] = fld.get(sh, 0) + c
     check(set(fld) == {"1", "2"} and fld["1"] == 0 and fld["2"] > 0,
-          "mp_fld (sc_mul_pool.v:54): never run at SH=1, run %s time(s) at SH=2" % fld.get("2"))
+          "mp_fld (sc_mul_pool.v:%d): never run" % lf + " at SH=1, run %s time(s) at SH=2" % fld.get("2"))
     s = json.load(open(os.path.join(o, "summary.json")))
     applied = {x["id"]: x["points"] for x in s["waivers"]["applied"]}
-    holes = [h for h in s["holes"].get("sc_mul_pool", []) if "sc_mul_pool.v:54 " in h]
+    holes = [h for h in s["holes"].get("sc_mul_pool", []) if "sc_mul_pool.v:%d " % lf in h]
     check(applied.get("mul-pool-mp_fld-share1") == 1 and not holes,
           "the share-1 waiver takes the one SH=1 point; the SH=2 point is counted (hit), neither waived nor a hole (%s, %s)" %
           (applied.get("mul-pool-mp_fld-share1"), holes))
