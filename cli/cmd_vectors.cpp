@@ -5,6 +5,18 @@
 //   shadecore vectors --variant cs16 --config default --mode hard --out hard.hex
 //   shadecore vectors --variant schlick_nr --config narrow --mode random --count 5000 --seed 7 --out r.hex
 //   shadecore vectors --config narrow --norm phong --mode exhaustive --n 16..20 --out e.hex
+//   shadecore vectors --variant cs16 --mode ports --count 4000 --seed 3 --out p.hex
+//
+// --mode ports: random material port values beyond what the host's setup writes (docs/spec.md §3.1, "Beyond the
+// host's values"): n in 1..1024 (below the host's 16 too; the first four material runs n = 1, 2, 15, 1024) and thr over the F+1-bit port, 0..2^(F+1)-1 (the
+// coefficient and a table unit's contents those of the legal n nearest n); codes within ±512 of that thr (half),
+// uniform over the signed input word (a quarter) and within ±4 of 0 and 1.0 (the rest). Material runs of ~8
+// fragments, as --mode random. Three limits, where the RTL is sized for the host's values and the C model and
+// the RTL differ (found by this mode, 2026-12-07): n above 1024 (the cs16 family's n·d products wrap); n = 0
+// (base = 1.0 for every code, which the squarer forms' sign test of base mod 2^(F+5) cuts; schlick_nr's
+// Dc = c < 2^F is not normalised as its C model assumes); and in the cs16 family with the θcr cut-off an uncut |base| > 1 (c < 2^F - 2^(F+5)/n, only with a
+// thr below thr(n): the reference form's W-bit squarings overflow, the other forms' sign test of base mod
+// 2^(F+5) wraps): there thr is drawn from 2^F - 2^(F+5)/n up.
 //
 // File format (also written as the file's header): one vector per line, five hex words
 //   N THR COEF COS EXPECTED
@@ -14,6 +26,7 @@
 //
 // The lighting core (--core lighting --features NAME|FILE, --mode hard|random): register writes,
 // fragments and expected colours, one record per line (format: docs/handoff.md, cli/handoff_light.cpp).
+#include <algorithm>
 #include <cinttypes>
 #include <random>
 
@@ -85,8 +98,10 @@ void run(VectorsArgs& a) {
   if (!a.features.empty()) throw std::invalid_argument("--features applies to --core lighting only");
   const UnitSpec spec = resolve_unit(*a.unit);
   VectorRequest req = a.req;
-  if (req.mode != "hard" && req.mode != "random" && req.mode != "exhaustive")
-    throw std::invalid_argument("unknown mode '" + req.mode + "' (known: hard, random, exhaustive)");
+  if (req.mode != "hard" && req.mode != "random" && req.mode != "exhaustive" && req.mode != "ports")
+    throw std::invalid_argument("unknown mode '" + req.mode + "' (known: hard, random, exhaustive, ports)");
+  if (req.mode == "ports" && a.n_opt->count() > 0)
+    throw std::invalid_argument("--n does not apply to --mode ports (it draws n in 1..1024)");
   const auto [lo, hi] = parse_range(a.n_range);
   validate_n(lo);
   validate_n(hi);
@@ -94,16 +109,18 @@ void run(VectorsArgs& a) {
   req.n_hi = hi;
   if (req.mode == "hard" && a.n_opt->count() > 0)
     throw std::invalid_argument("--n does not apply to --mode hard (the hard-case list fixes its exponents)");
-  if (req.mode != "random" && (a.count_opt->count() > 0 || a.seed_opt->count() > 0))
-    throw std::invalid_argument("--count and --seed apply to --mode random only");
-  if (req.mode == "random" && req.count == 0) throw std::invalid_argument("--count must be >= 1");
-  if (req.mode == "random" && req.seed == 0) req.seed = pick_seed();
+  const bool drawn = req.mode == "random" || req.mode == "ports";
+  if (!drawn && (a.count_opt->count() > 0 || a.seed_opt->count() > 0))
+    throw std::invalid_argument("--count and --seed apply to --mode random and ports only");
+  if (drawn && req.count == 0) throw std::invalid_argument("--count must be >= 1");
+  if (drawn && req.seed == 0) req.seed = pick_seed();
   check_output_path(a.out);
 
   const std::vector<TestVector> v = make_vectors(spec, req);
   write_output_file(a.out, format_vectors(spec, req, v));
   fmt::print("vectors: {} {} vector(s) for {}{} -> {}\n", v.size(), req.mode, spec.describe(),
-             req.mode == "random" ? fmt::format(", seed {}, stimulus digest {}", req.seed, random_digest(v)) : "", a.out);
+             req.mode == "random" ? fmt::format(", seed {}, stimulus digest {}", req.seed, random_digest(v))
+             : req.mode == "ports" ? fmt::format(", seed {}", req.seed) : "", a.out);
 }
 
 }  // namespace
@@ -138,6 +155,33 @@ std::vector<TestVector> make_vectors(const UnitSpec& spec, const VectorRequest& 
       for (int64_t c = 0; c <= one; ++c) add(n, m, c);
       for (int64_t c : {f.in_min(), int64_t{-1}, one + 1, f.in_max()}) add(n, m, c);  // clamp, never wrap
     }
+  } else if (req.mode == "ports") {
+    if (req.seed == 0) throw std::invalid_argument("port vectors need a non-zero seed");
+    if (req.count > kMaxVectors)
+      throw std::invalid_argument(fmt::format("--count {} is over the limit of {}", req.count, kMaxVectors));
+    sim::Rng r(sim::mix64(req.seed ^ 0x706f727473ull));
+    const int64_t thr_port = (int64_t{1} << (f.frac + 1)) - 1;
+    v.reserve(req.count);
+    int n = 0, runs = 0;
+    UnitMaterial m;
+    constexpr int kEnds[] = {1, 2, kNMin - 1, kNMax};  // the first runs: the ends of the range, then random
+    for (uint64_t i = 0; i < req.count; ++i) {
+      if (i == 0 || r.next() % 8 == 0) {
+        n = runs < 4 ? kEnds[runs] : static_cast<int>(r.uniform(1, kNMax));
+        ++runs;
+        m = unit.setup(std::clamp(n, kNMin, kNMax));
+        m.n = n;
+        const int64_t thr_lo = unit.has_cutoff() && unit.cutoff() == Cutoff::ThetaCr
+                                   ? std::max<int64_t>(0, one - (int64_t{1} << (f.frac + 5)) / std::max(n, 1))
+                                   : 0;
+        m.thr = static_cast<uint32_t>(r.uniform(thr_lo, thr_port));
+      }
+      const uint64_t kind = r.next() % 4;
+      int64_t code = kind < 2 ? int64_t{m.thr} + r.uniform(-512, 512)
+                     : kind == 2 ? r.uniform(f.in_min(), f.in_max())
+                                 : (r.next() % 2 ? one : 0) + r.uniform(-4, 4);
+      add(n, m, std::clamp(code, f.in_min(), f.in_max()));
+    }
   } else {
     if (req.seed == 0) throw std::invalid_argument("random vectors need a non-zero seed");
     if (req.count > kMaxVectors)
@@ -169,6 +213,7 @@ std::string format_vectors(const UnitSpec& spec, const VectorRequest& req, const
   std::string s;
   s += "// shadecore vectors: " + spec.describe() + "\n";
   s += "// mode " + req.mode;
+  if (req.mode == "ports") s += fmt::format(", seed {}: n in 1..1024 and thr over its whole port", req.seed);
   if (req.mode == "random")
     s += fmt::format(", seed {}, n {}..{}, stimulus digest {}", req.seed, req.n_lo, req.n_hi, random_digest(v));
   if (req.mode == "exhaustive") s += fmt::format(", n {}..{}: every code 0..2^F, then -2^(F+1), -1, 2^F+1, 2^(F+1)-1", req.n_lo, req.n_hi);
@@ -200,9 +245,9 @@ void add_vectors(CLI::App& app) {
   add_unit_options(sub, a->unit);
   sub->add_option("--core", a->core, "specular (default): the unit; lighting: register writes, fragments, colours")->check(cliargs::NonEmpty("core"));
   sub->add_option("--features", a->features, "Lighting core feature set: a name of config/configs.json or a JSON file")->check(cliargs::NonEmpty("feature set"));
-  sub->add_option("--mode", a->req.mode, "hard (the hard-case list) | random | exhaustive")->check(cliargs::NonEmpty("mode"));
-  a->count_opt = sub->add_option("--count", a->req.count, "Random: number of vectors (default 1000)");
-  a->seed_opt = sub->add_option("--seed", a->req.seed, "Random: seed (default: picked and recorded in the file)");
+  sub->add_option("--mode", a->req.mode, "hard (the hard-case list) | random | exhaustive | ports (n in 1..1024, thr over its port)")->check(cliargs::NonEmpty("mode"));
+  a->count_opt = sub->add_option("--count", a->req.count, "Random, ports: number of vectors (default 1000)");
+  a->seed_opt = sub->add_option("--seed", a->req.seed, "Random, ports: seed (default: picked and recorded in the file)");
   a->n_opt = sub->add_option("--n", a->n_range, "Random, exhaustive: exponent range LO..HI or N (default 16..1024)")->check(cliargs::NonEmpty("range"));
   sub->add_option("--out", a->out, "Output file (written atomically)")->required()->check(cliargs::NonEmpty("path"));
   sub->callback([a] { run(*a); });

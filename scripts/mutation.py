@@ -16,6 +16,10 @@ unit's file is that mutant (every other module unchanged), cheapest check first:
   seed2    every vector file, SEED=2 RESET_AT=5 (other gaps / backpressure, an early reset)
   extra    more vectors from the CLI (`shadecore vectors ... --mode random`, no C++ change): units, three
            files with n in 16..31, 32..127 and 128..1024 (seeds 11, 12, 13); lighting, one file of seed 11
+  ports    units: material port values beyond what the host writes (`shadecore vectors --mode ports`, three
+           files, seeds 21, 22, 23): n in 1..1024, thr over its F+1-bit port with codes around it (reference
+           cs16: thr from |base| = 1 up), so a change confined to the host's thr(n) window or to n in 1..15
+           shows; the lighting core has no such stage
   exhaustive  units that take a fragment every clock (not schlick_iter): the mutant Verilated with the bare
            harness sim/bare_main.cpp (sc_specular around it, no SystemC) and run on EVERY input code of every
            n = 16..1024 (`--all-codes`: 1009 x 2^(F+2) fragments), each output and its latency compared with
@@ -82,7 +86,7 @@ NO_BENCH = {
     "table256": "no handoff bench for the table RAM (the bundle cannot be made for a table unit)",
     "table1024": "no handoff bench for the table RAM (the bundle cannot be made for a table unit)",
 }
-STAGES = ["hard", "random", "nogap", "seed2", "extra", "exhaustive"]
+STAGES = ["hard", "random", "nogap", "seed2", "extra", "ports", "exhaustive"]
 # Units the exhaustive stage cannot take: the bare harness presents a fragment every clock.
 NO_EXHAUSTIVE = {"schlick_iter": "takes one fragment per F+4 clocks; the bare harness presents one every clock"}
 EQ_METHOD = 6  # equivalence(): 6 = constant bit, combinational SAT, equiv_*, with memories mapped to logic first; an
@@ -323,6 +327,8 @@ def stage_env(ctx, stage, fl):
         env.update(SEED="2", RESET_AT="5")
     elif stage == "extra":
         env["VECTORS"] = " ".join(ctx["extra"])
+    elif stage == "ports":
+        env["VECTORS"] = " ".join(ctx["ports"])
     return env
 
 
@@ -598,15 +604,19 @@ def save_cache(path, cache):
     os.replace(tmp, path)
 
 
-def make_extra(opts, name, handoff_args, wdir):
-    """The extra stage's vector files (shadecore vectors, random mode): n bands for a unit, a seed for lighting."""
-    edir = os.path.join(wdir, "extra")
+def make_extra(opts, name, handoff_args, wdir, mode="random"):
+    """The extra stage's vector files (shadecore vectors, random mode): n bands for a unit, a seed for lighting; the
+    ports stage's (mode "ports", units only: three seeds, n and thr over their whole ports)."""
+    edir = os.path.join(wdir, "extra" if mode == "random" else mode)
     os.makedirs(edir, exist_ok=True)
-    jobs = [(None, 11)] if "lighting" in handoff_args else [("16..31", 11), ("32..127", 12), ("128..1024", 13)]
+    if mode == "ports":
+        jobs = [] if "lighting" in handoff_args else [(None, 21), (None, 22), (None, 23)]
+    else:
+        jobs = [(None, 11)] if "lighting" in handoff_args else [("16..31", 11), ("32..127", 12), ("128..1024", 13)]
     files = []
     for band, seed in jobs:
-        out = os.path.join(edir, "random_n%s_seed%d.hex" % ((band or "all").replace("..", "-"), seed))
-        cmd = [opts.cli, "vectors"] + handoff_args + ["--mode", "random", "--count", str(opts.vec_count),
+        out = os.path.join(edir, "%s_n%s_seed%d.hex" % (mode, (band or "all").replace("..", "-"), seed))
+        cmd = [opts.cli, "vectors"] + handoff_args + ["--mode", mode, "--count", str(opts.vec_count),
                                                       "--seed", str(seed), "--out", out]
         if band:
             cmd[-2:-2] = ["--n", band]
@@ -652,12 +662,14 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
     prep = prepare(name, bundle, unit, opts.count, opts.seed, wdir)
     hard, rand = vector_files(bundle)
     extra = make_extra(opts, name, handoff_args, wdir) if "extra" in opts.stages else []
+    ports = make_extra(opts, name, handoff_args, wdir, "ports") if "ports" in opts.stages else []
     bare = bare_params(opts, handoff_args, bundle) if "exhaustive" in opts.stages else None
     stages = [s for s in STAGES if s in opts.stages and not (s == "hard" and not hard)
               and not (s == "random" and not rand) and not (s == "extra" and not extra)
+              and not (s == "ports" and not ports)
               and not (s == "exhaustive" and not bare)]
     ctx = dict(prep, unit=unit, bundle=bundle, wdir=wdir, design_il=os.path.join(wdir, "design.il"),
-               hard=hard, random=rand, extra=extra, bare=bare, stages=stages, eq_timeout=opts.eq_timeout,
+               hard=hard, random=rand, extra=extra, ports=ports, bare=bare, stages=stages, eq_timeout=opts.eq_timeout,
                eq_steps=opts.eq_steps, tmp=os.path.join(wdir, "tmp"), timeouts={})
     os.makedirs(ctx["tmp"], exist_ok=True)
     # the fingerprint: what a cached result depends on (a new stage re-runs the survivors in it only)
@@ -878,7 +890,10 @@ def write_report(opts, designs, md_path, json_path):
          "cheapest first: `hard` (the directed vectors), `random`, `nogap` (every vector, no input gaps and no "
          "backpressure: exact latency), `seed2` (other gaps and backpressure, a reset after 5 vectors), `extra` "
          "(more random vectors from `shadecore vectors`: for a unit 3 × %d with n in 16..31, 32..127, "
-         "128..1024, seeds 11, 12, 13; for the lighting core one file of seed 11 — no C++ change), `exhaustive` "
+         "128..1024, seeds 11, 12, 13; for the lighting core one file of seed 11), `ports` (units: `shadecore vectors "
+         "--mode ports`, seeds 21, 22, 23: n in 1..1024, thr over its F+1-bit port with codes around it — for the "
+         "reference cs16 from |base| = 1 up, where its squarings stay in range — so a change seen only with a thr "
+         "other than the host's thr(n) or an n in 1..15 shows), `exhaustive` "
          "(units that take a fragment every clock: the mutant Verilated with the bare harness `sim/bare_main.cpp` "
          "and run on every F+2-bit input code of every n = 16..1024 against the C model, its first mismatch the "
          "witness; a survivor of it computes the C model's function on the unit's whole input domain, which is "

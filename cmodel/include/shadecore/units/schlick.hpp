@@ -134,9 +134,13 @@ inline uint32_t schlick_nr_eval(const Format& f, const SchlickMaterial& m, int64
   uint32_t c;
   uint64_t den;
   detail::schlick_front(f, m, code, c, den);
-  // S2 — leading-zero count s: den·2^s has its leading one at bit F+10 (den >= 2^F ⇒ s <= 10).
-  int s = 0;
-  while (((den << s) >> (DB - 1)) == 0) ++s;
+  // S2 — leading-zero count s: den·2^s has its leading one at bit F+10 (den >= 2^F ⇒ s <= 10). As rtl/sc_schlick_nr.v's
+  // lzc_d: only bits F..F+10 are looked at and s = 10 when none is set. Dc >= 2^F for every n >= 1; Dc < 2^F needs
+  // n = 0 on the port (outside the host's 16..1024, and the RTL's later stages still differ there: docs/spec.md
+  // §3.1), where the unbounded search for the leading one this replaced never ended at Dc = 0.
+  int s = 10;
+  for (int i = 0; i <= 10; ++i)
+    if ((den >> (F + i)) & 1) s = 10 - i;
   const uint64_t mn = den << s;                    // F+11 bits, value md = mn / 2^(F+10) in [1, 2)
   const uint64_t mt = mn >> (DB - 1 - R);          // truncate to R fraction bits (drops 4 bits, R+1 bits)
   // S3 — table: index = the P bits after the leading one.
