@@ -8,15 +8,17 @@
 //   shadecore vectors --variant cs16 --mode ports --count 4000 --seed 3 --out p.hex
 //
 // --mode ports: random material port values beyond what the host's setup writes (docs/spec.md §3.1, "Beyond the
-// host's values"): n in 1..1024 (below the host's 16 too; the first four material runs n = 1, 2, 15, 1024) and thr over the F+1-bit port, 0..2^(F+1)-1 (the
-// coefficient and a table unit's contents those of the legal n nearest n); codes within ±512 of that thr (half),
-// uniform over the signed input word (a quarter) and within ±4 of 0 and 1.0 (the rest). Material runs of ~8
-// fragments, as --mode random. Three limits, where the RTL is sized for the host's values and the C model and
-// the RTL differ (found by this mode, 2026-12-07): n above 1024 (the cs16 family's n·d products wrap); n = 0
-// (base = 1.0 for every code, which the squarer forms' sign test of base mod 2^(F+5) cuts; schlick_nr's
-// Dc = c < 2^F is not normalised as its C model assumes); and in the cs16 family with the θcr cut-off an uncut |base| > 1 (c < 2^F - 2^(F+5)/n, only with a
-// thr below thr(n): the reference form's W-bit squarings overflow, the other forms' sign test of base mod
-// 2^(F+5) wraps): there thr is drawn from 2^F - 2^(F+5)/n up.
+// host's values"): n in 1..1024 (below the host's 16 too; the first four material runs n = 1, 2, 15, 1024) and thr
+// on the F+1-bit port, 0..2^(F+1)-1 (half below the host's thr(n) of the legal n nearest n, where the cut decides a
+// non-zero output, a quarter within ±512 of thr(n), a quarter over the port; the coefficient and a table unit's
+// contents those of that legal n); codes within ±4 of thr (a quarter), within ±512 of it (a quarter), uniform over
+// the signed input word (a quarter) and within ±4 of 0 and 1.0 (the rest). Material runs of ~8 fragments, as
+// --mode random. Three limits, where the RTL is sized for the host's values and the C model and the RTL differ
+// (found by this mode, 2026-12-07): n above 1024 (the cs16 family's n·d products wrap); n = 0 (base = 1.0 for
+// every code, which the squarer forms' sign test of base mod 2^(F+5) cuts; schlick_nr's Dc = c < 2^F is not
+// normalised as its later stages assume); and in the cs16 family with the θcr cut-off an uncut |base| > 1
+// (c < 2^F - 2^(F+5)/n, only with a thr below thr(n): the reference form's W-bit squarings overflow, the other
+// forms' sign test of base mod 2^(F+5) wraps): there thr is drawn from 2^F - 2^(F+5)/n up.
 //
 // File format (also written as the file's header): one vector per line, five hex words
 //   N THR COEF COS EXPECTED
@@ -174,10 +176,19 @@ std::vector<TestVector> make_vectors(const UnitSpec& spec, const VectorRequest& 
         const int64_t thr_lo = unit.has_cutoff() && unit.cutoff() == Cutoff::ThetaCr
                                    ? std::max<int64_t>(0, one - (int64_t{1} << (f.frac + 5)) / std::max(n, 1))
                                    : 0;
-        m.thr = static_cast<uint32_t>(r.uniform(thr_lo, thr_port));
+        // thr: half between thr_lo and the host's thr (where the cut decides a non-zero output), a quarter within
+        // ±512 of the host's thr, a quarter over the port
+        const int64_t host = m.thr;
+        const uint64_t tk = r.next() % 4;
+        const int64_t t = tk < 2 ? r.uniform(std::min(thr_lo, host), host)
+                          : tk == 2 ? host + r.uniform(-512, 512) : r.uniform(thr_lo, thr_port);
+        m.thr = static_cast<uint32_t>(std::clamp(t, thr_lo, thr_port));
       }
+      // codes: a quarter within ±4 of thr (both sides of the cut), a quarter within ±512 of it, a quarter over the
+      // signed input word, the rest within ±4 of 0 and 1.0
       const uint64_t kind = r.next() % 4;
-      int64_t code = kind < 2 ? int64_t{m.thr} + r.uniform(-512, 512)
+      int64_t code = kind == 0 ? int64_t{m.thr} + r.uniform(-4, 4)
+                     : kind == 1 ? int64_t{m.thr} + r.uniform(-512, 512)
                      : kind == 2 ? r.uniform(f.in_min(), f.in_max())
                                  : (r.next() % 2 ? one : 0) + r.uniform(-4, 4);
       add(n, m, std::clamp(code, f.in_min(), f.in_max()));
