@@ -268,11 +268,56 @@ TEST(VectorsCli, ExhaustiveAndNorm) {
   fs::remove_all(d);
 }
 
+// --mode ports (docs/spec.md §3.1 "Beyond the host's values"): n in 1..1024 with the ends first, thr off the host's
+// thr(n) (below it, where the cut decides a non-zero output, and above 1.0), never an uncut |base| > 1; the expected
+// values are the model's for the words on the ports; the same seed gives the same file.
+TEST(VectorsCli, PortsModeGoesBeyondTheHostsValues) {
+  const fs::path d = temp_dir("pvec");
+  const std::string a = vectors_file(d, "a.hex", "--variant cs16 --mode ports --count 2000 --seed 21");
+  EXPECT_EQ(a.substr(a.find("\n0")), vectors_file(d, "b.hex", "--variant cs16 --mode ports --count 2000 --seed 21")
+                                         .substr(a.find("\n0")));
+  const shadecore::Unit unit(shadecore::VariantId::cs16, shadecore::default_format(), shadecore::Cutoff::ThetaCr);
+  const int F = unit.format().frac;
+  std::stringstream in(a);
+  std::string line;
+  std::set<int> ns;
+  int vectors = 0, below = 0, above_one = 0, lit_below = 0;
+  while (std::getline(in, line)) {
+    if (line.rfind("//", 0) == 0) continue;
+    std::istringstream w(line);
+    uint64_t n = 0, thr = 0, coef = 0, cos = 0, out = 0;
+    ASSERT_TRUE(w >> std::hex >> n >> thr >> coef >> cos >> out) << line;
+    ++vectors;
+    ASSERT_GE(n, 1u) << line;
+    ASSERT_LE(n, 1024u) << line;
+    ns.insert(static_cast<int>(n));
+    const int64_t code = (cos & (uint64_t{1} << (F + 1))) ? static_cast<int64_t>(cos) - (int64_t{1} << (F + 2))
+                                                          : static_cast<int64_t>(cos);
+    shadecore::UnitMaterial m = unit.setup(std::max<int64_t>(16, n));
+    const uint32_t host = m.thr;
+    m.n = static_cast<int>(n);
+    m.thr = static_cast<uint32_t>(thr);
+    EXPECT_EQ(out, unit.eval(m, code)) << line;
+    const int64_t c = std::clamp<int64_t>(code, 0, int64_t{1} << F);
+    if (c >= static_cast<int64_t>(thr))  // uncut: |base| <= 1, n·d <= 2^(F+5)
+      EXPECT_LE(static_cast<int64_t>(n) * ((int64_t{1} << F) - c), int64_t{1} << (F + 5)) << line;
+    below += n >= 16 && thr < host;
+    lit_below += n >= 16 && thr < host && c >= static_cast<int64_t>(thr) && c < host && out != 0;
+    above_one += thr > (uint64_t{1} << F);
+  }
+  EXPECT_EQ(vectors, 2000);
+  for (int end : {1, 2, 15, 1024}) EXPECT_TRUE(ns.count(end)) << end;
+  EXPECT_GT(below, 500);      // half the materials: a threshold below the host's
+  EXPECT_GT(lit_below, 50);   // fragments the host's threshold would cut, lit: a moved cut shows
+  EXPECT_GT(above_one, 20);   // thresholds above 1.0 (every code cut)
+}
+
 TEST(VectorsCli, BadArgumentsAndOutputRules) {
   const fs::path d = temp_dir("rules");
   expect_one_line_error("vectors --mode sometimes --out " + (d / "x.hex").string(), "unknown mode");
   expect_one_line_error("vectors --mode hard --n 16..20 --out " + (d / "x.hex").string(), "--n does not apply");
-  expect_one_line_error("vectors --mode exhaustive --seed 3 --out " + (d / "x.hex").string(), "random only");
+  expect_one_line_error("vectors --mode exhaustive --seed 3 --out " + (d / "x.hex").string(), "random and ports only");
+  expect_one_line_error("vectors --mode ports --n 16..20 --out " + (d / "x.hex").string(), "--n does not apply to --mode ports");
   expect_one_line_error("vectors --mode random --count 0 --out " + (d / "x.hex").string(), "--count must be");
   expect_one_line_error("vectors --mode exhaustive --config wide --out " + (d / "x.hex").string(), "over the limit");
   expect_one_line_error("vectors --mode hard --out " + d.string(), "is a directory");
