@@ -8,7 +8,8 @@
 //   shadecore vectors --variant cs16 --mode ports --count 4000 --seed 3 --out p.hex
 //
 // --mode ports: random material port values beyond what the host's setup writes (docs/spec.md §3.1, "Beyond the
-// host's values"): n in 1..1024 (below the host's 16 too; the first four material runs n = 1, 2, 15, 1024) and thr
+// host's values"): n in Unit::port_n_min()..1024 (below the host's 16 too; 0 for the dividers; the first material
+// runs n = 0, 1, 2, 15, 1024) and thr
 // on the F+1-bit port, 0..2^(F+1)-1 (half below the host's thr(n) of the legal n nearest n, where the cut decides a
 // non-zero output, a quarter within ±512 of thr(n), a quarter over the port; the coefficient and a table unit's
 // contents those of that legal n); codes within ±4 of thr (a quarter), within ±512 of it (a quarter), uniform over
@@ -103,7 +104,7 @@ void run(VectorsArgs& a) {
   if (req.mode != "hard" && req.mode != "random" && req.mode != "exhaustive" && req.mode != "ports")
     throw std::invalid_argument("unknown mode '" + req.mode + "' (known: hard, random, exhaustive, ports)");
   if (req.mode == "ports" && a.n_opt->count() > 0)
-    throw std::invalid_argument("--n does not apply to --mode ports (it draws n in 1..1024)");
+    throw std::invalid_argument("--n does not apply to --mode ports (it draws n in 1..1024, 0..1024 for schlick_div and schlick_iter)");
   const auto [lo, hi] = parse_range(a.n_range);
   validate_n(lo);
   validate_n(hi);
@@ -164,18 +165,20 @@ std::vector<TestVector> make_vectors(const UnitSpec& spec, const VectorRequest& 
     sim::Rng r(sim::mix64(req.seed ^ 0x706f727473ull));
     const int64_t thr_port = (int64_t{1} << (f.frac + 1)) - 1;
     v.reserve(req.count);
-    int n = 0, runs = 0;
+    int n = 0;
+    size_t runs = 0;
     UnitMaterial m;
-    constexpr int kEnds[] = {1, 2, kNMin - 1, kNMax};  // the first runs: the ends of the range, then random
+    // the first runs: the ends of the port's range (n = 0 where the model covers it), then random
+    const int n_min = unit.port_n_min();
+    const std::vector<int> ends = n_min == 0 ? std::vector<int>{0, 1, 2, kNMin - 1, kNMax}
+                                             : std::vector<int>{1, 2, kNMin - 1, kNMax};
     for (uint64_t i = 0; i < req.count; ++i) {
       if (i == 0 || r.next() % 8 == 0) {
-        n = runs < 4 ? kEnds[runs] : static_cast<int>(r.uniform(1, kNMax));
+        n = runs < ends.size() ? ends[runs] : static_cast<int>(r.uniform(n_min, kNMax));
         ++runs;
         m = unit.setup(std::clamp(n, kNMin, kNMax));
         m.n = n;
-        const int64_t thr_lo = unit.has_cutoff() && unit.cutoff() == Cutoff::ThetaCr
-                                   ? std::max<int64_t>(0, one - (int64_t{1} << (f.frac + 5)) / std::max(n, 1))
-                                   : 0;
+        const int64_t thr_lo = unit.port_thr_min(n);
         // thr: half between thr_lo and the host's thr (where the cut decides a non-zero output), a quarter within
         // ±512 of the host's thr, a quarter over the port
         const int64_t host = m.thr;
@@ -224,7 +227,8 @@ std::string format_vectors(const UnitSpec& spec, const VectorRequest& req, const
   std::string s;
   s += "// shadecore vectors: " + spec.describe() + "\n";
   s += "// mode " + req.mode;
-  if (req.mode == "ports") s += fmt::format(", seed {}: n in 1..1024 and thr over its whole port", req.seed);
+  if (req.mode == "ports")
+    s += fmt::format(", seed {}: n in {}..{} and thr over its whole port", req.seed, spec.unit().port_n_min(), kNMax);
   if (req.mode == "random")
     s += fmt::format(", seed {}, n {}..{}, stimulus digest {}", req.seed, req.n_lo, req.n_hi, random_digest(v));
   if (req.mode == "exhaustive") s += fmt::format(", n {}..{}: every code 0..2^F, then -2^(F+1), -1, 2^F+1, 2^(F+1)-1", req.n_lo, req.n_hi);
@@ -256,7 +260,7 @@ void add_vectors(CLI::App& app) {
   add_unit_options(sub, a->unit);
   sub->add_option("--core", a->core, "specular (default): the unit; lighting: register writes, fragments, colours")->check(cliargs::NonEmpty("core"));
   sub->add_option("--features", a->features, "Lighting core feature set: a name of config/configs.json or a JSON file")->check(cliargs::NonEmpty("feature set"));
-  sub->add_option("--mode", a->req.mode, "hard (the hard-case list) | random | exhaustive | ports (n in 1..1024, thr over its port)")->check(cliargs::NonEmpty("mode"));
+  sub->add_option("--mode", a->req.mode, "hard (the hard-case list) | random | exhaustive | ports (n in 1..1024 or 0..1024, thr over its port)")->check(cliargs::NonEmpty("mode"));
   a->count_opt = sub->add_option("--count", a->req.count, "Random, ports: number of vectors (default 1000)");
   a->seed_opt = sub->add_option("--seed", a->req.seed, "Random, ports: seed (default: picked and recorded in the file)");
   a->n_opt = sub->add_option("--n", a->n_range, "Random, exhaustive: exponent range LO..HI or N (default 16..1024)")->check(cliargs::NonEmpty("range"));

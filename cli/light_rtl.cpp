@@ -203,7 +203,7 @@ CoreBuild ensure_core(const FeatureSet& feat, bool quiet, Harness harness, bool 
   // The coverage and trace builds are directories of their own: the speed build of the set stays as it is.
   pb.key = feat.key() + (coverage ? "-cov" : "") + (trace ? "-trace" : "");
   pb.project = "sim/light_core";
-  pb.harness_sources = {"light_main.cpp", "light_bare_main.cpp"};
+  pb.harness_sources = {"light_main.cpp", "light_bare_main.cpp", "tb_light_run.cpp"};
   pb.target = harness == Harness::Bare  ? "shadecore_light_bare"
               : harness == Harness::Axi ? "shadecore_light_axi"
                                         : "shadecore_light_sim";
@@ -215,7 +215,8 @@ CoreBuild ensure_core(const FeatureSet& feat, bool quiet, Harness harness, bool 
   std::vector<std::string> axi_files;
   for (const auto& f : rtl::light_axi_files(feat))
     if (std::find(core_files.begin(), core_files.end(), f) == core_files.end()) axi_files.push_back(f);
-  pb.defines = {"-DSHADECORE_LIGHT_PARAMS=" + cmake_list(feat.verilog_params(32)),
+  pb.defines = {"-DSHADECORE_LIGHT_HARNESS_LIB=" SHADECORE_LIGHT_HARNESS_LIB,
+                "-DSHADECORE_LIGHT_PARAMS=" + cmake_list(feat.verilog_params(32)),
                 "-DSHADECORE_LIGHT_RTL=" + cmake_list(core_files),
                 "-DSHADECORE_LIGHT_AXI_RTL=" + cmake_list(axi_files),
                 std::string("-DSHADECORE_COVERAGE=") + (coverage ? "ON" : "OFF"),

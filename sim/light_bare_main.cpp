@@ -211,5 +211,6 @@ LightHarnessStats run_bare(const LightOptions& o, const LightCore& core, LightSt
 }  // namespace shadecore::sim
 
 int main(int argc, char** argv) {
-  return shadecore::sim::light_harness_main(argc, argv, shadecore::sim::kHarness, kLightFeaturesJson, shadecore::sim::run_bare);
+  return shadecore::sim::light_harness_main(argc, argv, shadecore::sim::kHarness, kLightFeaturesJson, shadecore::sim::run_bare,
+                                            {shadecore::sim::kCoverageBuild, shadecore::sim::kTraceBuild});
 }

@@ -106,5 +106,6 @@ LightHarnessStats run_systemc(const LightOptions& o, const LightCore& core, Ligh
 
 int sc_main(int argc, char** argv) {
   setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 0);
-  return shadecore::sim::light_harness_main(argc, argv, "systemc", kLightFeaturesJson, shadecore::sim::run_systemc);
+  return shadecore::sim::light_harness_main(argc, argv, "systemc", kLightFeaturesJson, shadecore::sim::run_systemc,
+                                          {shadecore::sim::kCoverageBuild, shadecore::sim::kTraceBuild});
 }

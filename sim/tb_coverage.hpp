@@ -17,16 +17,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "tb_harness_build.hpp"
+
 namespace shadecore::sim {
 
 inline constexpr bool kCoverageBuild = VM_COVERAGE != 0;
 
-// The error of --coverage given to a simulator built without it ("" when it applies).
-inline std::string coverage_option_error(const std::string& path) {
-  if (path.empty() || kCoverageBuild) return {};
-  return "--coverage: this simulator is the speed build, without coverage points (`shadecore cosim --coverage DIR` "
-         "builds and runs the coverage build)";
-}
+// The error of --coverage given to this simulator ("" when it applies: a coverage build, or no --coverage).
+inline std::string coverage_option_error(const std::string& path) { return coverage_option_error(path, kCoverageBuild); }
 
 inline void write_coverage(VerilatedContext* ctx, const std::string& path) {
   if (path.empty()) return;

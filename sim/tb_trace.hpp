@@ -16,6 +16,8 @@
 #include <cstdint>
 #include <string>
 
+#include "tb_harness_build.hpp"
+
 namespace shadecore::sim {
 
 #if defined(VM_TRACE_FST) && VM_TRACE_FST
@@ -24,23 +26,7 @@ inline constexpr bool kTraceBuild = true;
 inline constexpr bool kTraceBuild = false;
 #endif
 
-inline constexpr uint64_t kTraceClockNs = 10;  // one clock cycle in the waveform
-
-// Which monitor cycles a run dumps: [from, to] (to = kTraceToEnd: until the end of the run).
-struct TraceWindow {
-  static constexpr uint64_t kToEnd = ~uint64_t{0};
-  std::string file;  // "" = no waveform
-  uint64_t from = 0, to = kToEnd;
-  [[nodiscard]] bool on() const { return !file.empty(); }
-  // Is the dump open at monitor cycle `cycle` (1-based)?
-  [[nodiscard]] bool covers(uint64_t cycle) const { return cycle >= from && cycle <= to; }
-};
-
-// The error of --trace given to a simulator built without it ("" when it applies).
-inline std::string trace_option_error(const std::string& path) {
-  if (path.empty() || kTraceBuild) return {};
-  return "--trace: this simulator is the speed build, without waveform support (`shadecore cosim --core lighting "
-         "--trace FILE` builds and runs the trace build)";
-}
+// The error of --trace given to this simulator ("" when it applies: a trace build, or no --trace).
+inline std::string trace_option_error(const std::string& path) { return trace_option_error(path, kTraceBuild); }
 
 }  // namespace shadecore::sim

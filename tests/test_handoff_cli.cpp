@@ -268,9 +268,9 @@ TEST(VectorsCli, ExhaustiveAndNorm) {
   fs::remove_all(d);
 }
 
-// --mode ports (docs/spec.md §3.1 "Beyond the host's values"): n in 1..1024 with the ends first, thr off the host's
-// thr(n) (below it, where the cut decides a non-zero output, and above 1.0), never an uncut |base| > 1; the expected
-// values are the model's for the words on the ports; the same seed gives the same file.
+// --mode ports (docs/spec.md §3.1 "Beyond the host's values"): n in 1..1024 (0..1024 for the dividers) with the ends
+// first, thr off the host's thr(n) (below it, where the cut decides a non-zero output, and above 1.0), never an uncut
+// |base| > 1; the expected values are the model's for the words on the ports; the same seed gives the same file.
 TEST(VectorsCli, PortsModeGoesBeyondTheHostsValues) {
   const fs::path d = temp_dir("pvec");
   const std::string a = vectors_file(d, "a.hex", "--variant cs16 --mode ports --count 2000 --seed 21");
@@ -310,6 +310,35 @@ TEST(VectorsCli, PortsModeGoesBeyondTheHostsValues) {
   EXPECT_GT(below, 500);      // half the materials: a threshold below the host's
   EXPECT_GT(lit_below, 50);   // fragments the host's threshold would cut, lit: a moved cut shows
   EXPECT_GT(above_one, 20);   // thresholds above 1.0 (every code cut)
+  // The dividers are the C model's at n = 0 too (Unit::port_n_min): their files start with n = 0 and keep drawing it.
+  EXPECT_EQ(unit.port_n_min(), 1);
+  const shadecore::Unit div(shadecore::VariantId::schlick_div, shadecore::default_format(), shadecore::Cutoff::ThetaCr);
+  EXPECT_EQ(div.port_n_min(), 0);
+  EXPECT_EQ(div.port_thr_min(16), 0);
+  EXPECT_EQ(unit.port_thr_min(16), 0);  // 2^F - 2^(F+5)/16 < 0
+  EXPECT_EQ(unit.port_thr_min(1024), (int64_t{1} << F) - (int64_t{1} << (F + 5)) / 1024);
+  const std::string dv = vectors_file(d, "div.hex", "--variant schlick_div --mode ports --count 2000 --seed 21");
+  EXPECT_NE(dv.find("n in 0..1024"), std::string::npos);
+  std::stringstream din(dv);
+  int zeros = 0;
+  bool first = true;
+  while (std::getline(din, line)) {
+    if (line.rfind("//", 0) == 0) continue;
+    std::istringstream w(line);
+    uint64_t n = 0, thr = 0, coef = 0, cos = 0, out = 0;
+    ASSERT_TRUE(w >> std::hex >> n >> thr >> coef >> cos >> out) << line;
+    if (first) EXPECT_EQ(n, 0u) << line;
+    first = false;
+    zeros += n == 0;
+    ASSERT_LE(n, 1024u) << line;
+    const int64_t code = (cos & (uint64_t{1} << (F + 1))) ? static_cast<int64_t>(cos) - (int64_t{1} << (F + 2))
+                                                          : static_cast<int64_t>(cos);
+    shadecore::UnitMaterial m = div.setup(std::max<int64_t>(16, n));
+    m.n = static_cast<int>(n);
+    m.thr = static_cast<uint32_t>(thr);
+    EXPECT_EQ(out, div.eval(m, code)) << line;
+  }
+  EXPECT_GT(zeros, 4);
 }
 
 TEST(VectorsCli, BadArgumentsAndOutputRules) {

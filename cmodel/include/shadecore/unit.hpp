@@ -14,6 +14,7 @@
 // and a row in config/configs.json "variants"; the testbench does not change.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
@@ -93,6 +94,20 @@ class Unit {
   // The unit takes a CUTOFF parameter (cs16 and its forms).
   [[nodiscard]] bool has_cutoff() const { return variant_ == VariantId::cs16 || is_cs16_form(); }
   [[nodiscard]] const Cs16Stages& stages() const { return stages_; }
+  // Port values beyond the host's (docs/spec.md §3.1 "Beyond the host's values"; `shadecore vectors --mode
+  // ports`): the RTL gives this model's bits for every n in port_n_min()..kNMax and every thr from
+  // port_thr_min(n) up. n = 0 is in for the dividers schlick_div and schlick_iter (Dc = c: the quotient's integer
+  // bit, 1.0 for every c > 0, and their shared 0/0 path) and out for the others (the cs16 squarer forms' sign test
+  // cuts base = 1.0; schlick_nr's Dc = c < 2^F is not normalised). thr: in the cs16 family with the θcr cut-off
+  // an uncut |base| ≤ 1 needs c ≥ 2^F − 2^(F+5)/n (below it the squarings overflow or the sign test wraps).
+  [[nodiscard]] int port_n_min() const {
+    return variant_ == VariantId::schlick_div || variant_ == VariantId::schlick_iter ? 0 : 1;
+  }
+  [[nodiscard]] int64_t port_thr_min(int n) const {
+    if (!has_cutoff() || cutoff_ != Cutoff::ThetaCr || n <= 0) return 0;
+    const int64_t one = int64_t{1} << format_.frac;
+    return std::max<int64_t>(0, one - (int64_t{1} << (format_.frac + 5)) / n);
+  }
 
   // Chain the energy-normalisation stage (I = kCoefIntBits, F = format().frac). model < 0 picks the
   // model per material from n (kModels[n % 6], classical coefficient when (n / 6) is odd), so a
