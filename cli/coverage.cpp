@@ -356,8 +356,11 @@ size_t canonicalise_impl(const std::string& in_path, const std::function<const P
     if (hf != std::string::npos && !it->second.instances.empty()) {
       std::string leaf = key.substr(hf, ht - hf);
       if (const size_t dot = leaf.rfind('.'); dot != std::string::npos) leaf = leaf.substr(dot + 1);
+      // A point Verilator merged over instances of different paths ends in a wildcard, e.g. "...u_shade.g_ch[*"
+      // (a generate loop's index): no single instance to check. Looked for before the index is cut off.
+      const bool wildcard = leaf.find('*') != std::string::npos;
       if (const size_t br = leaf.find('['); br != std::string::npos) leaf.resize(br);
-      if (leaf.find('*') == std::string::npos && !leaf.empty() && !it->second.instances.count(leaf))
+      if (!wildcard && !leaf.empty() && !it->second.instances.count(leaf))
         throw std::runtime_error(fmt::format("{}:{}: the parameterisation map {} has no instance {} of {} (a database of another "
                                              "build?)", in_path, no, map.source, leaf, name));
     }

@@ -345,6 +345,15 @@ def params_quick(sc, root, work):
     wrong = os.path.join(work, "pwrong.dat")
     write_dat(wrong, [(key(f=pool_v, l=lo, n=20, page="v_line/" + pi["a"]["u_one"], o="block", h="TOP.cov_params_top.u_two"), 1)])
     refused([], "has no instance u_two of %s" % pi["a"]["u_one"], "a point the map places in another module", dats=(wrong,))
+    # A point Verilator merged over a generate loop's instances ends in a wildcard index ("...u_shade.g_ch[*", as the
+    # lighting core's per-channel multipliers): no single instance to check, so it is taken, not refused.
+    wild = os.path.join(work, "pwild.dat")
+    write_dat(wild, [(key(f=pool_v, l=lo, n=20, page="v_line/" + pi["a"]["u_one"], o="block", h="TOP.cov_params_top.g_ch[*"), 1)])
+    ow, ww = os.path.join(work, "pout_wild"), os.path.join(work, "pw_wild.json")
+    with open(ww, "w") as f:
+        json.dump({"waivers": []}, f)
+    r = run([sc, "coverage", wild, "--params-map", xml["a"], "--waivers", ww, "--out", ow, "--no-html"])
+    check(r.returncode == 0, "a point whose hierarchy ends in a wildcard index is taken (%s)" % r.stderr.strip())
 
 
 def params_run(sc, root, work):
