@@ -17,7 +17,7 @@ unit's file is that mutant (every other module unchanged), cheapest check first:
   extra    more vectors from the CLI (`shadecore vectors ... --mode random`, no C++ change): units, three
            files with n in 16..31, 32..127 and 128..1024 (seeds 11, 12, 13); lighting, one file of seed 11
   ports    units: material port values beyond what the host writes (`shadecore vectors --mode ports`, three
-           files, seeds 21, 22, 23): n in 1..1024, thr over its F+1-bit port with codes around it (reference
+           files, seeds 21, 22, 23): n in 1..1024 (0..1024 for the dividers), thr over its F+1-bit port with codes around it (reference
            cs16: thr from |base| = 1 up), so a change confined to the host's thr(n) window or to n in 1..15
            shows; the lighting core has no such stage
   exhaustive  units that take a fragment every clock (not schlick_iter): the mutant Verilated with the bare
@@ -89,7 +89,10 @@ NO_BENCH = {
 STAGES = ["hard", "random", "nogap", "seed2", "extra", "ports", "exhaustive"]
 # Units the exhaustive stage cannot take: the bare harness presents a fragment every clock.
 NO_EXHAUSTIVE = {"schlick_iter": "takes one fragment per F+4 clocks; the bare harness presents one every clock"}
-EQ_METHOD = 6  # equivalence(): 6 = constant bit, combinational SAT, equiv_*, with memories mapped to logic first; an
+EQ_METHOD = 7  # equivalence(): 7 = constant bit, combinational SAT, equiv_*, with memories mapped to logic first and,
+#                for the combinational SAT, every wire split to bits before the flip-flops are exposed (`splitnets`:
+#                `expose -evert-dff` takes only a flip-flop that drives a whole wire; one driving a slice stayed a
+#                flip-flop, which SAT cannot import: "rc 1" for every schlick_div survivor of 2026-12-07); an
 #                older method's survivor is tried again. 4 and 5 (a one-step `sat -seq 1` in (a)) proved a mutant the
 #                bench kills (schlick_div m115 of 2026-12-06): their "equivalent" results are void and re-run.
 VOID_METHODS = (4, 5)
@@ -388,7 +391,7 @@ def equivalence(ctx, idx, mdir):
     (0) a tie (const0/const1) of a bit that is that constant already: `sat -seq 1 -prove WIRE[BIT] VALUE` on
         the original, every flip-flop free (any state, reachable or not): the mutant is the same circuit.
     (a) combinational: every flip-flop of the original (gold) and the mutant (gate) turned into a port pair
-        (`dffunmap; expose -evert-dff`: its Q an input, its D an output, same names on both sides), a miter
+        (`dffunmap; splitnets; expose -evert-dff`: its Q an input, its D an output, same names on both sides), a miter
         of the two (`miter -equiv -make_outputs`), the shared logic merged (`opt_merge`), `sat -prove trigger 0`:
         the same next state and outputs from every state, reachable or not — sequential equivalence follows.
         Where a flip-flop is left (SAT cannot import it) this fails with an error and (b) decides. A model here is
@@ -420,7 +423,7 @@ def equivalence(ctx, idx, mdir):
                                            if "model found: FAIL" in logtxt else "rc %s" % rc))
     ys = os.path.join(mdir, "comb.ys")
     with open(ys, "w") as f:
-        f.write("read_rtlil %s\ncopy %s gold\n%s\nrename %s gate\nmemory_map\ndffunmap\n"
+        f.write("read_rtlil %s\ncopy %s gold\n%s\nrename %s gate\nmemory_map\ndffunmap\nsplitnets\n"
                 "expose -evert-dff gold gate\nmiter -equiv -flatten -make_outputs -ignore_gold_x gold gate miter\n"
                 "hierarchy -top miter\nopt -fast\nopt_merge -share_all\nopt_clean\nsat -verify -prove trigger 0 miter\n"
                 % (ctx["design_il"], unit, mut, unit))
@@ -891,7 +894,7 @@ def write_report(opts, designs, md_path, json_path):
          "backpressure: exact latency), `seed2` (other gaps and backpressure, a reset after 5 vectors), `extra` "
          "(more random vectors from `shadecore vectors`: for a unit 3 × %d with n in 16..31, 32..127, "
          "128..1024, seeds 11, 12, 13; for the lighting core one file of seed 11), `ports` (units: `shadecore vectors "
-         "--mode ports`, seeds 21, 22, 23: n in 1..1024, thr over its F+1-bit port with codes around it — for the "
+         "--mode ports`, seeds 21, 22, 23: n in 1..1024 (0..1024 for the dividers), thr over its F+1-bit port with codes around it — for the "
          "reference cs16 from |base| = 1 up, where its squarings stay in range — so a change seen only with a thr "
          "other than the host's thr(n) or an n in 1..15 shows), `exhaustive` "
          "(units that take a fragment every clock: the mutant Verilated with the bare harness `sim/bare_main.cpp` "
@@ -902,7 +905,7 @@ def write_report(opts, designs, md_path, json_path):
          "when Yosys proves it, each proof bounded by the design's equivalence bound in CPU seconds (since 2026-12-07; "
          "wall-clock before, which a loaded machine could turn into 'not proved'): (0) for a tie to 0 or 1, the "
          "bit is that constant in the original from every state (`sat -seq 1 -prove`), else (a) a miter of original and "
-         "mutant with every flip-flop exposed as a port pair (`dffunmap; expose -evert-dff; miter -equiv; "
+         "mutant with every flip-flop exposed as a port pair (`dffunmap; splitnets; expose -evert-dff; miter -equiv; "
          "opt_merge; sat -prove trigger 0`: the same next state and outputs from every state), else (b) "
          "`equiv_make` (same-named nets paired, the mutated wire left out), `equiv_simple -seq 8`, "
          "`equiv_induct -seq 8`, `equiv_status -assert`; memories mapped to logic first (`memory_map`); "
