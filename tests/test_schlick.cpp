@@ -140,6 +140,30 @@ TEST(SchlickDivider, RestoringStepsEqualIntegerDivision) {
   }
 }
 
+// n = 0 (a port value beyond the host's, docs/spec.md §3.1; `vectors --mode ports` draws it for the dividers): Dc = c,
+// the quotient is 1.0 for every c > 0, and at c = 0 (Dc = 0) the RTL's divider takes every quotient bit and its F+1-bit
+// output register wraps (q + 1)/2 = 2^(F+1) to 0. The fast path and the traced path give that, never a division by 0.
+TEST(SchlickDivider, ZeroExponentIsTheRtlsPathNotADivisionByZero) {
+  for (int F : {8, 16, 24}) {
+    const Format f{F, F == 24 ? 7 : 5};
+    SchlickMaterial m = schlick_setup(f, kNMin);
+    m.n = 0;
+    for (int64_t code : {int64_t{0}, int64_t{-3}, int64_t{1}, f.one() / 3, f.one(), f.one() + 7}) {
+      SchlickTrace tr;
+      const uint32_t traced = schlick_div_eval(f, m, code, &tr);
+      EXPECT_EQ(schlick_div_eval(f, m, code), traced) << F << " " << code;
+      EXPECT_EQ(schlick_iter_eval(f, m, code), traced) << F << " " << code;
+      if (tr.c == 0) {
+        EXPECT_EQ(tr.den, 0u);
+        EXPECT_EQ(tr.quot, (uint64_t{1} << (F + 2)) - 1);  // every step b = 1
+        EXPECT_EQ(traced, 0u);                              // 2^(F+1) wrapped in F+1 bits
+      } else {
+        EXPECT_EQ(traced, uint32_t(f.one()));
+      }
+    }
+  }
+}
+
 // Table contents rule and worst case: 64 entries, 514..1016, strictly decreasing, ε0 < 2^−6.9.
 TEST(SchlickNr, TableWorstCase) {
   constexpr int P = kSchlickNrIndexBits, T = kSchlickNrTableFrac;

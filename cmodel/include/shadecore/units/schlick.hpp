@@ -103,9 +103,13 @@ inline uint32_t schlick_div_eval(const Format& f, const SchlickMaterial& m, int6
   uint64_t den;
   detail::schlick_front(f, m, code, c, den);
   uint64_t rem = 0;
-  const uint64_t q = tr ? schlick_restoring_divide(f.frac, c, den, &rem)
-                        : (static_cast<uint64_t>(c) << (f.frac + 1)) / den;  // same value, faster
-  const uint32_t out = static_cast<uint32_t>((q + 1) >> 1);
+  // Dc = 0 only at n = 0 with c = 0 (beyond the host's n, docs/spec.md §3.1): the RTL's divider then takes every
+  // quotient bit (q = 2^(F+2) − 1) and (q + 1)/2 = 2^(F+1) wraps to 0 in its F+1-bit output register. The division
+  // below would divide by zero there (undefined: a SIGFPE, or 0 where the compiler folded it), so that case takes
+  // the restoring steps, and the output keeps F+1 bits as the register does (no other input reaches bit F+1).
+  const uint64_t q = tr || den == 0 ? schlick_restoring_divide(f.frac, c, den, &rem)
+                                    : (static_cast<uint64_t>(c) << (f.frac + 1)) / den;  // same value, faster
+  const uint32_t out = static_cast<uint32_t>(((q + 1) >> 1) & ((uint64_t{2} << f.frac) - 1));
   if (tr) {
     tr->c = c; tr->n = static_cast<uint32_t>(m.n); tr->den = den; tr->quot = q; tr->rem = rem; tr->out = out;
   }
