@@ -338,7 +338,7 @@ TEST(VectorsCli, PortsModeGoesBeyondTheHostsValues) {
     m.thr = static_cast<uint32_t>(thr);
     EXPECT_EQ(out, div.eval(m, code)) << line;
   }
-  EXPECT_GT(zeros, 4);
+  EXPECT_GE(zeros, 256);  // the n = 0 run is 256 fragments long (kZeroRun), then n = 0 is as rare as any n
 }
 
 TEST(VectorsCli, BadArgumentsAndOutputRules) {
