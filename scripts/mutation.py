@@ -89,13 +89,22 @@ NO_BENCH = {
 STAGES = ["hard", "random", "nogap", "seed2", "extra", "ports", "exhaustive"]
 # Units the exhaustive stage cannot take: the bare harness presents a fragment every clock.
 NO_EXHAUSTIVE = {"schlick_iter": "takes one fragment per F+4 clocks; the bare harness presents one every clock"}
-EQ_METHOD = 7  # equivalence(): 7 = constant bit, combinational SAT, equiv_*, with memories mapped to logic first and,
+EQ_METHOD = 8  # equivalence(): 8 = 7 with the combinational SAT made sound (undef modelled: 7 and older, without
+#                it, compared only the bits where gold is 1, see equivalence()) and exposing the flip-flops only.
+#                7 = constant bit, combinational SAT, equiv_*, with memories mapped to logic first and,
 #                for the combinational SAT, every wire split to bits before the flip-flops are exposed (`splitnets`:
 #                `expose -evert-dff` takes only a flip-flop that drives a whole wire; one driving a slice stayed a
 #                flip-flop, which SAT cannot import: "rc 1" for every schlick_div survivor of 2026-12-07); an
 #                older method's survivor is tried again. 4 and 5 (a one-step `sat -seq 1` in (a)) proved a mutant the
 #                bench kills (schlick_div m115 of 2026-12-06): their "equivalent" results are void and re-run.
 VOID_METHODS = (4, 5)
+
+
+def void_proof(r):
+    """An "equivalent" result whose proof does not stand: a void method's, or a combinational SAT proof made before
+    EQ_METHOD 8 (one-sided through the miter's x constant)."""
+    return r.get("status") == "equivalent" and (r.get("eq_method") in VOID_METHODS or (
+        r.get("eq_method", 0) < 8 and r.get("equivalence", "").startswith("combinational SAT")))
 # What bounds a proof: "cpu" = --eq-timeout seconds of the prover's CPU time (RLIMIT_CPU; a wall-clock guard of ten
 # times that plus a minute beside it), so that a loaded machine does not turn a proof into "not proved". Proofs made
 # under the earlier wall-clock bound (no "eq_bound") that did not succeed are tried again, and so is a survivor
@@ -391,16 +400,21 @@ def equivalence(ctx, idx, mdir):
     (0) a tie (const0/const1) of a bit that is that constant already: `sat -seq 1 -prove WIRE[BIT] VALUE` on
         the original, every flip-flop free (any state, reachable or not): the mutant is the same circuit.
     (a) combinational: every flip-flop of the original (gold) and the mutant (gate) turned into a port pair
-        (`dffunmap; splitnets; expose -evert-dff`: its Q an input, its D an output, same names on both sides), a miter
-        of the two (`miter -equiv -make_outputs`), the shared logic merged (`opt_merge`), `sat -prove trigger 0`:
-        the same next state and outputs from every state, reachable or not — sequential equivalence follows.
+        (`dffunmap; splitnets; expose -dff -evert-dff`: its Q an input, its D an output, same names on both sides;
+        `-dff` exposes the flip-flops only, not every internal wire as well), a miter of the two (`miter -equiv
+        -make_outputs -ignore_gold_x`: a gold output that is x, the RTL's don't-care, is not compared), the shared
+        logic merged (`opt_merge`), `sat -enable_undef -set-def-inputs -prove trigger 0`: the same next state and
+        outputs from every state, reachable or not — sequential equivalence follows. The undef model is needed:
+        without it SAT reads the miter's x constant as 0, and `-ignore_gold_x` then skips every bit where gold is 0
+        (only gate >= gold was checked: 16 mutants of 2026-12-07's caches were "proved" so and fail this proof).
         Where a flip-flop is left (SAT cannot import it) this fails with an error and (b) decides. A model here is
         no counter-example (the state may be unreachable), so (b) is tried next. (A `sat -seq 1` variant that
         took the left flip-flops as free states proved a mutant the bench kills: not used.)
     Memories (a ROM such as schlick_nr's seed table) are mapped to logic first (`memory_map`): SAT cannot import
     a memory port.
     (b) Yosys's equivalence flow: equiv_make pairs every net of the same name except the mutated wire itself
-        (its value may differ where the difference is masked further on), equiv_simple -seq N and
+        (its value may differ where the difference is masked further on) unless that wire is a port (every port is
+        paired: a port left out would be compared nowhere, EQ_METHOD 8), equiv_simple -seq N and
         equiv_induct -seq N (every pair, with the others as assumptions); `equiv_status -assert` (every pair
         proved, the output ports among them) counts as equivalent."""
     mut = ctx["mutations"][idx - 1]
@@ -424,8 +438,9 @@ def equivalence(ctx, idx, mdir):
     ys = os.path.join(mdir, "comb.ys")
     with open(ys, "w") as f:
         f.write("read_rtlil %s\ncopy %s gold\n%s\nrename %s gate\nmemory_map\ndffunmap\nsplitnets\n"
-                "expose -evert-dff gold gate\nmiter -equiv -flatten -make_outputs -ignore_gold_x gold gate miter\n"
-                "hierarchy -top miter\nopt -fast\nopt_merge -share_all\nopt_clean\nsat -verify -prove trigger 0 miter\n"
+                "expose -dff -evert-dff gold gate\nmiter -equiv -flatten -make_outputs -ignore_gold_x gold gate miter\n"
+                "hierarchy -top miter\nopt -fast\nopt_merge -share_all\nopt_clean\n"
+                "sat -verify -enable_undef -set-def-inputs -prove trigger 0 miter\n"
                 % (ctx["design_il"], unit, mut, unit))
     logf = os.path.join(mdir, "comb.log")
     rc, out, secs = run(["yosys", "-q", "-l", logf, ys], cwd=mdir, **proof_bound(ctx))
@@ -437,12 +452,15 @@ def equivalence(ctx, idx, mdir):
     wire = re.search(r"-wire (\S+)", mut)
     bl = os.path.join(mdir, "blacklist.txt")
     with open(bl, "w") as f:
-        f.write((wire.group(1) + "\n") if wire else "")
+        # a port is never left out: equiv_make would give it a gold and a gate copy and compare neither (the
+        # output tie m012 of cs16 was "proved" so); the select below refuses any port left unpaired
+        f.write((wire.group(1) + "\n") if wire and wire.group(1) not in unit_ports(ctx) else "")
     ys = os.path.join(mdir, "equiv.ys")
     n = ctx["eq_steps"]
     with open(ys, "w") as f:
         f.write("read_rtlil %s\ncopy %s gold\n%s\nrename %s gate\nmemory_map\n"
-                "equiv_make -blacklist %s gold gate equiv\nhierarchy -top equiv\nflatten\nopt_clean\n"
+                "equiv_make -blacklist %s gold gate equiv\nhierarchy -top equiv\n"
+                "select -assert-none equiv/o:*_gold equiv/o:*_gate equiv/i:*_gold equiv/i:*_gate\nflatten\nopt_clean\n"
                 "equiv_simple -seq %d\nequiv_induct -seq %d\nequiv_status -assert\n"
                 % (ctx["design_il"], unit, mut, unit, bl, n, n))
     logf = os.path.join(mdir, "equiv.log")
@@ -454,6 +472,16 @@ def equivalence(ctx, idx, mdir):
     tries.append("equiv_*: %s" % ("timed out" if rc is None else "%s of %d pairs unproven"
                                   % (m.group(2), int(m.group(1)) + int(m.group(2))) if m else "rc %s" % rc))
     return "unknown", "not proved within %d CPU s each (%s)" % (ctx["eq_timeout"], "; ".join(tries))
+
+
+def unit_ports(ctx):
+    """The unit's port names, from design.il."""
+    if "ports" not in ctx:
+        text = open(ctx["design_il"]).read()
+        body = re.search(r"^module \\%s\n(.*?)^end$" % re.escape(ctx["unit"]), text, re.S | re.M)
+        ctx["ports"] = set(re.findall(r"^\s*wire (?:width \d+ )?(?:upto )?(?:signed )?(?:input|output|inout) \d+ \\(\S+)$",
+                                      body.group(1) if body else "", re.M))
+    return ctx["ports"]
 
 
 def needs_proof(r, eq_timeout):
@@ -718,7 +746,7 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
 
 
     def stale(r):
-        if r["status"] == "equivalent" and r.get("eq_method") in VOID_METHODS:
+        if void_proof(r):
             return True
         return r["status"] == "error" or (r["status"] == "survived" and (
             any(st not in r.get("stages", STAGES[:4]) for st in stages) or
@@ -780,6 +808,9 @@ def cached_design(opts, name):
     if not meta or meta["count"] != opts.count or meta["seed"] != opts.seed:
         return None
     res = [c["results"].get(str(i)) for i in range(1, meta["count"] + 1)]
+    # a proof that does not stand is not reported as one: the mutant counts as a survivor until it is run again
+    res = [dict(r, status="survived", equivalence=r["equivalence"] + " (void: proof made before EQ_METHOD 8)")
+           if r is not None and void_proof(r) else r for r in res]
     done = [r for r in res if r is not None]
     if not done:
         return None
