@@ -798,6 +798,12 @@ def run_design(opts, name, handoff_args, unit_opt, only=None):
     return dict(meta, results=[cache["results"][str(i)] for i in ids], wall_seconds=round(time.time() - t0, 1))
 
 
+def unvoid(results):
+    """A proof that does not stand is not reported as one: its mutant counts as a survivor until it is run again."""
+    return [dict(r, status="survived", equivalence=r["equivalence"] + " (void: proof made before EQ_METHOD 8)")
+            if r is not None and void_proof(r) else r for r in results]
+
+
 def cached_design(opts, name):
     """A finished design's results from its cache (--report-only), or None."""
     try:
@@ -808,9 +814,7 @@ def cached_design(opts, name):
     if not meta or meta["count"] != opts.count or meta["seed"] != opts.seed:
         return None
     res = [c["results"].get(str(i)) for i in range(1, meta["count"] + 1)]
-    # a proof that does not stand is not reported as one: the mutant counts as a survivor until it is run again
-    res = [dict(r, status="survived", equivalence=r["equivalence"] + " (void: proof made before EQ_METHOD 8)")
-           if r is not None and void_proof(r) else r for r in res]
+    res = unvoid(res)
     done = [r for r in res if r is not None]
     if not done:
         return None
@@ -893,6 +897,7 @@ def previous_design(opts, name):
         if d.get("name") == name and d.get("results"):
             keep = {k: d[k] for k in ("name", "unit", "handoff", "params", "stages", "timeouts", "source", "results")
                     if k in d}
+            keep["results"] = unvoid(keep["results"])
             if len(d["results"]) < opts.count:  # a campaign stopped for time: carried as the partial run it was
                 keep["partial"] = True
             return dict(keep, count=opts.count, seed=opts.seed, baseline=d.get("baseline_seconds"),
