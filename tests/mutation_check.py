@@ -81,7 +81,7 @@ def no_one_sided_proof(work):
     import tempfile
     wdir = os.path.join(work, "cs16")
     muts = [ln.strip() for ln in open(os.path.join(wdir, "mutations.txt")) if ln.strip()]
-    ctx = {"mutations": muts, "unit": "sc_cs16", "design_il": os.path.join(wdir, "design.il"), "eq_timeout": 20,
+    ctx = {"mutations": muts, "unit": "sc_cs16", "design_il": os.path.join(wdir, "design.il"), "eq_timeout": 12,
            "eq_steps": 8}
     fails = 0
     for what, pat in (("a result register bit tied to 1", r"-mode const1 .*-port Q .*-wire out_spec_o "),
