@@ -99,17 +99,18 @@ EQ_METHOD = 8  # equivalence(): 8 = 7 with the combinational SAT made sound (und
 #                bench kills (schlick_div m115 of 2026-12-06): their "equivalent" results are void and re-run.
 VOID_METHODS = (4, 5)
 
+# What bounds a proof: "cpu" = --eq-timeout seconds of the prover's CPU time (RLIMIT_CPU; a wall-clock guard of ten
+# times that plus a minute beside it), so that a loaded machine does not turn a proof into "not proved". Proofs made
+# under the earlier wall-clock bound (no "eq_bound") that did not succeed are tried again, and so is a survivor
+# whose proof had a smaller bound than this run's; successes stand.
+EQ_BOUND = "cpu"
+
 
 def void_proof(r):
     """An "equivalent" result whose proof does not stand: a void method's, or a combinational SAT proof made before
     EQ_METHOD 8 (one-sided through the miter's x constant)."""
     return r.get("status") == "equivalent" and (r.get("eq_method") in VOID_METHODS or (
         r.get("eq_method", 0) < 8 and r.get("equivalence", "").startswith("combinational SAT")))
-# What bounds a proof: "cpu" = --eq-timeout seconds of the prover's CPU time (RLIMIT_CPU; a wall-clock guard of ten
-# times that plus a minute beside it), so that a loaded machine does not turn a proof into "not proved". Proofs made
-# under the earlier wall-clock bound (no "eq_bound") that did not succeed are tried again, and so is a survivor
-# whose proof had a smaller bound than this run's; successes stand.
-EQ_BOUND = "cpu"
 
 
 class ArgError(Exception):
@@ -406,7 +407,8 @@ def equivalence(ctx, idx, mdir):
         logic merged (`opt_merge`), `sat -enable_undef -set-def-inputs -prove trigger 0`: the same next state and
         outputs from every state, reachable or not — sequential equivalence follows. The undef model is needed:
         without it SAT reads the miter's x constant as 0, and `-ignore_gold_x` then skips every bit where gold is 0
-        (only gate >= gold was checked: 16 mutants of 2026-12-07's caches were "proved" so and fail this proof).
+        (only gate >= gold was checked: cs16 m074, which the hard vectors kill, was "proved" so; of the 48 such proofs
+        in 2026-12-07's caches, 47 hold under this proof and schlick_iter m073 does not).
         Where a flip-flop is left (SAT cannot import it) this fails with an error and (b) decides. A model here is
         no counter-example (the state may be unreachable), so (b) is tried next. (A `sat -seq 1` variant that
         took the left flip-flops as free states proved a mutant the bench kills: not used.)

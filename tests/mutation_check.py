@@ -91,7 +91,8 @@ def no_one_sided_proof(work):
             print("FAIL: no cs16 mutant matches %s (%s)" % (pat, what))
             fails += 1
             continue
-        eq, why = mutation.equivalence(ctx, pick[0], tempfile.mkdtemp(prefix="proof_", dir=wdir))
+        with tempfile.TemporaryDirectory(prefix="proof_", dir=wdir) as mdir:
+            eq, why = mutation.equivalence(ctx, pick[0], mdir)
         ok = eq != "equivalent"
         print("%s m%03d (%s) not proved equivalent: %s" % ("ok  " if ok else "FAIL", pick[0], what, why))
         fails += not ok
